@@ -1,0 +1,26 @@
+// Writing a file so that it is either complete or absent: write to a temporary name in the
+// same folder, flush, then rename over the target.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <ostream>
+#include <span>
+#include <string_view>
+
+namespace glint {
+
+/// Calls `write` with a binary stream on a temporary file next to `path`, then renames it to
+/// `path`. On any failure (exception from `write`, stream error, rename error) the temporary
+/// file is removed and IoError names the path. Refuses to write over a file listed in
+/// `protected_inputs` (InputError): inputs are never overwritten.
+void write_atomically(const std::filesystem::path& path,
+                      const std::function<void(std::ostream&)>& write);
+
+/// Registers a path as an input of this process: write_atomically refuses to replace it.
+void protect_input(const std::filesystem::path& path);
+
+/// Convenience: writes bytes/text atomically.
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents);
+
+}  // namespace glint

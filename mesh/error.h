@@ -1,0 +1,48 @@
+// glint's error vocabulary (STYLE.md §5).
+//
+// The world is wrong -> throw one of these; our code is wrong -> GLINT_ASSERT.
+// Messages answer what, where, found, expected in one line a user can act on:
+//   mesh "jaw.stl": triangle 1042 uses vertex 9001, mesh has 9000 vertices
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace glint {
+
+/// Base of every error glint reports to a user.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Bad input: a malformed or inconsistent file, an invalid option or scenario. Exit code 2.
+class InputError : public Error {
+public:
+    using Error::Error;
+};
+
+/// A read or write failed (missing file, unwritable folder, short write). Exit code 3.
+class IoError : public Error {
+public:
+    using Error::Error;
+};
+
+/// No usable compute/graphics device, or a device call failed. Exit code 3.
+class DeviceError : public Error {
+public:
+    using Error::Error;
+};
+
+namespace detail {
+[[noreturn]] void assert_failed(const char* cond, const std::string& msg, const char* file,
+                                int line);
+}  // namespace detail
+
+}  // namespace glint
+
+/// Cheap invariant check that stays on in release; throws std::logic_error with file:line.
+#define GLINT_ASSERT(cond, msg)                                                  \
+    do {                                                                         \
+        if (!(cond)) ::glint::detail::assert_failed(#cond, (msg), __FILE__, __LINE__); \
+    } while (false)

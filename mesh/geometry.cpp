@@ -1,0 +1,107 @@
+#include "mesh/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace glint {
+
+void transform_mesh(Mesh& mesh, const Rigid& new_from_old) {
+    const Eigen::Matrix3d r = new_from_old.linear();
+    for (auto& p : mesh.positions) p = (new_from_old * p.cast<double>()).cast<float>();
+    for (auto& n : mesh.normals) n = (r * n.cast<double>()).normalized().cast<float>();
+}
+
+double rotation_angle_deg(const Rigid& t) {
+    const Eigen::AngleAxisd aa(Eigen::Matrix3d(t.linear()));
+    return std::abs(aa.angle()) * 180.0 / std::numbers::pi;
+}
+
+Ray Camera::pixel_ray(double u, double v) const {
+    // Normalised device coordinates in [-1, 1], y up.
+    const double x_ndc = 2.0 * u / width - 1.0;
+    const double y_ndc = 1.0 - 2.0 * v / height;
+    const double aspect = static_cast<double>(width) / height;
+    Vec3d origin_cam;
+    Vec3d dir_cam;
+    if (projection == Projection::Orthographic) {
+        origin_cam = {x_ndc * ortho_half_height * aspect, y_ndc * ortho_half_height, 0.0};
+        dir_cam = {0.0, 0.0, -1.0};
+    } else {
+        const double t = std::tan(0.5 * fov_y_rad);
+        origin_cam = Vec3d::Zero();
+        dir_cam = Vec3d(x_ndc * t * aspect, y_ndc * t, -1.0).normalized();
+    }
+    return {world_from_camera * origin_cam, world_from_camera.linear() * dir_cam};
+}
+
+Eigen::Vector3d Camera::project(const Vec3d& world) const {
+    const Vec3d c = world_from_camera.inverse() * world;
+    const double depth = -c.z();
+    const double aspect = static_cast<double>(width) / height;
+    double x_ndc = 0.0;
+    double y_ndc = 0.0;
+    if (projection == Projection::Orthographic) {
+        x_ndc = c.x() / (ortho_half_height * aspect);
+        y_ndc = c.y() / ortho_half_height;
+    } else {
+        const double t = std::tan(0.5 * fov_y_rad);
+        x_ndc = c.x() / (depth * t * aspect);
+        y_ndc = c.y() / (depth * t);
+    }
+    return {0.5 * (x_ndc + 1.0) * width, 0.5 * (1.0 - y_ndc) * height, depth};
+}
+
+double Camera::footprint_at(double depth) const {
+    if (projection == Projection::Orthographic) return 2.0 * ortho_half_height / height;
+    return 2.0 * depth * std::tan(0.5 * fov_y_rad) / height;
+}
+
+Eigen::Matrix4d Camera::clip_from_world() const {
+    // Vulkan clip space: x right, y DOWN, z in [0, 1] (0 = near). Camera looks along -z.
+    const double aspect = static_cast<double>(width) / height;
+    const double n = near_plane;
+    const double f = far_plane;
+    Eigen::Matrix4d proj = Eigen::Matrix4d::Zero();
+    if (projection == Projection::Orthographic) {
+        proj(0, 0) = 1.0 / (ortho_half_height * aspect);
+        proj(1, 1) = -1.0 / ortho_half_height;
+        proj(2, 2) = -1.0 / (f - n);  // z_ndc = (-z_cam - n) / (f - n)
+        proj(2, 3) = -n / (f - n);
+        proj(3, 3) = 1.0;
+    } else {
+        const double t = std::tan(0.5 * fov_y_rad);
+        proj(0, 0) = 1.0 / (t * aspect);
+        proj(1, 1) = -1.0 / t;
+        proj(2, 2) = f / (n - f);  // depth 0 at near, 1 at far
+        proj(2, 3) = f * n / (n - f);
+        proj(3, 2) = -1.0;
+    }
+    return proj * world_from_camera.inverse().matrix();
+}
+
+Rigid look_at(const Vec3d& eye, const Vec3d& target, const Vec3d& up) {
+    const Vec3d forward = (target - eye).normalized();
+    Vec3d up_hint = up.normalized();
+    // note: 1e-6 is far below any useful angle between forward and up (0.06°); below it
+    // the cross product loses its direction and another axis is used.
+    if (forward.cross(up_hint).norm() < 1e-6) {
+        up_hint = std::abs(forward.x()) < 0.9 ? Vec3d::UnitX() : Vec3d::UnitY();
+    }
+    const Vec3d right = forward.cross(up_hint).normalized();
+    const Vec3d true_up = right.cross(forward);
+    Rigid world_from_camera = Rigid::Identity();
+    world_from_camera.linear().col(0) = right;
+    world_from_camera.linear().col(1) = true_up;
+    world_from_camera.linear().col(2) = -forward;
+    world_from_camera.translation() = eye;
+    return world_from_camera;
+}
+
+Vec3d direction_from_az_el(double azimuth_deg, double elevation_deg) {
+    const double az = azimuth_deg * std::numbers::pi / 180.0;
+    const double el = elevation_deg * std::numbers::pi / 180.0;
+    return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+}  // namespace glint

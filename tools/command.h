@@ -1,0 +1,43 @@
+// How a subcommand plugs into `glint`: a command_<name>.cpp defines a setup function that adds
+// a CLI11 subcommand (with its callback) and registers it with a static CommandRegistrar.
+// The callback does the work and throws glint errors; main() maps them to exit codes:
+//   0 ok, 1 a check failed (e.g. an [expect] of a scenario), 2 bad input (InputError and
+//   command-line errors), 3 device or IO trouble (DeviceError, IoError), 4 internal error.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace glint::cli {
+
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitCheckFailed = 1;
+inline constexpr int kExitBadInput = 2;
+inline constexpr int kExitDeviceOrIo = 3;
+inline constexpr int kExitInternal = 4;
+
+/// Flags every subcommand shares (set on the top-level app, read by commands).
+struct GlobalFlags {
+    bool quiet = false;  ///< no progress bars or chatter on stderr
+    bool json = false;   ///< machine-readable JSON on stdout instead of tables
+};
+GlobalFlags& global_flags();
+
+/// Thrown by a command whose run completed but whose checks failed (exit 1).
+struct CheckFailed : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+using CommandSetup = std::function<void(CLI::App& app)>;
+
+/// Registers a subcommand; `order` sorts them in --help.
+struct CommandRegistrar {
+    CommandRegistrar(int order, CommandSetup setup);
+};
+
+/// Registered setups, sorted by order.
+void add_registered_commands(CLI::App& app);
+
+}  // namespace glint::cli
