@@ -17,6 +17,12 @@ namespace glint {
 void write_atomically(const std::filesystem::path& path,
                       const std::function<void(std::ostream&)>& write);
 
+/// Same guarantee for writers that need a file name rather than a stream (image libraries
+/// choose the format by extension): `write` receives a temporary path in the same folder with
+/// the same extension, and must create that file; it is then renamed to `path`.
+void write_atomically_to_path(const std::filesystem::path& path,
+                              const std::function<void(const std::filesystem::path& temp)>& write);
+
 /// Registers a path as an input of this process: write_atomically refuses to replace it.
 void protect_input(const std::filesystem::path& path);
 

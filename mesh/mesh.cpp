@@ -47,6 +47,14 @@ std::vector<double> triangle_areas(const Mesh& mesh) {
     return areas;
 }
 
+std::vector<double> vertex_areas(const Mesh& mesh) {
+    std::vector<double> areas(mesh.positions.size(), 0.0);
+    const auto tri_areas = triangle_areas(mesh);
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (auto v : mesh.triangles[t]) areas[v] += tri_areas[t] / 3.0;
+    return areas;
+}
+
 double surface_area(const Mesh& mesh) {
     double total = 0.0;
     for (double a : triangle_areas(mesh)) total += a;

@@ -69,6 +69,10 @@ struct Mesh {
 /// Area of each triangle.
 [[nodiscard]] std::vector<double> triangle_areas(const Mesh& mesh);
 
+/// Area associated with each vertex: one third of the area of every triangle using it
+/// (barycentric dual area). Sums to the surface area.
+[[nodiscard]] std::vector<double> vertex_areas(const Mesh& mesh);
+
 /// Total surface area.
 [[nodiscard]] double surface_area(const Mesh& mesh);
 

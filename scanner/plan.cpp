@@ -1,0 +1,224 @@
+#include "scanner/plan.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace glint {
+
+namespace {
+
+std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
+    std::vector<double> out;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        try {
+            std::size_t used = 0;
+            out.push_back(std::stod(item, &used));
+            if (used != item.size()) throw std::invalid_argument(item);
+        } catch (const std::exception&) {
+            throw InputError(what + ": '" + item + "' is not a number");
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+bool RoiSpec::contains(const Vec3d& p) const {
+    if (shape == Shape::Sphere) return (p - center).norm() <= radius;
+    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
+}
+
+RoiSpec parse_roi(const std::string& text) {
+    const auto colon = text.find(':');
+    const std::string kind = text.substr(0, colon);
+    const std::string where = "ROI '" + text + "'";
+    if (colon == std::string::npos)
+        throw InputError(where + ": expected 'sphere:x,y,z,r' or 'box:x0,y0,z0,x1,y1,z1'");
+    const auto v = parse_numbers(text.substr(colon + 1), where);
+    RoiSpec roi;
+    if (kind == "sphere") {
+        if (v.size() != 4) throw InputError(where + ": sphere needs 4 numbers x,y,z,r, found " + std::to_string(v.size()));
+        roi.shape = RoiSpec::Shape::Sphere;
+        roi.center = {v[0], v[1], v[2]};
+        roi.radius = v[3];
+        if (!(roi.radius > 0)) throw InputError(where + ": radius must be > 0");
+    } else if (kind == "box") {
+        if (v.size() != 6) throw InputError(where + ": box needs 6 numbers, found " + std::to_string(v.size()));
+        roi.shape = RoiSpec::Shape::Box;
+        roi.min = {v[0], v[1], v[2]};
+        roi.max = {v[3], v[4], v[5]};
+        if ((roi.max.array() <= roi.min.array()).any()) throw InputError(where + ": box max must exceed min on every axis");
+    } else {
+        throw InputError(where + ": unknown shape '" + kind + "', expected sphere or box");
+    }
+    return roi;
+}
+
+std::string to_string(const RoiSpec& roi) {
+    std::ostringstream s;
+    s.precision(10);
+    if (roi.shape == RoiSpec::Shape::Sphere)
+        s << "sphere:" << roi.center.x() << ',' << roi.center.y() << ',' << roi.center.z() << ',' << roi.radius;
+    else
+        s << "box:" << roi.min.x() << ',' << roi.min.y() << ',' << roi.min.z() << ',' << roi.max.x() << ','
+          << roi.max.y() << ',' << roi.max.z();
+    return s.str();
+}
+
+void SweepPlanOptions::validate() const {
+    auto bad = [](const std::string& field, double value, const std::string& rule) {
+        std::ostringstream s;
+        s << "sweep plan: " << field << " = " << value << ": " << rule;
+        throw InputError(s.str());
+    };
+    if (kind == Kind::Rotary) {
+        if (!(azimuth_step_deg > 0 && azimuth_step_deg <= 360)) bad("azimuth step", azimuth_step_deg, "must be in (0, 360]");
+        if (elevations_deg.empty()) throw InputError("sweep plan: no elevation rings: the plan would be empty");
+        for (double e : elevations_deg)
+            if (!(e >= -90 && e <= 90)) bad("elevation", e, "must be in [-90, 90]");
+    } else if (sphere_views < 1) {
+        bad("sphere views", sphere_views, "must be ≥ 1");
+    }
+    for (double f : footprints)
+        if (!(f > 0) || !std::isfinite(f)) bad("zoom footprint", f, "must be > 0 mesh units per pixel");
+    if (size < 8 || size > max_size) bad("size", size, "must be in [8, max size " + std::to_string(max_size) + "]");
+    if (!(margin >= 1.0)) bad("margin", margin, "must be ≥ 1");
+}
+
+void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {
+    if (text == "rotary") {
+        options.kind = SweepPlanOptions::Kind::Rotary;
+        return;
+    }
+    if (text.rfind("sphere:", 0) == 0) {
+        options.kind = SweepPlanOptions::Kind::Sphere;
+        const auto v = parse_numbers(text.substr(7), "plan '" + text + "'");
+        if (v.size() != 1 || v[0] < 1 || v[0] != std::floor(v[0]))
+            throw InputError("plan '" + text + "': expected sphere:N with N a positive integer");
+        options.sphere_views = static_cast<int>(v[0]);
+        return;
+    }
+    throw InputError("plan '" + text + "': expected 'rotary' or 'sphere:N'");
+}
+
+SweepPlan make_sweep_plan(const Mesh& reference, const SweepPlanOptions& options) {
+    options.validate();
+    SweepPlan plan;
+    plan.options = options;
+
+    // Framed sphere: all vertices, or the ROI's vertices.
+    std::vector<std::uint32_t> framed;
+    if (options.roi) {
+        for (std::size_t v = 0; v < reference.vertex_count(); ++v)
+            if (options.roi->contains(reference.positions[v].cast<double>())) framed.push_back(static_cast<std::uint32_t>(v));
+        if (framed.empty())
+            throw InputError("ROI " + to_string(*options.roi) + " contains no vertex of the reference mesh");
+        plan.roi_vertices = framed.size();
+    } else {
+        framed.resize(reference.vertex_count());
+        for (std::size_t v = 0; v < framed.size(); ++v) framed[v] = static_cast<std::uint32_t>(v);
+    }
+    Bounds box;
+    for (auto v : framed) box.extend(reference.positions[v]);
+    plan.target = box.center().cast<double>();
+    double r = 0.0;
+    for (auto v : framed) r = std::max(r, (reference.positions[v].cast<double>() - plan.target).norm());
+    if (!(r > 0) && options.roi) {
+        // A single vertex in the ROI: frame the ROI shape itself.
+        const auto& roi = *options.roi;
+        r = roi.shape == RoiSpec::Shape::Sphere ? roi.radius : 0.5 * (roi.max - roi.min).norm();
+    }
+    if (!(r > 0)) throw InputError("sweep plan: the framed part of the mesh has zero extent");
+    plan.radius = r * options.margin;
+
+    // Zoom levels.
+    if (options.footprints.empty()) {
+        plan.footprints = {2.0 * plan.radius / options.size};
+    } else {
+        plan.footprints = options.footprints;
+    }
+    for (double f : plan.footprints) {
+        const double size = std::ceil(2.0 * plan.radius / f);
+        if (size > options.max_size) {
+            std::ostringstream s;
+            s << "sweep plan: zoom footprint " << f << " needs " << size << " px to frame a radius of "
+              << plan.radius << " (max size " << options.max_size
+              << "): choose a coarser zoom, a larger max size, or an ROI";
+            throw InputError(s.str());
+        }
+        plan.sizes.push_back(std::max(8, static_cast<int>(size)));
+    }
+
+    // Directions.
+    struct Dir {
+        double az, el;
+        int ring, step;
+    };
+    std::vector<Dir> dirs;
+    if (options.kind == SweepPlanOptions::Kind::Rotary) {
+        const int steps = std::max(1, static_cast<int>(std::round(360.0 / options.azimuth_step_deg)));
+        for (std::size_t ring = 0; ring < options.elevations_deg.size(); ++ring)
+            for (int s = 0; s < steps; ++s)
+                dirs.push_back({s * options.azimuth_step_deg, options.elevations_deg[ring], static_cast<int>(ring), s});
+        plan.columns = steps;
+        plan.rows = static_cast<int>(options.elevations_deg.size());
+    } else {
+        // Fibonacci sphere: z uniform in (-1, 1), longitude stepped by the golden angle.
+        const int n = options.sphere_views;
+        const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+        for (int i = 0; i < n; ++i) {
+            const double z = 1.0 - (2.0 * i + 1.0) / n;
+            const double lon = std::fmod(golden * i, 2.0 * std::numbers::pi);
+            dirs.push_back({lon * 180.0 / std::numbers::pi, std::asin(z) * 180.0 / std::numbers::pi, 0, i});
+        }
+        plan.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+        plan.rows = (n + plan.columns - 1) / plan.columns;
+    }
+
+    // ROI: keep directions from which some ROI vertex faces the camera.
+    if (options.roi && reference.has_normals()) {
+        std::vector<Dir> kept;
+        for (const auto& d : dirs) {
+            const Vec3f to_camera = direction_from_az_el(d.az, d.el).cast<float>();
+            const bool sees = std::any_of(framed.begin(), framed.end(), [&](std::uint32_t v) {
+                // note: 0.1 = cos(84°): grazing views show the ROI too obliquely to help.
+                return reference.normals[v].dot(to_camera) > 0.1f;
+            });
+            if (sees) kept.push_back(d);
+        }
+        dirs = std::move(kept);
+        if (dirs.empty()) throw InputError("sweep plan: no view of the plan sees the ROI");
+    }
+
+    int index = 0;
+    for (std::size_t z = 0; z < plan.footprints.size(); ++z) {
+        for (const auto& d : dirs) {
+            PlannedView v;
+            v.index = index++;
+            v.azimuth_deg = d.az;
+            v.elevation_deg = d.el;
+            v.zoom_index = static_cast<int>(z);
+            v.footprint = plan.footprints[z];
+            v.ring = d.ring;
+            v.step = d.step;
+            const Vec3d dir = direction_from_az_el(d.az, d.el);
+            Camera& cam = v.camera;
+            cam.projection = Projection::Orthographic;
+            cam.world_from_camera = look_at(plan.target + 3.0 * plan.radius * dir, plan.target, Vec3d::UnitZ());
+            cam.width = cam.height = plan.sizes[z];
+            cam.ortho_half_height = 0.5 * plan.sizes[z] * plan.footprints[z];
+            cam.near_plane = 1.0 * plan.radius;   // the framed sphere spans 2R..4R from the eye
+            cam.far_plane = 5.0 * plan.radius;
+            plan.views.push_back(v);
+        }
+    }
+    return plan;
+}
+
+}  // namespace glint

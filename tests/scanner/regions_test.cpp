@@ -1,0 +1,106 @@
+#include "scanner/atlas.h"
+#include "scanner/regions.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+// A flat n×n grid of unit squares in the xy plane.
+Mesh grid(int n) {
+    Mesh m;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) m.positions.emplace_back(float(x), float(y), 0.f);
+    auto id = [n](int x, int y) { return static_cast<std::uint32_t>(y * (n + 1) + x); };
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            m.triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+            m.triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+        }
+    return m;
+}
+
+TEST(FindRegions, GroupsConnectedDamageAndMeasuresIt) {
+    const int n = 20;
+    const Mesh m = grid(n);
+    const std::size_t nv = m.vertex_count();
+    std::vector<float> angle(nv, 0.5f), distance(nv, 0.0f);
+    std::vector<std::uint8_t> seen(nv, 1);
+    std::vector<std::int32_t> view(nv, 0);
+    auto id = [n](int x, int y) { return static_cast<std::size_t>(y * (n + 1) + x); };
+    // A 3×3 dent at (3..5, 3..5) and a 2×2 bump at (15..16, 15..16); one lone vertex.
+    for (int y = 3; y <= 5; ++y)
+        for (int x = 3; x <= 5; ++x) {
+            angle[id(x, y)] = 10.f;
+            distance[id(x, y)] = -0.2f;
+            view[id(x, y)] = 7;
+        }
+    angle[id(4, 4)] = 12.f;
+    for (int y = 15; y <= 16; ++y)
+        for (int x = 15; x <= 16; ++x) {
+            angle[id(x, y)] = 6.f;
+            distance[id(x, y)] = 0.1f;
+        }
+    angle[id(10, 10)] = 9.f;
+    const RegionResult r = find_regions(m, {&angle, nullptr, &distance, &view, &seen},
+                                        RegionOptions{.threshold_deg = 5.0, .min_vertices = 3});
+    ASSERT_EQ(r.regions.size(), 2u);
+    EXPECT_EQ(r.dropped_small, 1u);
+    EXPECT_EQ(r.damaged_vertices, 9u + 4u + 1u);
+    const Region& dent = r.regions[0];
+    EXPECT_EQ(dent.id, 1);
+    EXPECT_EQ(dent.vertex_count, 9u);
+    EXPECT_EQ(dent.kind, RegionKind::Dent);
+    EXPECT_NEAR(dent.centroid.x(), 4.0, 1e-9);
+    EXPECT_NEAR(dent.centroid.y(), 4.0, 1e-9);
+    EXPECT_DOUBLE_EQ(dent.max_angle_deg, 12.0);
+    EXPECT_EQ(dent.best_view, 7);
+    EXPECT_NEAR(dent.max_distance, -0.2, 1e-6);
+    // Interior grid vertices carry one unit of area each (dual area of 6 half-squares / 3).
+    EXPECT_NEAR(dent.area, 9.0, 1e-9);
+    EXPECT_EQ(r.regions[1].kind, RegionKind::Bump);
+    EXPECT_EQ(r.region_of_vertex[id(4, 4)], 1);
+    EXPECT_EQ(r.region_of_vertex[id(10, 10)], 0);
+}
+
+TEST(FindRegions, UnseenVerticesAreNeverDamaged) {
+    const Mesh m = grid(4);
+    std::vector<float> angle(m.vertex_count(), 50.f);
+    std::vector<std::uint8_t> seen(m.vertex_count(), 0);
+    const RegionResult r = find_regions(m, {&angle, nullptr, nullptr, nullptr, &seen}, RegionOptions{});
+    EXPECT_TRUE(r.regions.empty());
+    EXPECT_EQ(r.damaged_vertices, 0u);
+}
+
+TEST(AtlasAccumulator, KeepsMaxMeanCountAndMostFrontalView) {
+    const Mesh m = grid(1);  // two triangles, four vertices
+    AtlasAccumulator acc(m, 0.1);
+    acc.add({.triangle = 0, .barycentric = {1.f, 0.f, 0.f}, .angle_deg = 2.f, .signed_depth = -0.1f, .cos_incidence = 0.5f}, 3);
+    acc.add({.triangle = 0, .barycentric = {0.5f, 0.5f, 0.f}, .angle_deg = 6.f, .signed_depth = -0.3f, .cos_incidence = 0.9f}, 4);
+    AtlasAccumulator other(m, 0.1);
+    other.add({.triangle = 1, .barycentric = {1.f, 0.f, 0.f}, .angle_deg = 4.f, .signed_depth = 0.2f, .cos_incidence = 0.7f}, 5);
+    acc.merge(other);
+    const ZoomAtlas a = acc.finish();
+    // Vertex 0 is corner 0 of both triangles.
+    EXPECT_EQ(a.count[0], 3u);
+    EXPECT_FLOAT_EQ(a.angle_max_deg[0], 6.f);
+    EXPECT_FLOAT_EQ(a.depth_at_max[0], -0.3f);
+    EXPECT_EQ(a.max_view[0], 4);
+    EXPECT_EQ(a.best_view[0], 4);
+    EXPECT_NEAR(a.angle_mean_deg[0], (1.0 * 2 + 0.5 * 6 + 1.0 * 4) / 2.5, 1e-5);
+    EXPECT_EQ(a.best_view[2], -1);  // vertex 2 was never observed
+    EXPECT_EQ(a.best_view[3], -1);  // vertex 3 only got zero barycentric weight
+}
+
+TEST(NoiseFloor, IsMedianPlusKScaledMadWithAMinimum) {
+    std::vector<float> v{1, 2, 3, 4, 100};
+    std::vector<std::uint8_t> use(v.size(), 1);
+    const NoiseFloor f = noise_floor(v, use, 3.0, 0.0);
+    EXPECT_DOUBLE_EQ(f.median, 3.0);
+    EXPECT_DOUBLE_EQ(f.mad, 1.0);
+    EXPECT_NEAR(f.threshold, 3.0 + 3.0 * 1.4826, 1e-12);
+    EXPECT_DOUBLE_EQ(noise_floor(v, use, 3.0, 50.0).threshold, 50.0);
+}
+
+}  // namespace
+}  // namespace glint
