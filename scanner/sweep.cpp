@@ -1,0 +1,201 @@
+#include "scanner/sweep.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Barycentric weights of the point where `ray` meets the plane of triangle t, clamped to the
+// triangle (the pixel centre may fall just outside the triangle its sub-sample hit).
+bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<float, 3>& w,
+                 double& cos_incidence) {
+    const auto& tri = mesh.triangles[t];
+    const Vec3d a = mesh.positions[tri[0]].cast<double>();
+    const Vec3d b = mesh.positions[tri[1]].cast<double>();
+    const Vec3d c = mesh.positions[tri[2]].cast<double>();
+    const Vec3d n = (b - a).cross(c - a);
+    const double area2 = n.norm();
+    if (!(area2 > 0)) return false;
+    const double denom = n.dot(ray.direction);
+    cos_incidence = std::abs(denom) / area2;
+    if (std::abs(denom) < 1e-12 * area2) return false;
+    const double s = n.dot(a - ray.origin) / denom;
+    const Vec3d p = ray.origin + s * ray.direction;
+    double wa = n.dot((b - p).cross(c - p)) / (area2 * area2);
+    double wb = n.dot((c - p).cross(a - p)) / (area2 * area2);
+    double wc = 1.0 - wa - wb;
+    wa = std::max(0.0, wa);
+    wb = std::max(0.0, wb);
+    wc = std::max(0.0, wc);
+    const double sum = wa + wb + wc;
+    if (!(sum > 0)) return false;
+    w = {static_cast<float>(wa / sum), static_cast<float>(wb / sum), static_cast<float>(wc / sum)};
+    return true;
+}
+
+}  // namespace
+
+void SweepOptions::validate() const {
+    plan.validate();
+    render.validate();
+    auto bad = [](const std::string& field, double value, const std::string& rule) {
+        std::ostringstream s;
+        s << "sweep: " << field << " = " << value << ": " << rule;
+        throw InputError(s.str());
+    };
+    if (!(max_incidence_deg > 0 && max_incidence_deg < 90)) bad("max incidence", max_incidence_deg, "must be in (0, 90) degrees");
+    if (threshold_deg && !(*threshold_deg > 0 && *threshold_deg <= 180)) bad("threshold", *threshold_deg, "must be in (0, 180] degrees");
+    if (!(noise_k > 0)) bad("noise k", noise_k, "must be > 0");
+    if (!(min_threshold_deg >= 0)) bad("minimum threshold", min_threshold_deg, "must be ≥ 0 degrees");
+    if (!(compare.min_coverage > 0 && compare.min_coverage <= 1)) bad("min coverage", compare.min_coverage, "must be in (0, 1]");
+}
+
+View to_render_view(const PlannedView& p) {
+    View v;
+    v.camera = p.camera;
+    v.azimuth_deg = p.azimuth_deg;
+    v.elevation_deg = p.elevation_deg;
+    v.footprint = p.footprint;
+    v.zoom_index = p.zoom_index;
+    v.index = p.index;
+    return v;
+}
+
+FrameView frame_view(const Frame& f) {
+    return {f.width, f.height, f.normal, f.primitive_id, f.depth, f.coverage};
+}
+
+SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan_in,
+                      const SweepOptions& options, const ViewObserver& observer) {
+    const auto t_start = Clock::now();
+    options.validate();
+    SweepResult result;
+    result.plan = plan_in;
+    const auto& plan = result.plan;
+    if (plan.views.empty()) throw InputError("sweep plan has no views");
+
+    Renderer ref_renderer(reference, options.render);
+    Renderer exa_renderer(examined, options.render);
+    result.renderer = ref_renderer.info();
+
+    std::vector<AtlasAccumulator> acc;
+    for (double f : plan.footprints) acc.emplace_back(reference, f);
+    const double min_cos = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0);
+
+    std::vector<View> views;
+    views.reserve(plan.views.size());
+    for (const auto& p : plan.views) views.push_back(to_render_view(p));
+
+    double render_s = 0.0;
+    double compare_s = 0.0;
+    auto t_view = Clock::now();
+    ref_renderer.render_views(views, [&](std::size_t i, const Frame& ref_frame) {
+        const PlannedView& pv = plan.views[i];
+        const Frame exa_frame = exa_renderer.render(views[i]);
+        render_s += seconds_since(t_view);
+        const auto t_cmp = Clock::now();
+        const DeviationMap dev = compare_frames(frame_view(ref_frame), frame_view(exa_frame), options.compare);
+
+        ViewSummary s;
+        s.index = pv.index;
+        s.azimuth_deg = pv.azimuth_deg;
+        s.elevation_deg = pv.elevation_deg;
+        s.zoom_index = pv.zoom_index;
+        s.size = ref_frame.width;
+        s.compared = dev.compared;
+        s.reference_only = dev.reference_only;
+        s.examined_only = dev.examined_only;
+        s.max_angle_deg = dev.max_angle_deg;
+        s.mean_angle_deg = dev.mean_angle_deg;
+
+        auto& a = acc[static_cast<std::size_t>(pv.zoom_index)];
+        for (int y = 0; y < ref_frame.height; ++y) {
+            for (int x = 0; x < ref_frame.width; ++x) {
+                const std::size_t px = static_cast<std::size_t>(y) * static_cast<std::size_t>(ref_frame.width) +
+                                       static_cast<std::size_t>(x);
+                const std::uint32_t t = ref_frame.primitive_id[px];
+                if (t == kNoPrimitive || ref_frame.coverage[px] < options.compare.min_coverage) continue;
+                ++s.reference_pixels;
+                AtlasSample sample;
+                sample.triangle = t;
+                double cos_inc = 0.0;
+                if (!barycentric(reference, t, pv.camera.pixel_ray(x + 0.5, y + 0.5), sample.barycentric, cos_inc))
+                    continue;
+                if (cos_inc < min_cos) continue;
+                sample.cos_incidence = static_cast<float>(cos_inc);
+                if (dev.silhouette[px] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly)) {
+                    sample.angle_deg = 90.0f;
+                    sample.signed_depth = std::numeric_limits<float>::quiet_NaN();
+                } else if (!std::isnan(dev.angle_deg[px])) {
+                    sample.angle_deg = dev.angle_deg[px];
+                    sample.signed_depth = dev.signed_depth[px];
+                } else {
+                    sample.valid_deviation = false;
+                }
+                a.add(sample, pv.index);
+            }
+        }
+        result.views.push_back(s);
+        if (observer) observer(pv, ref_frame, exa_frame, dev);
+        compare_s += seconds_since(t_cmp);
+        t_view = Clock::now();
+    });
+    result.render_seconds = render_s;
+    result.compare_seconds = compare_s;
+
+    const auto areas = vertex_areas(reference);
+    double total_area = 0.0;
+    for (double x : areas) total_area += x;
+    for (std::size_t z = 0; z < acc.size(); ++z) {
+        ZoomResult zr;
+        zr.atlas = acc[z].finish();
+        const std::size_t n = reference.vertex_count();
+        zr.seen.assign(n, 0);
+        double seen_area = 0.0;
+        for (std::size_t v = 0; v < n; ++v) {
+            zr.seen[v] = zr.atlas.weight[v] > 0.0f ? 1 : 0;
+            if (zr.seen[v]) seen_area += areas[v];
+        }
+        zr.coverage = total_area > 0 ? seen_area / total_area : 0.0;
+        zr.noise = noise_floor(zr.atlas.angle_max_deg, zr.seen, options.noise_k, options.min_threshold_deg);
+        if (options.threshold_deg) {
+            zr.threshold_deg = *options.threshold_deg;
+            zr.threshold_rule = "given";
+        } else {
+            zr.threshold_deg = zr.noise.threshold;
+            std::ostringstream rule;
+            rule << "noise floor: median + " << options.noise_k << "·1.4826·MAD of the per-vertex maximum angle "
+                 << "over seen vertices, at least " << options.min_threshold_deg << "°";
+            zr.threshold_rule = rule.str();
+        }
+        RegionInputs in;
+        in.angle_deg = &zr.atlas.angle_max_deg;
+        in.depth = &zr.atlas.depth_at_max;
+        in.view = &zr.atlas.max_view;
+        in.seen = &zr.seen;
+        zr.regions = find_regions(reference, in,
+                                  RegionOptions{.threshold_deg = zr.threshold_deg,
+                                                .min_vertices = options.min_region_vertices});
+        zr.histogram.assign(91, 0);
+        for (std::size_t v = 0; v < n; ++v)
+            if (zr.seen[v]) ++zr.histogram[std::min<std::size_t>(90, static_cast<std::size_t>(zr.atlas.angle_max_deg[v]))];
+        result.zooms.push_back(std::move(zr));
+    }
+    result.total_seconds = seconds_since(t_start);
+    return result;
+}
+
+}  // namespace glint

@@ -1,0 +1,99 @@
+// The rotary scan end to end: render the reference and the fitted examined mesh from every
+// view of a plan, compare view by view, fold the deviations onto the reference surface.
+//
+//   plan ─▶ for each view: reference frame ─┬─▶ compare ─▶ back-project ─▶ ZoomAtlas[z]
+//                          examined frame  ─┘        (frames dropped after use)
+//   ZoomAtlas[z] + seen mask ─▶ threshold (given, or noise floor) ─▶ regions per zoom
+//
+// Coverage rule: a reference vertex is *seen* when at least one pixel whose centre lies on
+// one of its triangles (barycentric weight ≥ 1e-3) observed it at an incidence angle of at
+// most `max_incidence_deg` (angle between the triangle normal and the direction to the
+// camera). Unseen vertices are never declared undamaged: they are listed as unseen.
+// A reference pixel with no examined surface behind it (silhouette change: surface missing)
+// counts as a 90° deviation.
+#pragma once
+
+#include "mesh/mesh.h"
+#include "render/frame.h"
+#include "render/renderer.h"
+#include "scanner/atlas.h"
+#include "scanner/compare.h"
+#include "scanner/plan.h"
+#include "scanner/regions.h"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct SweepOptions {
+    SweepPlanOptions plan;
+    RenderOptions render;          ///< backend, device, supersample (footprint averaging)
+    CompareOptions compare;
+    double max_incidence_deg = 75.0;     ///< coverage rule (see file comment)
+    std::optional<double> threshold_deg; ///< given: used as is for every zoom
+    double noise_k = 6.0;                ///< auto threshold: median + k·1.4826·MAD …
+    double min_threshold_deg = 1.0;      ///< … but never below this
+    std::size_t min_region_vertices = 3;
+
+    /// \throw InputError naming the field, its value and the rule.
+    void validate() const;
+};
+
+/// What one view showed.
+struct ViewSummary {
+    int index = 0;
+    double azimuth_deg = 0.0;
+    double elevation_deg = 0.0;
+    int zoom_index = 0;
+    int size = 0;
+    std::size_t reference_pixels = 0;   ///< covered in the reference frame
+    std::size_t compared = 0;
+    std::size_t reference_only = 0;
+    std::size_t examined_only = 0;
+    double max_angle_deg = 0.0;
+    double mean_angle_deg = 0.0;
+};
+
+/// Results of one zoom level.
+struct ZoomResult {
+    ZoomAtlas atlas;
+    std::vector<std::uint8_t> seen;    ///< per vertex, coverage rule at this zoom
+    double coverage = 0.0;             ///< seen area / total area
+    NoiseFloor noise;                  ///< of angle_max over seen vertices
+    double threshold_deg = 0.0;        ///< used for the regions
+    std::string threshold_rule;        ///< "given" or "noise floor: median + k·1.4826·MAD, min …"
+    RegionResult regions;
+    std::vector<std::size_t> histogram;    ///< angle_max of seen vertices, 1° bins 0…89, ≥90
+};
+
+struct SweepResult {
+    SweepPlan plan;
+    std::vector<ZoomResult> zooms;
+    std::vector<ViewSummary> views;
+    RendererInfo renderer;
+    double render_seconds = 0.0;
+    double compare_seconds = 0.0;
+    double total_seconds = 0.0;
+};
+
+/// Called after each view with both frames and their deviation map (valid during the call):
+/// exports per-view images, progress.
+using ViewObserver = std::function<void(const PlannedView& view, const Frame& reference,
+                                        const Frame& examined, const DeviationMap& deviation)>;
+
+/// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
+/// must already be in reference coordinates (fitted).
+/// \throw InputError invalid options or an empty plan; DeviceError renderer trouble.
+[[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,
+                                    const SweepOptions& options, const ViewObserver& observer = {});
+
+/// Converts a planned view to the renderer's View.
+[[nodiscard]] View to_render_view(const PlannedView& planned);
+
+/// Frame → read-only view for compare_frames.
+[[nodiscard]] FrameView frame_view(const Frame& frame);
+
+}  // namespace glint
