@@ -1,0 +1,475 @@
+#include "scanner/scenario.h"
+
+#include "mesh/error.h"
+#include "mesh/io.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Reads typed values from one TOML table and rejects keys nobody asked about.
+class TableReader {
+public:
+    TableReader(const toml::table& table, std::string file, std::string section)
+        : table_(table), file_(std::move(file)), section_(std::move(section)) {}
+
+    [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
+        std::ostringstream s;
+        s << "scenario \"" << file_ << "\"";
+        if (node) s << " line " << node->source().begin.line;
+        s << ": " << qualified(key) << ": " << what;
+        throw InputError(s.str());
+    }
+
+    [[nodiscard]] std::string qualified(const std::string& key) const {
+        return section_.empty() ? key : section_ + "." + key;
+    }
+
+    [[nodiscard]] const toml::node* get(const std::string& key) {
+        seen_.insert(key);
+        return table_.get(key);
+    }
+
+    [[nodiscard]] bool has(const std::string& key) const { return table_.contains(key); }
+
+    template <class T>
+    std::optional<T> optional(const std::string& key, const char* expected) {
+        const toml::node* node = get(key);
+        if (!node) return std::nullopt;
+        if constexpr (std::is_same_v<T, double>) {
+            if (auto v = node->value<double>()) return *v;  // integers convert too
+        } else if constexpr (std::is_same_v<T, std::int64_t>) {
+            if (node->is_integer()) return node->value<std::int64_t>();
+        } else if constexpr (std::is_same_v<T, bool>) {
+            if (node->is_boolean()) return node->value<bool>();
+        } else if constexpr (std::is_same_v<T, std::string>) {
+            if (node->is_string()) return node->value<std::string>();
+        }
+        fail(node, key, std::string("expected ") + expected + ", found " + type_name(*node));
+    }
+
+    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t min_count, std::size_t max_count) {
+        const toml::node* node = get(key);
+        if (!node) return std::nullopt;
+        std::vector<double> out;
+        if (auto v = node->value<double>()) {
+            out.push_back(*v);
+        } else if (const auto* arr = node->as_array()) {
+            for (const auto& e : *arr) {
+                auto v2 = e.value<double>();
+                if (!v2) fail(node, key, "expected an array of numbers, found an element of type " + type_name(e));
+                out.push_back(*v2);
+            }
+        } else {
+            fail(node, key, "expected a number or an array of numbers, found " + type_name(*node));
+        }
+        if (out.size() < min_count || out.size() > max_count) {
+            std::ostringstream s;
+            s << "expected " << min_count;
+            if (max_count != min_count) s << " to " << max_count;
+            s << " numbers, found " << out.size();
+            fail(node, key, s.str());
+        }
+        return out;
+    }
+
+    std::optional<double> positive(const std::string& key) {
+        auto v = optional<double>(key, "a number");
+        if (v && !(*v > 0)) fail(get(key), key, "must be > 0, found " + std::to_string(*v));
+        return v;
+    }
+
+    /// Every key of the table must have been asked for.
+    void finish() const {
+        for (const auto& [k, node] : table_) {
+            const std::string key(k.str());
+            if (!seen_.count(key)) fail(&node, key, "unknown key (check its spelling; README lists every key)");
+        }
+    }
+
+    static std::string type_name(const toml::node& n) {
+        switch (n.type()) {
+            case toml::node_type::string: return "a string";
+            case toml::node_type::integer: return "an integer";
+            case toml::node_type::floating_point: return "a number";
+            case toml::node_type::boolean: return "a boolean";
+            case toml::node_type::array: return "an array";
+            case toml::node_type::table: return "a table";
+            default: return "a date/time";
+        }
+    }
+
+    [[nodiscard]] const std::string& file() const { return file_; }
+
+private:
+    const toml::table& table_;
+    std::string file_;
+    std::string section_;
+    std::set<std::string> seen_;
+};
+
+Vec3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+fs::path resolve_mesh(TableReader& r, const std::string& key, const std::string& text, const fs::path& scenario_dir,
+                      const fs::path& data_root, bool& needs_root) {
+    const fs::path p(text);
+    if (p.is_absolute()) return p;
+    const fs::path local = scenario_dir / p;
+    if (fs::exists(local)) return local;
+    if (!data_root.empty()) {
+        needs_root = true;
+        return data_root / p;
+    }
+    needs_root = true;
+    (void)r;
+    (void)key;
+    return local;
+}
+
+SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const fs::path& data_root, bool required) {
+    SurfaceSource s;
+    const auto phantom = r.optional<std::string>("phantom", "a string (sphere, ellipsoid, torus, condyle)");
+    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh file path)");
+    if (phantom && mesh) r.fail(r.get("mesh"), "mesh", "give either phantom or mesh, not both");
+    if (mesh) {
+        s.mesh_as_written = *mesh;
+        s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
+    }
+    const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
+    const auto resolution = r.optional<std::int64_t>("resolution", "an integer");
+    const auto size = r.numbers("size", 1, 3);
+    if (phantom || scheme || resolution || size) {
+        if (mesh) r.fail(r.get("mesh"), "mesh", "a mesh file takes no phantom keys (scheme, resolution, size)");
+        PhantomOptions o;
+        try {
+            if (phantom) o.kind = parse_phantom_kind(*phantom);
+            if (scheme) o.scheme = parse_scheme(*scheme);
+        } catch (const InputError& e) {
+            r.fail(r.get(phantom ? "phantom" : "scheme"), phantom ? "phantom" : "scheme", e.what());
+        }
+        if (resolution) o.resolution = static_cast<int>(*resolution);
+        if (size) {
+            if (size->size() == 2) r.fail(r.get("size"), "size", "expected 1 or 3 numbers, found 2");
+            o.radii = size->size() == 1 ? Vec3d::Constant((*size)[0]) : vec3(*size);
+            if ((o.radii.array() <= 0).any()) r.fail(r.get("size"), "size", "every size must be > 0");
+        }
+        if (!phantom && required) r.fail(nullptr, "phantom", "missing: give phantom = \"…\" or mesh = \"…\"");
+        s.phantom = o;
+    }
+    if (required && !s.phantom && s.mesh.empty()) r.fail(nullptr, "phantom", "missing: give phantom = \"…\" or mesh = \"…\"");
+    return s;
+}
+
+DamageSpec read_damage(TableReader& r) {
+    DamageSpec d;
+    const auto kind = r.optional<std::string>("kind", "a string");
+    if (!kind) r.fail(nullptr, "kind", "missing: dent, bump, pit, groove, flatten, erosion");
+    try {
+        // Reuse the spec parser for the kind name so both spellings stay in one place.
+        d = parse_damage_spec(*kind);
+    } catch (const InputError& e) {
+        r.fail(r.get("kind"), "kind", e.what());
+    }
+    if (auto c = r.numbers("center", 3, 3)) d.center = vec3(*c);
+    if (auto v = r.positive("radius")) d.radius = *v;
+    if (auto v = r.positive("depth")) d.depth = *v;
+    if (auto v = r.positive("sigma")) d.sigma = *v;
+    if (auto v = r.optional<std::int64_t>("seed", "an integer")) d.seed = static_cast<std::uint32_t>(*v);
+    if (auto n = r.numbers("normal", 3, 3)) d.plane_normal = vec3(*n);
+    if (const toml::node* p = r.get("path")) {
+        const auto* arr = p->as_array();
+        if (!arr) r.fail(p, "path", "expected an array of [x, y, z] points");
+        for (const auto& e : *arr) {
+            const auto* pt = e.as_array();
+            if (!pt || pt->size() != 3) r.fail(p, "path", "expected an array of [x, y, z] points");
+            Vec3d q;
+            for (std::size_t i = 0; i < 3; ++i) {
+                auto v = (*pt)[i].value<double>();
+                if (!v) r.fail(p, "path", "expected numbers in each point");
+                q[static_cast<Eigen::Index>(i)] = *v;
+            }
+            d.path.push_back(q);
+        }
+    }
+    r.finish();
+    return d;
+}
+
+Rigid read_pose(TableReader& r) {
+    const toml::node* node = r.get("pose");
+    if (!node) return Rigid::Identity();
+    try {
+        if (auto s = node->value<std::string>()) return parse_pose_spec(*s);
+        if (const auto* arr = node->as_array()) {
+            std::ostringstream text;
+            for (std::size_t i = 0; i < arr->size(); ++i) {
+                auto v = (*arr)[i].value<double>();
+                if (!v) r.fail(node, "pose", "expected 6 numbers [rx, ry, rz, tx, ty, tz]");
+                text << (i ? "," : "") << *v;
+            }
+            return parse_pose_spec(text.str());
+        }
+    } catch (const InputError& e) {
+        r.fail(node, "pose", e.what());
+    }
+    r.fail(node, "pose", "expected [rx, ry, rz, tx, ty, tz] (degrees, mesh units) or a pose string");
+}
+
+}  // namespace
+
+Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
+    std::error_code ec;
+    if (!fs::exists(file, ec)) throw IoError("scenario \"" + file.string() + "\": no such file");
+    if (fs::is_directory(file, ec)) throw IoError("scenario \"" + file.string() + "\" is a directory, expected a .toml file");
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        std::ostringstream s;
+        s << "scenario \"" << file.string() << "\" line " << e.source().begin.line << ": " << e.description();
+        throw InputError(s.str());
+    }
+    Scenario sc;
+    sc.file = file;
+    const fs::path dir = file.parent_path();
+    const std::string name = file.string();
+    TableReader top(root, name, "");
+
+    sc.name = top.optional<std::string>("name", "a string").value_or(file.stem().string());
+    sc.description = top.optional<std::string>("description", "a string").value_or("");
+    if (const toml::node* tags = top.get("tags")) {
+        const auto* arr = tags->as_array();
+        if (!arr) top.fail(tags, "tags", "expected an array of strings");
+        for (const auto& t : *arr) {
+            auto s = t.value<std::string>();
+            if (!s) top.fail(tags, "tags", "expected an array of strings");
+            sc.tags.push_back(*s);
+        }
+    }
+
+    auto table = [&](const std::string& key, bool required) -> const toml::table* {
+        const toml::node* node = top.get(key);
+        if (!node) {
+            if (required) top.fail(nullptr, key, "missing section [" + key + "]");
+            return nullptr;
+        }
+        const auto* t = node->as_table();
+        if (!t) top.fail(node, key, "expected a section [" + key + "], found " + TableReader::type_name(*node));
+        return t;
+    };
+
+    {
+        TableReader r(*table("reference", true), name, "reference");
+        sc.reference = read_surface(r, dir, data_root, true);
+        r.finish();
+    }
+    if (const auto* t = table("examined", false)) {
+        TableReader r(*t, name, "examined");
+        sc.examined = read_surface(r, dir, data_root, false);
+        sc.examined_derived = sc.examined.mesh.empty();
+        sc.pose = read_pose(r);
+        if (auto v = r.optional<double>("noise", "a number (σ, mesh units)")) {
+            if (*v < 0) r.fail(r.get("noise"), "noise", "must be ≥ 0");
+            sc.noise_sigma = *v;
+        }
+        if (auto v = r.optional<std::int64_t>("noise_seed", "an integer")) sc.noise_seed = static_cast<std::uint32_t>(*v);
+        if (auto m = r.optional<std::string>("truth_mask", "a string (a .npy file)")) {
+            bool needs = false;
+            sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
+        }
+        if (sc.examined.phantom && sc.reference.phantom) {
+            // Re-tessellation of the reference phantom: same shape, other scheme/resolution.
+            PhantomOptions o = *sc.reference.phantom;
+            const auto& e = *sc.examined.phantom;
+            if (r.has("phantom") && e.kind != o.kind)
+                r.fail(r.get("phantom"), "phantom", "an examined phantom must be the reference's shape (re-tessellation)");
+            o.scheme = r.has("scheme") ? e.scheme : o.scheme;
+            o.resolution = r.has("resolution") ? e.resolution : o.resolution;
+            o.radii = r.has("size") ? e.radii : o.radii;
+            sc.examined.phantom = o;
+        } else if (sc.examined.phantom && !sc.reference.phantom) {
+            r.fail(nullptr, "scheme", "re-tessellation needs a phantom reference");
+        }
+        r.finish();
+    }
+    if (const toml::node* dmg = top.get("damage")) {
+        const auto* arr = dmg->as_array();
+        if (!arr || !arr->is_array_of_tables()) top.fail(dmg, "damage", "expected [[damage]] tables");
+        for (std::size_t i = 0; i < arr->size(); ++i) {
+            TableReader r(*(*arr)[i].as_table(), name, "damage[" + std::to_string(i) + "]");
+            sc.damages.push_back(read_damage(r));
+        }
+        if (!sc.examined_derived) top.fail(dmg, "damage", "damage applies to a derived examined surface, not to an examined mesh file");
+    }
+    if (const auto* t = table("registration", false)) {
+        TableReader r(*t, name, "registration");
+        if (auto m = r.optional<std::string>("mode", "a string (register, truth, identity)")) {
+            if (*m != "register" && *m != "truth" && *m != "identity")
+                r.fail(r.get("mode"), "mode", "expected register, truth or identity, found '" + *m + "'");
+            sc.registration_mode = *m;
+        }
+        if (auto v = r.optional<std::string>("loss", "a string")) sc.registration_loss = *v;
+        if (auto v = r.optional<std::string>("roi", "a string (sphere:x,y,z,r or box:…)")) sc.registration_roi = *v;
+        if (auto v = r.optional<bool>("symmetric", "a boolean")) sc.registration_symmetric = *v;
+        r.finish();
+    }
+    SweepOptions& so = sc.sweep;
+    so.plan.size = 128;
+    so.render.supersample = 2;
+    if (const auto* t = table("sweep", false)) {
+        TableReader r(*t, name, "sweep");
+        try {
+            if (auto v = r.optional<std::string>("plan", "a string (rotary or sphere:N)")) parse_plan_kind(*v, so.plan);
+            if (auto v = r.optional<std::string>("backend", "a string (auto, vulkan, embree)")) so.render.backend = parse_backend(*v);
+            if (auto v = r.optional<std::string>("roi", "a string (sphere:x,y,z,r or box:…)")) so.plan.roi = parse_roi(*v);
+        } catch (const InputError& e) {
+            r.fail(nullptr, "plan", e.what());
+        }
+        if (auto v = r.positive("azimuth_step")) so.plan.azimuth_step_deg = *v;
+        if (auto v = r.numbers("elevations", 1, 64)) so.plan.elevations_deg = *v;
+        if (auto v = r.numbers("zoom", 1, 16)) so.plan.footprints = *v;
+        if (auto v = r.optional<std::int64_t>("size", "an integer (pixels)")) so.plan.size = static_cast<int>(*v);
+        if (auto v = r.optional<std::int64_t>("supersample", "an integer")) so.render.supersample = static_cast<int>(*v);
+        if (auto v = r.positive("max_incidence")) so.max_incidence_deg = *v;
+        r.finish();
+    }
+    if (const auto* t = table("threshold", false)) {
+        TableReader r(*t, name, "threshold");
+        if (auto v = r.positive("deg")) sc.threshold_deg = *v;
+        if (auto v = r.positive("noise_k")) so.noise_k = *v;
+        if (auto v = r.optional<double>("min_deg", "a number")) so.min_threshold_deg = *v;
+        if (auto v = r.optional<std::int64_t>("min_region_vertices", "an integer"))
+            so.min_region_vertices = static_cast<std::size_t>(std::max<std::int64_t>(1, *v));
+        r.finish();
+    }
+    so.threshold_deg = sc.threshold_deg;
+    if (const auto* t = table("expect", false)) {
+        TableReader r(*t, name, "expect");
+        auto e = [&](const char* key, std::optional<double>& out) { out = r.optional<double>(key, "a number"); };
+        auto count = [&](const char* key, std::optional<std::size_t>& out) {
+            if (auto v = r.optional<std::int64_t>(key, "an integer")) out = static_cast<std::size_t>(*v);
+        };
+        count("regions", sc.expect.regions);
+        count("min_regions", sc.expect.min_regions);
+        count("max_regions", sc.expect.max_regions);
+        e("min_iou", sc.expect.min_iou);
+        e("min_f1", sc.expect.min_f1);
+        e("min_precision", sc.expect.min_precision);
+        e("min_recall", sc.expect.min_recall);
+        e("max_rotation_error_deg", sc.expect.max_rotation_error_deg);
+        e("max_translation_error", sc.expect.max_translation_error);
+        e("max_centroid_error", sc.expect.max_centroid_error);
+        e("min_coverage", sc.expect.min_coverage);
+        if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
+            if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
+            sc.expect.kind = *v;
+        }
+        r.finish();
+    }
+    top.finish();
+    try {
+        so.validate();
+    } catch (const InputError& e) {
+        throw InputError("scenario \"" + name + "\": [sweep] " + e.what());
+    }
+    return sc;
+}
+
+std::vector<std::uint8_t> read_npy_mask(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("mask \"" + path.string() + "\": cannot open");
+    char magic[8] = {};
+    in.read(magic, 8);
+    if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
+        throw InputError("mask \"" + path.string() + "\": not a NumPy .npy file (bad magic)");
+    const int major = static_cast<unsigned char>(magic[6]);
+    std::uint32_t header_len = 0;
+    if (major == 1) {
+        unsigned char b[2];
+        in.read(reinterpret_cast<char*>(b), 2);
+        header_len = static_cast<std::uint32_t>(b[0] | (b[1] << 8));
+    } else {
+        unsigned char b[4];
+        in.read(reinterpret_cast<char*>(b), 4);
+        header_len = static_cast<std::uint32_t>(b[0] | (b[1] << 8) | (b[2] << 16) | (static_cast<std::uint32_t>(b[3]) << 24));
+    }
+    std::string header(header_len, '\0');
+    in.read(header.data(), header_len);
+    if (!in) throw InputError("mask \"" + path.string() + "\": truncated header");
+    if (header.find("'|b1'") == std::string::npos && header.find("'|u1'") == std::string::npos)
+        throw InputError("mask \"" + path.string() + "\": dtype is not bool or uint8 (header " + header + ")");
+    if (header.find("'fortran_order': False") == std::string::npos)
+        throw InputError("mask \"" + path.string() + "\": expected C order");
+    const auto open = header.find("'shape': (");
+    if (open == std::string::npos) throw InputError("mask \"" + path.string() + "\": no shape in header");
+    const std::size_t count = std::stoull(header.substr(open + 10));
+    std::vector<std::uint8_t> mask(count);
+    in.read(reinterpret_cast<char*>(mask.data()), static_cast<std::streamsize>(count));
+    if (static_cast<std::size_t>(in.gcount()) != count)
+        throw InputError("mask \"" + path.string() + "\": header says " + std::to_string(count) + " values, file has " +
+                         std::to_string(in.gcount()));
+    for (auto& m : mask) m = m ? 1 : 0;
+    return mask;
+}
+
+ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
+    ScenarioMeshes out;
+    auto load = [&](const SurfaceSource& s, const std::string& role) {
+        if (s.phantom) return make_phantom(*s.phantom);
+        std::error_code ec;
+        if (!fs::exists(s.mesh, ec))
+            throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" + s.mesh_as_written +
+                          "\" not found (looked at \"" + s.mesh.string() + "\"" +
+                          (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") + ")");
+        return load_mesh(s.mesh).mesh;
+    };
+    out.reference = load(sc.reference, "reference");
+    if (sc.examined_derived) {
+        out.examined = sc.examined.phantom ? make_phantom(*sc.examined.phantom) : out.reference;
+        std::vector<DamageSpec> all = sc.damages;
+        if (sc.noise_sigma > 0) {
+            DamageSpec noise;
+            noise.kind = DamageKind::Noise;
+            noise.sigma = sc.noise_sigma;
+            noise.seed = sc.noise_seed;
+            all.push_back(noise);
+        }
+        if (!all.empty()) apply_damage(out.examined, all);
+        if (!sc.damages.empty()) {
+            // Ground truth on the reference: the same damages applied to a copy of it.
+            Mesh truth_mesh = out.reference;
+            apply_damage(truth_mesh, sc.damages);
+            out.truth.resize(truth_mesh.vertex_count());
+            for (std::size_t v = 0; v < out.truth.size(); ++v) out.truth[v] = truth_mesh.labels[v] != 0;
+        } else {
+            out.truth.assign(out.reference.vertex_count(), 0);
+        }
+        transform_mesh(out.examined, sc.pose);
+        out.true_reference_from_examined = sc.pose.inverse();
+        out.has_truth_pose = true;
+    } else {
+        out.examined = load(sc.examined, "examined");
+        if (!sc.truth_mask.empty()) {
+            out.truth = read_npy_mask(sc.truth_mask);
+            if (out.truth.size() != out.reference.vertex_count())
+                throw InputError("scenario \"" + sc.file.string() + "\": truth mask has " + std::to_string(out.truth.size()) +
+                                 " values, the reference has " + std::to_string(out.reference.vertex_count()) + " vertices");
+        }
+        out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() || sc.registration_mode == "truth";
+        out.true_reference_from_examined = sc.pose.inverse();
+    }
+    return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,93 @@
+// Scenarios: a TOML file that says which surfaces, which damage, which misalignment, which
+// sweep and what outcome is expected, so that a run can be repeated, shared and scored.
+// The format is documented in README.md ("Scenario files"); every key is checked: an unknown
+// key or a wrong type is an InputError naming the file, the key, its line and what was
+// expected.
+#pragma once
+
+#include "mesh/damage.h"
+#include "mesh/geometry.h"
+#include "mesh/mesh.h"
+#include "mesh/phantom.h"
+#include "scanner/sweep.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+/// Where a surface comes from: a phantom or a mesh file.
+struct SurfaceSource {
+    std::optional<PhantomOptions> phantom;
+    std::filesystem::path mesh;   ///< resolved path (relative to the scenario or the data root)
+    std::string mesh_as_written;  ///< as written in the file
+    bool needs_data_root = false; ///< path was resolved against the data root
+};
+
+struct ScenarioExpect {
+    std::optional<std::size_t> regions;          ///< exact region count (zoom 0)
+    std::optional<std::size_t> min_regions;
+    std::optional<std::size_t> max_regions;
+    std::optional<double> min_iou;
+    std::optional<double> min_f1;
+    std::optional<double> min_precision;
+    std::optional<double> min_recall;
+    std::optional<double> max_rotation_error_deg;
+    std::optional<double> max_translation_error;
+    std::optional<double> max_centroid_error;
+    std::optional<double> min_coverage;
+    std::optional<std::string> kind;              ///< "dent" or "bump" for the largest region
+};
+
+struct Scenario {
+    std::filesystem::path file;
+    std::string name;
+    std::string description;
+    std::vector<std::string> tags;                ///< "ci", "full", "data", …
+    SurfaceSource reference;
+    /// Examined: a file, or derived from the reference (re-tessellated phantom and/or damage,
+    /// noise, pose). A derived examined mesh has exact ground truth on the reference.
+    SurfaceSource examined;                       ///< mesh or phantom; empty = the reference
+    bool examined_derived = true;
+    std::vector<DamageSpec> damages;
+    double noise_sigma = 0.0;
+    std::uint32_t noise_seed = 1;
+    Rigid pose = Rigid::Identity();               ///< examined = pose · (damaged surface)
+    /// Per-vertex ground-truth mask on the *reference* from a file (tooth-wear .npy masks).
+    std::filesystem::path truth_mask;
+    /// Registration: "truth" (use the known pose), "identity", or "register".
+    std::string registration_mode = "register";
+    std::string registration_loss = "cauchy";
+    std::string registration_roi;
+    bool registration_symmetric = false;
+    SweepOptions sweep;
+    std::optional<double> threshold_deg;          ///< copied into sweep.threshold_deg
+    ScenarioExpect expect;
+};
+
+/// Parses and checks a scenario file. `data_root` resolves mesh paths that are not found
+/// relative to the scenario file. \throw InputError (file, key, line, expected), IoError.
+[[nodiscard]] Scenario load_scenario(const std::filesystem::path& file,
+                                     const std::filesystem::path& data_root);
+
+/// The meshes of a scenario, built and ready to compare.
+struct ScenarioMeshes {
+    Mesh reference;
+    Mesh examined;                     ///< in its own (posed) coordinates
+    Rigid true_reference_from_examined = Rigid::Identity();
+    bool has_truth_pose = false;
+    std::vector<std::uint8_t> truth;   ///< per reference vertex: 1 = damaged (empty if none)
+    std::vector<std::string> notes;
+};
+
+/// Builds the reference and examined meshes and the ground truth.
+/// \throw InputError a damage outside the surface, a missing mesh, a bad mask.
+[[nodiscard]] ScenarioMeshes build_scenario_meshes(const Scenario& scenario);
+
+/// Reads a NumPy .npy boolean/uint8 vector (v1.0/2.0, '|b1' or '|u1', C order).
+/// \throw InputError naming the file and what is wrong.
+[[nodiscard]] std::vector<std::uint8_t> read_npy_mask(const std::filesystem::path& path);
+
+}  // namespace glint
