@@ -1,0 +1,212 @@
+// glint run SCENARIO… and glint eval SCENARIO…|FOLDER: scenarios end to end, and scored.
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "scanner/run_scenario.h"
+#include "scanner/scenario.h"
+#include "tools/command.h"
+#include "tools/progress.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace glint::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunArgs {
+    std::vector<std::string> scenarios;
+    std::string output = "glint-runs";
+    std::string data_root;
+    bool views = false;
+    bool full = false;
+};
+
+fs::path data_root_of(const RunArgs& a) {
+    if (!a.data_root.empty()) return a.data_root;
+    if (const char* env = std::getenv("GLINT_DATA")) return env;
+    return {};
+}
+
+// Files named on the command line, folders expanded to their *.toml (sorted). In a folder,
+// scenarios tagged "full" run only with --full.
+std::vector<fs::path> expand(const RunArgs& a, const fs::path& data_root, std::vector<Scenario>& loaded) {
+    std::vector<fs::path> files;
+    for (const auto& s : a.scenarios) {
+        const fs::path p(s);
+        if (fs::is_directory(p)) {
+            std::vector<fs::path> in_dir;
+            for (const auto& e : fs::recursive_directory_iterator(p))
+                if (e.is_regular_file() && e.path().extension() == ".toml") in_dir.push_back(e.path());
+            std::sort(in_dir.begin(), in_dir.end());
+            if (in_dir.empty()) throw InputError("folder \"" + s + "\" holds no .toml scenario");
+            for (auto& f : in_dir) {
+                Scenario sc = load_scenario(f, data_root);
+                const bool is_full = std::find(sc.tags.begin(), sc.tags.end(), "full") != sc.tags.end();
+                if (is_full && !a.full) continue;
+                files.push_back(f);
+                loaded.push_back(std::move(sc));
+            }
+        } else {
+            files.push_back(p);
+            loaded.push_back(load_scenario(p, data_root));
+        }
+    }
+    return files;
+}
+
+std::string opt(const std::optional<double>& v, const char* f = "%.3f") {
+    if (!v) return "-";
+    char b[32];
+    std::snprintf(b, sizeof b, f, *v);
+    return b;
+}
+
+nlohmann::json outcome_json(const ScenarioOutcome& o) {
+    nlohmann::json j = {{"scenario", o.name}, {"file", o.file.string()}, {"skipped", o.skipped},
+                        {"skip_reason", o.skip_reason}, {"passed", o.passed()}, {"failures", o.failures},
+                        {"views", o.views}, {"regions", o.regions}, {"largest_kind", o.largest_kind},
+                        {"coverage", o.coverage}, {"threshold_deg", o.threshold_deg}, {"fit", o.fit_mode},
+                        {"seconds", o.seconds}, {"output", o.output.string()}};
+    if (o.score)
+        j["score"] = {{"precision", o.score->precision}, {"recall", o.score->recall}, {"f1", o.score->f1},
+                      {"iou", o.score->iou}, {"true_positive", o.score->true_positive},
+                      {"false_positive", o.score->false_positive}, {"false_negative", o.score->false_negative},
+                      {"truth_vertices", o.score->truth_vertices},
+                      {"centroid_error", o.score->centroid_error ? nlohmann::json(*o.score->centroid_error) : nlohmann::json()}};
+    if (o.pose) j["pose_error"] = {{"rotation_deg", o.pose->rotation_deg}, {"translation", o.pose->translation}};
+    return j;
+}
+
+std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
+    const fs::path root = data_root_of(a);
+    std::vector<Scenario> scenarios;
+    expand(a, root, scenarios);
+    std::error_code ec;
+    fs::create_directories(a.output, ec);
+    if (ec) throw IoError("output folder \"" + a.output + "\": " + ec.message());
+    std::vector<ScenarioOutcome> outcomes;
+    for (const auto& sc : scenarios) {
+        ProgressBar bar(sc.name, 1);
+        ScenarioRunOptions options;
+        options.output_root = a.output;
+        options.write_views = a.views;
+        options.progress = [&](std::size_t done, std::size_t total) {
+            (void)total;
+            bar.update(done);
+        };
+        ScenarioOutcome o;
+        try {
+            o = run_scenario(sc, options);
+        } catch (const Error& e) {
+            // One broken scenario does not hide the others' results: it is reported and fails.
+            o.name = sc.name;
+            o.file = sc.file;
+            o.failures.push_back(std::string("error: ") + e.what());
+        }
+        bar.finish();
+        if (!global_flags().quiet && !global_flags().json && !score_table) {
+            if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
+            else std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n", o.name.c_str(), o.regions,
+                             100 * o.coverage, o.seconds, o.output.string().c_str(), o.passed() ? "" : " (expectations failed)");
+            for (const auto& f : o.failures) std::printf("  %s\n", f.c_str());
+        }
+        outcomes.push_back(std::move(o));
+    }
+    return outcomes;
+}
+
+void check(const std::vector<ScenarioOutcome>& outcomes) {
+    std::size_t failed = 0;
+    for (const auto& o : outcomes) failed += !o.skipped && !o.passed();
+    if (failed) throw CheckFailed(std::to_string(failed) + " of " + std::to_string(outcomes.size()) +
+                                  " scenario(s) did not meet their [expect]");
+}
+
+void run_command(const RunArgs& a) {
+    const auto outcomes = run_all(a, false);
+    if (global_flags().json) {
+        nlohmann::json j = nlohmann::json::array();
+        for (const auto& o : outcomes) j.push_back(outcome_json(o));
+        std::cout << j.dump(2) << '\n';
+    }
+    check(outcomes);
+}
+
+void eval_command(const RunArgs& a) {
+    const auto outcomes = run_all(a, true);
+    nlohmann::json all = nlohmann::json::array();
+    std::ostringstream csv;
+    csv << "scenario,status,regions,kind,coverage,threshold_deg,precision,recall,f1,iou,centroid_error,"
+           "rotation_error_deg,translation_error,seconds\n";
+    std::ostringstream table;
+    char line[512];
+    std::snprintf(line, sizeof line, "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s\n", "scenario", "status",
+                  "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU", "centroid", "rot°", "transl", "s");
+    table << line;
+    for (const auto& o : outcomes) {
+        all.push_back(outcome_json(o));
+        const std::string status = o.skipped ? "skip" : (o.passed() ? "pass" : "FAIL");
+        auto s = [&](auto getter) -> std::optional<double> {
+            if (!o.score) return std::nullopt;
+            return getter(*o.score);
+        };
+        const auto prec = s([](const DetectionScore& d) { return d.precision; });
+        const auto rec = s([](const DetectionScore& d) { return d.recall; });
+        const auto f1 = s([](const DetectionScore& d) { return d.f1; });
+        const auto iou = s([](const DetectionScore& d) { return d.iou; });
+        const std::optional<double> cen = o.score ? o.score->centroid_error : std::nullopt;
+        const std::optional<double> rot = o.pose ? std::optional<double>(o.pose->rotation_deg) : std::nullopt;
+        const std::optional<double> tr = o.pose ? std::optional<double>(o.pose->translation) : std::nullopt;
+        std::snprintf(line, sizeof line, "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f\n",
+                      o.name.substr(0, 34).c_str(), status.c_str(), o.regions, o.largest_kind.substr(0, 4).c_str(),
+                      o.coverage, o.threshold_deg, opt(prec).c_str(), opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(),
+                      opt(cen, "%.3g").c_str(), opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds);
+        table << line;
+        for (const auto& f : o.failures) table << "    " << f << '\n';
+        if (o.skipped) table << "    " << o.skip_reason << '\n';
+        csv << o.name << ',' << status << ',' << o.regions << ',' << o.largest_kind << ',' << o.coverage << ','
+            << o.threshold_deg << ',' << opt(prec, "%.6f") << ',' << opt(rec, "%.6f") << ',' << opt(f1, "%.6f") << ','
+            << opt(iou, "%.6f") << ',' << opt(cen, "%.6g") << ',' << opt(rot, "%.6g") << ',' << opt(tr, "%.6g") << ','
+            << o.seconds << '\n';
+    }
+    write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
+    write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());
+    if (global_flags().json) std::cout << all.dump(2) << '\n';
+    else if (!global_flags().quiet) std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
+    check(outcomes);
+}
+
+void add_common(CLI::App* cmd, RunArgs& a) {
+    cmd->add_option("SCENARIO", a.scenarios, "Scenario files (.toml) or folders of them")->required();
+    cmd->add_option("-o,--output", a.output, "Folder for the atlases (one sub-folder per scenario)")->capture_default_str();
+    cmd->add_option("--data-root", a.data_root, "Where scenario mesh paths not found beside the scenario are looked up "
+                                                "(default: $GLINT_DATA)");
+    cmd->add_flag("--views", a.views, "Also write per-view heat maps (PNG + EXR)");
+    cmd->add_flag("--full", a.full, "Folders: include scenarios tagged 'full' (longer than the CI suite)");
+}
+
+void setup(CLI::App& app) {
+    static RunArgs run_args;
+    static RunArgs eval_args;
+    auto* run = app.add_subcommand("run", "Run scenarios end to end (fit, sweep, atlas)");
+    add_common(run, run_args);
+    run->callback([] { run_command(run_args); });
+    auto* eval = app.add_subcommand("eval", "Run scenarios and score them against their ground truth; "
+                                            "exit 1 when an [expect] fails");
+    add_common(eval, eval_args);
+    eval->callback([] { eval_command(eval_args); });
+}
+
+const CommandRegistrar registrar(70, setup);
+
+}  // namespace
+}  // namespace glint::cli
