@@ -1,0 +1,134 @@
+#include "scanner/scenario.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path write_scenario(const std::string& name, const std::string& text) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "scenarios";
+    fs::create_directories(dir);
+    const fs::path p = dir / (name + ".toml");
+    std::ofstream(p) << text;
+    return p;
+}
+
+constexpr const char* kValid = R"(
+name = "dent"
+tags = ["ci"]
+[reference]
+phantom = "sphere"
+scheme = "ico"
+resolution = 4
+size = 10.0
+[examined]
+scheme = "uv"
+resolution = 40
+pose = [2.0, 0.0, 1.0, 0.1, 0.0, 0.0]
+[[damage]]
+kind = "dent"
+center = [10.0, 0.0, 0.0]
+radius = 3.0
+depth = 0.5
+[sweep]
+azimuth_step = 45
+elevations = [-30, 30]
+zoom = [0.2]
+[threshold]
+deg = 4
+[expect]
+regions = 1
+min_iou = 0.8
+)";
+
+// Expects an InputError whose message holds every fragment.
+void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
+    const fs::path p = write_scenario("bad", text);
+    try {
+        (void)load_scenario(p, {});
+        FAIL() << "expected InputError for:\n" << text;
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
+    }
+}
+
+TEST(LoadScenario, ReadsEverySection) {
+    const Scenario sc = load_scenario(write_scenario("valid", kValid), {});
+    EXPECT_EQ(sc.name, "dent");
+    ASSERT_TRUE(sc.reference.phantom);
+    EXPECT_EQ(sc.reference.phantom->kind, PhantomKind::Sphere);
+    ASSERT_TRUE(sc.examined.phantom);
+    EXPECT_EQ(sc.examined.phantom->scheme, TessellationScheme::Uv);
+    EXPECT_EQ(sc.examined.phantom->resolution, 40);
+    EXPECT_DOUBLE_EQ(sc.examined.phantom->radii.x(), 10.0);  // inherited from the reference
+    ASSERT_EQ(sc.damages.size(), 1u);
+    EXPECT_EQ(sc.damages[0].kind, DamageKind::Dent);
+    EXPECT_DOUBLE_EQ(sc.damages[0].depth, 0.5);
+    EXPECT_NEAR(rotation_angle_deg(sc.pose), std::hypot(2.0, 1.0), 0.05);
+    EXPECT_EQ(sc.sweep.plan.elevations_deg.size(), 2u);
+    ASSERT_TRUE(sc.sweep.threshold_deg);
+    EXPECT_DOUBLE_EQ(*sc.sweep.threshold_deg, 4.0);
+    EXPECT_EQ(sc.expect.regions, 1u);
+}
+
+TEST(LoadScenario, RejectsATypoedKeyNamingItsLine) {
+    std::string text = kValid;
+    text.replace(text.find("radius = 3.0"), 12, "raduis = 3.0");
+    expect_error(text, {"bad.toml", "line 16", "damage[0].raduis", "unknown key"});
+}
+
+TEST(LoadScenario, RejectsAWrongType) {
+    std::string text = kValid;
+    text.replace(text.find("azimuth_step = 45"), 17, "azimuth_step = \"45\"");
+    expect_error(text, {"sweep.azimuth_step", "expected a number", "found a string"});
+}
+
+TEST(LoadScenario, RejectsANegativeSize) {
+    std::string text = kValid;
+    text.replace(text.find("depth = 0.5"), 11, "depth = -0.5");
+    expect_error(text, {"damage[0].depth", "must be > 0"});
+}
+
+TEST(LoadScenario, RejectsAMissingReference) {
+    expect_error("name = \"x\"\n", {"reference", "missing"});
+}
+
+TEST(LoadScenario, ReportsTomlSyntaxErrorsWithTheLine) {
+    expect_error("name = \"x\"\n[reference\nphantom = 1\n", {"bad.toml", "line 2"});
+}
+
+TEST(LoadScenario, MissingFileIsAnIoError) {
+    EXPECT_THROW((void)load_scenario("/nonexistent/scenario.toml", {}), IoError);
+}
+
+TEST(ReadNpyMask, ReadsBooleanVectorAndRejectsOtherFiles) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
+    fs::create_directories(dir);
+    // A v1.0 header padded so that the data starts at a multiple of 64, as NumPy writes it.
+    std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (5,), }";
+    header.append(64 - 10 - header.size() - 1, ' ');
+    header += '\n';
+    std::string file = std::string("\x93NUMPY\x01\x00", 8);
+    file += static_cast<char>(header.size() & 0xFF);
+    file += static_cast<char>(header.size() >> 8);
+    file += header;
+    file += std::string("\x01\x00\x00\x01\x01", 5);
+    write_file_atomically(dir / "mask.npy", file);
+    EXPECT_EQ(read_npy_mask(dir / "mask.npy"), (std::vector<std::uint8_t>{1, 0, 0, 1, 1}));
+    write_file_atomically(dir / "short.npy", file.substr(0, file.size() - 2));
+    EXPECT_THROW((void)read_npy_mask(dir / "short.npy"), InputError);
+    write_file_atomically(dir / "text.npy", "hello world, not numpy");
+    EXPECT_THROW((void)read_npy_mask(dir / "text.npy"), InputError);
+}
+
+}  // namespace
+}  // namespace glint
