@@ -1,0 +1,110 @@
+// Rigid registration of an examined mesh onto a reference mesh.
+//
+//   coarse (optional): centroid + principal axes, every proper sign hypothesis and the
+//                      identity, each scored after a short robust ICP; or landmarks
+//   fine:             point-to-plane ICP, 6 DoF (angle-axis + translation), solved with
+//                     Ceres under a robust loss whose scale comes from the residuals' MAD
+//                     and is annealed from wide to tight; pairs whose normals disagree are
+//                     rejected; samples are drawn area-uniformly on the examined mesh
+//                     (Chen & Medioni 1992 point-to-plane; robust M-estimation as in
+//                     Open3D's RobustKernel).
+// Damage must not pull the fit: a robust loss down-weights the damaged area, an ROI can
+// restrict the fit to a stable region.
+#pragma once
+
+#include "mesh/geometry.h"
+#include "mesh/mesh.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class RobustLoss { None, Huber, Cauchy, Tukey };
+
+/// "none" / "huber" / "cauchy" / "tukey". \throw InputError.
+[[nodiscard]] RobustLoss parse_loss(const std::string& text);
+[[nodiscard]] std::string to_string(RobustLoss loss);
+
+/// Region of the reference used for the fit.
+struct RegistrationRoi {
+    enum class Shape { None, Sphere, Box, VertexMask } shape = Shape::None;
+    Vec3d center{0, 0, 0};
+    double radius = 0.0;
+    Vec3d min{0, 0, 0};
+    Vec3d max{0, 0, 0};
+    std::vector<std::uint8_t> vertex_mask;  ///< per reference vertex (VertexMask)
+    [[nodiscard]] bool contains(const Vec3d& p) const;
+};
+
+/// "sphere:x,y,z,r" / "box:x0,y0,z0,x1,y1,z1". \throw InputError.
+[[nodiscard]] RegistrationRoi parse_registration_roi(const std::string& text);
+
+struct RegistrationOptions {
+    RobustLoss loss = RobustLoss::Cauchy;
+    /// Loss scale = anneal factor × 1.4826 × MAD of the residuals; the factor goes from
+    /// `anneal_start` down to `anneal_end` (halving each iteration).
+    double anneal_start = 8.0;
+    double anneal_end = 2.0;
+    int samples = 20000;            ///< area-uniform samples on the examined mesh
+    int max_iterations = 60;
+    int inner_iterations = 8;       ///< Ceres LM iterations per ICP iteration
+    double max_normal_angle_deg = 60.0;  ///< reject pairs whose normals differ more
+    /// Convergence: rotation change below this (degrees) and translation change below
+    /// `translation_tolerance` × the reference's bounding diagonal.
+    double rotation_tolerance_deg = 1e-7;
+    double translation_tolerance = 1e-9;
+    bool coarse = true;             ///< try principal-axis hypotheses first (not with landmarks/init)
+    bool symmetric = false;         ///< also pull reference samples onto the examined mesh
+    RegistrationRoi roi;
+    std::optional<Rigid> initial;   ///< start from this reference_from_examined
+    std::uint32_t seed = 1;         ///< sampling is deterministic for a seed
+
+    /// \throw InputError naming the field, its value and the rule.
+    void validate() const;
+};
+
+struct IcpIteration {
+    int iteration = 0;
+    double rms = 0.0;             ///< of inlier point-to-plane residuals
+    double loss_scale = 0.0;
+    double inlier_fraction = 0.0;
+    double rotation_step_deg = 0.0;
+    double translation_step = 0.0;
+};
+
+struct RegistrationResult {
+    Rigid reference_from_examined = Rigid::Identity();
+    Rigid examined_from_reference = Rigid::Identity();
+    double rms = 0.0;               ///< point-to-plane RMS of inliers (mesh units)
+    double inlier_fraction = 0.0;   ///< share of samples kept (normals agree, within range)
+    double overlap = 0.0;           ///< share of samples within 3σ of the reference surface
+    int iterations = 0;
+    bool converged = false;
+    std::string termination;        ///< "converged: …", "max iterations", "no overlap", …
+    std::string coarse;             ///< which coarse hypothesis was kept
+    std::vector<IcpIteration> log;
+};
+
+/// Registers `examined` onto `reference`. An honest "did not converge" is a result, not an
+/// error. \throw InputError invalid options, an ROI with no reference surface inside.
+[[nodiscard]] RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
+                                                 const RegistrationOptions& options = {});
+
+/// Closed-form rigid fit of point pairs (Umeyama 1991, Eigen::umeyama, no scaling):
+/// reference ≈ T · examined. \throw InputError fewer than 3 pairs, collinear points.
+[[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>& reference);
+
+/// Reads landmark pairs: JSON {"pairs": [{"examined": [x,y,z], "reference": [x,y,z]}, …]}.
+/// \throw IoError, InputError.
+void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::vector<Vec3d>& reference);
+
+/// The result as JSON text (fit.json): matrices, evidence, per-iteration log.
+[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options);
+
+/// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).
+/// \throw IoError, InputError naming the file and what is missing.
+[[nodiscard]] Rigid read_fit(const std::string& path);
+
+}  // namespace glint
