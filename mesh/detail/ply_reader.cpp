@@ -1,0 +1,610 @@
+#include "mesh/detail/ply_reader.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace glint::detail {
+
+namespace {
+
+enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+
+std::size_t size_of(Type t) {
+    switch (t) {
+        case Type::Int8:
+        case Type::UInt8: return 1;
+        case Type::Int16:
+        case Type::UInt16: return 2;
+        case Type::Int32:
+        case Type::UInt32:
+        case Type::Float32: return 4;
+        case Type::Float64: return 8;
+    }
+    return 0;
+}
+
+bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+std::optional<Type> parse_type(std::string_view s) {
+    if (s == "char" || s == "int8") return Type::Int8;
+    if (s == "uchar" || s == "uint8") return Type::UInt8;
+    if (s == "short" || s == "int16") return Type::Int16;
+    if (s == "ushort" || s == "uint16") return Type::UInt16;
+    if (s == "int" || s == "int32") return Type::Int32;
+    if (s == "uint" || s == "uint32") return Type::UInt32;
+    if (s == "float" || s == "float32") return Type::Float32;
+    if (s == "double" || s == "float64") return Type::Float64;
+    return std::nullopt;
+}
+
+// Where a vertex property's value goes.
+enum class Target { Ignore, X, Y, Z, Nx, Ny, Nz, Red, Green, Blue, Label, Scalar, FaceIndices };
+
+struct Property {
+    std::string name;
+    Type type = Type::Float32;
+    bool is_list = false;
+    Type count_type = Type::UInt8;
+    Target target = Target::Ignore;
+    std::size_t scalar_index = 0;  ///< into Mesh::scalars when target == Scalar
+    std::size_t offset = 0;        ///< byte offset in a fixed-size binary item
+};
+
+struct Element {
+    std::string name;
+    std::uint64_t count = 0;
+    std::vector<Property> properties;
+    bool is_fixed_size = true;  ///< no list property: every item has the same byte size
+    std::size_t stride = 0;     ///< bytes per item when is_fixed_size
+};
+
+enum class Encoding { Ascii, BinaryLe, BinaryBe };
+
+std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
+
+template <class U>
+U byteswap_uint(U v) {
+    if constexpr (sizeof(U) == 2) return static_cast<U>(__builtin_bswap16(v));
+    if constexpr (sizeof(U) == 4) return __builtin_bswap32(v);
+    if constexpr (sizeof(U) == 8) return __builtin_bswap64(v);
+    return v;
+}
+
+template <class T, bool Swap>
+T load(const char* p) {
+    if constexpr (sizeof(T) == 1) {
+        T v;
+        std::memcpy(&v, p, 1);
+        return v;
+    } else {
+        using U = std::conditional_t<sizeof(T) == 2, std::uint16_t,
+                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
+        U u;
+        std::memcpy(&u, p, sizeof(U));
+        if constexpr (Swap) u = byteswap_uint(u);
+        return std::bit_cast<T>(u);
+    }
+}
+
+template <bool Swap>
+double load_value(const char* p, Type t) {
+    switch (t) {
+        case Type::Int8: return load<std::int8_t, Swap>(p);
+        case Type::UInt8: return load<std::uint8_t, Swap>(p);
+        case Type::Int16: return load<std::int16_t, Swap>(p);
+        case Type::UInt16: return load<std::uint16_t, Swap>(p);
+        case Type::Int32: return load<std::int32_t, Swap>(p);
+        case Type::UInt32: return load<std::uint32_t, Swap>(p);
+        case Type::Float32: return static_cast<double>(load<float, Swap>(p));
+        case Type::Float64: return load<double, Swap>(p);
+    }
+    return 0.0;
+}
+
+// Integer value of a list count or index (exact for every PLY integer type).
+template <bool Swap>
+std::int64_t load_int(const char* p, Type t) {
+    switch (t) {
+        case Type::Int8: return load<std::int8_t, Swap>(p);
+        case Type::UInt8: return load<std::uint8_t, Swap>(p);
+        case Type::Int16: return load<std::int16_t, Swap>(p);
+        case Type::UInt16: return load<std::uint16_t, Swap>(p);
+        case Type::Int32: return load<std::int32_t, Swap>(p);
+        case Type::UInt32: return load<std::uint32_t, Swap>(p);
+        case Type::Float32: return static_cast<std::int64_t>(load<float, Swap>(p));
+        case Type::Float64: return static_cast<std::int64_t>(load<double, Swap>(p));
+    }
+    return 0;
+}
+
+// What the reader builds while it walks the body.
+struct Builder {
+    Mesh mesh;
+    std::size_t vertex_count = 0;
+    bool has_normals = false;
+    bool has_colors = false;
+    bool has_labels = false;
+    std::size_t split_polygons = 0;
+    std::size_t short_faces = 0;  ///< faces with fewer than 3 corners, skipped
+
+    void store(std::size_t v, const Property& p, double value) {
+        switch (p.target) {
+            case Target::X: mesh.positions[v].x() = static_cast<float>(value); break;
+            case Target::Y: mesh.positions[v].y() = static_cast<float>(value); break;
+            case Target::Z: mesh.positions[v].z() = static_cast<float>(value); break;
+            case Target::Nx: mesh.normals[v].x() = static_cast<float>(value); break;
+            case Target::Ny: mesh.normals[v].y() = static_cast<float>(value); break;
+            case Target::Nz: mesh.normals[v].z() = static_cast<float>(value); break;
+            case Target::Red: mesh.colors[v][0] = color_byte(p.type, value); break;
+            case Target::Green: mesh.colors[v][1] = color_byte(p.type, value); break;
+            case Target::Blue: mesh.colors[v][2] = color_byte(p.type, value); break;
+            case Target::Label: mesh.labels[v] = static_cast<std::int32_t>(value); break;
+            case Target::Scalar:
+                mesh.scalars[p.scalar_index].values[v] = static_cast<float>(value);
+                break;
+            case Target::Ignore:
+            case Target::FaceIndices: break;
+        }
+    }
+
+    static std::uint8_t color_byte(Type t, double value) {
+        // note: float colours are in [0, 1] by convention, integer ones in [0, 255].
+        const double scaled = is_integer(t) ? value : value * 255.0;
+        return static_cast<std::uint8_t>(std::clamp(std::lround(scaled), 0L, 255L));
+    }
+};
+
+class PlyParser {
+public:
+    PlyParser(std::span<const char> data, const std::string& source, LoadReport& report)
+        : data_(data), source_(source), report_(report) {}
+
+    Mesh parse() {
+        parse_header();
+        setup_targets();
+        for (std::size_t e = 0; e < elements_.size(); ++e) {
+            const Element& el = elements_[e];
+            const bool is_vertex = static_cast<std::ptrdiff_t>(e) == vertex_element_;
+            const bool is_face = static_cast<std::ptrdiff_t>(e) == face_element_;
+            switch (encoding_) {
+                case Encoding::Ascii: read_ascii(el, is_vertex, is_face); break;
+                case Encoding::BinaryLe: read_binary<false>(el, is_vertex, is_face); break;
+                case Encoding::BinaryBe: read_binary<true>(el, is_vertex, is_face); break;
+            }
+        }
+        finish();
+        return std::move(b_.mesh);
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(quoted(source_) + ": " + what);
+    }
+    [[noreturn]] void fail_line(std::size_t line, const std::string& what) const {
+        throw InputError(quoted(source_) + ": line " + std::to_string(line) + ": " + what);
+    }
+
+    // ---- header -------------------------------------------------------------------------
+
+    void parse_header() {
+        std::size_t pos = 0;
+        std::size_t line_no = 0;
+        bool has_format = false;
+        auto next_line = [&](std::string_view& line) {
+            if (pos >= data_.size()) return false;
+            const char* begin = data_.data() + pos;
+            const void* nl = std::memchr(begin, '\n', data_.size() - pos);
+            const std::size_t len = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin)
+                                       : data_.size() - pos;
+            line = std::string_view(begin, len);
+            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+            pos += len + (nl ? 1 : 0);
+            ++line_no;
+            return true;
+        };
+        std::string_view line;
+        if (!next_line(line) || line != "ply") fail("does not start with \"ply\", not a PLY file");
+        while (true) {
+            if (!next_line(line)) fail("PLY header has no end_header line");
+            const auto words = split(line);
+            if (words.empty()) continue;
+            const std::string_view key = words[0];
+            if (key == "end_header") break;
+            if (key == "comment" || key == "obj_info") continue;
+            if (key == "format") {
+                if (words.size() < 2) fail_line(line_no, "format line without an encoding");
+                if (words[1] == "ascii") encoding_ = Encoding::Ascii;
+                else if (words[1] == "binary_little_endian") encoding_ = Encoding::BinaryLe;
+                else if (words[1] == "binary_big_endian") encoding_ = Encoding::BinaryBe;
+                else
+                    fail_line(line_no, "unknown PLY format \"" + std::string(words[1]) +
+                                           "\", expected ascii, binary_little_endian or "
+                                           "binary_big_endian");
+                has_format = true;
+            } else if (key == "element") {
+                if (words.size() != 3) fail_line(line_no, "expected \"element NAME COUNT\"");
+                Element el;
+                el.name = std::string(words[1]);
+                const auto r = std::from_chars(words[2].data(), words[2].data() + words[2].size(), el.count);
+                if (r.ec != std::errc() || r.ptr != words[2].data() + words[2].size())
+                    fail_line(line_no, "element \"" + el.name + "\" has count \"" +
+                                           std::string(words[2]) + "\", expected a non-negative integer");
+                elements_.push_back(std::move(el));
+            } else if (key == "property") {
+                if (elements_.empty()) fail_line(line_no, "property before any element");
+                Property p;
+                if (words.size() == 5 && words[1] == "list") {
+                    p.is_list = true;
+                    const auto ct = parse_type(words[2]);
+                    const auto it = parse_type(words[3]);
+                    if (!ct || !it)
+                        fail_line(line_no, "unknown type in \"" + std::string(line) + "\"");
+                    if (!is_integer(*ct))
+                        fail_line(line_no, "list count type must be an integer type, found \"" +
+                                               std::string(words[2]) + "\"");
+                    p.count_type = *ct;
+                    p.type = *it;
+                    p.name = std::string(words[4]);
+                    elements_.back().is_fixed_size = false;
+                } else if (words.size() == 3) {
+                    const auto t = parse_type(words[1]);
+                    if (!t) fail_line(line_no, "unknown property type \"" + std::string(words[1]) + "\"");
+                    p.type = *t;
+                    p.name = std::string(words[2]);
+                    p.offset = elements_.back().stride;
+                    elements_.back().stride += size_of(*t);
+                } else {
+                    fail_line(line_no, "expected \"property TYPE NAME\" or \"property list "
+                                       "COUNT_TYPE INDEX_TYPE NAME\", found \"" +
+                                           std::string(line) + "\"");
+                }
+                elements_.back().properties.push_back(std::move(p));
+            } else {
+                fail_line(line_no, "unknown PLY header keyword \"" + std::string(key) + "\"");
+            }
+        }
+        if (!has_format) fail("PLY header has no format line");
+        body_ = pos;
+        line_ = line_no + 1;
+        report_.format = encoding_ == Encoding::Ascii      ? "ply-ascii"
+                         : encoding_ == Encoding::BinaryLe ? "ply-binary-le"
+                                                           : "ply-binary-be";
+    }
+
+    static std::vector<std::string_view> split(std::string_view line) {
+        std::vector<std::string_view> words;
+        std::size_t i = 0;
+        while (i < line.size()) {
+            while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+            const std::size_t start = i;
+            while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+            if (i > start) words.push_back(line.substr(start, i - start));
+        }
+        return words;
+    }
+
+    void setup_targets() {
+        for (std::size_t e = 0; e < elements_.size(); ++e) {
+            if (elements_[e].name == "vertex" && vertex_element_ < 0)
+                vertex_element_ = static_cast<std::ptrdiff_t>(e);
+            if (elements_[e].name == "face" && face_element_ < 0)
+                face_element_ = static_cast<std::ptrdiff_t>(e);
+        }
+        if (vertex_element_ < 0) fail("PLY header declares no \"vertex\" element");
+        Element& v = elements_[static_cast<std::size_t>(vertex_element_)];
+        const std::size_t n = static_cast<std::size_t>(v.count);
+        // note: a lying header must not make us allocate gigabytes: every vertex needs at
+        // least one byte per property in any encoding.
+        const std::size_t left = data_.size() - body_;
+        if (encoding_ != Encoding::Ascii && v.is_fixed_size && v.stride > 0 && n > left / v.stride)
+            fail_truncated(v, left / v.stride);
+        const std::size_t min_bytes = std::max<std::size_t>(v.properties.size(), 1);
+        if (n > left / min_bytes + 1)
+            fail("PLY element \"vertex\" declares " + std::to_string(n) + " items but the body has only " +
+                 std::to_string(left) + " bytes: the file is truncated");
+        b_.vertex_count = n;
+        int xyz = 0, normal = 0, rgb = 0;
+        for (auto& p : v.properties) {
+            if (p.is_list) {
+                report_.warnings.push_back("vertex list property \"" + p.name + "\" ignored");
+                continue;
+            }
+            const std::string& s = p.name;
+            if (s == "x") p.target = Target::X, ++xyz;
+            else if (s == "y") p.target = Target::Y, ++xyz;
+            else if (s == "z") p.target = Target::Z, ++xyz;
+            else if (s == "nx") p.target = Target::Nx, ++normal;
+            else if (s == "ny") p.target = Target::Ny, ++normal;
+            else if (s == "nz") p.target = Target::Nz, ++normal;
+            else if (s == "red" || s == "diffuse_red") p.target = Target::Red, ++rgb;
+            else if (s == "green" || s == "diffuse_green") p.target = Target::Green, ++rgb;
+            else if (s == "blue" || s == "diffuse_blue") p.target = Target::Blue, ++rgb;
+            else if (s == "alpha" || s == "diffuse_alpha") {
+                report_.warnings.push_back("vertex property \"" + s + "\" (colour alpha) ignored");
+            } else if (s == "label" && is_integer(p.type)) {
+                p.target = Target::Label;
+                b_.has_labels = true;
+            } else {
+                p.target = Target::Scalar;
+                p.scalar_index = b_.mesh.scalars.size();
+                b_.mesh.scalars.push_back({s, std::vector<float>(n, 0.0f)});
+            }
+        }
+        if (xyz != 3) fail("PLY element \"vertex\" lacks one of the properties x, y, z");
+        b_.mesh.positions.assign(n, Vec3f::Zero());
+        if (normal == 3) {
+            b_.has_normals = true;
+            b_.mesh.normals.assign(n, Vec3f::Zero());
+        } else if (normal != 0) {
+            for (auto& p : v.properties)
+                if (p.target == Target::Nx || p.target == Target::Ny || p.target == Target::Nz)
+                    p.target = Target::Ignore;
+            report_.warnings.push_back("incomplete vertex normal (not all of nx, ny, nz) ignored");
+        }
+        if (rgb == 3) {
+            b_.has_colors = true;
+            b_.mesh.colors.assign(n, Rgb8{0, 0, 0});
+        } else if (rgb != 0) {
+            for (auto& p : v.properties)
+                if (p.target == Target::Red || p.target == Target::Green || p.target == Target::Blue)
+                    p.target = Target::Ignore;
+            report_.warnings.push_back("incomplete vertex colour (not all of red, green, blue) ignored");
+        }
+        if (b_.has_labels) b_.mesh.labels.assign(n, 0);
+
+        if (face_element_ >= 0) {
+            Element& f = elements_[static_cast<std::size_t>(face_element_)];
+            bool found = false;
+            for (auto& p : f.properties) {
+                if (!found && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+                    if (!is_integer(p.type))
+                        fail("PLY face list \"" + p.name + "\" has a non-integer index type");
+                    p.target = Target::FaceIndices;
+                    found = true;
+                }
+            }
+            if (!found) fail("PLY element \"face\" has no \"vertex_indices\" list property");
+            const std::size_t faces = static_cast<std::size_t>(
+                std::min<std::uint64_t>(f.count, (data_.size() - body_) / 2 + 1));
+            b_.mesh.triangles.reserve(faces);
+        }
+        for (const auto& el : elements_) {
+            if (&el == &v || static_cast<std::ptrdiff_t>(&el - elements_.data()) == face_element_)
+                continue;
+            report_.warnings.push_back("PLY element \"" + el.name + "\" (" +
+                                       std::to_string(el.count) + " items) skipped");
+        }
+    }
+
+    // ---- faces ---------------------------------------------------------------------------
+
+    // Adds one polygon given by `n` corner indices read through `index(k)`; fan-split.
+    template <class IndexAt>
+    void add_face(std::uint64_t face_id, std::int64_t n, IndexAt index) {
+        if (n < 3) {
+            ++b_.short_faces;
+            return;
+        }
+        if (n > 3) ++b_.split_polygons;
+        const auto nv = static_cast<std::int64_t>(b_.vertex_count);
+        auto checked = [&](std::int64_t k) {
+            const std::int64_t i = index(k);
+            if (i < 0 || i >= nv)
+                fail("PLY face " + std::to_string(face_id) + ": corner " + std::to_string(k) +
+                     " uses vertex " + std::to_string(i) + ", the file has " + std::to_string(nv) +
+                     " vertices");
+            return static_cast<std::uint32_t>(i);
+        };
+        const std::uint32_t first = checked(0);
+        std::uint32_t prev = checked(1);
+        for (std::int64_t k = 2; k < n; ++k) {
+            const std::uint32_t cur = checked(k);
+            b_.mesh.triangles.push_back({first, prev, cur});
+            prev = cur;
+        }
+    }
+
+    // ---- binary --------------------------------------------------------------------------
+
+    [[noreturn]] void fail_truncated(const Element& el, std::uint64_t index) const {
+        fail("PLY element \"" + el.name + "\" " + std::to_string(index) + " of " +
+             std::to_string(el.count) + " is truncated: the file ends before the header's count");
+    }
+
+    template <bool Swap>
+    void read_binary(const Element& el, bool is_vertex, bool is_face) {
+        const char* const begin = data_.data();
+        const std::size_t size = data_.size();
+        if (el.is_fixed_size) {
+            const std::size_t available = size - body_;
+            if (el.stride > 0 && el.count > available / el.stride)
+                fail_truncated(el, available / el.stride);
+            if (is_vertex) {
+                const char* base = begin + body_;
+                // note: float positions (the usual case) are copied straight into the Vec3f
+                // array; every other property goes through the typed store.
+                std::vector<const Property*> rest;
+                std::size_t float_xyz[3] = {0, 0, 0};
+                int float_xyz_found = 0;
+                for (const auto& p : el.properties) {
+                    if (p.target == Target::Ignore) continue;
+                    const int axis = p.target == Target::X ? 0 : p.target == Target::Y ? 1 : p.target == Target::Z ? 2 : -1;
+                    if (axis >= 0 && p.type == Type::Float32) {
+                        float_xyz[axis] = p.offset;
+                        ++float_xyz_found;
+                    } else {
+                        rest.push_back(&p);
+                    }
+                }
+                if (float_xyz_found != 3) {
+                    rest.clear();
+                    for (const auto& p : el.properties)
+                        if (p.target != Target::Ignore) rest.push_back(&p);
+                }
+                Vec3f* out = b_.mesh.positions.data();
+                for (std::size_t v = 0; v < el.count; ++v, base += el.stride) {
+                    if (float_xyz_found == 3)
+                        out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]), load<float, Swap>(base + float_xyz[1]),
+                                       load<float, Swap>(base + float_xyz[2]));
+                    for (const Property* p : rest) b_.store(v, *p, load_value<Swap>(base + p->offset, p->type));
+                }
+            }
+            body_ += static_cast<std::size_t>(el.count) * el.stride;
+            return;
+        }
+        std::size_t pos = body_;
+        for (std::uint64_t item = 0; item < el.count; ++item) {
+            for (const auto& p : el.properties) {
+                if (!p.is_list) {
+                    const std::size_t s = size_of(p.type);
+                    if (size - pos < s) fail_truncated(el, item);
+                    if (is_vertex && p.target != Target::Ignore)
+                        b_.store(static_cast<std::size_t>(item), p, load_value<Swap>(begin + pos, p.type));
+                    pos += s;
+                    continue;
+                }
+                const std::size_t cs = size_of(p.count_type);
+                if (size - pos < cs) fail_truncated(el, item);
+                const std::int64_t n = load_int<Swap>(begin + pos, p.count_type);
+                pos += cs;
+                const std::size_t is = size_of(p.type);
+                if (n < 0 || static_cast<std::uint64_t>(n) > (size - pos) / is) fail_truncated(el, item);
+                if (is_face && p.target == Target::FaceIndices) {
+                    const char* at = begin + pos;
+                    const Type t = p.type;
+                    if (n == 3 && t == Type::Int32) {
+                        // note: the common case (triangles, int indices) without the fan loop.
+                        const std::int64_t a = load<std::int32_t, Swap>(at);
+                        const std::int64_t b = load<std::int32_t, Swap>(at + 4);
+                        const std::int64_t c = load<std::int32_t, Swap>(at + 8);
+                        const auto nv = static_cast<std::int64_t>(b_.vertex_count);
+                        if (a >= 0 && a < nv && b >= 0 && b < nv && c >= 0 && c < nv) {
+                            b_.mesh.triangles.push_back({static_cast<std::uint32_t>(a),
+                                                         static_cast<std::uint32_t>(b),
+                                                         static_cast<std::uint32_t>(c)});
+                        } else {
+                            add_face(item, n, [&](std::int64_t k) {
+                                return load_int<Swap>(at + static_cast<std::size_t>(k) * is, t);
+                            });
+                        }
+                    } else {
+                        add_face(item, n, [&](std::int64_t k) {
+                            return load_int<Swap>(at + static_cast<std::size_t>(k) * is, t);
+                        });
+                    }
+                }
+                pos += static_cast<std::size_t>(n) * is;
+            }
+        }
+        body_ = pos;
+    }
+
+    // ---- ASCII ---------------------------------------------------------------------------
+
+    // Next whitespace-separated token of the body; empty at end of file. Counts lines.
+    std::string_view token() {
+        const char* d = data_.data();
+        const std::size_t size = data_.size();
+        while (body_ < size) {
+            const char c = d[body_];
+            if (c == '\n') ++line_;
+            else if (c != ' ' && c != '\t' && c != '\r') break;
+            ++body_;
+        }
+        const std::size_t start = body_;
+        while (body_ < size) {
+            const char c = d[body_];
+            if (c == ' ' || c == '\t' || c == '\r' || c == '\n') break;
+            ++body_;
+        }
+        return {d + start, body_ - start};
+    }
+
+    double ascii_number(const Element& el, std::uint64_t item, const std::string& what) {
+        const std::string_view t = token();
+        if (t.empty())
+            fail("PLY element \"" + el.name + "\" " + std::to_string(item) + " of " +
+                 std::to_string(el.count) + " is truncated: the file ends at line " +
+                 std::to_string(line_) + " before the header's count");
+        double value = 0.0;
+        const auto r = std::from_chars(t.data(), t.data() + t.size(), value);
+        if (r.ec == std::errc::result_out_of_range) {
+            value = (t.front() == '-') ? -HUGE_VAL : HUGE_VAL;
+        } else if (r.ec != std::errc() || r.ptr != t.data() + t.size()) {
+            fail_line(line_, "PLY element \"" + el.name + "\" " + std::to_string(item) + ": " +
+                                 what + " is \"" + std::string(t) + "\", expected a number");
+        }
+        return value;
+    }
+
+    void read_ascii(const Element& el, bool is_vertex, bool is_face) {
+        std::vector<std::int64_t> corners;
+        for (std::uint64_t item = 0; item < el.count; ++item) {
+            for (const auto& p : el.properties) {
+                if (!p.is_list) {
+                    const double v = ascii_number(el, item, "property \"" + p.name + "\"");
+                    if (is_vertex && p.target != Target::Ignore)
+                        b_.store(static_cast<std::size_t>(item), p, v);
+                    continue;
+                }
+                const double count = ascii_number(el, item, "list count of \"" + p.name + "\"");
+                if (!(count >= 0) || count != std::floor(count) || count > 1e6)
+                    fail_line(line_, "PLY element \"" + el.name + "\" " + std::to_string(item) +
+                                         ": list \"" + p.name + "\" has count " +
+                                         std::to_string(count) + ", expected a small non-negative integer");
+                const auto n = static_cast<std::int64_t>(count);
+                const bool keep = is_face && p.target == Target::FaceIndices;
+                if (keep) corners.clear();
+                for (std::int64_t k = 0; k < n; ++k) {
+                    const double idx = ascii_number(el, item, "entry of \"" + p.name + "\"");
+                    if (keep) {
+                        if (idx != std::floor(idx))
+                            fail_line(line_, "PLY face " + std::to_string(item) + ": index " +
+                                                 std::to_string(idx) + " is not an integer");
+                        corners.push_back(static_cast<std::int64_t>(idx));
+                    }
+                }
+                if (keep)
+                    add_face(item, n, [&](std::int64_t k) { return corners[static_cast<std::size_t>(k)]; });
+            }
+        }
+    }
+
+    void finish() {
+        report_.file_vertices = b_.vertex_count;
+        report_.file_triangles = b_.mesh.triangles.size();
+        report_.split_polygons += b_.split_polygons;
+        if (b_.short_faces > 0)
+            report_.warnings.push_back(std::to_string(b_.short_faces) +
+                                       " faces with fewer than 3 corners skipped");
+        if (face_element_ < 0) report_.warnings.push_back("PLY file has no \"face\" element");
+    }
+
+    std::span<const char> data_;
+    const std::string& source_;
+    LoadReport& report_;
+    Encoding encoding_ = Encoding::Ascii;
+    std::vector<Element> elements_;
+    std::ptrdiff_t vertex_element_ = -1;
+    std::ptrdiff_t face_element_ = -1;
+    std::size_t body_ = 0;  ///< read position in data_
+    std::size_t line_ = 0;  ///< current line (ASCII body)
+    Builder b_;
+};
+
+}  // namespace
+
+Mesh read_ply(std::span<const char> data, const std::string& source, LoadReport& report) {
+    return PlyParser(data, source, report).parse();
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,634 @@
+#include "mesh/detail/vtk_reader.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace glint::detail {
+
+namespace {
+
+enum class Type { Bit, Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64, String };
+
+std::optional<Type> parse_type(std::string_view s) {
+    std::string t(s);
+    for (char& c : t) c = static_cast<char>(c | 0x20);  // VTK writes them lower case; accept any
+    if (t == "bit") return Type::Bit;
+    if (t == "char" || t == "signed_char") return Type::Int8;
+    if (t == "unsigned_char") return Type::UInt8;
+    if (t == "short") return Type::Int16;
+    if (t == "unsigned_short") return Type::UInt16;
+    if (t == "int") return Type::Int32;
+    if (t == "unsigned_int") return Type::UInt32;
+    // note: "long" is written with the writer's sizeof(long); VTK's binary files come from
+    // LP64 platforms in practice, so 8 bytes. vtkIdType is 64-bit in default VTK builds.
+    if (t == "long" || t == "vtktypeint64" || t == "vtkidtype") return Type::Int64;
+    if (t == "unsigned_long" || t == "vtktypeuint64") return Type::UInt64;
+    if (t == "float") return Type::Float32;
+    if (t == "double") return Type::Float64;
+    if (t == "string" || t == "utf8_string") return Type::String;
+    return std::nullopt;
+}
+
+std::size_t size_of(Type t) {
+    switch (t) {
+        case Type::Int8:
+        case Type::UInt8: return 1;
+        case Type::Int16:
+        case Type::UInt16: return 2;
+        case Type::Int32:
+        case Type::UInt32:
+        case Type::Float32: return 4;
+        case Type::Int64:
+        case Type::UInt64:
+        case Type::Float64: return 8;
+        case Type::Bit:
+        case Type::String: return 0;
+    }
+    return 0;
+}
+
+bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64 && t != Type::String; }
+
+// Big-endian load (VTK legacy binary is always big endian).
+template <class T>
+T load_be(const char* p) {
+    if constexpr (sizeof(T) == 1) {
+        T v;
+        std::memcpy(&v, p, 1);
+        return v;
+    } else {
+        using U = std::conditional_t<sizeof(T) == 2, std::uint16_t,
+                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
+        U u;
+        std::memcpy(&u, p, sizeof(U));
+        if constexpr (sizeof(U) == 2) u = static_cast<U>(__builtin_bswap16(u));
+        if constexpr (sizeof(U) == 4) u = __builtin_bswap32(u);
+        if constexpr (sizeof(U) == 8) u = __builtin_bswap64(u);
+        return std::bit_cast<T>(u);
+    }
+}
+
+double load_value(const char* p, Type t) {
+    switch (t) {
+        case Type::Int8: return load_be<std::int8_t>(p);
+        case Type::UInt8: return load_be<std::uint8_t>(p);
+        case Type::Int16: return load_be<std::int16_t>(p);
+        case Type::UInt16: return load_be<std::uint16_t>(p);
+        case Type::Int32: return load_be<std::int32_t>(p);
+        case Type::UInt32: return load_be<std::uint32_t>(p);
+        case Type::Int64: return static_cast<double>(load_be<std::int64_t>(p));
+        case Type::UInt64: return static_cast<double>(load_be<std::uint64_t>(p));
+        case Type::Float32: return static_cast<double>(load_be<float>(p));
+        case Type::Float64: return load_be<double>(p);
+        case Type::Bit:
+        case Type::String: return 0.0;
+    }
+    return 0.0;
+}
+
+std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
+
+std::vector<std::string_view> split(std::string_view line) {
+    std::vector<std::string_view> w;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
+        if (i > start) w.push_back(line.substr(start, i - start));
+    }
+    return w;
+}
+
+bool iequals(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+               return (x | 0x20) == (y | 0x20);
+           });
+}
+
+class VtkParser {
+public:
+    VtkParser(std::span<const char> data, const std::string& source, LoadReport& report)
+        : data_(data), source_(source), report_(report) {}
+
+    Mesh parse() {
+        parse_preamble();
+        std::string_view line;
+        while (next_line(line)) {
+            words_ = split(line);
+            if (words_.empty()) continue;
+            const std::string_view key = words_[0];
+            if (iequals(key, "FIELD")) read_field();
+            else if (iequals(key, "POINTS")) read_points();
+            else if (iequals(key, "POLYGONS")) read_cells(CellKind::Polygons);
+            else if (iequals(key, "TRIANGLE_STRIPS")) read_cells(CellKind::Strips);
+            else if (iequals(key, "VERTICES")) read_cells(CellKind::Vertices);
+            else if (iequals(key, "LINES")) read_cells(CellKind::Lines);
+            else if (iequals(key, "POINT_DATA")) begin_data(Section::Point);
+            else if (iequals(key, "CELL_DATA")) begin_data(Section::Cell);
+            else if (iequals(key, "METADATA")) skip_metadata();
+            else if (is_attribute(key)) read_attribute();
+            else fail("unknown VTK keyword \"" + printable(key) + "\"");
+        }
+        if (!has_points_) fail("VTK POLYDATA has no POINTS section");
+        report_.file_vertices = mesh_.positions.size();
+        report_.file_triangles = mesh_.triangles.size();
+        for (const auto& [what, count] : skipped_cells_)
+            report_.warnings.push_back("VTK " + what + " (" + std::to_string(count) + " cells) skipped");
+        if (strips_ > 0)
+            report_.warnings.push_back(std::to_string(strips_) + " triangle strips converted into " +
+                                       std::to_string(strip_triangles_) + " triangles");
+        return std::move(mesh_);
+    }
+
+private:
+    enum class Section { None, Point, Cell };
+    enum class CellKind { Polygons, Strips, Vertices, Lines };
+
+    // ---- messages -------------------------------------------------------------------------
+
+    std::string where(std::size_t at) const {
+        if (!binary_) {
+            const auto line = 1 + std::count(data_.begin(), data_.begin() + static_cast<std::ptrdiff_t>(std::min(at, data_.size())), '\n');
+            return "line " + std::to_string(line);
+        }
+        return "byte " + std::to_string(at);
+    }
+    [[noreturn]] void fail(const std::string& what) const {
+        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what);
+    }
+    static std::string printable(std::string_view s) {
+        std::string t(s.substr(0, 40));
+        for (char& c : t)
+            if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+        return t;
+    }
+
+    // ---- low-level reading ----------------------------------------------------------------
+
+    // Reads the next line (without its '\n'); false at end of file.
+    bool next_line(std::string_view& line) {
+        if (pos_ >= data_.size()) return false;
+        line_start_ = pos_;
+        const char* begin = data_.data() + pos_;
+        const void* nl = std::memchr(begin, '\n', data_.size() - pos_);
+        const std::size_t len =
+            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin) : data_.size() - pos_;
+        line = std::string_view(begin, len);
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        pos_ += len + (nl ? 1 : 0);
+        return true;
+    }
+
+    // Next non-blank line's words without consuming it (empty at end of file).
+    std::vector<std::string_view> peek_words() {
+        const std::size_t save_pos = pos_, save_start = line_start_;
+        std::string_view line;
+        std::vector<std::string_view> w;
+        while (w.empty() && next_line(line)) w = split(line);
+        pos_ = save_pos;
+        line_start_ = save_start;
+        return w;
+    }
+
+    std::string_view token() {
+        const char* d = data_.data();
+        while (pos_ < data_.size() && (d[pos_] == ' ' || d[pos_] == '\t' || d[pos_] == '\r' || d[pos_] == '\n'))
+            ++pos_;
+        const std::size_t start = pos_;
+        while (pos_ < data_.size() && d[pos_] != ' ' && d[pos_] != '\t' && d[pos_] != '\r' && d[pos_] != '\n')
+            ++pos_;
+        return {d + start, pos_ - start};
+    }
+
+    std::uint64_t count_word(std::size_t i, const char* what) const {
+        if (i >= words_.size()) fail(std::string("expected ") + what + " after \"" + std::string(words_[0]) + "\"");
+        std::uint64_t n = 0;
+        const auto w = words_[i];
+        const auto r = std::from_chars(w.data(), w.data() + w.size(), n);
+        if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+            fail(std::string(what) + " of \"" + std::string(words_[0]) + "\" is \"" + printable(w) +
+                 "\", expected a non-negative integer");
+        return n;
+    }
+
+    Type type_word(std::size_t i) const {
+        if (i >= words_.size()) fail("expected a data type after \"" + std::string(words_[0]) + "\"");
+        const auto t = parse_type(words_[i]);
+        if (!t) fail("unknown VTK data type \"" + printable(words_[i]) + "\"");
+        return *t;
+    }
+
+    // Reads `count` values of `type`, calling sink(i, value). `what` names the section.
+    template <class Sink>
+    void read_values(std::uint64_t count, Type type, const std::string& what, Sink sink) {
+        if (type == Type::String) {
+            if (!binary_) {  // ASCII: one string per line
+                std::string_view line;
+                for (std::uint64_t i = 0; i < count; ++i)
+                    if (!next_line(line)) truncated(what, i, count);
+                return;
+            }
+            // BINARY: each string is prefixed by its length, whose first two bits say how
+            // many bytes the length takes: 11 -> 6 bits in 1 byte, 10 -> 14 bits in 2,
+            // 01 -> 30 bits in 4, 00 -> 62 bits in 8 (vtkDataWriter's string encoding).
+            for (std::uint64_t i = 0; i < count; ++i) {
+                if (pos_ >= data_.size()) truncated(what, i, count);
+                const auto tag = static_cast<unsigned char>(data_[pos_]) >> 6;
+                const std::size_t bytes = tag == 3 ? 1 : tag == 2 ? 2 : tag == 1 ? 4 : 8;
+                if (data_.size() - pos_ < bytes) truncated(what, i, count);
+                std::uint64_t length = 0;
+                for (std::size_t b = 0; b < bytes; ++b)
+                    length = (length << 8) | static_cast<unsigned char>(data_[pos_ + b]);
+                length &= (std::uint64_t{1} << (8 * bytes - 2)) - 1;
+                pos_ += bytes;
+                if (length > data_.size() - pos_) truncated(what, i, count);
+                pos_ += static_cast<std::size_t>(length);
+            }
+            return;
+        }
+        if (!binary_) {
+            for (std::uint64_t i = 0; i < count; ++i) {
+                const std::string_view t = token();
+                if (t.empty()) truncated(what, i, count);
+                double v = 0.0;
+                const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+                if (r.ec == std::errc::result_out_of_range) v = t.front() == '-' ? -HUGE_VAL : HUGE_VAL;
+                else if (r.ec != std::errc() || r.ptr != t.data() + t.size()) {
+                    line_start_ = static_cast<std::size_t>(t.data() - data_.data());
+                    fail(what + ": value " + std::to_string(i) + " of " + std::to_string(count) +
+                         " is \"" + printable(t) + "\", expected a number");
+                }
+                sink(static_cast<std::size_t>(i), v);
+            }
+            return;
+        }
+        if (type == Type::Bit) {
+            const std::uint64_t bytes = (count + 7) / 8;
+            if (bytes > data_.size() - pos_) truncated(what, (data_.size() - pos_) * 8, count);
+            for (std::uint64_t i = 0; i < count; ++i)
+                sink(static_cast<std::size_t>(i),
+                     (static_cast<unsigned char>(data_[pos_ + i / 8]) >> (7 - i % 8)) & 1u);
+            pos_ += bytes;
+            return;
+        }
+        const std::size_t s = size_of(type);
+        if (count > (data_.size() - pos_) / s) truncated(what, (data_.size() - pos_) / s, count);
+        const char* p = data_.data() + pos_;
+        for (std::uint64_t i = 0; i < count; ++i, p += s) sink(static_cast<std::size_t>(i), load_value(p, type));
+        pos_ += static_cast<std::size_t>(count) * s;
+    }
+
+    void skip_values(std::uint64_t count, Type type, const std::string& what) {
+        read_values(count, type, what, [](std::size_t, double) {});
+    }
+
+    [[noreturn]] void truncated(const std::string& what, std::uint64_t got, std::uint64_t count) {
+        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what + " ends after " +
+                         std::to_string(got) + " of " + std::to_string(count) +
+                         " values: the file is truncated");
+    }
+
+    // ---- sections -------------------------------------------------------------------------
+
+    void parse_preamble() {
+        std::string_view line;
+        if (!next_line(line) || !line.starts_with("# vtk DataFile"))
+            fail("does not start with \"# vtk DataFile Version\", not a VTK legacy file");
+        if (!next_line(line)) fail("VTK header ends after the version line");  // title
+        if (!next_line(line)) fail("VTK header has no ASCII/BINARY line");
+        const auto enc = split(line);
+        if (enc.size() == 1 && iequals(enc[0], "ASCII")) binary_ = false;
+        else if (enc.size() == 1 && iequals(enc[0], "BINARY")) binary_ = true;
+        else fail("expected ASCII or BINARY, found \"" + printable(line) + "\"");
+        report_.format = binary_ ? "vtk-binary" : "vtk-ascii";
+        std::vector<std::string_view> w;
+        while (w.empty()) {
+            if (!next_line(line)) fail("VTK header has no DATASET line");
+            w = split(line);
+        }
+        if (w.size() != 2 || !iequals(w[0], "DATASET"))
+            fail("expected \"DATASET POLYDATA\", found \"" + printable(line) + "\"");
+        if (!iequals(w[1], "POLYDATA"))
+            fail("dataset is " + printable(w[1]) + ", glint reads only POLYDATA (surface meshes)");
+    }
+
+    // A lying count must not make us allocate gigabytes before the data runs out: every value
+    // takes at least its binary size, or two characters ("0 ") in ASCII.
+    void guard_count(std::uint64_t count, Type t, const std::string& what) {
+        const std::size_t left = data_.size() - pos_;
+        const std::size_t min_bytes = binary_ ? std::max<std::size_t>(size_of(t), 1) : 2;
+        if (count <= left / min_bytes + 1) return;
+        if (binary_) truncated(what, left / min_bytes, count);
+        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what + " declares " +
+                         std::to_string(count) + " values but only " + std::to_string(left) +
+                         " bytes follow: the file is truncated");
+    }
+
+    void read_points() {
+        if (has_points_) fail("second POINTS section");
+        const std::uint64_t n = count_word(1, "point count");
+        const Type t = type_word(2);
+        if (t == Type::String || t == Type::Bit) fail("POINTS must be numeric");
+        guard_count(3 * n, t, "POINTS");
+        mesh_.positions.resize(static_cast<std::size_t>(n));
+        float* out = mesh_.positions.empty() ? nullptr : mesh_.positions[0].data();
+        // note: Vec3f is three packed floats (Eigen fixed-size, no padding) so index 3v+k works.
+        static_assert(sizeof(Vec3f) == 3 * sizeof(float));
+        read_values(3 * n, t, "POINTS", [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+        has_points_ = true;
+        point_count_ = static_cast<std::size_t>(n);
+    }
+
+    std::vector<std::int64_t> read_ints(std::uint64_t count, Type t, const std::string& what) {
+        if (!is_integer(t)) fail(what + " must have an integer type");
+        guard_count(count, t, what);
+        std::vector<std::int64_t> out(static_cast<std::size_t>(count));
+        read_values(count, t, what, [&](std::size_t i, double v) {
+            out[i] = static_cast<std::int64_t>(v);
+        });
+        return out;
+    }
+
+    void read_cells(CellKind kind) {
+        const std::string what(words_[0]);
+        const std::uint64_t n = count_word(1, "cell count");
+        const std::uint64_t size = count_word(2, "connectivity size");
+        // Cells as (offsets, connectivity): the classic layout stores [k, i0..ik-1] per cell;
+        // VTK 5.1 writes OFFSETS (n+1 entries) and CONNECTIVITY arrays.
+        std::vector<std::int64_t> offsets;
+        std::vector<std::int64_t> conn;
+        const auto next = peek_words();
+        if (!next.empty() && iequals(next[0], "OFFSETS")) {
+            std::string_view line;
+            next_line(line);
+            words_ = split(line);
+            offsets = read_ints(n, type_word(1), what + " OFFSETS");
+            std::vector<std::string_view> w;
+            while (w.empty()) {
+                if (!next_line(line)) fail(what + " has OFFSETS but no CONNECTIVITY");
+                w = split(line);
+            }
+            words_ = w;
+            if (!iequals(words_[0], "CONNECTIVITY"))
+                fail("expected CONNECTIVITY after " + what + " OFFSETS, found \"" + printable(line) + "\"");
+            conn = read_ints(size, type_word(1), what + " CONNECTIVITY");
+            if (!offsets.empty() && offsets.back() != static_cast<std::int64_t>(conn.size()))
+                fail(what + " OFFSETS end at " + std::to_string(offsets.back()) +
+                     " but CONNECTIVITY has " + std::to_string(conn.size()) + " entries");
+            if (offsets.empty()) return;
+        } else {
+            const auto flat = read_ints(size, Type::Int32, what);
+            offsets.reserve(static_cast<std::size_t>(n) + 1);
+            conn.reserve(flat.size());
+            offsets.push_back(0);
+            std::size_t i = 0;
+            for (std::uint64_t c = 0; c < n; ++c) {
+                if (i >= flat.size())
+                    fail(what + " declares " + std::to_string(n) + " cells in " + std::to_string(size) +
+                         " numbers, but the numbers end at cell " + std::to_string(c));
+                const std::int64_t k = flat[i++];
+                if (k < 0 || static_cast<std::uint64_t>(k) > flat.size() - i)
+                    fail(what + " cell " + std::to_string(c) + " has " + std::to_string(k) +
+                         " points, more than the " + std::to_string(flat.size() - i) + " numbers left");
+                conn.insert(conn.end(), flat.begin() + static_cast<std::ptrdiff_t>(i),
+                            flat.begin() + static_cast<std::ptrdiff_t>(i + static_cast<std::size_t>(k)));
+                i += static_cast<std::size_t>(k);
+                offsets.push_back(static_cast<std::int64_t>(conn.size()));
+            }
+            if (i != flat.size())
+                fail(what + " declares size " + std::to_string(size) + " but its " + std::to_string(n) +
+                     " cells use " + std::to_string(i) + " numbers");
+        }
+        const std::size_t cells = offsets.size() - 1;
+        cell_count_ += cells;
+        if (kind == CellKind::Vertices || kind == CellKind::Lines) {
+            skipped_cells_.emplace_back(what, cells);
+            return;
+        }
+        auto index = [&](std::size_t c, std::int64_t i) {
+            if (i < 0 || (has_points_ && static_cast<std::uint64_t>(i) >= point_count_))
+                fail(what + " cell " + std::to_string(c) + " uses point " + std::to_string(i) +
+                     ", the file has " + std::to_string(point_count_) + " points");
+            return static_cast<std::uint32_t>(i);
+        };
+        for (std::size_t c = 0; c < cells; ++c) {
+            const auto b = static_cast<std::size_t>(offsets[c]);
+            const auto e = static_cast<std::size_t>(offsets[c + 1]);
+            if (e < b || e > conn.size()) fail(what + " OFFSETS are not increasing at cell " + std::to_string(c));
+            const std::size_t k = e - b;
+            if (k < 3) {
+                ++short_cells_;
+                continue;
+            }
+            if (kind == CellKind::Polygons) {
+                if (k > 3) ++report_.split_polygons;
+                const auto first = index(c, conn[b]);
+                auto prev = index(c, conn[b + 1]);
+                for (std::size_t j = 2; j < k; ++j) {
+                    const auto cur = index(c, conn[b + j]);
+                    mesh_.triangles.push_back({first, prev, cur});
+                    prev = cur;
+                }
+            } else {
+                // Strip v0 v1 v2 v3 …: triangle j is (v_j, v_j+1, v_j+2), every odd one flipped
+                // so all keep the strip's orientation.
+                ++strips_;
+                for (std::size_t j = 0; j + 2 < k; ++j) {
+                    const auto a = index(c, conn[b + j]);
+                    const auto bb = index(c, conn[b + j + 1]);
+                    const auto cc = index(c, conn[b + j + 2]);
+                    if (j % 2 == 0) mesh_.triangles.push_back({a, bb, cc});
+                    else mesh_.triangles.push_back({bb, a, cc});
+                    ++strip_triangles_;
+                }
+            }
+        }
+        if (short_cells_ > 0 && kind == CellKind::Polygons) {
+            report_.warnings.push_back(std::to_string(short_cells_) + " " + what +
+                                       " cells with fewer than 3 points skipped");
+            short_cells_ = 0;
+        }
+    }
+
+    void begin_data(Section s) {
+        section_ = s;
+        section_count_ = static_cast<std::size_t>(count_word(1, "count"));
+        if (s == Section::Point && has_points_ && section_count_ != point_count_)
+            fail("POINT_DATA has " + std::to_string(section_count_) + " values, the file has " +
+                 std::to_string(point_count_) + " points");
+    }
+
+    static bool is_attribute(std::string_view key) {
+        for (const char* k : {"SCALARS", "COLOR_SCALARS", "LOOKUP_TABLE", "VECTORS", "NORMALS",
+                              "TEXTURE_COORDINATES", "TENSORS", "GLOBAL_IDS", "PEDIGREE_IDS"})
+            if (iequals(key, k)) return true;
+        return false;
+    }
+
+    std::string attribute_name() const {
+        std::string name = words_.size() > 1 ? std::string(words_[1]) : std::string();
+        // note: VTK legacy writers encode spaces in names as %20.
+        for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;) name.replace(i, 3, " ");
+        return name;
+    }
+
+    void read_attribute() {
+        const std::string key(words_[0]);
+        std::string upper = key;
+        for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+        if (upper == "LOOKUP_TABLE") {
+            // A standalone colour table: size RGBA entries (floats in ASCII, bytes in BINARY).
+            const std::uint64_t size = count_word(2, "table size");
+            skip_values(4 * size, binary_ ? Type::UInt8 : Type::Float32, "LOOKUP_TABLE");
+            return;
+        }
+        if (section_ == Section::None) fail(key + " outside POINT_DATA / CELL_DATA");
+        const std::size_t n = section_count_;
+        const bool keep = section_ == Section::Point;
+        const std::string name = attribute_name();
+        const std::string what = key + " \"" + name + "\"";
+        if (upper == "SCALARS") {
+            const Type t = type_word(2);
+            const std::uint64_t comps = words_.size() > 3 ? count_word(3, "component count") : 1;
+            const auto next = peek_words();
+            if (!next.empty() && iequals(next[0], "LOOKUP_TABLE")) {
+                std::string_view line;
+                next_line(line);
+            }
+            read_array(name, t, comps, n, keep, what);
+        } else if (upper == "COLOR_SCALARS") {
+            const std::uint64_t comps = count_word(2, "component count");
+            const Type t = binary_ ? Type::UInt8 : Type::Float32;
+            if (keep && comps >= 3) {
+                mesh_.colors.assign(n, Rgb8{0, 0, 0});
+                read_values(comps * n, t, what, [&](std::size_t i, double v) {
+                    const std::size_t c = i % comps;
+                    if (c >= 3) return;
+                    const double scaled = binary_ ? v : v * 255.0;  // ASCII colours are in [0, 1]
+                    mesh_.colors[i / comps][c] =
+                        static_cast<std::uint8_t>(std::clamp(std::lround(scaled), 0L, 255L));
+                });
+            } else {
+                skip_values(comps * n, t, what);
+            }
+        } else if (upper == "NORMALS") {
+            const Type t = type_word(2);
+            if (keep) {
+                mesh_.normals.assign(n, Vec3f::Zero());
+                float* out = n ? mesh_.normals[0].data() : nullptr;
+                read_values(3 * n, t, what, [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+            } else {
+                skip_values(3 * n, t, what);
+            }
+        } else if (upper == "VECTORS") {
+            skip_values(3 * n, type_word(2), what);
+            if (keep) report_.warnings.push_back("VTK point " + what + " skipped");
+        } else if (upper == "TEXTURE_COORDINATES") {
+            const std::uint64_t dim = count_word(2, "dimension");
+            skip_values(dim * n, type_word(3), what);
+        } else if (upper == "TENSORS") {
+            skip_values(9 * n, type_word(2), what);
+        } else {  // GLOBAL_IDS, PEDIGREE_IDS
+            skip_values(n, type_word(2), what);
+        }
+    }
+
+    // One data array of `tuples` × `comps` values: a point scalar when kept and 1-component.
+    void read_array(const std::string& name, Type t, std::uint64_t comps, std::uint64_t tuples, bool keep,
+                    const std::string& what) {
+        const bool as_field = keep && comps == 1 && tuples == point_count_ && t != Type::String;
+        if (!as_field) {
+            if (keep && t != Type::String)
+                report_.warnings.push_back("VTK point array \"" + name + "\" with " + std::to_string(comps) +
+                                           " components skipped (only 1-component arrays are kept)");
+            skip_values(comps * tuples, t, what);
+            return;
+        }
+        if (name == "label" && is_integer(t)) {
+            mesh_.labels.assign(static_cast<std::size_t>(tuples), 0);
+            read_values(tuples, t, what, [&](std::size_t i, double v) {
+                mesh_.labels[i] = static_cast<std::int32_t>(v);
+            });
+            return;
+        }
+        std::vector<float> values(static_cast<std::size_t>(tuples));
+        read_values(tuples, t, what, [&](std::size_t i, double v) { values[i] = static_cast<float>(v); });
+        if (auto* existing = mesh_.find_scalar(name)) existing->values = std::move(values);
+        else mesh_.scalars.push_back({name, std::move(values)});
+    }
+
+    void read_field() {
+        const std::string field_name = words_.size() > 1 ? std::string(words_[1]) : "";
+        const std::uint64_t arrays = count_word(2, "array count");
+        for (std::uint64_t a = 0; a < arrays; ++a) {
+            std::string_view line;
+            std::vector<std::string_view> w;
+            while (w.empty()) {
+                if (!next_line(line))
+                    fail("FIELD \"" + field_name + "\" declares " + std::to_string(arrays) +
+                         " arrays, the file ends after " + std::to_string(a));
+                w = split(line);
+            }
+            words_ = w;
+            if (iequals(words_[0], "NULL_ARRAY")) continue;
+            if (words_.size() != 4)
+                fail("FIELD \"" + field_name + "\" array " + std::to_string(a) +
+                     ": expected \"NAME COMPONENTS TUPLES TYPE\", found \"" + printable(line) + "\"");
+            std::string name(words_[0]);
+            for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;) name.replace(i, 3, " ");
+            const std::uint64_t comps = count_word(1, "component count");
+            const std::uint64_t tuples = count_word(2, "tuple count");
+            const Type t = type_word(3);
+            read_array(name, t, comps, tuples, section_ == Section::Point,
+                       "FIELD \"" + field_name + "\" array \"" + name + "\"");
+            const auto next = peek_words();
+            if (!next.empty() && iequals(next[0], "METADATA")) {
+                next_line(line);
+                skip_metadata();
+            }
+        }
+    }
+
+    // METADATA blocks (VTK ≥ 8) end at the next blank line.
+    void skip_metadata() {
+        std::string_view line;
+        while (next_line(line))
+            if (split(line).empty()) return;
+    }
+
+    std::span<const char> data_;
+    const std::string& source_;
+    LoadReport& report_;
+    Mesh mesh_;
+    bool binary_ = false;
+    std::size_t pos_ = 0;
+    std::size_t line_start_ = 0;  ///< start of the current header line (for messages)
+    std::vector<std::string_view> words_;
+    bool has_points_ = false;
+    std::size_t point_count_ = 0;
+    std::size_t cell_count_ = 0;
+    Section section_ = Section::None;
+    std::size_t section_count_ = 0;
+    std::size_t short_cells_ = 0;
+    std::size_t strips_ = 0;
+    std::size_t strip_triangles_ = 0;
+    std::vector<std::pair<std::string, std::size_t>> skipped_cells_;
+};
+
+}  // namespace
+
+Mesh read_vtk(std::span<const char> data, const std::string& source, LoadReport& report) {
+    return VtkParser(data, source, report).parse();
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,245 @@
+#include "mesh/io.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/detail/assimp_reader.h"
+#include "mesh/detail/ply_reader.h"
+#include "mesh/detail/stl_reader.h"
+#include "mesh/detail/vtk_reader.h"
+#include "mesh/error.h"
+#include "mesh/normals.h"
+#include "mesh/validate.h"
+#include "mesh/weld.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <system_error>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
+
+std::string lower_extension(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+// The bytes of a file, memory-mapped (read-only, private) so large binary files are not
+// copied before parsing.
+class FileBytes {
+public:
+    FileBytes(const fs::path& path, const std::string& source) {
+        std::error_code ec;
+        const auto status = fs::status(path, ec);
+        if (ec || !fs::exists(status)) throw IoError(quoted(source) + ": file not found");
+        if (fs::is_directory(status))
+            throw IoError(quoted(source) + ": is a folder, expected a mesh file");
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
+        struct stat st {};
+        if (::fstat(fd, &st) != 0) {
+            const int err = errno;
+            ::close(fd);
+            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(err));
+        }
+        size_ = static_cast<std::size_t>(st.st_size);
+        if (size_ == 0) {
+            ::close(fd);
+            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
+        }
+        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+        const int err = errno;
+        ::close(fd);
+        if (map == MAP_FAILED) throw IoError(quoted(source) + ": cannot map: " + std::strerror(err));
+        data_ = static_cast<const char*>(map);
+    }
+    ~FileBytes() { release(); }
+    FileBytes(const FileBytes&) = delete;
+    FileBytes& operator=(const FileBytes&) = delete;
+
+    void release() {
+        if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
+        data_ = nullptr;
+    }
+    [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
+
+private:
+    const char* data_ = nullptr;
+    std::size_t size_ = 0;
+};
+
+bool starts_with(std::span<const char> data, std::string_view prefix) {
+    return data.size() >= prefix.size() && std::equal(prefix.begin(), prefix.end(), data.begin());
+}
+
+// Text formats (OBJ, OFF, ASCII PLY/STL) never contain NUL or most control bytes. Returns the
+// offset of the first byte that cannot be text, or npos.
+std::size_t first_binary_byte(std::span<const char> data) {
+    const std::size_t n = std::min<std::size_t>(data.size(), 4096);
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto c = static_cast<unsigned char>(data[i]);
+        if (c == 0 || (c < 32 && c != '\n' && c != '\r' && c != '\t' && c != '\f' && c != '\v'))
+            return i;
+    }
+    return std::string_view::npos;
+}
+
+enum class Format { Ply, Stl, Vtk, AssimpText, AssimpBinary, Unknown };
+
+// Content decides where it can; the extension only for formats without a signature.
+Format detect(std::span<const char> data, const std::string& ext) {
+    if (starts_with(data, "ply\n") || starts_with(data, "ply\r\n")) return Format::Ply;
+    if (starts_with(data, "# vtk DataFile")) return Format::Vtk;
+    if (starts_with(data, "glTF")) return Format::AssimpBinary;  // GLB
+    if (ext == ".stl") return Format::Stl;
+    // note: a text extension wins over an STL-sized body, so binary bytes in an .obj are
+    // reported as such instead of being read as whatever they happen to fit.
+    if (ext == ".obj" || ext == ".off" || ext == ".gltf") return Format::AssimpText;
+    if (detail::is_binary_stl(data)) return Format::Stl;
+    if (ext == ".ply" || ext == ".vtk") return ext == ".ply" ? Format::Ply : Format::Vtk;
+    if (starts_with(data, "OFF") || starts_with(data, "solid")) return Format::AssimpText;
+    if (ext.empty()) return Format::Unknown;
+    return Format::AssimpBinary;  // let assimp try by extension (glb, 3ds, dae, fbx, …)
+}
+
+void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& source) {
+    Mesh& mesh = loaded.mesh;
+    LoadReport& report = loaded.report;
+    // Non-finite coordinates are reported with the file's own vertex id, before any repair
+    // renumbers vertices.
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        const Vec3f& p = mesh.positions[v];
+        if (!p.allFinite()) {
+            const int k = !std::isfinite(p.x()) ? 0 : !std::isfinite(p.y()) ? 1 : 2;
+            throw InputError(quoted(source) + ": vertex " + std::to_string(v) + " of " +
+                             std::to_string(mesh.positions.size()) + ": coordinate " +
+                             "xyz"[k] + " is " + (std::isnan(p[k]) ? "NaN" : "infinite") +
+                             ", expected a finite number");
+        }
+    }
+    const auto n = mesh.positions.size();
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+        for (auto i : mesh.triangles[t])
+            if (i >= n)
+                throw InputError(quoted(source) + ": triangle " + std::to_string(t) + " uses vertex " +
+                                 std::to_string(i) + ", the file has " + std::to_string(n) + " vertices");
+    if (!mesh.normals.empty() && mesh.normals.size() != n) mesh.normals.clear();
+
+    const bool points_only = mesh.triangles.empty();
+    if (points_only && !options.allow_points_only)
+        throw InputError(quoted(source) + ": has " + std::to_string(n) +
+                         " vertices but no triangles, expected a triangle mesh");
+    RepairCounts counts;
+    if (!points_only) {
+        if (options.weld) weld_vertices(mesh, counts);
+        if (options.drop_degenerate) drop_degenerate_triangles(mesh, counts);
+        if (options.drop_unused) drop_unused_vertices(mesh, counts);
+    }
+    report.welded_vertices = counts.welded_vertices;
+    report.degenerate_triangles = counts.degenerate_triangles;
+    report.duplicate_triangles = counts.duplicate_triangles;
+    report.unused_vertices = counts.unused_vertices;
+    if (!points_only) {
+        check_mesh(mesh, source);
+    } else if (mesh.positions.empty()) {
+        throw InputError(quoted(source) + ": has no vertices, expected a mesh or point cloud");
+    }
+    if (options.compute_normals && !points_only) compute_vertex_normals(mesh);
+}
+
+// note: assimp 5.2 loops forever on a PLY without "end_header", crashes in Triangulate on a
+// PLY whose header overstates its counts, and silently accepts truncated bodies. Before a PLY
+// or STL goes to assimp, our own reader checks it and throws the precise error.
+void validate_with_own_reader(Mesh (*reader)(std::span<const char>, const std::string&, LoadReport&),
+                              std::span<const char> bytes, const std::string& source) {
+    LoadReport scratch;
+    (void)reader(bytes, source, scratch);
+}
+
+LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fast) {
+    const std::string source = path.string();
+    FileBytes file(path, source);
+    const std::span<const char> data = file.bytes();
+    protect_input(path);
+    LoadedMesh loaded;
+    loaded.report.path = path;
+    const std::string ext = lower_extension(path);
+    const Format format = detect(data, ext);
+    const std::span<const char> bytes = data;
+    switch (format) {
+        case Format::Ply:
+            if (!starts_with(data, "ply"))
+                throw InputError(quoted(source) + ": does not start with \"ply\", not a PLY file");
+            if (allow_fast) {
+                loaded.report.reader = MeshReader::FastPly;
+                loaded.mesh = detail::read_ply(bytes, source, loaded.report);
+            } else {
+                validate_with_own_reader(detail::read_ply, bytes, source);
+                loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            }
+            break;
+        case Format::Stl:
+            if (allow_fast) {
+                loaded.report.reader = MeshReader::FastStl;
+                loaded.mesh = detail::read_stl(bytes, source, loaded.report);
+            } else {
+                validate_with_own_reader(detail::read_stl, bytes, source);
+                loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            }
+            break;
+        case Format::Vtk:
+            // note: assimp has no VTK reader, so load_mesh_assimp uses ours too.
+            loaded.report.reader = MeshReader::Vtk;
+            loaded.mesh = detail::read_vtk(bytes, source, loaded.report);
+            break;
+        case Format::AssimpText: {
+            const std::size_t bad = first_binary_byte(data);
+            if (bad != std::string_view::npos) {
+                char hex[8];
+                std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(data[bad]));
+                throw InputError(quoted(source) + ": byte " + std::to_string(bad) + " is " + hex +
+                                 ", binary content in a " + ext.substr(1) +
+                                 " file, which is a text format");
+            }
+            loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            break;
+        }
+        case Format::AssimpBinary:
+            loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            break;
+        case Format::Unknown:
+            throw InputError(quoted(source) + ": unknown mesh format (no extension and no known "
+                                              "signature); expected PLY, STL, OBJ, OFF, glTF or VTK");
+    }
+    file.release();
+    finish(loaded, options, source);
+    return loaded;
+}
+
+}  // namespace
+
+LoadedMesh load_mesh(const fs::path& path, const LoadOptions& options) {
+    return load(path, options, options.allow_fast_path);
+}
+
+LoadedMesh load_mesh_assimp(const fs::path& path, const LoadOptions& options) {
+    return load(path, options, false);
+}
+
+}  // namespace glint
