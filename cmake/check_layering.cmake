@@ -1,3 +1,4 @@
+cmake_minimum_required(VERSION 3.25)
 # Fails when a module includes a module it must not depend on:
 #   mesh <- render <- scanner <- tools ; mesh <- registration <- scanner
 set(allowed_mesh "mesh")

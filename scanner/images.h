@@ -25,7 +25,7 @@ struct ColorScale {
     double low = 0.0;
     double high = 1.0;
     std::string map = "inferno";
-    std::string unit = "°";
+    std::string unit = " deg";
     float no_data_grey = 0.18f;
 };
 

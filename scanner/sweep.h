@@ -35,7 +35,7 @@ struct SweepOptions {
     double max_incidence_deg = 75.0;     ///< coverage rule (see file comment)
     std::optional<double> threshold_deg; ///< given: used as is for every zoom
     double noise_k = 6.0;                ///< auto threshold: median + k·1.4826·MAD …
-    double min_threshold_deg = 1.0;      ///< … but never below this
+    double min_threshold_deg = 2.0;      ///< … but never below this (see README)
     std::size_t min_region_vertices = 3;
 
     /// \throw InputError naming the field, its value and the rule.

@@ -37,7 +37,7 @@ struct SweepArgs {
     int supersample = 2;
     double threshold_deg = 0.0;
     double noise_k = 6.0;
-    double min_threshold_deg = 1.0;
+    double min_threshold_deg = 2.0;
     double max_incidence = 75.0;
     std::string backend = "auto";
     std::string device;

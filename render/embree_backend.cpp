@@ -1,0 +1,309 @@
+// Embree backend: the same Frame as the Vulkan backend by ray casting on the CPU.
+//
+// One primary ray per sub-sample, cast in coherent 4×4 packets (rtcIntersect16), sub-sample
+// (X, Y) of the (w·s) × (h·s) grid at pixel coordinates u = (X + 0.5)/s, v = (Y + 0.5)/s,
+// exactly where the rasteriser samples the s× target. Ray directions are scaled so that the
+// component along the viewing axis is 1: the hit distance t *is* the linear depth, and the
+// near/far planes are t ranges [near, far], as the rasteriser clips them.
+// Normal at a hit: Embree's barycentrics (u, v) weight the vertex normals,
+//   n = normalize((1 − u − v)·n0 + u·n1 + v·n2),
+// which is what the rasteriser's perspective-correct interpolation computes per fragment.
+// Scene flag ROBUST: watertight traversal, so rays through shared edges do not leak.
+#include "mesh/error.h"
+#include "render/detail/backend.h"
+#include "render/renderer.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <string>
+
+namespace glint::detail {
+namespace {
+
+struct ErrorLog {
+    std::mutex mutex;
+    std::string last;
+};
+
+void embree_error(void* user, RTCError code, const char* message) {
+    auto* log = static_cast<ErrorLog*>(user);
+    std::lock_guard<std::mutex> lock(log->mutex);
+    log->last = "Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                (message != nullptr ? message : "?");
+}
+
+/// Intersection filter for back-face culling: rejects hits on triangles whose geometric
+/// normal (counter-clockwise, outward) points away from the ray origin side.
+void cull_back_faces(const RTCFilterFunctionNArguments* args) {
+    const auto* face_normals = static_cast<const Vec3f*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, args->N, i);
+        const Vec3f& n = face_normals[prim];
+        const float d = n.x() * RTCRayN_dir_x(args->ray, args->N, i) +
+                        n.y() * RTCRayN_dir_y(args->ray, args->N, i) +
+                        n.z() * RTCRayN_dir_z(args->ray, args->N, i);
+        if (d >= 0.0f) args->valid[i] = 0;
+    }
+}
+
+class EmbreeBackend final : public RenderBackend {
+public:
+    EmbreeBackend(const Mesh& mesh, const RenderOptions& options, RendererInfo& info)
+        : options_(options), threads_(worker_count(options.threads)), normals_(mesh.normals), triangles_(mesh.triangles) {
+        const std::string config = options.threads > 0 ? "threads=" + std::to_string(options.threads) : "";
+        device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
+        if (device_ == nullptr) {
+            throw DeviceError("cannot create an Embree device (error " +
+                              std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+        }
+        rtcSetDeviceErrorFunction(device_, embree_error, &errors_);
+        try {
+            build(mesh);
+        } catch (...) {
+            release();
+            throw;
+        }
+        info.device_name = std::string("embree ") + RTC_VERSION_STRING + " (CPU, " + std::to_string(threads_) +
+                           " threads)";
+        info.device_type = "cpu";
+    }
+
+    ~EmbreeBackend() override { release(); }
+
+    void render_views(std::span<const View> views, const MutableFrameConsumer& consumer) override {
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            render_one(views[i]);
+            consumer(i, frame_);
+        }
+    }
+
+private:
+    void release() noexcept {
+        if (scene_ != nullptr) rtcReleaseScene(scene_);
+        if (device_ != nullptr) rtcReleaseDevice(device_);
+        scene_ = nullptr;
+        device_ = nullptr;
+    }
+
+    void check(const char* what) {
+        if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) {
+            std::lock_guard<std::mutex> lock(errors_.mutex);
+            throw DeviceError(std::string("Embree: ") + what + " failed: " + errors_.last);
+        }
+    }
+
+    void build(const Mesh& mesh) {
+        scene_ = rtcNewScene(device_);
+        rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        // note: Embree reads vertices with 16-byte loads; rtcSetNewGeometryBuffer pads the
+        // buffer it allocates, so copying into it is safe for the last vertex.
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
+        auto* indices = static_cast<std::uint32_t*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(std::uint32_t), mesh.triangles.size()));
+        if (vertices == nullptr || indices == nullptr) {
+            rtcReleaseGeometry(geom);
+            check("allocating geometry buffers");
+            throw DeviceError("Embree: allocating geometry buffers failed");
+        }
+        std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3f));
+        std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * sizeof(Triangle));
+        if (options_.cull_back_faces) {
+            face_normals_.resize(mesh.triangles.size());
+            for (std::size_t t = 0; t < mesh.triangles.size(); ++t) face_normals_[t] = face_normal(mesh, t);
+            rtcSetGeometryUserData(geom, face_normals_.data());
+            rtcSetGeometryIntersectFilterFunction(geom, cull_back_faces);
+        }
+        rtcCommitGeometry(geom);
+        rtcAttachGeometry(scene_, geom);
+        rtcReleaseGeometry(geom);
+        rtcCommitScene(scene_);
+        check("building the scene");
+    }
+
+    void render_one(const View& view) {
+        const Camera& cam = view.camera;
+        const int s = options_.supersample;
+        const int sw = cam.width * s;
+        const int sh = cam.height * s;
+        if (frame_.width != cam.width || frame_.height != cam.height ||
+            frame_.coverage.size() != frame_.pixel_count()) {
+            frame_ = make_empty_frame(cam.width, cam.height);
+        }
+        frame_.normal_space = NormalSpace::World;
+
+        // Sub-sample (X, Y) sits at NDC x = 2(X + ½)/sw − 1, y = 1 − 2(Y + ½)/sh, so ray
+        // origins (orthographic) or directions (perspective) are affine in X and Y:
+        //   v(X, Y) = v00 + X·dx + Y·dy.
+        const Eigen::Matrix3d basis = cam.world_from_camera.linear();
+        const Vec3d right = basis.col(0);
+        const Vec3d up = basis.col(1);
+        const Vec3d forward = -basis.col(2);
+        const bool ortho = cam.projection == Projection::Orthographic;
+        const double aspect = static_cast<double>(cam.width) / cam.height;
+        // Half extents of the image plane: at the eye (orthographic) or at depth 1 (perspective).
+        const double half_h = ortho ? cam.ortho_half_height : std::tan(0.5 * cam.fov_y_rad);
+        const double half_w = half_h * aspect;
+        const Vec3d dx = right * (2.0 * half_w / sw);
+        const Vec3d dy = -up * (2.0 * half_h / sh);
+        const Vec3d corner = right * (-half_w + 0.5 * 2.0 * half_w / sw) + up * (half_h - 0.5 * 2.0 * half_h / sh);
+        // Ortho: origin varies, direction = forward. Perspective: origin = eye, direction
+        // = forward + offset (component 1 along the viewing axis, so t is the depth).
+        const Eigen::Vector3f v00 = (ortho ? Vec3d(cam.eye() + corner) : Vec3d(forward + corner)).cast<float>();
+        const Eigen::Vector3f fixed = (ortho ? forward : cam.eye()).cast<float>();
+        const Eigen::Vector3f dxf = dx.cast<float>();
+        const Eigen::Vector3f dyf = dy.cast<float>();
+        const auto tnear = static_cast<float>(cam.near_plane);
+        const auto tfar = static_cast<float>(cam.far_plane);
+
+        // Work unit: a band of output rows whose sub-sample rows are a multiple of the 4-row
+        // packet height; threads take bands from a shared counter (load balance: empty sky
+        // is cheap, surface is not).
+        const int band_rows = 4 / std::gcd(4, s);
+        const int bands = (cam.height + band_rows - 1) / band_rows;
+        const std::size_t band_samples = static_cast<std::size_t>(band_rows * s) * static_cast<std::size_t>(sw);
+        const std::size_t samples = static_cast<std::size_t>(sw) * static_cast<std::size_t>(sh);
+        // note: below ~16k sub-samples one thread is faster than starting another.
+        const int threads = samples < 16384 ? 1 : std::min(threads_, bands);
+        std::atomic<int> next_band{0};
+        scratch_.resize(static_cast<std::size_t>(threads));
+        parallel_for(threads, threads, [&](int t0, int t1) {
+            for (int t = t0; t < t1; ++t) {
+                Scratch& scratch = scratch_[static_cast<std::size_t>(t)];
+                if (s > 1) {
+                    scratch.normal_depth.resize(4 * band_samples);
+                    scratch.ids.resize(band_samples);
+                }
+                for (int band = next_band++; band < bands; band = next_band++) {
+                    const int y0 = band * band_rows;
+                    const int y1 = std::min(cam.height, y0 + band_rows);
+                    if (s == 1) {
+                        // One sample per pixel: hits go straight into the frame.
+                        trace_band<true>(y0, y1, sw, ortho, v00, fixed, dxf, dyf, tnear, tfar, scratch);
+                    } else {
+                        trace_band<false>(y0 * s, y1 * s, sw, ortho, v00, fixed, dxf, dyf, tnear, tfar, scratch);
+                        resolve_rows(scratch.normal_depth.data(), scratch.ids.data(), s, y0, y1, frame_);
+                    }
+                }
+            }
+        });
+        check("intersecting rays");
+    }
+
+    struct Scratch {
+        std::vector<float> normal_depth;
+        std::vector<std::uint32_t> ids;
+    };
+
+    /// Casts the sub-sample rows [Y0, Y1) (a multiple of 4 high except at the bottom) in 4×4
+    /// packets into scratch (row Y0 first), or, with kDirect (s = 1), into the frame.
+    template <bool kDirect>
+    void trace_band(int Y0, int Y1, int sw, bool ortho, const Eigen::Vector3f& v00, const Eigen::Vector3f& fixed,
+                    const Eigen::Vector3f& dx, const Eigen::Vector3f& dy, float tnear, float tfar,
+                    Scratch& scratch) {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        alignas(64) RTCRayHit16 packet;
+        alignas(64) int valid[16];
+        // Fields Embree does not write: set once per band.
+        for (int k = 0; k < 16; ++k) {
+            packet.ray.time[k] = 0.0f;
+            packet.ray.mask[k] = 0xFFFFFFFFu;
+            packet.ray.id[k] = static_cast<unsigned>(k);
+            packet.ray.flags[k] = 0;
+        }
+        for (int ty = Y0; ty < Y1; ty += 4) {
+            for (int tx = 0; tx < sw; tx += 4) {
+                for (int k = 0; k < 16; ++k) {
+                    const int X = tx + (k & 3);
+                    const int Y = ty + (k >> 2);
+                    valid[k] = (X < sw && Y < Y1) ? -1 : 0;
+                    const Eigen::Vector3f v = v00 + static_cast<float>(X) * dx + static_cast<float>(Y) * dy;
+                    const Eigen::Vector3f& org = ortho ? v : fixed;
+                    const Eigen::Vector3f& dir = ortho ? fixed : v;
+                    packet.ray.org_x[k] = org.x();
+                    packet.ray.org_y[k] = org.y();
+                    packet.ray.org_z[k] = org.z();
+                    packet.ray.dir_x[k] = dir.x();
+                    packet.ray.dir_y[k] = dir.y();
+                    packet.ray.dir_z[k] = dir.z();
+                    packet.ray.tnear[k] = tnear;
+                    packet.ray.tfar[k] = tfar;
+                    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+                    packet.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+                }
+                rtcIntersect16(valid, scene_, &context, &packet);
+                for (int k = 0; k < 16; ++k) {
+                    if (valid[k] == 0) continue;
+                    const int X = tx + (k & 3);
+                    const int Y = ty + (k >> 2);
+                    const std::size_t idx = static_cast<std::size_t>(kDirect ? Y : Y - Y0) *
+                                                static_cast<std::size_t>(sw) + static_cast<std::size_t>(X);
+                    if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+                        if constexpr (kDirect) {
+                            frame_.normal[3 * idx] = frame_.normal[3 * idx + 1] = frame_.normal[3 * idx + 2] = 0.0f;
+                            frame_.primitive_id[idx] = kNoPrimitive;
+                            frame_.depth[idx] = kNoDepth;
+                            frame_.coverage[idx] = 0.0f;
+                        } else {
+                            scratch.ids[idx] = kNoPrimitive;
+                        }
+                        continue;
+                    }
+                    const unsigned prim = packet.hit.primID[k];
+                    const Triangle& tri = triangles_[prim];
+                    const float u = packet.hit.u[k];
+                    const float v = packet.hit.v[k];
+                    Eigen::Vector3f n = (1.0f - u - v) * normals_[tri[0]] + u * normals_[tri[1]] + v * normals_[tri[2]];
+                    const float len = n.norm();
+                    if (len > 0.0f) n /= len;
+                    if constexpr (kDirect) {
+                        float* out = &frame_.normal[3 * idx];
+                        out[0] = n.x();
+                        out[1] = n.y();
+                        out[2] = n.z();
+                        frame_.primitive_id[idx] = prim;
+                        frame_.depth[idx] = packet.ray.tfar[k];
+                        frame_.coverage[idx] = 1.0f;
+                    } else {
+                        float* nd = &scratch.normal_depth[4 * idx];
+                        nd[0] = n.x();
+                        nd[1] = n.y();
+                        nd[2] = n.z();
+                        nd[3] = packet.ray.tfar[k];
+                        scratch.ids[idx] = prim;
+                    }
+                }
+            }
+        }
+    }
+
+    RenderOptions options_;
+    int threads_ = 1;
+    std::vector<Vec3f> normals_;
+    std::vector<Triangle> triangles_;
+    std::vector<Vec3f> face_normals_;
+    ErrorLog errors_;
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::vector<Scratch> scratch_;  // one per worker thread, reused across views
+    Frame frame_;
+};
+
+}  // namespace
+
+std::unique_ptr<RenderBackend> make_embree_backend(const Mesh& mesh, const RenderOptions& options,
+                                                   RendererInfo& info) {
+    return std::make_unique<EmbreeBackend>(mesh, options, info);
+}
+
+}  // namespace glint::detail

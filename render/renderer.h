@@ -1,0 +1,144 @@
+// The renderer: a mesh uploaded once to a backend, rendered from any number of views into
+// Frames (render/frame.h).
+//
+// Backends
+// - Vulkan: rasterisation on a GPU or on Mesa's lavapipe (CPU). Normals into RGBA32F with
+//   linear depth, gl_PrimitiveID into R32_UINT, rendered at s× the size and resolved on the
+//   CPU into s×s sub-sample means. Headless (no window, no swapchain).
+// - Embree: one primary ray per sub-sample (rtcIntersect16 on 4×4 tiles), barycentric
+//   interpolation of the vertex normals: the same Frame, the same conventions.
+// - Auto: Vulkan when a hardware GPU (discrete, integrated or virtual) is present, else
+//   Embree, which measured faster than lavapipe on CPU-only machines (see bench/).
+//
+// Usage
+//   Renderer renderer(mesh, RenderOptions{.supersample = 2});
+//   Frame f = renderer.render(view);
+//   renderer.render_views(views, [&](std::size_t i, const Frame& frame) { ... });
+#pragma once
+
+#include "mesh/mesh.h"
+#include "render/frame.h"
+#include "render/view.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class Backend { Auto, Vulkan, Embree };
+
+/// "auto" / "vulkan" / "embree". \throw InputError.
+[[nodiscard]] Backend parse_backend(const std::string& text);
+[[nodiscard]] std::string to_string(Backend backend);
+
+struct RenderOptions {
+    Backend backend = Backend::Auto;
+    /// Vulkan device: case-insensitive substring of the device name ("llvmpipe", "NVIDIA").
+    /// Empty: the GLINT_DEVICE environment variable, else the best device (discrete GPU >
+    /// integrated > virtual > CPU).
+    std::string device{};
+    NormalSpace normal_space = NormalSpace::World;
+    /// s: each output pixel resolves s×s sub-samples (1 = one sample at the pixel centre).
+    int supersample = 1;
+    /// Pixels whose coverage is below this share are reported uncovered (masked). 0 keeps
+    /// every pixel with at least one covered sub-sample (its normal is normalised by
+    /// coverage); 1 keeps only fully covered pixels.
+    float min_coverage = 0.0f;
+    /// Discard triangles facing away from the camera. Only correct for closed meshes; off by
+    /// default (open meshes show their back side).
+    bool cull_back_faces = false;
+    /// Vulkan: enable VK_LAYER_KHRONOS_validation and collect its messages
+    /// (Renderer::validation_messages). Also on when GLINT_VK_VALIDATION=1.
+    /// \throw DeviceError at creation when the layer is not installed.
+    bool validation = false;
+    /// CPU threads for the Embree backend and the Vulkan resolve; 0 = hardware concurrency.
+    int threads = 0;
+
+    /// \throw InputError naming the field, its value and the rule.
+    void validate() const;
+};
+
+/// What a renderer runs on, and anything it noticed on the way (STYLE.md: nothing is lost).
+struct RendererInfo {
+    Backend backend = Backend::Vulkan;         ///< resolved (never Auto)
+    std::string device_name;                   ///< "llvmpipe (LLVM 15.0.6, 256 bits)", "embree 3.13.5 (CPU)"
+    std::string device_type;                   ///< "discrete", "integrated", "virtual", "cpu"
+    std::size_t triangle_count = 0;
+    std::size_t vertex_count = 0;
+    bool computed_normals = false;             ///< the mesh had no normals: angle-weighted ones were computed
+    std::vector<std::string> warnings;         ///< e.g. why Auto chose a backend
+};
+
+/// Receives each frame as it completes. The frame reference is valid only during the call.
+using FrameConsumer = std::function<void(std::size_t view_index, const Frame& frame)>;
+
+namespace detail {
+class RenderBackend;
+}
+
+/// A mesh uploaded to a backend. Move-only; one device (and Vulkan instance) per renderer.
+/// Not thread-safe: use one renderer per thread.
+class Renderer {
+public:
+    /// Uploads the mesh (normals computed when absent).
+    /// \throw InputError invalid options, empty mesh.
+    /// \throw DeviceError no usable device (the message lists every device and why it was
+    ///        rejected), a failed device call.
+    explicit Renderer(const Mesh& mesh, const RenderOptions& options = {});
+    ~Renderer();
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    /// Renders one view. \throw InputError invalid camera (size ≤ 0, too large);
+    /// \throw DeviceError on device failure.
+    [[nodiscard]] Frame render(const View& view);
+
+    /// Renders views in order and hands each frame to `consumer` as soon as it is resolved.
+    /// Memory stays bounded (two frames in flight) whatever the number of views; the Vulkan
+    /// backend renders view i+1 while the consumer handles view i. Exceptions thrown by the
+    /// consumer stop the run and propagate.
+    void render_views(std::span<const View> views, const FrameConsumer& consumer);
+
+    [[nodiscard]] const RendererInfo& info() const;
+    [[nodiscard]] const RenderOptions& options() const;
+
+    /// Vulkan validation-layer messages (warnings and errors) collected so far; empty for
+    /// Embree or when validation is off.
+    [[nodiscard]] std::vector<std::string> validation_messages() const;
+
+private:
+    std::unique_ptr<detail::RenderBackend> backend_;
+    RenderOptions options_;
+    RendererInfo info_;
+};
+
+/// One Vulkan physical device as glint sees it.
+struct DeviceInfo {
+    std::string name;
+    std::string type;          ///< "discrete", "integrated", "virtual", "cpu", "other"
+    std::string driver;        ///< driver name / info when reported
+    std::uint32_t api_version = 0;
+    std::string api_version_text;  ///< "1.3.230"
+    bool is_usable = false;
+    std::string reason;        ///< why it is not usable (missing feature, …); empty if usable
+    bool is_preferred = false; ///< the device a default Vulkan renderer would pick
+};
+
+/// Enumerates the Vulkan devices and checks each for what glint needs (graphics queue,
+/// geometryShader feature for gl_PrimitiveID, RGBA32F / R32_UINT / D32 attachments).
+/// \throw DeviceError when no Vulkan instance can be created (no loader or no driver).
+[[nodiscard]] std::vector<DeviceInfo> list_devices();
+
+/// The backend Auto resolves to for a mesh of that size on this machine (see file comment);
+/// `reason` receives why.
+[[nodiscard]] Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count,
+                                      std::string* reason = nullptr);
+
+}  // namespace glint
