@@ -22,6 +22,10 @@ AtlasAccumulator::AtlasAccumulator(const Mesh& reference, double footprint)
 void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
     GLINT_ASSERT(s.triangle < mesh_->triangles.size(), "primitive id beyond the reference mesh");
     const auto& tri = mesh_->triangles[s.triangle];
+    // The maximum goes to the vertex whose dual cell holds the pixel (largest weight) only,
+    // so it does not spread by a ring of triangles; the mean and the counts use all weights.
+    const std::size_t nearest = static_cast<std::size_t>(
+        std::max_element(s.barycentric.begin(), s.barycentric.end()) - s.barycentric.begin());
     for (std::size_t k = 0; k < 3; ++k) {
         const float w = s.barycentric[k];
         // note: a pixel whose centre lies on the far side of a vertex (weight ~0) says
@@ -36,11 +40,28 @@ void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
         if (!s.valid_deviation) continue;
         weight_[v] += w;
         sum_[v] += static_cast<double>(w) * s.angle_deg;
-        if (s.angle_deg > max_[v] || max_view_[v] < 0) {
+        if (k == nearest && (s.angle_deg > max_[v] || max_view_[v] < 0)) {
             max_[v] = s.angle_deg;
             depth_at_max_[v] = s.signed_depth;
             max_view_[v] = view_index;
         }
+    }
+}
+
+void AtlasAccumulator::add_vertex(std::uint32_t v, float angle_deg, float signed_depth, float cos_incidence,
+                                  std::int32_t view_index) {
+    GLINT_ASSERT(v < max_.size(), "vertex beyond the reference mesh");
+    ++count_[v];
+    if (cos_incidence > best_cos_[v]) {
+        best_cos_[v] = cos_incidence;
+        best_view_[v] = view_index;
+    }
+    weight_[v] += 1.0;
+    sum_[v] += angle_deg;
+    if (angle_deg > max_[v] || max_view_[v] < 0) {
+        max_[v] = angle_deg;
+        depth_at_max_[v] = signed_depth;
+        max_view_[v] = view_index;
     }
 }
 

@@ -18,7 +18,7 @@ namespace glint {
 /// Per-vertex results of one zoom level.
 struct ZoomAtlas {
     double footprint = 0.0;              ///< mesh units per pixel at this zoom
-    std::vector<float> angle_max_deg;    ///< max angle deviation seen (0 where unseen)
+    std::vector<float> angle_max_deg;    ///< max over the pixels in the vertex's dual cell (0 where unseen)
     std::vector<float> angle_mean_deg;   ///< barycentric-weighted mean (0 where unseen)
     std::vector<float> depth_at_max;     ///< signed depth difference at the max (neg = dent)
     std::vector<float> weight;           ///< sum of barycentric weights (observations)
@@ -45,6 +45,10 @@ public:
     /// Adds one pixel; samples with cos_incidence below min_cos still count as seen only if
     /// they pass: the caller filters by incidence (see SweepOptions::max_incidence_deg).
     void add(const AtlasSample& sample, std::int32_t view_index);
+    /// Adds one observation of a single vertex (weight 1): the gathering pass, for vertices
+    /// that no pixel centre fell on because the pixel is larger than their triangles.
+    void add_vertex(std::uint32_t vertex, float angle_deg, float signed_depth, float cos_incidence,
+                    std::int32_t view_index);
     /// Merges another accumulator of the same mesh and zoom.
     void merge(const AtlasAccumulator& other);
     /// Final per-vertex arrays.

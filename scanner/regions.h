@@ -36,6 +36,10 @@ struct RegionInputs {
 struct RegionOptions {
     double threshold_deg = 5.0;       ///< a seen vertex with angle ≥ threshold is damaged
     std::size_t min_vertices = 3;     ///< smaller groups are dropped (counted in dropped)
+    /// Fill holes: a group of undamaged seen vertices enclosed by one region and smaller than
+    /// it joins that region. The floor of a dent keeps its normal (its tilt is zero at the
+    /// deepest point), so the angle marks a ring; the ring's inside is damaged too.
+    bool fill_holes = true;
 };
 
 struct RegionResult {
@@ -43,6 +47,7 @@ struct RegionResult {
     std::vector<std::int32_t> region_of_vertex;
     std::size_t damaged_vertices = 0;
     std::size_t dropped_small = 0;           ///< groups below min_vertices
+    std::size_t filled_vertices = 0;         ///< vertices added by hole filling
 };
 
 /// Connected components (through mesh edges) of damaged vertices, with their statistics.

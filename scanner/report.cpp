@@ -57,7 +57,7 @@ json unseen_json(const Mesh& reference, const ZoomResult& z) {
     std::vector<std::uint8_t> all(n, 1);
     for (std::size_t v = 0; v < n; ++v) unseen[v] = z.seen[v] ? 0.0f : 1.0f;
     const RegionResult patches = find_regions(reference, {&unseen, nullptr, nullptr, nullptr, &all},
-                                              RegionOptions{.threshold_deg = 0.5, .min_vertices = 1});
+                                              RegionOptions{.threshold_deg = 0.5, .min_vertices = 1, .fill_holes = false});
     json list = json::array();
     double area = 0.0;
     for (const auto& p : patches.regions) {
@@ -121,7 +121,7 @@ Mesh make_atlas_mesh(const Mesh& reference, const SweepResult& result, const Rep
         const auto& z0 = result.zooms[0];
         ColorScale scale;
         scale.high = std::max(2.0 * z0.threshold_deg, 1.0);
-        atlas.colors = colorize(atlas.find_scalar("angle_max_z0")->values, scale);
+        atlas.colors = colorize(atlas.find_scalar("angle_mean_z0")->values, scale);
     }
     return atlas;
 }

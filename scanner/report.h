@@ -40,7 +40,7 @@ struct ReportContext {
 
 /// Adds the atlas scalars to a copy of the reference: per zoom k "angle_max_z<k>",
 /// "angle_mean_z<k>", "depth_z<k>", "count_z<k>", "seen_z<k>", "region_z<k>", plus
-/// "distance" when given; colours from zoom 0's angle (inferno, 0…2×threshold, unseen grey).
+/// "distance" when given; colours from zoom 0's mean angle (inferno, 0…2×threshold, unseen grey).
 [[nodiscard]] Mesh make_atlas_mesh(const Mesh& reference, const SweepResult& result,
                                    const ReportContext& context);
 

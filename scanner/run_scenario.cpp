@@ -76,12 +76,14 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
     }
     ViewObserver export_view = exporter ? exporter->observer() : ViewObserver{};
     std::size_t done = 0;
+    const std::vector<float> distance = signed_distances(meshes.reference, fitted);
     const SweepResult result =
         run_sweep(meshes.reference, fitted, plan, sc.sweep,
                   [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
                       if (export_view) export_view(v, rf, ef, d);
                       if (options.progress) options.progress(++done, plan.views.size());
-                  });
+                  },
+                  distance);
     const ZoomResult& z0 = result.zooms.front();
     out.regions = z0.regions.regions.size();
     out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
@@ -105,7 +107,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
                                   meshes.examined.vertex_count(), meshes.examined.triangle_count()});
         context.fit_json = fit.json;
         context.warnings = fit.warnings;
-        context.distance = signed_distances(meshes.reference, fitted);
+        context.distance = distance;
         exporter->finish();
         write_sweep_outputs(*folder, meshes.reference, result, context);
         folder->commit();

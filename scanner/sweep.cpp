@@ -79,7 +79,7 @@ FrameView frame_view(const Frame& f) {
 }
 
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan_in,
-                      const SweepOptions& options, const ViewObserver& observer) {
+                      const SweepOptions& options, const ViewObserver& observer, const std::vector<float>& distance) {
     const auto t_start = Clock::now();
     options.validate();
     SweepResult result;
@@ -98,6 +98,11 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     std::vector<View> views;
     views.reserve(plan.views.size());
     for (const auto& p : plan.views) views.push_back(to_render_view(p));
+
+    // Gathering: which vertices a pixel centre already fell on in the current view.
+    const std::size_t nv = reference.vertex_count();
+    std::vector<std::int32_t> scattered_in(nv, -1);
+    if (!reference.has_normals()) throw InputError("sweep: the reference mesh has no vertex normals");
 
     double render_s = 0.0;
     double compare_s = 0.0;
@@ -146,7 +151,36 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
                     sample.valid_deviation = false;
                 }
                 a.add(sample, pv.index);
+                for (const auto v : reference.triangles[t]) scattered_in[v] = pv.index;
             }
+        }
+        // Gathering: at a coarse footprint one pixel covers many small triangles, and most
+        // vertices are on no pixel's centre triangle. Each visible vertex that no pixel
+        // centre fell on reads the (footprint-averaged) deviation of the pixel it projects
+        // to. Visible: it projects onto a fully covered pixel whose depth is within the
+        // pixel's own depth spread (3 footprints, or 2% of the framed radius), and its normal
+        // faces the camera within the incidence limit.
+        const double depth_tolerance = std::max(3.0 * pv.footprint, 0.02 * plan.radius);
+        const Vec3d eye = pv.camera.eye();
+        const Vec3d forward = pv.camera.forward();
+        for (std::size_t v = 0; v < nv; ++v) {
+            if (scattered_in[v] == pv.index) continue;
+            const Vec3d p = reference.positions[v].cast<double>();
+            const Eigen::Vector3d uvd = pv.camera.project(p);
+            if (!(uvd.x() >= 0 && uvd.y() >= 0 && uvd.x() < ref_frame.width && uvd.y() < ref_frame.height)) continue;
+            const std::size_t px = static_cast<std::size_t>(uvd.y()) * static_cast<std::size_t>(ref_frame.width) +
+                                   static_cast<std::size_t>(uvd.x());
+            if (ref_frame.primitive_id[px] == kNoPrimitive || ref_frame.coverage[px] < options.compare.min_coverage) continue;
+            if (std::abs(ref_frame.depth[px] - uvd.z()) > depth_tolerance) continue;
+            const Vec3d to_camera = pv.camera.projection == Projection::Orthographic ? Vec3d(-forward) : Vec3d((eye - p).normalized());
+            const double cos_inc = reference.normals[v].cast<double>().dot(to_camera);
+            if (cos_inc < min_cos) continue;
+            if (dev.silhouette[px] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly))
+                a.add_vertex(static_cast<std::uint32_t>(v), 90.0f, std::numeric_limits<float>::quiet_NaN(),
+                             static_cast<float>(cos_inc), pv.index);
+            else if (!std::isnan(dev.angle_deg[px]))
+                a.add_vertex(static_cast<std::uint32_t>(v), dev.angle_deg[px], dev.signed_depth[px],
+                             static_cast<float>(cos_inc), pv.index);
         }
         result.views.push_back(s);
         if (observer) observer(pv, ref_frame, exa_frame, dev);
@@ -165,25 +199,35 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         const std::size_t n = reference.vertex_count();
         zr.seen.assign(n, 0);
         double seen_area = 0.0;
+        const auto& roi = plan.options.roi;
         for (std::size_t v = 0; v < n; ++v) {
             zr.seen[v] = zr.atlas.weight[v] > 0.0f ? 1 : 0;
+            if (roi && !roi->contains(reference.positions[v].cast<double>())) zr.seen[v] = 0;
             if (zr.seen[v]) seen_area += areas[v];
         }
-        zr.coverage = total_area > 0 ? seen_area / total_area : 0.0;
-        zr.noise = noise_floor(zr.atlas.angle_max_deg, zr.seen, options.noise_k, options.min_threshold_deg);
+        // Coverage of what was asked for: the ROI's area with an ROI, else the whole surface.
+        double asked_area = total_area;
+        if (roi) {
+            asked_area = 0.0;
+            for (std::size_t v = 0; v < n; ++v)
+                if (roi->contains(reference.positions[v].cast<double>())) asked_area += areas[v];
+        }
+        zr.coverage = asked_area > 0 ? seen_area / asked_area : 0.0;
+        zr.noise = noise_floor(zr.atlas.angle_mean_deg, zr.seen, options.noise_k, options.min_threshold_deg);
         if (options.threshold_deg) {
             zr.threshold_deg = *options.threshold_deg;
             zr.threshold_rule = "given";
         } else {
             zr.threshold_deg = zr.noise.threshold;
             std::ostringstream rule;
-            rule << "noise floor: median + " << options.noise_k << "·1.4826·MAD of the per-vertex maximum angle "
+            rule << "noise floor: median + " << options.noise_k << "·1.4826·MAD of the per-vertex mean angle "
                  << "over seen vertices, at least " << options.min_threshold_deg << "°";
             zr.threshold_rule = rule.str();
         }
         RegionInputs in;
-        in.angle_deg = &zr.atlas.angle_max_deg;
+        in.angle_deg = &zr.atlas.angle_mean_deg;
         in.depth = &zr.atlas.depth_at_max;
+        if (distance.size() == n) in.distance = &distance;
         in.view = &zr.atlas.max_view;
         in.seen = &zr.seen;
         zr.regions = find_regions(reference, in,
@@ -191,7 +235,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
                                                 .min_vertices = options.min_region_vertices});
         zr.histogram.assign(91, 0);
         for (std::size_t v = 0; v < n; ++v)
-            if (zr.seen[v]) ++zr.histogram[std::min<std::size_t>(90, static_cast<std::size_t>(zr.atlas.angle_max_deg[v]))];
+            if (zr.seen[v]) ++zr.histogram[std::min<std::size_t>(90, static_cast<std::size_t>(zr.atlas.angle_mean_deg[v]))];
         result.zooms.push_back(std::move(zr));
     }
     result.total_seconds = seconds_since(t_start);

@@ -11,6 +11,11 @@
 // camera). Unseen vertices are never declared undamaged: they are listed as unseen.
 // A reference pixel with no examined surface behind it (silhouette change: surface missing)
 // counts as a 90° deviation.
+//
+// Regions and the noise floor use the per-vertex *mean* angle: the angle between two
+// surface normals does not depend on the view, so the mean over every observation is the
+// estimate, and the maximum (kept in the atlas) mostly records the noisiest, most grazing
+// pixel. With an ROI, only vertices inside it are analysed; the rest count as unseen.
 #pragma once
 
 #include "mesh/mesh.h"
@@ -62,11 +67,11 @@ struct ZoomResult {
     ZoomAtlas atlas;
     std::vector<std::uint8_t> seen;    ///< per vertex, coverage rule at this zoom
     double coverage = 0.0;             ///< seen area / total area
-    NoiseFloor noise;                  ///< of angle_max over seen vertices
+    NoiseFloor noise;                  ///< of angle_mean over seen vertices
     double threshold_deg = 0.0;        ///< used for the regions
     std::string threshold_rule;        ///< "given" or "noise floor: median + k·1.4826·MAD, min …"
     RegionResult regions;
-    std::vector<std::size_t> histogram;    ///< angle_max of seen vertices, 1° bins 0…89, ≥90
+    std::vector<std::size_t> histogram;    ///< angle_mean of seen vertices, 1° bins 0…89, ≥90
 };
 
 struct SweepResult {
@@ -87,8 +92,11 @@ using ViewObserver = std::function<void(const PlannedView& view, const Frame& re
 /// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
 /// must already be in reference coordinates (fitted).
 /// \throw InputError invalid options or an empty plan; DeviceError renderer trouble.
+/// `distance` (optional, one per reference vertex, negative = loss) decides whether a
+/// region is a dent or a bump; without it the signed depth difference does.
 [[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,
-                                    const SweepOptions& options, const ViewObserver& observer = {});
+                                    const SweepOptions& options, const ViewObserver& observer = {},
+                                    const std::vector<float>& distance = {});
 
 /// Converts a planned view to the renderer's View.
 [[nodiscard]] View to_render_view(const PlannedView& planned);

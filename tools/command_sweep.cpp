@@ -107,7 +107,8 @@ void run(const SweepArgs& a) {
                                          [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
                                              export_view(v, rf, ef, d);
                                              bar.update(++done);
-                                         });
+                                         },
+                                         context.distance);
     bar.finish();
     exporter.finish();
     write_sweep_outputs(folder, ref.mesh, result, context);

@@ -41,7 +41,7 @@ TEST(ApplyDamage, DentIsInwardLabelledAndLocal) {
             EXPECT_EQ(d, 0.0f) << "vertex " << v << " moved outside the radius";
             EXPECT_EQ(m.positions[v], before.positions[v]);
         }
-        // Labels exactly where |displacement| > 10% of the depth.
+        // Labels exactly where |displacement| > kDamageLabelThreshold of the depth.
         EXPECT_EQ(m.labels[v] != 0, std::abs(d) > kDamageLabelThreshold * 0.5) << v;
         labelled += m.labels[v] != 0;
         // Moved along the normal: the radius shrinks by the displacement.

@@ -63,6 +63,28 @@ TEST(FindRegions, GroupsConnectedDamageAndMeasuresIt) {
     EXPECT_EQ(r.region_of_vertex[id(10, 10)], 0);
 }
 
+TEST(FindRegions, FillsTheFloorOfARingShapedDent) {
+    // The angle marks a dent's flanks, not its floor: a ring. Its inside belongs to it.
+    const int n = 20;
+    const Mesh m = grid(n);
+    std::vector<float> angle(m.vertex_count(), 0.f);
+    std::vector<std::uint8_t> seen(m.vertex_count(), 1);
+    auto id = [n](int x, int y) { return static_cast<std::size_t>(y * (n + 1) + x); };
+    for (int y = 5; y <= 11; ++y)
+        for (int x = 5; x <= 11; ++x)
+            if (std::max(std::abs(x - 8), std::abs(y - 8)) >= 2) angle[id(x, y)] = 10.f;  // ring, hole 3×3
+    const RegionResult filled = find_regions(m, {&angle, nullptr, nullptr, nullptr, &seen}, RegionOptions{});
+    ASSERT_EQ(filled.regions.size(), 1u);
+    EXPECT_EQ(filled.filled_vertices, 9u);
+    EXPECT_EQ(filled.regions[0].vertex_count, 49u);
+    EXPECT_EQ(filled.region_of_vertex[id(8, 8)], 1);
+    const RegionResult ring = find_regions(m, {&angle, nullptr, nullptr, nullptr, &seen}, RegionOptions{.fill_holes = false});
+    EXPECT_EQ(ring.regions[0].vertex_count, 40u);
+    // An unseen vertex in the hole keeps it open: unseen is never declared damaged.
+    seen[id(8, 8)] = 0;
+    EXPECT_EQ(find_regions(m, {&angle, nullptr, nullptr, nullptr, &seen}, RegionOptions{}).filled_vertices, 0u);
+}
+
 TEST(FindRegions, UnseenVerticesAreNeverDamaged) {
     const Mesh m = grid(4);
     std::vector<float> angle(m.vertex_count(), 50.f);
