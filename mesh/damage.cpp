@@ -256,7 +256,11 @@ DamageSpec parse_damage_spec(const std::string& text) {
         throw InputError("damage spec '" + text + "': unknown kind '" + kind +
                          "', expected dent, bump, pit, groove, flatten, erosion or noise");
     if (colon == std::string::npos) return d;
-    std::stringstream ss(text.substr(colon + 1));
+    // Keys are separated by ';' or by spaces ("dent:center=0,0,10 radius=2 depth=0.3"), the
+    // latter being easier to type in shells and build scripts.
+    std::string keys = text.substr(colon + 1);
+    std::replace(keys.begin(), keys.end(), ' ', ';');
+    std::stringstream ss(keys);
     std::string item;
     while (std::getline(ss, item, ';')) {
         if (item.empty()) continue;

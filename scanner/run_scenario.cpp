@@ -5,6 +5,7 @@
 #include "scanner/output_folder.h"
 #include "scanner/report.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -37,7 +38,9 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
     out.name = sc.name;
     out.file = sc.file;
     if (const std::string missing = missing_input(sc); !missing.empty()) {
-        const bool shared = sc.reference.needs_data_root || sc.examined.needs_data_root;
+        // Scenarios tagged "data" use the shared data folder: its absence is a skip, not an
+        // error. Any other missing input is an error.
+        const bool shared = std::find(sc.tags.begin(), sc.tags.end(), "data") != sc.tags.end();
         if (!shared) throw IoError("scenario \"" + sc.file.string() + "\": input not found: " + missing);
         out.skipped = true;
         out.skip_reason = "input not found: " + missing;

@@ -132,6 +132,7 @@ TEST(ParseDamageSpec, ReadsEveryKeyAndRejectsTypos) {
     EXPECT_EQ(d.radius, 4.0);
     EXPECT_EQ(d.seed, 9u);
     EXPECT_EQ(parse_damage_spec("groove:path=0,0,0/1,1,1/2,2,2;radius=1").path.size(), 3u);
+    EXPECT_EQ(parse_damage_spec("dent:center=1,2,3 radius=4 depth=0.5").radius, 4.0);  // spaces separate too
     expect_input_error([] { (void)parse_damage_spec("dent:center=1,2,3;raduis=4"); }, {"raduis", "unknown key"});
     expect_input_error([] { (void)parse_damage_spec("dint:center=1,2,3"); }, {"dint", "unknown kind"});
     expect_input_error([] { (void)parse_damage_spec("dent:center=1,2"); }, {"center", "x,y,z"});
