@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace glint {
 
@@ -14,6 +15,8 @@ AtlasAccumulator::AtlasAccumulator(const Mesh& reference, double footprint)
       depth_at_max_(reference.vertex_count(), 0.0f),
       sum_(reference.vertex_count(), 0.0),
       weight_(reference.vertex_count(), 0.0),
+      depth_sum_(reference.vertex_count(), 0.0),
+      depth_weight_(reference.vertex_count(), 0.0),
       count_(reference.vertex_count(), 0u),
       best_cos_(reference.vertex_count(), -2.0f),
       best_view_(reference.vertex_count(), -1),
@@ -40,6 +43,10 @@ void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
         if (!s.valid_deviation) continue;
         weight_[v] += w;
         sum_[v] += static_cast<double>(w) * s.angle_deg;
+        if (std::isfinite(s.signed_depth)) {
+            depth_weight_[v] += w;
+            depth_sum_[v] += static_cast<double>(w) * s.signed_depth;
+        }
         if (k == nearest && (s.angle_deg > max_[v] || max_view_[v] < 0)) {
             max_[v] = s.angle_deg;
             depth_at_max_[v] = s.signed_depth;
@@ -58,6 +65,10 @@ void AtlasAccumulator::add_vertex(std::uint32_t v, float angle_deg, float signed
     }
     weight_[v] += 1.0;
     sum_[v] += angle_deg;
+    if (std::isfinite(signed_depth)) {
+        depth_weight_[v] += 1.0;
+        depth_sum_[v] += signed_depth;
+    }
     if (angle_deg > max_[v] || max_view_[v] < 0) {
         max_[v] = angle_deg;
         depth_at_max_[v] = signed_depth;
@@ -71,6 +82,8 @@ void AtlasAccumulator::merge(const AtlasAccumulator& o) {
         count_[v] += o.count_[v];
         sum_[v] += o.sum_[v];
         weight_[v] += o.weight_[v];
+        depth_sum_[v] += o.depth_sum_[v];
+        depth_weight_[v] += o.depth_weight_[v];
         if (o.best_cos_[v] > best_cos_[v]) {
             best_cos_[v] = o.best_cos_[v];
             best_view_[v] = o.best_view_[v];
@@ -95,9 +108,12 @@ ZoomAtlas AtlasAccumulator::finish() const {
     a.angle_mean_deg.resize(n);
     a.weight.resize(n);
     a.best_cos.resize(n);
+    a.depth_mean.resize(n);
     for (std::size_t v = 0; v < n; ++v) {
         a.weight[v] = static_cast<float>(weight_[v]);
         a.angle_mean_deg[v] = weight_[v] > 0 ? static_cast<float>(sum_[v] / weight_[v]) : 0.0f;
+        a.depth_mean[v] = depth_weight_[v] > 0 ? static_cast<float>(depth_sum_[v] / depth_weight_[v])
+                                               : std::numeric_limits<float>::quiet_NaN();
         a.best_cos[v] = best_view_[v] >= 0 ? best_cos_[v] : 0.0f;
     }
     return a;

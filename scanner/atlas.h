@@ -21,6 +21,7 @@ struct ZoomAtlas {
     std::vector<float> angle_max_deg;    ///< max over the pixels in the vertex's dual cell (0 where unseen)
     std::vector<float> angle_mean_deg;   ///< barycentric-weighted mean (0 where unseen)
     std::vector<float> depth_at_max;     ///< signed depth difference at the max (neg = dent)
+    std::vector<float> depth_mean;       ///< weighted mean signed depth difference (NaN if none)
     std::vector<float> weight;           ///< sum of barycentric weights (observations)
     std::vector<std::uint32_t> count;    ///< pixels that touched the vertex
     std::vector<float> best_cos;         ///< cos(incidence) of the most frontal observation
@@ -61,6 +62,8 @@ private:
     std::vector<float> depth_at_max_;
     std::vector<double> sum_;
     std::vector<double> weight_;
+    std::vector<double> depth_sum_;
+    std::vector<double> depth_weight_;
     std::vector<std::uint32_t> count_;
     std::vector<float> best_cos_;
     std::vector<std::int32_t> best_view_;

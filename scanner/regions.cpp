@@ -158,7 +158,7 @@ RegionResult find_regions(const Mesh& mesh, const RegionInputs& in, const Region
         g.angle_area += a * angle[v];
         g.centroid_sum += a * mesh.positions[v].cast<double>();
         if (angle[v] > g.r.max_angle_deg) g.r.max_angle_deg = angle[v];
-        if (in.depth) {
+        if (in.depth && std::isfinite((*in.depth)[v])) {
             const double d = (*in.depth)[v];
             if (std::abs(d) > std::abs(g.r.max_depth)) g.r.max_depth = d;
         }
@@ -166,7 +166,7 @@ RegionResult find_regions(const Mesh& mesh, const RegionInputs& in, const Region
             const double d = (*in.distance)[v];
             if (std::abs(d) > std::abs(g.r.max_distance)) g.r.max_distance = d;
             g.signed_sum += a * d;
-        } else if (in.depth) {
+        } else if (in.depth && std::isfinite((*in.depth)[v])) {
             g.signed_sum += a * (*in.depth)[v];
         }
         if (in.view && angle[v] > g.best_angle) {

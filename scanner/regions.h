@@ -17,7 +17,7 @@ struct Region {
     double area = 0.0;              ///< mesh units², sum of the vertices' dual areas
     double max_angle_deg = 0.0;
     double mean_angle_deg = 0.0;    ///< area-weighted
-    double max_depth = 0.0;         ///< signed depth difference of largest magnitude
+    double max_depth = 0.0;         ///< per-vertex mean signed depth difference of largest magnitude
     double max_distance = 0.0;      ///< signed surface distance of largest magnitude
     Vec3d centroid{0, 0, 0};        ///< area-weighted, reference coordinates
     std::int32_t best_view = -1;    ///< view where the region's strongest deviation was seen
@@ -27,7 +27,7 @@ struct Region {
 /// Inputs per reference vertex (all arrays one value per vertex).
 struct RegionInputs {
     const std::vector<float>* angle_deg = nullptr;      ///< deviation used for the threshold
-    const std::vector<float>* depth = nullptr;          ///< signed depth at the max (optional)
+    const std::vector<float>* depth = nullptr;          ///< mean signed depth (optional; NaN = none)
     const std::vector<float>* distance = nullptr;       ///< signed distance (optional)
     const std::vector<std::int32_t>* view = nullptr;    ///< view of the max (optional)
     const std::vector<std::uint8_t>* seen = nullptr;    ///< 1 = observed

@@ -226,7 +226,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         }
         RegionInputs in;
         in.angle_deg = &zr.atlas.angle_mean_deg;
-        in.depth = &zr.atlas.depth_at_max;
+        in.depth = &zr.atlas.depth_mean;
         if (distance.size() == n) in.distance = &distance;
         in.view = &zr.atlas.max_view;
         in.seen = &zr.seen;

@@ -113,9 +113,9 @@ TEST(LoadScenario, MissingFileIsAnIoError) {
 TEST(ReadNpyMask, ReadsBooleanVectorAndRejectsOtherFiles) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
     fs::create_directories(dir);
-    // A v1.0 header padded so that the data starts at a multiple of 64, as NumPy writes it.
+    // A v1.0 header padded so that the data starts at byte 128, as NumPy aligns it.
     std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (5,), }";
-    header.append(64 - 10 - header.size() - 1, ' ');
+    header.append(128 - 10 - header.size() - 1, ' ');
     header += '\n';
     std::string file = std::string("\x93NUMPY\x01\x00", 8);
     file += static_cast<char>(header.size() & 0xFF);
