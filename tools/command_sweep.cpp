@@ -3,6 +3,7 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 #include "mesh/io.h"
+#include "scanner/calibrate.h"
 #include "scanner/fit.h"
 #include "scanner/output_folder.h"
 #include "scanner/report.h"
@@ -43,6 +44,7 @@ struct SweepArgs {
     std::string device;
     bool no_views = false;
     bool no_exr = false;
+    std::string calibration;
     std::string output;
 };
 
@@ -77,6 +79,13 @@ void run(const SweepArgs& a) {
     options.noise_k = a.noise_k;
     options.min_threshold_deg = a.min_threshold_deg;
     options.max_incidence_deg = a.max_incidence;
+    if (!a.calibration.empty()) {
+        // The calibrated zoom and threshold: only deformations larger than the referential
+        // one show.
+        const Calibration c = read_calibration(a.calibration);
+        options.plan.footprints = {c.footprint};
+        options.threshold_deg = c.threshold_deg;
+    }
     options.validate();
 
     const LoadedMesh ref = load_mesh(a.reference);
@@ -93,6 +102,7 @@ void run(const SweepArgs& a) {
     context.fit_json = fit.json;
     for (const auto& w : fit.warnings) context.warnings.push_back(w);
     if (!a.fit.fit_file.empty()) context.inputs.push_back({"fit", a.fit.fit_file, "", 0, 0});
+    if (!a.calibration.empty()) context.inputs.push_back({"calibration", a.calibration, "", 0, 0});
     Mesh fitted = exa.mesh;
     transform_mesh(fitted, fit.reference_from_examined);
     context.distance = signed_distances(ref.mesh, fitted);
@@ -139,6 +149,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--device", a.device, "Vulkan device name (substring)");
     cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");
     cmd->add_flag("--no-exr", a.no_exr, "Do not write per-view EXR files");
+    cmd->add_option("--calibration", a.calibration, "calibration.json from glint calibrate: its zoom and threshold")
+        ->excludes("--zoom")
+        ->excludes("--threshold-deg");
     cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")->required();
     cmd->callback([] { run(a); });
 }

@@ -1,0 +1,97 @@
+#include "scanner/calibrate.h"
+
+#include "mesh/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace glint {
+
+void CalibrationOptions::validate() const {
+    auto bad = [](const std::string& field, double v, const std::string& rule) {
+        std::ostringstream s;
+        s << "calibration: " << field << " = " << v << ": " << rule;
+        throw InputError(s.str());
+    };
+    if (!(threshold_deg > 0 && threshold_deg < 90)) bad("threshold", threshold_deg, "must be in (0, 90) degrees");
+    if (finest < 0) bad("finest footprint", finest, "must be ≥ 0 (0 = automatic)");
+    if (coarsest < 0) bad("coarsest footprint", coarsest, "must be ≥ 0 (0 = automatic)");
+    if (finest > 0 && coarsest > 0 && !(coarsest > finest)) bad("coarsest footprint", coarsest, "must exceed the finest");
+    if (!(step > 1.05)) bad("step", step, "must be > 1.05");
+}
+
+Calibration calibrate(const Mesh& reference, const Mesh& examined, SweepOptions sweep,
+                      const CalibrationOptions& options, const std::string& referential) {
+    options.validate();
+    // The ladder, fine to coarse, framed as the sweep frames the mesh.
+    SweepPlanOptions probe = sweep.plan;
+    probe.footprints.clear();
+    const double radius = make_sweep_plan(reference, probe).radius;
+    const double finest = options.finest > 0 ? options.finest : radius / 256.0;
+    const double coarsest = options.coarsest > 0 ? options.coarsest : radius / 3.0;
+    std::vector<double> ladder;
+    for (double f = finest; f <= coarsest * 1.0001; f *= options.step) ladder.push_back(f);
+    sweep.plan.footprints = ladder;
+    sweep.threshold_deg = options.threshold_deg;
+    const SweepPlan plan = make_sweep_plan(reference, sweep.plan);
+    const SweepResult result = run_sweep(reference, examined, plan, sweep);
+
+    Calibration c;
+    c.threshold_deg = options.threshold_deg;
+    c.referential = referential;
+    for (std::size_t z = 0; z < result.zooms.size(); ++z) {
+        const auto& zr = result.zooms[z];
+        CalibrationRung rung{plan.footprints[z], zr.regions.regions.size(), 0.0};
+        for (std::size_t v = 0; v < zr.seen.size(); ++v)
+            if (zr.seen[v]) rung.max_angle_deg = std::max(rung.max_angle_deg, double(zr.atlas.angle_mean_deg[v]));
+        c.ladder.push_back(rung);
+    }
+    // The finest rung from which the deformation stays hidden at every coarser rung.
+    for (std::size_t i = c.ladder.size(); i-- > 0;) {
+        if (c.ladder[i].regions != 0) break;
+        c.found = true;
+        c.footprint = c.ladder[i].footprint;
+    }
+    return c;
+}
+
+std::string to_json(const Calibration& c) {
+    nlohmann::json ladder = nlohmann::json::array();
+    for (const auto& r : c.ladder)
+        ladder.push_back({{"footprint", r.footprint}, {"regions", r.regions}, {"max_mean_angle_deg", r.max_angle_deg}});
+    const nlohmann::json j = {{"glint_calibration", 1},
+                              {"found", c.found},
+                              {"footprint", c.found ? nlohmann::json(c.footprint) : nlohmann::json(nullptr)},
+                              {"threshold_deg", c.threshold_deg},
+                              {"referential", c.referential},
+                              {"ladder", ladder}};
+    return j.dump(2) + "\n";
+}
+
+Calibration read_calibration(const std::filesystem::path& path) {
+    std::ifstream in(path);
+    if (!in) throw IoError("calibration \"" + path.string() + "\": cannot open");
+    nlohmann::json j;
+    try {
+        in >> j;
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError("calibration \"" + path.string() + "\": not valid JSON: " + e.what());
+    }
+    if (!j.contains("glint_calibration"))
+        throw InputError("calibration \"" + path.string() + "\": not a glint calibration (written by glint calibrate)");
+    Calibration c;
+    c.found = j.value("found", false);
+    if (!c.found || !j["footprint"].is_number())
+        throw InputError("calibration \"" + path.string() +
+                         "\": found no footprint that hides the referential deformation; widen the ladder");
+    c.footprint = j["footprint"].get<double>();
+    c.threshold_deg = j.at("threshold_deg").get<double>();
+    c.referential = j.value("referential", "");
+    return c;
+}
+
+}  // namespace glint

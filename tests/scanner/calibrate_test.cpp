@@ -1,0 +1,63 @@
+// The paper's first use: a referential deformation sets the zoom; only larger deformations
+// are flagged at it.
+#include "scanner/calibrate.h"
+
+#include "mesh/damage.h"
+#include "mesh/error.h"
+#include "mesh/phantom.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+Mesh condyle() { return make_phantom({.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 5}); }
+
+Mesh dented(double radius, double depth) {
+    Mesh m = condyle();
+    apply_damage(m, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = radius, .depth = depth}});
+    return m;
+}
+
+SweepOptions sweep_options() {
+    SweepOptions o;
+    o.plan.azimuth_step_deg = 45;
+    o.plan.elevations_deg = {-20, 20};
+    o.render.backend = Backend::Embree;
+    o.render.supersample = 4;
+    return o;
+}
+
+std::size_t regions_at(const Mesh& examined, const Calibration& c) {
+    SweepOptions o = sweep_options();
+    o.plan.footprints = {c.footprint};
+    o.threshold_deg = c.threshold_deg;
+    const Mesh ref = condyle();
+    return run_sweep(ref, examined, make_sweep_plan(ref, o.plan), o).zooms[0].regions.regions.size();
+}
+
+TEST(Calibrate, OnlyDeformationsLargerThanTheReferentialOneAreFlagged) {
+    // Referential: a 0.2 mm dent of 1.5 mm radius.
+    const Calibration c = calibrate(condyle(), dented(1.5, 0.2), sweep_options(),
+                                    CalibrationOptions{.threshold_deg = 3.0, .finest = 0.05, .coarsest = 4.0, .step = 1.5},
+                                    "dent 1.5 mm / 0.2 mm");
+    ASSERT_TRUE(c.found);
+    // Finer rungs show it, the calibration rung and coarser ones do not.
+    ASSERT_GT(c.ladder.size(), 3u);
+    EXPECT_GT(c.ladder.front().regions, 0u);
+    std::printf("calibration footprint %.3f mm/px (threshold %.1f deg)\n", c.footprint, c.threshold_deg);
+    // A larger dent (3 mm / 0.5 mm) is flagged at the calibrated zoom, a smaller one
+    // (0.7 mm / 0.08 mm) is not.
+    EXPECT_GE(regions_at(dented(3.0, 0.5), c), 1u);
+    EXPECT_EQ(regions_at(dented(0.7, 0.08), c), 0u);
+    EXPECT_EQ(regions_at(dented(1.5, 0.2), c), 0u);
+}
+
+TEST(Calibrate, RejectsBadLadders) {
+    EXPECT_THROW((CalibrationOptions{.finest = 2, .coarsest = 1}.validate()), InputError);
+    EXPECT_THROW(CalibrationOptions{.step = 1.0}.validate(), InputError);
+    EXPECT_THROW(CalibrationOptions{.threshold_deg = 0}.validate(), InputError);
+}
+
+}  // namespace
+}  // namespace glint
