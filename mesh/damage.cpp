@@ -7,6 +7,7 @@
 
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/parse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -109,19 +110,7 @@ void check_spec(const DamageSpec& d, std::size_t index) {
 
 // `where` names the spec in messages: "damage spec 'dent:…'" or "pose '…'".
 std::vector<double> numbers(const std::string& where, const std::string& key, const std::string& text) {
-    std::vector<double> out;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        try {
-            std::size_t used = 0;
-            out.push_back(std::stod(item, &used));
-            if (used != item.size()) throw std::invalid_argument(item);
-        } catch (const std::exception&) {
-            throw InputError(where + ": " + key + ": '" + item + "' is not a number");
-        }
-    }
-    return out;
+    return parse_number_list(text, where + ": " + key);
 }
 
 Vec3d vec3(const std::string& where, const std::string& key, const std::string& text) {

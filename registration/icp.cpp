@@ -1,6 +1,7 @@
 #include "registration/icp.h"
 
 #include "mesh/error.h"
+#include "mesh/parse.h"
 #include "registration/closest_point.h"
 
 #include <ceres/ceres.h>
@@ -292,16 +293,8 @@ RegistrationRoi parse_registration_roi(const std::string& text) {
     RegistrationRoi roi;
     const auto colon = text.find(':');
     const std::string kind = text.substr(0, colon);
-    std::vector<double> v;
-    std::stringstream ss(colon == std::string::npos ? "" : text.substr(colon + 1));
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        try {
-            v.push_back(std::stod(item));
-        } catch (const std::exception&) {
-            throw InputError("ROI '" + text + "': '" + item + "' is not a number");
-        }
-    }
+    const std::vector<double> v =
+        parse_number_list(colon == std::string::npos ? "" : std::string_view(text).substr(colon + 1), "ROI '" + text + "'");
     if (kind == "sphere" && v.size() == 4 && v[3] > 0) {
         roi.shape = RegistrationRoi::Shape::Sphere;
         roi.center = {v[0], v[1], v[2]};

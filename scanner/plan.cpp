@@ -1,6 +1,7 @@
 #include "scanner/plan.h"
 
 #include "mesh/error.h"
+#include "mesh/parse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,19 +13,7 @@ namespace glint {
 namespace {
 
 std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
-    std::vector<double> out;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        try {
-            std::size_t used = 0;
-            out.push_back(std::stod(item, &used));
-            if (used != item.size()) throw std::invalid_argument(item);
-        } catch (const std::exception&) {
-            throw InputError(what + ": '" + item + "' is not a number");
-        }
-    }
-    return out;
+    return parse_number_list(text, what);
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 #include "mesh/io.h"
 #include "mesh/write.h"
 
+#include "tests/mesh/test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -22,16 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path out_dir() {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "io_test";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path out_dir() { return test::output_dir("io_test"); }
 
 fs::path write_bytes(const std::string& name, const std::string& bytes) {
-    const fs::path path = out_dir() / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return test::write_bytes(out_dir(), name, bytes);
 }
 
 fs::path shared(const std::string& rel) { return fs::path(GLINT_SHARED_DATA_DIR) / rel; }

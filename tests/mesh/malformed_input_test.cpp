@@ -3,6 +3,8 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 
+#include "tests/mesh/test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -17,16 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path out_dir() {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "malformed_input_test";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path out_dir() { return test::output_dir("malformed_input_test"); }
 
 fs::path write_bytes(const std::string& name, const std::string& bytes) {
-    const fs::path path = out_dir() / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    return test::write_bytes(out_dir(), name, bytes);
 }
 
 // Loads `path` expecting exactly exception class E; returns its message.

@@ -2,6 +2,8 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 
+#include "tests/mesh/test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -13,11 +15,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path out_dir() {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "vtk_test";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path out_dir() { return test::output_dir("vtk_test"); }
 
 fs::path write_text(const std::string& name, const std::string& text) {
     const fs::path path = out_dir() / name;

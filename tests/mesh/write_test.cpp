@@ -3,6 +3,8 @@
 #include "mesh/io.h"
 #include "mesh/write.h"
 
+#include "tests/mesh/test_files.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,11 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path out_dir() {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "write_test";
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path out_dir() { return test::output_dir("write_test"); }
 
 // An octahedron with colours, two scalar fields and labels.
 Mesh octahedron() {
