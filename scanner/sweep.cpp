@@ -187,6 +187,12 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         compare_s += seconds_since(t_cmp);
         t_view = Clock::now();
     });
+    std::size_t compared = 0;
+    for (const auto& v : result.views) compared += v.compared;
+    if (compared == 0)
+        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
+                         std::to_string(result.views.size()) +
+                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
     result.render_seconds = render_s;
     result.compare_seconds = compare_s;
 

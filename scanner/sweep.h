@@ -91,7 +91,8 @@ using ViewObserver = std::function<void(const PlannedView& view, const Frame& re
 
 /// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
 /// must already be in reference coordinates (fitted).
-/// \throw InputError invalid options or an empty plan; DeviceError renderer trouble.
+/// \throw InputError invalid options, an empty plan, surfaces that overlap in no view;
+/// DeviceError renderer trouble.
 /// `distance` (optional, one per reference vertex, negative = loss) decides whether a
 /// region is a dent or a bump; without it the signed depth difference does.
 [[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,

@@ -99,6 +99,10 @@ void run(const SweepArgs& a) {
         for (const auto& w : r->warnings) context.warnings.push_back(r->path.string() + ": " + w);
 
     const FitOutcome fit = fit_examined(ref.mesh, exa.mesh, to_request(a.fit));
+    if (!fit.converged)
+        throw InputError("registration of \"" + a.examined + "\" onto \"" + a.reference +
+                         "\" did not converge (" + (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
+                         "); the meshes may not overlap: give --fit or start from landmarks with glint register");
     context.fit_json = fit.json;
     for (const auto& w : fit.warnings) context.warnings.push_back(w);
     if (!a.fit.fit_file.empty()) context.inputs.push_back({"fit", a.fit.fit_file, "", 0, 0});
