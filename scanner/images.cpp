@@ -108,17 +108,25 @@ void write_heatmap_png(const ScalarImage& image, const ColorScale& scale, const 
                  "heat map size does not match its values");
     constexpr int kTitle = 24;   // px reserved for the title line
     constexpr int kBar = 80;     // px reserved on the right: bar + numbers
-    const int w = image.width + kBar;
-    const int h = image.height + kTitle;
-    ImageBuf sheet(ImageSpec(w, std::max(h, 120), 3, TypeDesc::FLOAT));
+    // note: coarse zooms give tiny frames; they are enlarged by an integer factor with
+    // nearest-neighbour sampling (pixels stay visible as blocks) so the picture and its
+    // title stay readable.
+    constexpr int kMinWidth = 400;
+    const int factor = std::max(1, (kMinWidth + image.width - 1) / std::max(1, image.width));
+    ImageBuf picture = colour_image(image, scale);
+    if (factor > 1)
+        picture = IBA::resample(picture, false, ROI(0, image.width * factor, 0, image.height * factor, 0, 1, 0, 3));
+    const int pw = image.width * factor;
+    const int ph = image.height * factor;
+    ImageBuf sheet(ImageSpec(pw + kBar, std::max(ph + kTitle, 120), 3, TypeDesc::FLOAT));
     const float black[3] = {0.05f, 0.05f, 0.05f};
     IBA::fill(sheet, black);
-    IBA::paste(sheet, 0, kTitle, 0, 0, colour_image(image, scale));
-    const int bar_h = std::max(40, image.height - 20);
-    IBA::paste(sheet, image.width + 8, kTitle + 10, 0, 0, colour_bar(16, bar_h, scale));
+    IBA::paste(sheet, 0, kTitle, 0, 0, picture);
+    const int bar_h = std::max(40, ph - 20);
+    IBA::paste(sheet, pw + 8, kTitle + 10, 0, 0, colour_bar(16, bar_h, scale));
     draw_text(sheet, 4, 17, title, 14);
-    draw_text(sheet, image.width + 28, kTitle + 20, format_value(scale.high, scale.unit), 12);
-    draw_text(sheet, image.width + 28, kTitle + 10 + bar_h, format_value(scale.low, scale.unit), 12);
+    draw_text(sheet, pw + 28, kTitle + 20, format_value(scale.high, scale.unit), 12);
+    draw_text(sheet, pw + 28, kTitle + 10 + bar_h, format_value(scale.low, scale.unit), 12);
     write_png(sheet, path);
 }
 
