@@ -17,6 +17,7 @@ struct RegisterArgs {
     std::string reference;
     std::string examined;
     std::string roi;
+    std::string roi_mask;
     std::string landmarks;
     std::string init;
     std::string loss = "cauchy";
@@ -39,6 +40,30 @@ void run(const RegisterArgs& a) {
     o.validate();
     const LoadedMesh ref = load_mesh(a.reference);
     const LoadedMesh exa = load_mesh(a.examined);
+    if (!a.roi_mask.empty()) {
+        // FILE.ply[:SCALAR]: a mesh with the reference's vertices whose labels (or the named
+        // scalar) are non-zero on the stable region.
+        const auto colon = a.roi_mask.rfind(':');
+        const bool named = colon != std::string::npos && colon > 1;
+        const std::string file = named ? a.roi_mask.substr(0, colon) : a.roi_mask;
+        const std::string field = named ? a.roi_mask.substr(colon + 1) : "";
+        LoadOptions keep;
+        keep.weld = keep.drop_degenerate = keep.drop_unused = false;
+        const LoadedMesh mask = load_mesh(file, keep);
+        if (mask.mesh.vertex_count() != ref.mesh.vertex_count())
+            throw InputError("--roi-mask \"" + file + "\": " + std::to_string(mask.mesh.vertex_count()) +
+                             " vertices, the reference has " + std::to_string(ref.mesh.vertex_count()));
+        o.roi.shape = RegistrationRoi::Shape::VertexMask;
+        if (field.empty()) {
+            if (mask.mesh.labels.empty())
+                throw InputError("--roi-mask \"" + file + "\": no 'label' property; name a scalar as FILE:SCALAR");
+            for (auto l : mask.mesh.labels) o.roi.vertex_mask.push_back(l != 0);
+        } else {
+            const ScalarField* s = mask.mesh.find_scalar(field);
+            if (!s) throw InputError("--roi-mask \"" + file + "\": no scalar '" + field + "'");
+            for (float x : s->values) o.roi.vertex_mask.push_back(x != 0.0f);
+        }
+    }
     if (!a.init.empty()) o.initial = read_fit(a.init);
     if (!a.landmarks.empty()) {
         std::vector<Vec3d> pe, pr;
@@ -72,6 +97,9 @@ void setup(CLI::App& app) {
     cmd->add_option("REF", a.reference, "Reference mesh")->required();
     cmd->add_option("EXA", a.examined, "Examined mesh")->required();
     cmd->add_option("--roi", a.roi, "Fit only on this stable region of the reference: sphere:x,y,z,r or box:…");
+    cmd->add_option("--roi-mask", a.roi_mask, "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
+                                               "non-zero label (or scalar)")
+        ->excludes("--roi");
     cmd->add_option("--landmarks", a.landmarks, "JSON with ≥ 3 point pairs: {\"pairs\": [{\"examined\": […], \"reference\": […]}]}");
     cmd->add_option("--init", a.init, "Start from this fit.json");
     cmd->add_option("--loss", a.loss, "Robust loss: cauchy | huber | tukey | none")->capture_default_str();
