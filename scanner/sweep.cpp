@@ -163,10 +163,24 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         const double depth_tolerance = std::max(3.0 * pv.footprint, 0.02 * plan.radius);
         const Vec3d eye = pv.camera.eye();
         const Vec3d forward = pv.camera.forward();
+        // note: Camera::project inverts the pose on every call; here it is inverted once per
+        // view (a 1M-vertex mesh is projected 72 times in a sweep).
+        const Rigid camera_from_world = pv.camera.world_from_camera.inverse();
+        const Camera& cam = pv.camera;
+        const double aspect = static_cast<double>(cam.width) / cam.height;
+        const double tan_half = std::tan(0.5 * cam.fov_y_rad);
+        const bool ortho = cam.projection == Projection::Orthographic;
+        auto project = [&](const Vec3d& world) {
+            const Vec3d c = camera_from_world * world;
+            const double depth = -c.z();
+            const double sx = ortho ? cam.ortho_half_height * aspect : depth * tan_half * aspect;
+            const double sy = ortho ? cam.ortho_half_height : depth * tan_half;
+            return Eigen::Vector3d(0.5 * (c.x() / sx + 1.0) * cam.width, 0.5 * (1.0 - c.y() / sy) * cam.height, depth);
+        };
         for (std::size_t v = 0; v < nv; ++v) {
             if (scattered_in[v] == pv.index) continue;
             const Vec3d p = reference.positions[v].cast<double>();
-            const Eigen::Vector3d uvd = pv.camera.project(p);
+            const Eigen::Vector3d uvd = project(p);
             if (!(uvd.x() >= 0 && uvd.y() >= 0 && uvd.x() < ref_frame.width && uvd.y() < ref_frame.height)) continue;
             const std::size_t px = static_cast<std::size_t>(uvd.y()) * static_cast<std::size_t>(ref_frame.width) +
                                    static_cast<std::size_t>(uvd.x());
