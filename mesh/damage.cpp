@@ -167,12 +167,14 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
                                      " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
             }
         } else {
-            double dist = 0.0;
-            const std::size_t c = nearest_vertex(mesh, d.center, dist);
+            // The centre is projected onto the surface (the closest point on any triangle, not
+            // the nearest vertex), so the same damage lands on the same spot of two
+            // tessellations of one surface.
+            center = closest_point_on_mesh(mesh, d.center);
+            const double dist = (center - d.center).norm();
             if (dist > d.radius)
                 throw InputError(describe(d, k) + ": centre lies " + std::to_string(dist) +
-                                 " from the nearest vertex, outside the surface (radius " + std::to_string(d.radius) + ")");
-            center = mesh.positions[c].cast<double>();
+                                 " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
         }
         const Vec3d plane_n = d.plane_normal.normalized();
         for (std::size_t v = 0; v < n; ++v) {

@@ -29,7 +29,7 @@ enum class DamageKind {
 /// One damage. Positions are in mesh coordinates.
 struct DamageSpec {
     DamageKind kind = DamageKind::Dent;
-    Vec3d center{0, 0, 0};     ///< snapped to the nearest surface vertex when applied
+    Vec3d center{0, 0, 0};     ///< projected onto the surface (closest point) when applied
     double radius = 1.0;       ///< footprint radius on the surface (mesh units)
     double depth = 0.1;        ///< magnitude of displacement (mesh units, > 0)
     std::vector<Vec3d> path;   ///< Groove: polyline (center unused); ≥ 2 points
@@ -55,7 +55,7 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages);
 /// Parses a damage spec into a DamageSpec. Syntax:
 ///   KIND[:KEY=VALUE[;KEY=VALUE]…]
 ///   KIND  dent | bump | pit | groove (alias scratch) | flatten (alias flattening) | erosion | noise
-///   center=x,y,z        damage centre, mesh units (snapped to the nearest vertex)
+///   center=x,y,z        damage centre, mesh units (projected onto the surface)
 ///   radius=R            footprint radius (> 0)
 ///   depth=D             displacement magnitude (> 0); flatten: plane depth below the surface
 ///   path=x,y,z/x,y,z/…  groove polyline, ≥ 2 points

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace glint {
@@ -102,6 +103,52 @@ Vec3d direction_from_az_el(double azimuth_deg, double elevation_deg) {
     const double az = azimuth_deg * std::numbers::pi / 180.0;
     const double el = elevation_deg * std::numbers::pi / 180.0;
     return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+    const Vec3d ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0 && d2 <= 0) return {a, {1, 0, 0}, 2, 0};
+    const Vec3d bp = p - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0 && d4 <= d3) return {b, {0, 1, 0}, 2, 1};
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+        const double v = d1 / (d1 - d3);
+        return {a + v * ab, {1 - v, v, 0}, 1, 0};
+    }
+    const Vec3d cp = p - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0 && d5 <= d6) return {c, {0, 0, 1}, 2, 2};
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+        const double w = d2 / (d2 - d6);
+        return {a + w * ac, {1 - w, 0, w}, 1, 2};
+    }
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return {b + w * (c - b), {0, 1 - w, w}, 1, 1};
+    }
+    const double denom = 1.0 / (va + vb + vc);
+    const double v = vb * denom, w = vc * denom;
+    return {a + ab * v + ac * w, {1 - v - w, v, w}, 0, 0};
+}
+
+Vec3d closest_point_on_mesh(const Mesh& mesh, const Vec3d& p) {
+    Vec3d best = p;
+    double best_d2 = std::numeric_limits<double>::max();
+    for (const auto& t : mesh.triangles) {
+        const TrianglePoint q = closest_point_on_triangle(p, mesh.positions[t[0]].cast<double>(),
+                                                          mesh.positions[t[1]].cast<double>(),
+                                                          mesh.positions[t[2]].cast<double>());
+        const double d2 = (q.point - p).squaredNorm();
+        if (d2 < best_d2) {
+            best_d2 = d2;
+            best = q.point;
+        }
+    }
+    return best;
 }
 
 }  // namespace glint

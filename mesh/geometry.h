@@ -71,4 +71,19 @@ struct Camera {
 /// target + distance · direction and looks back at the target.
 [[nodiscard]] Vec3d direction_from_az_el(double azimuth_deg, double elevation_deg);
 
+/// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5):
+/// the point, its barycentric weights, and the feature it lies on (0 = face, 1 = edge from
+/// corner `index` to corner index+1, 2 = vertex `index`).
+struct TrianglePoint {
+    Vec3d point;
+    Vec3d barycentric;
+    int feature = 0;
+    int index = 0;
+};
+[[nodiscard]] TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c);
+
+/// Closest point on a mesh by brute force over its triangles (for a handful of queries;
+/// registration/ has the BVH for many).
+[[nodiscard]] Vec3d closest_point_on_mesh(const Mesh& mesh, const Vec3d& p);
+
 }  // namespace glint

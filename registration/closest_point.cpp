@@ -23,45 +23,6 @@ struct ClosestPointIndexData {
 
 namespace {
 
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5), with
-// the feature it lies on: vertex k (0..2), edge k (from corner k to corner k+1), or face.
-struct TrianglePoint {
-    Vec3d point;
-    Vec3d bary;
-    ClosestFeature feature;
-    int index;  // vertex or edge index
-};
-
-TrianglePoint closest_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
-    const Vec3d ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-    if (d1 <= 0 && d2 <= 0) return {a, {1, 0, 0}, ClosestFeature::Vertex, 0};
-    const Vec3d bp = p - b;
-    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-    if (d3 >= 0 && d4 <= d3) return {b, {0, 1, 0}, ClosestFeature::Vertex, 1};
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-        const double v = d1 / (d1 - d3);
-        return {a + v * ab, {1 - v, v, 0}, ClosestFeature::Edge, 0};
-    }
-    const Vec3d cp = p - c;
-    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-    if (d6 >= 0 && d5 <= d6) return {c, {0, 0, 1}, ClosestFeature::Vertex, 2};
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-        const double w = d2 / (d2 - d6);
-        return {a + w * ac, {1 - w, 0, w}, ClosestFeature::Edge, 2};
-    }
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-        return {b + w * (c - b), {0, 1 - w, w}, ClosestFeature::Edge, 1};
-    }
-    const double denom = 1.0 / (va + vb + vc);
-    const double v = vb * denom, w = vc * denom;
-    return {a + ab * v + ac * w, {1 - v - w, v, w}, ClosestFeature::Face, 0};
-}
-
 struct QueryState {
     const ClosestPointIndexData* data;
     Vec3d query;
@@ -96,16 +57,17 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
     const ClosestPointIndexData& d = *state->data;
     const Mesh& m = *d.mesh;
     const auto& tri = m.triangles[args->primID];
-    const TrianglePoint tp = closest_on_triangle(state->query, m.positions[tri[0]].cast<double>(),
-                                                 m.positions[tri[1]].cast<double>(), m.positions[tri[2]].cast<double>());
+    const TrianglePoint tp = closest_point_on_triangle(state->query, m.positions[tri[0]].cast<double>(),
+                                                       m.positions[tri[1]].cast<double>(), m.positions[tri[2]].cast<double>());
+    constexpr ClosestFeature kFeature[3] = {ClosestFeature::Face, ClosestFeature::Edge, ClosestFeature::Vertex};
     const double dist = (tp.point - state->query).norm();
     if (dist < state->best.distance) {
         state->best.found = true;
         state->best.distance = dist;
         state->best.point = tp.point;
         state->best.triangle = args->primID;
-        state->best.barycentric = tp.bary;
-        state->best.feature = tp.feature;
+        state->best.barycentric = tp.barycentric;
+        state->best.feature = kFeature[tp.feature];
         state->feature_index = tp.index;
         args->query->radius = static_cast<float>(dist);
         return true;

@@ -47,7 +47,8 @@ TEST(ApplyDamage, DentIsInwardLabelledAndLocal) {
         // Moved along the normal: the radius shrinks by the displacement.
         EXPECT_NEAR(m.positions[v].norm(), 10.0 + d, 1e-4);
     }
-    EXPECT_NEAR(min_disp, -0.5, 1e-6);  // the snapped centre moves by the full depth
+    // The centre lies on a face; the nearest vertex (within ~0.2 mm) moves by ≥ 99% of the depth.
+    EXPECT_NEAR(min_disp, -0.5, 0.005);
     EXPECT_GT(labelled, 20u);
     EXPECT_EQ(m.find_scalar("gt_label")->values.size(), m.vertex_count());
 }
