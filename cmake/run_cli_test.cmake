@@ -1,6 +1,7 @@
 # Runs one command line and checks its exit code and output (used by tests/tools).
 #   -DCOMMAND="a;b;c" -DEXPECT_CODE=N [-DEXPECT_STDERR=regex] [-DEXPECT_STDOUT=regex]
 #   [-DEXPECT_LINES=N (stderr has exactly N lines)] [-DWORKDIR=dir] [-DENV="K=V;K2=V2"]
+#   [-DEXPECT_ABSENT="path;glob…" (nothing matches after the run: no half-written output)]
 if(DEFINED ENV_VARS)
   foreach(kv ${ENV_VARS})
     string(REGEX MATCH "^([^=]+)=(.*)$" _ "${kv}")
@@ -27,5 +28,13 @@ if(DEFINED EXPECT_LINES)
   if(NOT n EQUAL EXPECT_LINES)
     message(FATAL_ERROR "stderr has ${n} lines, expected ${EXPECT_LINES}:\n${err}")
   endif()
+endif()
+if(DEFINED EXPECT_ABSENT)
+  foreach(pattern ${EXPECT_ABSENT})
+    file(GLOB left "${pattern}")
+    if(left)
+      message(FATAL_ERROR "left behind after the run: ${left}")
+    endif()
+  endforeach()
 endif()
 message(STATUS "ok: exit ${code}")

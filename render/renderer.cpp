@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/validate.h"
 #include "render/detail/backend.h"
 
 #include <algorithm>
@@ -39,6 +40,10 @@ void RenderOptions::validate() const {
     if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) {
         throw InputError("render options: min_coverage = " + std::to_string(min_coverage) +
                          ", expected 0..1");
+    }
+    if (!device.empty() && backend == Backend::Embree) {
+        throw InputError("render options: device = \"" + device +
+                         "\" names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
     }
     if (threads < 0) {
         throw InputError("render options: threads = " + std::to_string(threads) +
@@ -118,6 +123,18 @@ Renderer::Renderer(const Mesh& mesh, const RenderOptions& options) : options_(op
     std::string reason;
     info_.backend = resolve_backend(options_, mesh.triangle_count(), &reason);
     if (options_.backend == Backend::Auto) info_.warnings.push_back(reason);
+    if (options_.cull_back_faces) {
+        // Culling is only correct for a closed surface: an open one would lose its back side
+        // (seen through a hole or from behind). Refused silently never: said in warnings.
+        const ValidationReport report = validate_mesh(mesh, "renderer");
+        if (!report.is_closed) {
+            options_.cull_back_faces = false;
+            info_.warnings.push_back("back-face culling turned off: the mesh is not closed (" +
+                                     std::to_string(report.boundary_edges) + " boundary, " +
+                                     std::to_string(report.non_manifold_edges) +
+                                     " non-manifold edges)");
+        }
+    }
 
     const Mesh* source = &mesh;
     Mesh with_normals;

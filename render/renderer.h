@@ -49,8 +49,9 @@ struct RenderOptions {
     /// every pixel with at least one covered sub-sample (its normal is normalised by
     /// coverage); 1 keeps only fully covered pixels.
     float min_coverage = 0.0f;
-    /// Discard triangles facing away from the camera. Only correct for closed meshes; off by
-    /// default (open meshes show their back side).
+    /// Discard triangles facing away from the camera. Only correct for closed meshes, so it
+    /// is turned off (with a warning in RendererInfo::warnings) for an open or non-manifold
+    /// mesh; off by default.
     bool cull_back_faces = false;
     /// Vulkan: enable VK_LAYER_KHRONOS_validation and collect its messages
     /// (Renderer::validation_messages). Also on when GLINT_VK_VALIDATION=1.

@@ -141,6 +141,14 @@ SweepPlan make_sweep_plan(const Mesh& reference, const SweepPlanOptions& options
               << "): choose a coarser zoom, a larger max size, or an ROI";
             throw InputError(s.str());
         }
+        // note: below 4 px across, the framed part is a dot: no view would compare anything.
+        if (size < 4.0) {
+            std::ostringstream s;
+            s << "sweep plan: zoom footprint " << f << " frames a radius of " << plan.radius << " in only "
+              << size << " px, expected at least 4 px across (a footprint ≤ " << 2.0 * plan.radius / 4.0
+              << "): choose a finer zoom";
+            throw InputError(s.str());
+        }
         plan.sizes.push_back(std::max(8, static_cast<int>(size)));
     }
 

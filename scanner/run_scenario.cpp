@@ -97,6 +97,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
 
     if (folder) {
         ReportContext context;
+        context.command_line = options.command_line;
         auto describe = [](const SurfaceSource& s) {
             return s.phantom ? "phantom " + to_string(s.phantom->kind) + " " + to_string(s.phantom->scheme) + " " +
                                    std::to_string(s.phantom->resolution)

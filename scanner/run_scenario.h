@@ -17,6 +17,7 @@ struct ScenarioRunOptions {
     std::filesystem::path output_root;  ///< atlas folder = output_root / scenario name; empty = no export
     bool write_views = false;           ///< per-view PNG/EXR (mosaics, atlas and report always)
     std::function<void(std::size_t done, std::size_t total)> progress;
+    std::string command_line;           ///< recorded in report.json
 };
 
 struct ScenarioOutcome {

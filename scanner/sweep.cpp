@@ -84,6 +84,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     options.validate();
     SweepResult result;
     result.plan = plan_in;
+    result.options = options;
     const auto& plan = result.plan;
     if (plan.views.empty()) throw InputError("sweep plan has no views");
 

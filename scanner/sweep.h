@@ -76,6 +76,7 @@ struct ZoomResult {
 
 struct SweepResult {
     SweepPlan plan;
+    SweepOptions options;  ///< as the sweep ran (for the report: enough to repeat the run)
     std::vector<ZoomResult> zooms;
     std::vector<ViewSummary> views;
     RendererInfo renderer;

@@ -17,11 +17,13 @@ inline constexpr int kExitCheckFailed = 1;
 inline constexpr int kExitBadInput = 2;
 inline constexpr int kExitDeviceOrIo = 3;
 inline constexpr int kExitInternal = 4;
+inline constexpr int kExitInterrupted = 130;  ///< SIGINT / SIGTERM (128 + SIGINT, as shells do)
 
 /// Flags every subcommand shares (set on the top-level app, read by commands).
 struct GlobalFlags {
     bool quiet = false;  ///< no progress bars or chatter on stderr
     bool json = false;   ///< machine-readable JSON on stdout instead of tables
+    std::string command_line;  ///< argv joined by spaces (recorded in reports)
 };
 GlobalFlags& global_flags();
 
@@ -29,6 +31,17 @@ GlobalFlags& global_flags();
 struct CheckFailed : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
+
+/// Thrown at the next progress step once SIGINT or SIGTERM arrived: the run unwinds, staged
+/// outputs are removed, and glint exits 130 with nothing half-written.
+struct Interrupted : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// Installs the SIGINT / SIGTERM handlers (a second signal ends the process at once).
+void install_interrupt_handlers();
+/// \throw Interrupted when a signal arrived since install_interrupt_handlers().
+void throw_if_interrupted();
 
 using CommandSetup = std::function<void(CLI::App& app)>;
 

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -86,6 +87,10 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
     return j;
 }
 
+// The first error a scenario threw (bad input, device, I/O), rethrown once every scenario ran
+// and the results are written: one line on stderr and that error's exit code.
+std::exception_ptr first_error;
+
 std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
     const fs::path root = data_root_of(a);
     std::vector<Scenario> scenarios;
@@ -99,18 +104,26 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         ScenarioRunOptions options;
         options.output_root = a.output;
         options.write_views = a.views;
+        options.command_line = global_flags().command_line;
         options.progress = [&](std::size_t done, std::size_t total) {
-            (void)total;
+            bar.set_total(total);
             bar.update(done);
         };
         ScenarioOutcome o;
         try {
             o = run_scenario(sc, options);
         } catch (const Error& e) {
-            // One broken scenario does not hide the others' results: it is reported and fails.
+            // One broken scenario does not hide the others' results: it is reported, fails,
+            // and the first such error decides the exit code (check()).
             o.name = sc.name;
             o.file = sc.file;
             o.failures.push_back(std::string("error: ") + e.what());
+            if (!first_error) {
+                const std::string where = "scenario \"" + sc.file.string() + "\": ";
+                if (dynamic_cast<const InputError*>(&e)) first_error = std::make_exception_ptr(InputError(where + e.what()));
+                else if (dynamic_cast<const DeviceError*>(&e)) first_error = std::make_exception_ptr(DeviceError(where + e.what()));
+                else first_error = std::make_exception_ptr(IoError(where + e.what()));
+            }
         }
         bar.finish();
         if (!global_flags().quiet && !global_flags().json && !score_table) {
@@ -125,6 +138,7 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
 }
 
 void check(const std::vector<ScenarioOutcome>& outcomes) {
+    if (first_error) std::rethrow_exception(first_error);
     std::size_t failed = 0;
     for (const auto& o : outcomes) failed += !o.skipped && !o.passed();
     if (failed) throw CheckFailed(std::to_string(failed) + " of " + std::to_string(outcomes.size()) +

@@ -93,6 +93,7 @@ void run(const SweepArgs& a) {
     OutputFolder folder(a.output);  // checks the output location before the long work
 
     ReportContext context;
+    context.command_line = global_flags().command_line;
     context.inputs.push_back({"reference", a.reference, "", ref.mesh.vertex_count(), ref.mesh.triangle_count()});
     context.inputs.push_back({"examined", a.examined, "", exa.mesh.vertex_count(), exa.mesh.triangle_count()});
     for (const auto* r : {&ref.report, &exa.report})

@@ -5,8 +5,10 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <csignal>
 #include <exception>
 #include <iostream>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -18,6 +20,13 @@ GlobalFlags& global_flags() {
 }
 
 namespace {
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_signal(int signal) {
+    g_signal = signal;
+    std::signal(signal, SIG_DFL);  // a second one ends the process at once
+}
+
 std::vector<std::pair<int, CommandSetup>>& registry() {
     static std::vector<std::pair<int, CommandSetup>> commands;
     return commands;
@@ -26,6 +35,18 @@ std::vector<std::pair<int, CommandSetup>>& registry() {
 
 CommandRegistrar::CommandRegistrar(int order, CommandSetup setup) {
     registry().emplace_back(order, std::move(setup));
+}
+
+void install_interrupt_handlers() {
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+}
+
+void throw_if_interrupted() {
+    if (g_signal != 0) {
+        throw Interrupted(std::string(g_signal == SIGINT ? "SIGINT" : "SIGTERM") +
+                          " received: stopped, staged outputs removed, nothing half-written left");
+    }
 }
 
 void add_registered_commands(CLI::App& app) {
@@ -47,11 +68,19 @@ int main(int argc, char** argv) {
     app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
     app.add_flag("--json", flags.json, "Machine-readable JSON on stdout");
     add_registered_commands(app);
+    install_interrupt_handlers();
+    for (int i = 0; i < argc; ++i) {
+        if (i > 0) global_flags().command_line += ' ';
+        global_flags().command_line += argv[i];
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
         return code == 0 ? kExitOk : kExitBadInput;
+    } catch (const Interrupted& e) {
+        std::cerr << "glint: interrupted: " << e.what() << '\n';
+        return kExitInterrupted;
     } catch (const CheckFailed& e) {
         std::cerr << "glint: check failed: " << e.what() << '\n';
         return kExitCheckFailed;

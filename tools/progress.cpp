@@ -2,6 +2,7 @@
 
 #include "tools/command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <unistd.h>
 
@@ -19,7 +20,9 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(std::size_t done) {
+    throw_if_interrupted();
     if (!enabled_) return;
+    done = std::min(done, total_);
     const auto now = std::chrono::steady_clock::now();
     if (done < total_ && now - last_draw_ < std::chrono::milliseconds(100)) return;
     last_draw_ = now;
@@ -36,7 +39,7 @@ void ProgressBar::finish() {
 void ProgressBar::draw(std::size_t done, bool final) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
-    const double eta = rate > 0 ? static_cast<double>(total_ - done) / rate : 0.0;
+    const double eta = rate > 0 && done < total_ ? static_cast<double>(total_ - done) / rate : 0.0;
     constexpr int kWidth = 30;
     const int filled = total_ ? static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total_)) : kWidth;
     char bar[kWidth + 1];

@@ -13,6 +13,8 @@ public:
     ~ProgressBar();
     /// Sets the number of items done; redraws at most ~10 times a second.
     void update(std::size_t done);
+    /// Changes the total (e.g. once a plan's size is known); `done` is clamped to it.
+    void set_total(std::size_t total) { total_ = total; }
     /// Completes the line.
     void finish();
 

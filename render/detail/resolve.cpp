@@ -3,7 +3,8 @@
 //   coverage = covered / s².
 // Each n_k is already the normalised interpolated vertex normal at that sub-sample, so the
 // pixel shows the mean normal direction over its footprint, renormalised, and a partly
-// covered silhouette pixel still carries a unit normal (normalised by coverage).
+// covered silhouette pixel still carries a unit normal (normalised by coverage). Every
+// covered pixel of a frame has a unit normal.
 #include "render/detail/backend.h"
 
 #include <algorithm>
@@ -66,17 +67,18 @@ void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, in
                     if (i == centre && j == centre) centre_id = id;
                 }
             }
-            if (covered == 0) {
+            // A footprint whose sub-sample normals cancel (a knife edge seen along its ridge)
+            // has no mean direction: its sum is shorter than 1e-3 of what aligned normals give.
+            // Such a pixel is reported uncovered, so no non-unit normal reaches a comparison.
+            const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
+            if (covered == 0 || len <= 1e-3f * static_cast<float>(covered)) {
                 frame.normal[3 * p] = frame.normal[3 * p + 1] = frame.normal[3 * p + 2] = 0.0f;
                 frame.primitive_id[p] = kNoPrimitive;
                 frame.depth[p] = kNoDepth;
                 frame.coverage[p] = 0.0f;
                 continue;
             }
-            const float len = std::sqrt(nx * nx + ny * ny + nz * nz);
-            // note: a zero sum (opposite normals within one footprint) has no direction;
-            // the pixel keeps a zero normal but stays covered.
-            const float inv = len > 0.0f ? 1.0f / len : 0.0f;
+            const float inv = 1.0f / len;
             frame.normal[3 * p] = nx * inv;
             frame.normal[3 * p + 1] = ny * inv;
             frame.normal[3 * p + 2] = nz * inv;

@@ -1,0 +1,86 @@
+// What a sweep writes into its output folder (scanner/report.h): every file a user opens is
+// there, and report.json holds what the README promises — inputs with checksums, device and
+// backend, the plan and analysis options (enough to repeat the run), thresholds, coverage,
+// unseen patches, regions, histogram and timings.
+#include "scanner/report.h"
+
+#include "mesh/damage.h"
+#include "mesh/phantom.h"
+#include "mesh/write.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <string>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Mesh ref = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    Mesh exa = ref;
+    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
+    write_ply(ref, dir / "ref.ply");
+
+    SweepOptions options;
+    options.plan.azimuth_step_deg = 45;
+    options.plan.elevations_deg = {-30, 30};
+    options.plan.size = 48;
+    options.render.backend = Backend::Embree;
+    options.render.supersample = 2;
+    options.max_incidence_deg = 70.0;
+    const SweepPlan plan = make_sweep_plan(ref, options.plan);
+    ReportContext context;
+    context.command_line = "glint sweep ref.ply exa.ply -o atlas";
+    context.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
+    {
+        OutputFolder folder(dir / "atlas");
+        SweepExporter exporter(folder, plan, SweepExporter::Options{});
+        const SweepResult result = run_sweep(ref, exa, plan, options, exporter.observer());
+        exporter.finish();
+        write_sweep_outputs(folder, ref, result, context);
+        folder.commit();
+    }
+    for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "mosaic_z0.png",
+                          "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
+        EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
+
+    std::ifstream in(dir / "atlas" / "report.json");
+    const nlohmann::json r = nlohmann::json::parse(in);
+    EXPECT_EQ(r["command_line"], context.command_line);
+    ASSERT_EQ(r["inputs"].size(), 1u);
+    EXPECT_EQ(r["inputs"][0]["sha256"], sha256_file(dir / "ref.ply"));
+    EXPECT_EQ(r["inputs"][0]["sha256"].get<std::string>().size(), 64u);
+    EXPECT_EQ(r["device"]["backend"], "embree");
+    EXPECT_FALSE(r["device"]["name"].get<std::string>().empty());
+    EXPECT_EQ(r["plan"]["kind"], "rotary");
+    EXPECT_EQ(r["plan"]["views"], 16);
+    EXPECT_EQ(r["plan"]["elevations_deg"], nlohmann::json({-30.0, 30.0}));
+    EXPECT_EQ(r["analysis"]["supersample"], 2);
+    EXPECT_EQ(r["analysis"]["backend_requested"], "embree");
+    EXPECT_DOUBLE_EQ(r["analysis"]["max_incidence_deg"].get<double>(), 70.0);
+    EXPECT_TRUE(r["analysis"]["threshold_deg"].is_null());  // the noise floor decided
+    ASSERT_EQ(r["zooms"].size(), 1u);
+    const auto& z = r["zooms"][0];
+    EXPECT_GT(z["threshold_deg"].get<double>(), 0.0);
+    EXPECT_FALSE(z["threshold_rule"].get<std::string>().empty());
+    EXPECT_GT(z["coverage"].get<double>(), 0.5);
+    ASSERT_EQ(z["regions"].size(), 1u) << z["regions"].dump();
+    EXPECT_EQ(z["regions"][0]["kind"], "dent");
+    // The histogram counts every seen vertex once.
+    const auto counts = z["histogram_deg"]["counts"].get<std::vector<std::size_t>>();
+    EXPECT_GT(std::accumulate(counts.begin(), counts.end(), std::size_t{0}), ref.vertex_count() / 2);
+    EXPECT_EQ(r["views"].size(), 16u);
+    EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);
+}
+
+}  // namespace
+}  // namespace glint
