@@ -7,6 +7,10 @@
 // covered pixel of a frame has a unit normal.
 #include "render/detail/backend.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <thread>
@@ -25,16 +29,18 @@ void parallel_for(int count, int threads, const std::function<void(int, int)>& b
         body(0, count);
         return;
     }
-    std::vector<std::thread> pool;
-    pool.reserve(static_cast<std::size_t>(threads - 1));
     const auto chunk_begin = [&](int t) {
         return static_cast<int>(static_cast<long long>(count) * t / threads);
     };
-    for (int t = 1; t < threads; ++t) {
-        pool.emplace_back([&, t] { body(chunk_begin(t), chunk_begin(t + 1)); });
-    }
-    body(0, chunk_begin(1));
-    for (auto& th : pool) th.join();
+    // note: oneTBB's workers persist across calls; starting `threads` std::threads per
+    // frame cost more than resolving a 512² frame on a GPU machine. The arena caps the
+    // concurrency at `threads` (RenderOptions::threads).
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, threads, 1), [&](const tbb::blocked_range<int>& r) {
+            for (int t = r.begin(); t != r.end(); ++t) body(chunk_begin(t), chunk_begin(t + 1));
+        }, tbb::simple_partitioner());
+    });
 }
 
 void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, int y0, int y1, Frame& frame) {
