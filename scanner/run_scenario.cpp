@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 namespace glint {
@@ -148,6 +149,15 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
                 fail(fmt("rotation error = %.5f°, expected at most %.5f°", out.pose->rotation_deg, *e.max_rotation_error_deg));
             if (e.max_translation_error && out.pose->translation > *e.max_translation_error)
                 fail(fmt("translation error = %.5g, expected at most %.5g", out.pose->translation, *e.max_translation_error));
+        }
+    }
+    if (e.min_region_shape_change) {
+        for (const auto& r : z0.regions.regions) {
+            if (std::abs(r.max_distance) < *e.min_region_shape_change)
+                fail("region " + std::to_string(r.id) + " at (" + fmt("%.1f, %.1f", r.centroid.x(), r.centroid.y()) +
+                     fmt(", %.1f): largest surface distance %.3g", r.centroid.z(), std::abs(r.max_distance)) +
+                     fmt(", expected at least %.3g (a region with no shape change behind it)%.0s",
+                         *e.min_region_shape_change, 0.0));
         }
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -371,6 +371,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         e("max_translation_error", sc.expect.max_translation_error);
         e("max_centroid_error", sc.expect.max_centroid_error);
         e("min_coverage", sc.expect.min_coverage);
+        e("min_region_shape_change", sc.expect.min_region_shape_change);
         if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
             if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
             sc.expect.kind = *v;

@@ -39,6 +39,10 @@ struct ScenarioExpect {
     std::optional<double> max_centroid_error;
     std::optional<double> min_coverage;
     std::optional<std::string> kind;              ///< "dent" or "bump" for the largest region
+    /// Every region (zoom 0) must be explained by a real change of shape: somewhere in it the
+    /// reference lies at least this far (mesh units) from the examined surface. For pairs that
+    /// differ where a decimation or a re-meshing really moved the surface.
+    std::optional<double> min_region_shape_change;
 };
 
 struct Scenario {
