@@ -86,9 +86,9 @@ void run(const RegisterArgs& a) {
                     rotation_angle_deg(r.reference_from_examined), r.reference_from_examined.translation().x(),
                     r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(), r.rms,
                     100 * r.inlier_fraction, 100 * r.overlap, a.output.c_str());
-        if (!r.converged) std::printf("  %s\n", r.termination.c_str());
+        if (!r.converged) std::printf("  %s\n", r.termination_detail.c_str());
     }
-    if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination);
+    if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);
 }
 
 void setup(CLI::App& app) {

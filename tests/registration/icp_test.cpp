@@ -6,6 +6,7 @@
 #include "mesh/damage.h"
 #include "mesh/error.h"
 #include "mesh/phantom.h"
+#include "registration/closest_point.h"
 
 #include <gtest/gtest.h>
 
@@ -170,22 +171,99 @@ TEST(RegisterMeshes, AVertexMaskRoiFitsOnTheMaskedRegionOnly) {
     EXPECT_LT(e.translation, 1e-3);
 }
 
+// A flat square plate of side `side` at height z, its normals pointing down (−z).
+Mesh plate(double side, double z) {
+    Mesh m;
+    for (int y = 0; y <= 10; ++y)
+        for (int x = 0; x <= 10; ++x)
+            m.positions.emplace_back(float(side * (x - 5) / 10), float(side * (y - 5) / 10), float(z));
+    for (std::uint32_t y = 0; y < 10; ++y)
+        for (std::uint32_t x = 0; x < 10; ++x) {
+            const std::uint32_t a = y * 11 + x;
+            m.triangles.push_back({a, a + 11, a + 1});  // clockwise from above: normal −z
+            m.triangles.push_back({a + 1, a + 11, a + 12});
+        }
+    return m;
+}
+
 TEST(RegisterMeshes, MeshesThatDoNotOverlapGiveAnHonestFailure) {
     // A flat plate floating above the blob, facing it: every closest point on the blob
     // faces the other way, so no pair is compatible and no fit can be claimed.
     const Mesh ref = blob(TessellationScheme::Ico, 3);
-    Mesh plate;
-    for (int y = 0; y <= 10; ++y)
-        for (int x = 0; x <= 10; ++x) plate.positions.emplace_back(float(x - 5), float(y - 5), 30.f);
-    for (std::uint32_t y = 0; y < 10; ++y)
-        for (std::uint32_t x = 0; x < 10; ++x) {
-            const std::uint32_t a = y * 11 + x;
-            plate.triangles.push_back({a, a + 11, a + 1});  // clockwise from above: normal −z
-            plate.triangles.push_back({a + 1, a + 11, a + 12});
-        }
-    const RegistrationResult r = register_meshes(ref, plate, {.samples = 1000, .coarse = false});
+    const RegistrationResult r = register_meshes(ref, plate(10.0, 30.0), {.samples = 1000, .coarse = false});
     EXPECT_FALSE(r.converged);
     EXPECT_NE(r.termination.find("no overlap"), std::string::npos) << r.termination;
+}
+
+TEST(RegisterMeshes, UnrelatedSurfacesGiveLowOverlapWithDefaultOptions) {
+    // With the coarse alignment on, a 30 mm plate is moved onto the blob's principal plane and
+    // ICP finds pairs wherever it can; only the overlap at the final pose (measured 0.08) tells
+    // that the two surfaces do not describe the same object.
+    const Mesh ref = blob(TessellationScheme::Ico, 3);
+    const RegistrationResult r = register_meshes(ref, plate(30.0, 30.0));
+    std::printf("plate: %s\n", r.termination_detail.c_str());
+    EXPECT_FALSE(r.converged) << r.termination_detail;
+    EXPECT_EQ(r.termination, "low overlap") << r.termination_detail;
+    EXPECT_LT(r.overlap, RegistrationOptions{}.min_overlap);
+}
+
+TEST(RegisterMeshes, ConvergesOnTheCostWhenTheParameterTolerancesAreOff) {
+    // Re-tessellated pair: the matching keeps moving by tiny amounts, the robust cost settles.
+    const Mesh ref = blob(TessellationScheme::Ico, 5);
+    const Rigid truth = motion(6.0, {3, -1, 2}, {-0.5, 0.4, 0.2});
+    const Mesh exa = moved(blob(TessellationScheme::Uv, 90), truth.inverse());
+    const RegistrationOptions o{.samples = 6000, .rotation_tolerance_deg = 0.0, .translation_tolerance = 0.0};
+    const RegistrationResult r = register_meshes(ref, exa, o);
+    const Errors e = errors(r, truth);
+    std::printf("cost convergence: %s, rotation error %.2e deg, translation error %.2e mm\n",
+                r.termination_detail.c_str(), e.rotation_deg, e.translation);
+    EXPECT_TRUE(r.converged) << r.termination_detail;
+    EXPECT_EQ(r.termination, "cost change");
+    ASSERT_EQ(r.log.size(), static_cast<std::size_t>(r.iterations));
+    ASSERT_GE(r.log.size(), 2u);
+    const double last = r.log.back().cost, before = r.log[r.log.size() - 2].cost;
+    EXPECT_GT(before, 0.0);
+    EXPECT_LT(std::abs(last - before) / before, o.cost_tolerance);
+    // Same bounds as DoesNotNeedVertexCorrespondence: stopping on the cost costs no accuracy.
+    EXPECT_LT(e.rotation_deg, 0.01);
+    EXPECT_LT(e.translation, 0.005);
+}
+
+TEST(RegisterMeshes, RejectsAVertexMaskOfTheWrongSize) {
+    const Mesh ref = blob(TessellationScheme::Ico, 3);
+    RegistrationOptions o;
+    o.roi.shape = RegistrationRoi::Shape::VertexMask;
+    o.roi.vertex_mask.assign(ref.vertex_count() - 1, 1);
+    try {
+        (void)register_meshes(ref, ref, o);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(std::to_string(ref.vertex_count() - 1) + " entries"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(RegisterMeshes, ReportsTheEvidenceAtTheFinalPose) {
+    // One ICP iteration from 5°: the pose moves a lot in that step, so residuals from before
+    // the step would overstate the RMS many times over.
+    const Mesh ref = blob(TessellationScheme::Ico, 4);
+    const Rigid truth = motion(5.0, {1, 2, 3}, {0.4, -0.2, 0.3});
+    const Mesh exa = moved(ref, truth.inverse());
+    const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000, .max_iterations = 1, .coarse = false});
+    ASSERT_EQ(r.log.size(), 1u);
+    // Independent measurement: |distance| of the examined vertices, moved by the returned
+    // pose, to the reference surface.
+    const ClosestPointIndex index(ref);
+    std::vector<Vec3d> points;
+    for (const auto& p : exa.positions) points.push_back(r.reference_from_examined * p.cast<double>());
+    double ss = 0.0;
+    for (const auto& c : index.closest(points)) ss += c.distance * c.distance;
+    const double rms_at_pose = std::sqrt(ss / static_cast<double>(points.size()));
+    std::printf("one iteration: reported RMS %.3e, measured at the pose %.3e, before the step %.3e, overlap %.3f\n",
+                r.rms, rms_at_pose, r.log.back().rms, r.overlap);
+    EXPECT_GT(r.log.back().rms, 5 * rms_at_pose);  // what the evidence before the step would say
+    EXPECT_NEAR(r.rms, rms_at_pose, 0.5 * rms_at_pose);
+    EXPECT_GT(r.overlap, 0.99);
 }
 
 TEST(RegisterMeshes, RejectsAnEmptyRoi) {
