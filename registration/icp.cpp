@@ -505,7 +505,7 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
     return t;
 }
 
-void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::vector<Vec3d>& reference) {
+std::vector<LandmarkPair> read_landmarks(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("landmarks \"" + path + "\": cannot open");
     nlohmann::json j;
@@ -514,23 +514,67 @@ void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::
     } catch (const nlohmann::json::exception& e) {
         throw InputError("landmarks \"" + path + "\": not valid JSON: " + e.what());
     }
-    if (!j.contains("pairs") || !j["pairs"].is_array())
+    if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
         throw InputError("landmarks \"" + path + "\": expected {\"pairs\": [{\"examined\": [x,y,z], \"reference\": [x,y,z]}, …]}");
+    std::vector<LandmarkPair> pairs;
     std::size_t i = 0;
     for (const auto& p : j["pairs"]) {
-        auto vec = [&](const char* key) {
-            if (!p.contains(key) || !p[key].is_array() || p[key].size() != 3)
-                throw InputError("landmarks \"" + path + "\": pair " + std::to_string(i + 1) + ": '" + key +
-                                 "' must be [x, y, z]");
-            return Vec3d(p[key][0].get<double>(), p[key][1].get<double>(), p[key][2].get<double>());
-        };
-        examined.push_back(vec("examined"));
-        reference.push_back(vec("reference"));
         ++i;
+        const std::string where = "landmarks \"" + path + "\": pair " + std::to_string(i);
+        if (!p.is_object()) throw InputError(where + ": expected {\"examined\": …, \"reference\": …}, found " + p.type_name());
+        auto numbers = [&](const nlohmann::json& v, std::size_t n, const std::string& what, const std::string& shape) {
+            if (!v.is_array() || v.size() != n)
+                throw InputError(where + ": " + what + " must be " + shape + ", found " +
+                                 (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(v.type_name())));
+            std::vector<double> out;
+            for (const auto& x : v) {
+                if (!x.is_number()) throw InputError(where + ": " + what + " must be " + shape + " (numbers), found a " + x.type_name());
+                out.push_back(x.get<double>());
+            }
+            return out;
+        };
+        auto side = [&](const char* key) {
+            const std::string what = std::string("'") + key + "'";
+            if (!p.contains(key)) throw InputError(where + ": no " + what + " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
+            const auto& s = p[key];
+            LandmarkSide out;
+            if (s.is_array()) {
+                const auto v = numbers(s, 3, what, "[x, y, z]");
+                out.point = Vec3d(v[0], v[1], v[2]);
+                return out;
+            }
+            if (!s.is_object() || !s.contains("view") || !s.contains("pixel") || !s["view"].is_object())
+                throw InputError(where + ": " + what + " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
+                                 "\"size\": N}, \"pixel\": [u, v]}");
+            const auto px = numbers(s["pixel"], 2, what + " pixel", "[u, v]");
+            out.u = px[0];
+            out.v = px[1];
+            const auto& view = s["view"];
+            auto number = [&](const char* field, bool required, double fallback) {
+                if (!view.contains(field)) {
+                    if (required) throw InputError(where + ": " + what + " view has no '" + field + "'");
+                    return fallback;
+                }
+                if (!view[field].is_number())
+                    throw InputError(where + ": " + what + " view '" + field + "' must be a number, found " + view[field].type_name());
+                return view[field].get<double>();
+            };
+            out.view.azimuth_deg = number("azimuth", true, 0.0);
+            out.view.elevation_deg = number("elevation", true, 0.0);
+            const double size = number("size", true, 0.0);
+            if (!(size >= 1 && size <= 1 << 16 && size == std::floor(size)))
+                throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) + ", expected a whole number of pixels ≥ 1");
+            out.view.size = static_cast<int>(size);
+            out.view.footprint = number("footprint", false, 0.0);
+            if (out.view.footprint < 0) throw InputError(where + ": " + what + " view 'footprint' must be > 0 (or left out)");
+            return out;
+        };
+        pairs.push_back({side("examined"), side("reference")});
     }
+    return pairs;
 }
 
-std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
+std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, const RegistrationSources& sources) {
     auto matrix = [](const Rigid& t) {
         nlohmann::json rows = nlohmann::json::array();
         for (int i = 0; i < 4; ++i) rows.push_back({t(i, 0), t(i, 1), t(i, 2), t(i, 3)});
@@ -541,6 +585,22 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
         log.push_back({{"iteration", l.iteration}, {"cost", l.cost}, {"rms", l.rms}, {"loss_scale", l.loss_scale},
                        {"overlap", l.overlap}, {"rotation_step_deg", l.rotation_step_deg},
                        {"translation_step", l.translation_step}});
+    auto vec = [](const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+    nlohmann::json roi;
+    switch (o.roi.shape) {
+        case RegistrationRoi::Shape::None: roi = {{"shape", "none"}}; break;
+        case RegistrationRoi::Shape::Sphere:
+            roi = {{"shape", "sphere"}, {"center", vec(o.roi.center)}, {"radius", o.roi.radius}};
+            break;
+        case RegistrationRoi::Shape::Box: roi = {{"shape", "box"}, {"min", vec(o.roi.min)}, {"max", vec(o.roi.max)}}; break;
+        case RegistrationRoi::Shape::VertexMask: {
+            const auto on = std::count_if(o.roi.vertex_mask.begin(), o.roi.vertex_mask.end(), [](std::uint8_t m) { return m != 0; });
+            roi = {{"shape", "vertex_mask"}, {"file", sources.roi_mask_file}, {"property", sources.roi_mask_property},
+                   {"vertices", o.roi.vertex_mask.size()}, {"masked_vertices", on}};
+            break;
+        }
+    }
+    const nlohmann::json initial = o.initial ? matrix(*o.initial) : nlohmann::json(nullptr);
     const Eigen::AngleAxisd aa(Eigen::Matrix3d(r.reference_from_examined.linear()));
     const nlohmann::json j = {
         {"reference_from_examined", matrix(r.reference_from_examined)},
@@ -563,7 +623,8 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
                      {"translation_tolerance", o.translation_tolerance}, {"cost_tolerance", o.cost_tolerance},
                      {"min_overlap", o.min_overlap}, {"overlap_distance", o.overlap_distance},
                      {"anneal", {o.anneal_start, o.anneal_end}}, {"seed", o.seed},
-                     {"roi", o.roi.shape == RegistrationRoi::Shape::None ? "none" : "restricted"}}},
+                     {"roi", roi}, {"initial", initial}, {"init_file", sources.init_file},
+                     {"landmarks_file", sources.landmarks_file}}},
         {"log", log},
     };
     return j.dump(2) + "\n";

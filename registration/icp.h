@@ -118,12 +118,47 @@ struct RegistrationResult {
 /// reference ≈ T · examined. \throw InputError fewer than 3 pairs, collinear points.
 [[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>& reference);
 
-/// Reads landmark pairs: JSON {"pairs": [{"examined": [x,y,z], "reference": [x,y,z]}, …]}.
-/// \throw IoError; InputError naming the file and the pair for a wrong type or shape.
-void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::vector<Vec3d>& reference);
+/// A view of one mesh as `glint pick` frames it (an orthographic view around the mesh's
+/// bounding sphere; registration/ does not frame views, scanner/landmarks.h resolves them).
+struct LandmarkView {
+    double azimuth_deg = 0.0;
+    double elevation_deg = 0.0;
+    int size = 256;           ///< image width = height, pixels
+    double footprint = 0.0;   ///< mesh units per pixel; 0 = frame the whole mesh
+};
 
-/// The result as JSON text (fit.json): matrices, evidence, per-iteration log.
-[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options);
+/// One side of a landmark pair: a 3D point, or a pixel (centres at +0.5) picked in a view.
+struct LandmarkSide {
+    std::optional<Vec3d> point;   ///< set for a 3D point; empty for a picked pixel
+    LandmarkView view;
+    double u = 0.0;
+    double v = 0.0;
+};
+
+struct LandmarkPair {
+    LandmarkSide examined;
+    LandmarkSide reference;
+};
+
+/// Reads landmark pairs: JSON {"pairs": [{"examined": SIDE, "reference": SIDE}, …]} where a
+/// SIDE is [x, y, z] or {"view": {"azimuth": A, "elevation": E, "size": N, "footprint": F
+/// (optional)}, "pixel": [u, v]}.
+/// \throw IoError cannot open; InputError naming the file, the pair and the side for a
+/// wrong type or shape.
+[[nodiscard]] std::vector<LandmarkPair> read_landmarks(const std::string& path);
+
+/// Where options came from, recorded in fit.json so that a fit can be reproduced.
+struct RegistrationSources {
+    std::string roi_mask_file;      ///< PLY whose per-vertex values gave the vertex mask
+    std::string roi_mask_property;  ///< "label" or the scalar's name
+    std::string init_file;          ///< fit.json the initial pose was read from
+    std::string landmarks_file;     ///< landmarks JSON the initial pose was fitted to
+};
+
+/// The result as JSON text (fit.json): matrices, evidence, per-iteration log, and the options
+/// (ROI numbers, source files) that reproduce it.
+[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options,
+                                  const RegistrationSources& sources = {});
 
 /// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).
 /// \throw IoError, InputError naming the file and what is missing.
