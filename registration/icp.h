@@ -56,9 +56,9 @@ struct RegistrationOptions {
     double rotation_tolerance_deg = 1e-7;
     double translation_tolerance = 1e-9;
     /// Convergence on cost: once the loss scale is fully annealed, the relative change of the
-    /// robust cost between two consecutive iterations is below this. note: 1e-6 is where,
-    /// on real scans (Stanford bunny), the pose no longer moves by more than ~1e-4° per
-    /// iteration; noise-free pairs still stop on the parameter change first.
+    /// robust cost between two consecutive iterations is below this. note: 1e-6 is a
+    /// conventional choice, not a tuned one; on the phantom and bunny pairs the matching
+    /// reaches a fixed point (step and cost change exactly 0) first.
     double cost_tolerance = 1e-6;
     /// A fit whose overlap (see RegistrationResult) is below this is not converged
     /// ("low overlap"). note: 0.2 lies well below the partial overlap of real range scans
