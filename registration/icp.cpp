@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -119,6 +120,16 @@ struct Pair {
     double r;  // point-to-plane residual
 };
 
+// Whether a closest reference point lies in the ROI (a vertex mask keeps a triangle with at
+// least one masked vertex).
+bool in_roi(const ClosestPoint& c, const Mesh& ref, const RegistrationRoi& roi) {
+    if (roi.shape == RegistrationRoi::Shape::VertexMask) {
+        const auto& tri = ref.triangles[c.triangle];
+        return roi.vertex_mask[tri[0]] || roi.vertex_mask[tri[1]] || roi.vertex_mask[tri[2]];
+    }
+    return roi.shape == RegistrationRoi::Shape::None || roi.contains(c.point);
+}
+
 // Pairs of the examined samples at pose T with the reference, after rejection.
 std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
                         const RegistrationOptions& o, double max_distance) {
@@ -127,22 +138,61 @@ std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t, cons
     const auto cps = reference.closest(moved, max_distance);
     const double min_cos = std::cos(o.max_normal_angle_deg * kDeg);
     const Eigen::Matrix3d rot = t.linear();
-    const Mesh& ref = reference.mesh();
     std::vector<Pair> pairs;
     pairs.reserve(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) {
         const auto& c = cps[i];
         if (!c.found) continue;
         if ((rot * samples[i].normal).dot(c.normal) < min_cos) continue;
-        if (o.roi.shape == RegistrationRoi::Shape::VertexMask) {
-            const auto& tri = ref.triangles[c.triangle];
-            if (!o.roi.vertex_mask[tri[0]] && !o.roi.vertex_mask[tri[1]] && !o.roi.vertex_mask[tri[2]]) continue;
-        } else if (o.roi.shape != RegistrationRoi::Shape::None && !o.roi.contains(c.point)) {
-            continue;
-        }
+        if (!in_roi(c, reference.mesh(), o.roi)) continue;
         pairs.push_back({moved[i], c.point, c.normal, c.normal.dot(moved[i] - c.point)});
     }
     return pairs;
+}
+
+struct Evidence {
+    double rms = 0.0;
+    double inlier_fraction = 0.0;
+    double overlap = 0.0;
+};
+
+// The evidence at pose T (see RegistrationResult): closest points without a distance limit,
+// so that a sample whose closest point lies outside the ROI is left out rather than counted
+// as not overlapping; a pair is accepted within `gate` with compatible normals.
+// note: the gate is absolute (a share of the size), not a multiple of the residuals' spread:
+// a fit of unrelated surfaces has a wide spread, and a relative gate would call it overlap.
+Evidence evaluate(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
+                  const RegistrationOptions& o, double gate) {
+    std::vector<Vec3d> moved(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) moved[i] = t * samples[i].point;
+    const auto cps = reference.closest(moved);
+    const double min_cos = std::cos(o.max_normal_angle_deg * kDeg);
+    const Eigen::Matrix3d rot = t.linear();
+    std::size_t candidates = 0;
+    std::vector<double> residuals;
+    residuals.reserve(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const auto& c = cps[i];
+        if (!c.found) continue;
+        if (!in_roi(c, reference.mesh(), o.roi)) continue;
+        ++candidates;
+        if (c.distance > gate || (rot * samples[i].normal).dot(c.normal) < min_cos) continue;
+        residuals.push_back(c.normal.dot(moved[i] - c.point));
+    }
+    Evidence e;
+    if (candidates == 0 || residuals.empty()) return e;
+    e.overlap = static_cast<double>(residuals.size()) / static_cast<double>(candidates);
+    const double sigma = 1.4826 * median_abs(residuals);
+    std::size_t inliers = 0;
+    double ss = 0.0;
+    for (double r : residuals)
+        if (std::abs(r) <= 3.0 * sigma) {
+            ++inliers;
+            ss += r * r;
+        }
+    e.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(residuals.size());
+    e.rms = inliers ? std::sqrt(ss / static_cast<double>(inliers)) : 0.0;
+    return e;
 }
 
 struct IcpRun {
@@ -157,14 +207,20 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
     run.t = start;
     RegistrationResult& res = run.result;
     res.termination = "max iterations";
+    res.termination_detail = "max iterations: " + std::to_string(max_iterations) + " iterations without convergence";
     // note: 1e-9 of the size keeps the loss scale positive on noise-free synthetic pairs.
     const double sigma_floor = 1e-9 * diagonal;
     double max_distance = std::numeric_limits<double>::infinity();
+    // Cost of the previous iteration when its loss scale was already fully annealed (the
+    // costs of two iterations compare only under the same anneal factor).
+    std::optional<double> previous_cost;
     for (int it = 0; it < max_iterations; ++it) {
         const std::vector<Pair> pairs = match(samples, run.t, reference, o, max_distance);
         if (pairs.size() < std::max<std::size_t>(6, samples.size() / 33)) {
-            res.termination = "no overlap: " + std::to_string(pairs.size()) + " of " + std::to_string(samples.size()) +
-                              " samples found a compatible reference surface";
+            res.termination = "no overlap";
+            res.termination_detail = "no overlap: " + std::to_string(pairs.size()) + " of " +
+                                     std::to_string(samples.size()) +
+                                     " samples found a compatible reference surface";
             res.converged = false;
             res.iterations = it;
             return run;
@@ -211,6 +267,7 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         run.t = step * run.t;
         IcpIteration log;
         log.iteration = it + 1;
+        log.cost = summary.final_cost;
         std::size_t inliers = 0;
         double ss = 0.0;
         for (double r : residuals)
@@ -220,28 +277,57 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
             }
         log.rms = inliers ? std::sqrt(ss / static_cast<double>(inliers)) : 0.0;
         log.loss_scale = o.loss == RobustLoss::None ? 0.0 : scale;
-        log.inlier_fraction = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
+        log.overlap = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
         log.rotation_step_deg = rotation_angle_deg(step);
         log.translation_step = step.translation().norm();
         res.log.push_back(log);
         res.iterations = it + 1;
-        res.rms = log.rms;
-        res.inlier_fraction = log.inlier_fraction;
-        res.overlap = static_cast<double>(inliers) / static_cast<double>(samples.size());
+        if (summary.termination_type == ceres::FAILURE) {
+            res.termination = "solver failure";
+            res.termination_detail = "solver failure: " + summary.message;
+            break;
+        }
         const bool annealed = anneal <= o.anneal_end || o.loss == RobustLoss::None;
         if (annealed && log.rotation_step_deg < o.rotation_tolerance_deg &&
             log.translation_step < o.translation_tolerance * diagonal) {
             res.converged = true;
+            res.termination = "parameter change";
             std::ostringstream why;
-            why << "converged: step below " << o.rotation_tolerance_deg << "° and " << o.translation_tolerance
-                << " × size after " << it + 1 << " iterations";
-            res.termination = why.str();
+            why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step
+                << " below " << o.rotation_tolerance_deg << "° and " << o.translation_tolerance << " × size after "
+                << it + 1 << " iterations";
+            res.termination_detail = why.str();
             break;
         }
-        if (summary.termination_type == ceres::FAILURE) {
-            res.termination = "solver failure: " + summary.message;
-            break;
+        if (annealed && previous_cost) {
+            // note: the denominator's floor keeps 0/0 (a perfect fit) from reading as a change.
+            const double change = std::abs(log.cost - *previous_cost) /
+                                  std::max(*previous_cost, std::numeric_limits<double>::min());
+            if (change < o.cost_tolerance) {
+                res.converged = true;
+                res.termination = "cost change";
+                std::ostringstream why;
+                why << "cost change: relative change " << change << " below " << o.cost_tolerance << " after "
+                    << it + 1 << " iterations";
+                res.termination_detail = why.str();
+                break;
+            }
         }
+        if (annealed) previous_cost = log.cost;
+    }
+    // The evidence at the pose returned, not at the one before the last step.
+    const Evidence e = evaluate(samples, run.t, reference, o, o.overlap_distance * diagonal);
+    res.rms = e.rms;
+    res.inlier_fraction = e.inlier_fraction;
+    res.overlap = e.overlap;
+    if (e.overlap < o.min_overlap) {
+        res.converged = false;
+        res.termination = "low overlap";
+        std::ostringstream why;
+        why << "low overlap: " << e.overlap << " of the samples lie within " << o.overlap_distance
+            << " × size of a compatible reference surface at the final pose, below min overlap " << o.min_overlap
+            << " (ICP: " << res.termination_detail << ")";
+        res.termination_detail = why.str();
     }
     return run;
 }
@@ -320,17 +406,23 @@ void RegistrationOptions::validate() const {
     if (inner_iterations < 1) bad("inner iterations", inner_iterations, "must be ≥ 1");
     if (!(anneal_end > 0) || anneal_start < anneal_end) bad("anneal", anneal_start, "needs start ≥ end > 0");
     if (!(max_normal_angle_deg > 0 && max_normal_angle_deg <= 180)) bad("max normal angle", max_normal_angle_deg, "must be in (0, 180]");
+    if (!(cost_tolerance >= 0)) bad("cost tolerance", cost_tolerance, "must be ≥ 0");
+    if (!(min_overlap >= 0 && min_overlap <= 1)) bad("min overlap", min_overlap, "must be in [0, 1]");
+    if (!(overlap_distance > 0)) bad("overlap distance", overlap_distance, "must be > 0");
 }
 
 RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined, const RegistrationOptions& o) {
     o.validate();
     if (reference.triangles.empty() || examined.triangles.empty())
         throw InputError("registration: both meshes need triangles");
+    if (o.roi.shape == RegistrationRoi::Shape::VertexMask && o.roi.vertex_mask.size() != reference.vertex_count())
+        throw InputError("registration: the ROI vertex mask has " + std::to_string(o.roi.vertex_mask.size()) +
+                         " entries, the reference has " + std::to_string(reference.vertex_count()) + " vertices");
     if (o.roi.shape != RegistrationRoi::Shape::None) {
         std::size_t inside = 0;
         for (std::size_t v = 0; v < reference.vertex_count(); ++v)
             inside += o.roi.shape == RegistrationRoi::Shape::VertexMask
-                          ? (v < o.roi.vertex_mask.size() && o.roi.vertex_mask[v])
+                          ? o.roi.vertex_mask[v] != 0
                           : o.roi.contains(reference.positions[v].cast<double>());
         if (inside == 0) throw InputError("registration: the ROI contains no vertex of the reference mesh");
     }
@@ -413,7 +505,7 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
     return t;
 }
 
-void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::vector<Vec3d>& reference) {
+std::vector<LandmarkPair> read_landmarks(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("landmarks \"" + path + "\": cannot open");
     nlohmann::json j;
@@ -422,23 +514,67 @@ void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::
     } catch (const nlohmann::json::exception& e) {
         throw InputError("landmarks \"" + path + "\": not valid JSON: " + e.what());
     }
-    if (!j.contains("pairs") || !j["pairs"].is_array())
+    if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
         throw InputError("landmarks \"" + path + "\": expected {\"pairs\": [{\"examined\": [x,y,z], \"reference\": [x,y,z]}, …]}");
+    std::vector<LandmarkPair> pairs;
     std::size_t i = 0;
     for (const auto& p : j["pairs"]) {
-        auto vec = [&](const char* key) {
-            if (!p.contains(key) || !p[key].is_array() || p[key].size() != 3)
-                throw InputError("landmarks \"" + path + "\": pair " + std::to_string(i + 1) + ": '" + key +
-                                 "' must be [x, y, z]");
-            return Vec3d(p[key][0].get<double>(), p[key][1].get<double>(), p[key][2].get<double>());
-        };
-        examined.push_back(vec("examined"));
-        reference.push_back(vec("reference"));
         ++i;
+        const std::string where = "landmarks \"" + path + "\": pair " + std::to_string(i);
+        if (!p.is_object()) throw InputError(where + ": expected {\"examined\": …, \"reference\": …}, found " + p.type_name());
+        auto numbers = [&](const nlohmann::json& v, std::size_t n, const std::string& what, const std::string& shape) {
+            if (!v.is_array() || v.size() != n)
+                throw InputError(where + ": " + what + " must be " + shape + ", found " +
+                                 (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(v.type_name())));
+            std::vector<double> out;
+            for (const auto& x : v) {
+                if (!x.is_number()) throw InputError(where + ": " + what + " must be " + shape + " (numbers), found a " + x.type_name());
+                out.push_back(x.get<double>());
+            }
+            return out;
+        };
+        auto side = [&](const char* key) {
+            const std::string what = std::string("'") + key + "'";
+            if (!p.contains(key)) throw InputError(where + ": no " + what + " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
+            const auto& s = p[key];
+            LandmarkSide out;
+            if (s.is_array()) {
+                const auto v = numbers(s, 3, what, "[x, y, z]");
+                out.point = Vec3d(v[0], v[1], v[2]);
+                return out;
+            }
+            if (!s.is_object() || !s.contains("view") || !s.contains("pixel") || !s["view"].is_object())
+                throw InputError(where + ": " + what + " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
+                                 "\"size\": N}, \"pixel\": [u, v]}");
+            const auto px = numbers(s["pixel"], 2, what + " pixel", "[u, v]");
+            out.u = px[0];
+            out.v = px[1];
+            const auto& view = s["view"];
+            auto number = [&](const char* field, bool required, double fallback) {
+                if (!view.contains(field)) {
+                    if (required) throw InputError(where + ": " + what + " view has no '" + field + "'");
+                    return fallback;
+                }
+                if (!view[field].is_number())
+                    throw InputError(where + ": " + what + " view '" + field + "' must be a number, found " + view[field].type_name());
+                return view[field].get<double>();
+            };
+            out.view.azimuth_deg = number("azimuth", true, 0.0);
+            out.view.elevation_deg = number("elevation", true, 0.0);
+            const double size = number("size", true, 0.0);
+            if (!(size >= 1 && size <= 1 << 16 && size == std::floor(size)))
+                throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) + ", expected a whole number of pixels ≥ 1");
+            out.view.size = static_cast<int>(size);
+            out.view.footprint = number("footprint", false, 0.0);
+            if (out.view.footprint < 0) throw InputError(where + ": " + what + " view 'footprint' must be > 0 (or left out)");
+            return out;
+        };
+        pairs.push_back({side("examined"), side("reference")});
     }
+    return pairs;
 }
 
-std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
+std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, const RegistrationSources& sources) {
     auto matrix = [](const Rigid& t) {
         nlohmann::json rows = nlohmann::json::array();
         for (int i = 0; i < 4; ++i) rows.push_back({t(i, 0), t(i, 1), t(i, 2), t(i, 3)});
@@ -446,9 +582,25 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
     };
     nlohmann::json log = nlohmann::json::array();
     for (const auto& l : r.log)
-        log.push_back({{"iteration", l.iteration}, {"rms", l.rms}, {"loss_scale", l.loss_scale},
-                       {"inlier_fraction", l.inlier_fraction}, {"rotation_step_deg", l.rotation_step_deg},
+        log.push_back({{"iteration", l.iteration}, {"cost", l.cost}, {"rms", l.rms}, {"loss_scale", l.loss_scale},
+                       {"overlap", l.overlap}, {"rotation_step_deg", l.rotation_step_deg},
                        {"translation_step", l.translation_step}});
+    auto vec = [](const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
+    nlohmann::json roi;
+    switch (o.roi.shape) {
+        case RegistrationRoi::Shape::None: roi = {{"shape", "none"}}; break;
+        case RegistrationRoi::Shape::Sphere:
+            roi = {{"shape", "sphere"}, {"center", vec(o.roi.center)}, {"radius", o.roi.radius}};
+            break;
+        case RegistrationRoi::Shape::Box: roi = {{"shape", "box"}, {"min", vec(o.roi.min)}, {"max", vec(o.roi.max)}}; break;
+        case RegistrationRoi::Shape::VertexMask: {
+            const auto on = std::count_if(o.roi.vertex_mask.begin(), o.roi.vertex_mask.end(), [](std::uint8_t m) { return m != 0; });
+            roi = {{"shape", "vertex_mask"}, {"file", sources.roi_mask_file}, {"property", sources.roi_mask_property},
+                   {"vertices", o.roi.vertex_mask.size()}, {"masked_vertices", on}};
+            break;
+        }
+    }
+    const nlohmann::json initial = o.initial ? matrix(*o.initial) : nlohmann::json(nullptr);
     const Eigen::AngleAxisd aa(Eigen::Matrix3d(r.reference_from_examined.linear()));
     const nlohmann::json j = {
         {"reference_from_examined", matrix(r.reference_from_examined)},
@@ -463,11 +615,16 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o) {
         {"iterations", r.iterations},
         {"converged", r.converged},
         {"termination", r.termination},
+        {"termination_detail", r.termination_detail},
         {"coarse", r.coarse},
         {"options", {{"loss", to_string(o.loss)}, {"samples", o.samples}, {"max_iterations", o.max_iterations},
                      {"max_normal_angle_deg", o.max_normal_angle_deg}, {"symmetric", o.symmetric},
+                     {"rotation_tolerance_deg", o.rotation_tolerance_deg},
+                     {"translation_tolerance", o.translation_tolerance}, {"cost_tolerance", o.cost_tolerance},
+                     {"min_overlap", o.min_overlap}, {"overlap_distance", o.overlap_distance},
                      {"anneal", {o.anneal_start, o.anneal_end}}, {"seed", o.seed},
-                     {"roi", o.roi.shape == RegistrationRoi::Shape::None ? "none" : "restricted"}}},
+                     {"roi", roi}, {"initial", initial}, {"init_file", sources.init_file},
+                     {"landmarks_file", sources.landmarks_file}}},
         {"log", log},
     };
     return j.dump(2) + "\n";

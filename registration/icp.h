@@ -51,10 +51,25 @@ struct RegistrationOptions {
     int max_iterations = 60;
     int inner_iterations = 8;       ///< Ceres LM iterations per ICP iteration
     double max_normal_angle_deg = 60.0;  ///< reject pairs whose normals differ more
-    /// Convergence: rotation change below this (degrees) and translation change below
-    /// `translation_tolerance` × the reference's bounding diagonal.
+    /// Convergence on parameter change: rotation change below this (degrees) and
+    /// translation change below `translation_tolerance` × the larger bounding diagonal.
     double rotation_tolerance_deg = 1e-7;
     double translation_tolerance = 1e-9;
+    /// Convergence on cost: once the loss scale is fully annealed, the relative change of the
+    /// robust cost between two consecutive iterations is below this. note: 1e-6 is a
+    /// conventional choice, not a tuned one; on the phantom and bunny pairs the matching
+    /// reaches a fixed point (step and cost change exactly 0) first.
+    double cost_tolerance = 1e-6;
+    /// A fit whose overlap (see RegistrationResult) is below this is not converged
+    /// ("low overlap"). note: 0.2 lies well below the partial overlap of real range scans
+    /// 45° apart (Stanford bunny pairs: 0.66 to 0.91) and above what a fit of unrelated
+    /// surfaces reaches.
+    double min_overlap = 0.2;
+    /// A sample overlaps the reference when, at the final pose, its closest reference point
+    /// lies within this × the larger bounding diagonal, inside the ROI, with a compatible
+    /// normal. note: 1% of the size is ~15× the RMS of real scans (bunny: 0.12 to 0.15 mm
+    /// on ~0.2 m) and below the misfit of unrelated surfaces.
+    double overlap_distance = 0.01;
     bool coarse = true;             ///< try principal-axis hypotheses first (not with landmarks/init)
     bool symmetric = false;         ///< also pull reference samples onto the examined mesh
     RegistrationRoi roi;
@@ -67,9 +82,10 @@ struct RegistrationOptions {
 
 struct IcpIteration {
     int iteration = 0;
-    double rms = 0.0;             ///< of inlier point-to-plane residuals
-    double loss_scale = 0.0;
-    double inlier_fraction = 0.0;
+    double cost = 0.0;            ///< robust cost ½Σρ(r²) after this iteration's solve
+    double rms = 0.0;             ///< of inlier point-to-plane residuals before the step
+    double loss_scale = 0.0;      ///< 0 without a robust loss
+    double overlap = 0.0;         ///< share of samples with an accepted pair
     double rotation_step_deg = 0.0;
     double translation_step = 0.0;
 };
@@ -77,12 +93,18 @@ struct IcpIteration {
 struct RegistrationResult {
     Rigid reference_from_examined = Rigid::Identity();
     Rigid examined_from_reference = Rigid::Identity();
+    // Evidence, all measured at the final pose. A sample has an accepted pair when its
+    // closest reference point lies within `overlap_distance` × size, inside the ROI, with a
+    // compatible normal; samples whose closest point lies outside the ROI are left out.
     double rms = 0.0;               ///< point-to-plane RMS of inliers (mesh units)
-    double inlier_fraction = 0.0;   ///< share of samples kept (normals agree, within range)
-    double overlap = 0.0;           ///< share of samples within 3σ of the reference surface
+    double inlier_fraction = 0.0;   ///< share of accepted pairs within 3σ (σ = 1.4826 MAD)
+    double overlap = 0.0;           ///< share of samples with an accepted pair
     int iterations = 0;
     bool converged = false;
-    std::string termination;        ///< "converged: …", "max iterations", "no overlap", …
+    /// Why ICP stopped: "parameter change", "cost change" (both converged), "max
+    /// iterations", "low overlap", "no overlap", "solver failure".
+    std::string termination;
+    std::string termination_detail; ///< one line with the numbers behind `termination`
     std::string coarse;             ///< which coarse hypothesis was kept
     std::vector<IcpIteration> log;
 };
@@ -96,12 +118,47 @@ struct RegistrationResult {
 /// reference ≈ T · examined. \throw InputError fewer than 3 pairs, collinear points.
 [[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>& reference);
 
-/// Reads landmark pairs: JSON {"pairs": [{"examined": [x,y,z], "reference": [x,y,z]}, …]}.
-/// \throw IoError, InputError.
-void read_landmarks(const std::string& path, std::vector<Vec3d>& examined, std::vector<Vec3d>& reference);
+/// A view of one mesh as `glint pick` frames it (an orthographic view around the mesh's
+/// bounding sphere; registration/ does not frame views, scanner/landmarks.h resolves them).
+struct LandmarkView {
+    double azimuth_deg = 0.0;
+    double elevation_deg = 0.0;
+    int size = 256;           ///< image width = height, pixels
+    double footprint = 0.0;   ///< mesh units per pixel; 0 = frame the whole mesh
+};
 
-/// The result as JSON text (fit.json): matrices, evidence, per-iteration log.
-[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options);
+/// One side of a landmark pair: a 3D point, or a pixel (centres at +0.5) picked in a view.
+struct LandmarkSide {
+    std::optional<Vec3d> point;   ///< set for a 3D point; empty for a picked pixel
+    LandmarkView view;
+    double u = 0.0;
+    double v = 0.0;
+};
+
+struct LandmarkPair {
+    LandmarkSide examined;
+    LandmarkSide reference;
+};
+
+/// Reads landmark pairs: JSON {"pairs": [{"examined": SIDE, "reference": SIDE}, …]} where a
+/// SIDE is [x, y, z] or {"view": {"azimuth": A, "elevation": E, "size": N, "footprint": F
+/// (optional)}, "pixel": [u, v]}.
+/// \throw IoError cannot open; InputError naming the file, the pair and the side for a
+/// wrong type or shape.
+[[nodiscard]] std::vector<LandmarkPair> read_landmarks(const std::string& path);
+
+/// Where options came from, recorded in fit.json so that a fit can be reproduced.
+struct RegistrationSources {
+    std::string roi_mask_file;      ///< PLY whose per-vertex values gave the vertex mask
+    std::string roi_mask_property;  ///< "label" or the scalar's name
+    std::string init_file;          ///< fit.json the initial pose was read from
+    std::string landmarks_file;     ///< landmarks JSON the initial pose was fitted to
+};
+
+/// The result as JSON text (fit.json): matrices, evidence, per-iteration log, and the options
+/// (ROI numbers, source files) that reproduce it.
+[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options,
+                                  const RegistrationSources& sources = {});
 
 /// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).
 /// \throw IoError, InputError naming the file and what is missing.

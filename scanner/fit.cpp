@@ -40,7 +40,7 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitRe
             out.reference_from_examined = r.reference_from_examined;
             out.converged = r.converged;
             out.json = to_json(r, o);
-            if (!r.converged) out.warnings.push_back("registration did not converge: " + r.termination);
+            if (!r.converged) out.warnings.push_back("registration did not converge: " + r.termination_detail);
             break;
         }
     }

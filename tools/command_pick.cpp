@@ -2,7 +2,7 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "registration/closest_point.h"
-#include "render/view.h"
+#include "scanner/landmarks.h"
 #include "tools/command.h"
 
 #include <nlohmann/json.hpp>
@@ -25,15 +25,10 @@ struct PickArgs {
 
 void run(const PickArgs& a) {
     const LoadedMesh m = load_mesh(a.mesh);
-    ViewSpec spec;
-    spec.azimuth_deg = a.azimuth;
-    spec.elevation_deg = a.elevation;
-    spec.width = spec.height = a.size;
-    if (a.footprint > 0) {
-        spec.zoom = ZoomKind::Footprint;
-        spec.zoom_value = a.footprint;
-    }
-    const View view = make_view(m.mesh, spec);
+    // note: the framing lives in scanner/landmarks.h so that landmark pixels in
+    // `glint register --landmarks` resolve exactly as this command picks them.
+    const View view = pick_view(m.mesh, {.azimuth_deg = a.azimuth, .elevation_deg = a.elevation, .size = a.size,
+                                         .footprint = a.footprint});
     if (a.pixel.size() != 2) throw InputError("--pixel: expected u,v");
     const ClosestPointIndex index(m.mesh);
     const RayHit hit = pick(index, view.camera, a.pixel[0], a.pixel[1]);

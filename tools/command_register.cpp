@@ -3,9 +3,12 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/write.h"
+#include "registration/closest_point.h"
 #include "registration/icp.h"
+#include "scanner/landmarks.h"
 #include "tools/command.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <string>
@@ -38,6 +41,12 @@ void run(const RegisterArgs& a) {
     o.coarse = !a.no_coarse;
     if (!a.roi.empty()) o.roi = parse_registration_roi(a.roi);
     o.validate();
+    // note: both would set the starting pose; composing them (landmarks picked on an
+    // already-moved mesh?) has no single obvious meaning, so the user must choose.
+    if (!a.landmarks.empty() && !a.init.empty())
+        throw InputError("--landmarks \"" + a.landmarks + "\" and --init \"" + a.init +
+                         "\" both set the starting pose: give one of them");
+    RegistrationSources sources;
     const LoadedMesh ref = load_mesh(a.reference);
     const LoadedMesh exa = load_mesh(a.examined);
     if (!a.roi_mask.empty()) {
@@ -54,6 +63,8 @@ void run(const RegisterArgs& a) {
             throw InputError("--roi-mask \"" + file + "\": " + std::to_string(mask.mesh.vertex_count()) +
                              " vertices, the reference has " + std::to_string(ref.mesh.vertex_count()));
         o.roi.shape = RegistrationRoi::Shape::VertexMask;
+        sources.roi_mask_file = file;
+        sources.roi_mask_property = field.empty() ? "label" : field;
         if (field.empty()) {
             if (mask.mesh.labels.empty())
                 throw InputError("--roi-mask \"" + file + "\": no 'label' property; name a scalar as FILE:SCALAR");
@@ -64,21 +75,42 @@ void run(const RegisterArgs& a) {
             for (float x : s->values) o.roi.vertex_mask.push_back(x != 0.0f);
         }
     }
-    if (!a.init.empty()) o.initial = read_fit(a.init);
+    if (!a.init.empty()) {
+        o.initial = read_fit(a.init);
+        sources.init_file = a.init;
+    }
     if (!a.landmarks.empty()) {
-        std::vector<Vec3d> pe, pr;
-        read_landmarks(a.landmarks, pe, pr);
-        o.initial = fit_landmarks(pe, pr);
+        const std::vector<LandmarkPair> pairs = read_landmarks(a.landmarks);
+        sources.landmarks_file = a.landmarks;
+        const std::string source = "landmarks \"" + a.landmarks + "\"";
+        // Indexes only when some side is a picked pixel (building one costs a BVH).
+        const bool has_pixels = std::any_of(pairs.begin(), pairs.end(), [](const LandmarkPair& p) {
+            return !p.examined.point || !p.reference.point;
+        });
+        ResolvedLandmarks points;
+        if (has_pixels) {
+            points = resolve_landmarks(pairs, ClosestPointIndex(ref.mesh), ClosestPointIndex(exa.mesh), source);
+        } else {
+            for (const auto& p : pairs) {
+                points.examined.push_back(*p.examined.point);
+                points.reference.push_back(*p.reference.point);
+            }
+        }
+        try {
+            o.initial = fit_landmarks(points.examined, points.reference);
+        } catch (const InputError& e) {
+            throw InputError(source + ": " + e.what());
+        }
     }
     const RegistrationResult r = register_meshes(ref.mesh, exa.mesh, o);
-    write_file_atomically(a.output, to_json(r, o));
+    write_file_atomically(a.output, to_json(r, o, sources));
     if (!a.apply.empty()) {
         Mesh moved = exa.mesh;
         transform_mesh(moved, r.reference_from_examined);
         write_mesh(moved, a.apply);
     }
     if (global_flags().json) {
-        std::cout << to_json(r, o);
+        std::cout << to_json(r, o, sources);
     } else if (!global_flags().quiet) {
         std::printf("%s after %d iterations (%s start): rotation %.6f°, translation (%.6g, %.6g, %.6g), RMS %.4g, "
                     "inliers %.1f%%, overlap %.1f%%; wrote %s\n",
@@ -86,9 +118,9 @@ void run(const RegisterArgs& a) {
                     rotation_angle_deg(r.reference_from_examined), r.reference_from_examined.translation().x(),
                     r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(), r.rms,
                     100 * r.inlier_fraction, 100 * r.overlap, a.output.c_str());
-        if (!r.converged) std::printf("  %s\n", r.termination.c_str());
+        if (!r.converged) std::printf("  %s\n", r.termination_detail.c_str());
     }
-    if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination);
+    if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);
 }
 
 void setup(CLI::App& app) {
@@ -100,7 +132,8 @@ void setup(CLI::App& app) {
     cmd->add_option("--roi-mask", a.roi_mask, "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
                                                "non-zero label (or scalar)")
         ->excludes("--roi");
-    cmd->add_option("--landmarks", a.landmarks, "JSON with ≥ 3 point pairs: {\"pairs\": [{\"examined\": […], \"reference\": […]}]}");
+    cmd->add_option("--landmarks", a.landmarks, "JSON with ≥ 3 pairs: {\"pairs\": [{\"examined\": SIDE, \"reference\": SIDE}]}, SIDE = [x,y,z] or "
+                    "{\"view\": {\"azimuth\": A, \"elevation\": E, \"size\": N}, \"pixel\": [u,v]} (as glint pick)");
     cmd->add_option("--init", a.init, "Start from this fit.json");
     cmd->add_option("--loss", a.loss, "Robust loss: cauchy | huber | tukey | none")->capture_default_str();
     cmd->add_option("--samples", a.samples, "Samples on the examined surface")->capture_default_str();

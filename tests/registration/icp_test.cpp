@@ -6,11 +6,16 @@
 #include "mesh/damage.h"
 #include "mesh/error.h"
 #include "mesh/phantom.h"
+#include "registration/closest_point.h"
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 
 namespace glint {
 namespace {
@@ -64,22 +69,44 @@ TEST(RegisterMeshes, RecoversAKnownMotionOnACleanPair) {
     EXPECT_LT(e.translation, 1e-4 * kSize);
 }
 
-TEST(RegisterMeshes, RobustLossIsNotPulledByADentWhilePlainLeastSquaresIs) {
-    const Mesh ref = blob(TessellationScheme::Ico, 5);
-    Mesh damaged = ref;
-    // A 1 mm deep dent of 4 mm radius: about 5% of the surface.
-    apply_damage(damaged, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -8, 0}, .radius = 4, .depth = 1.0}});
-    const Rigid truth = motion(4.0, {0, 1, 1}, {0.3, 0.2, -0.1});
-    const Mesh exa = moved(damaged, truth.inverse());
-    const Errors robust = errors(register_meshes(ref, exa, {.loss = RobustLoss::Cauchy, .samples = 6000}), truth);
-    const Errors plain = errors(register_meshes(ref, exa, {.loss = RobustLoss::None, .samples = 6000}), truth);
-    std::printf("dented pair: robust %.2e deg / %.2e mm, plain %.2e deg / %.2e mm\n", robust.rotation_deg,
-                robust.translation, plain.rotation_deg, plain.translation);
+// The dented pair: a 1 mm deep dent of 4 mm radius (about 5% of the surface), moved by 4°.
+struct DentedPair {
+    Mesh reference, examined;
+    Rigid truth;
+};
+
+const DentedPair& dented_pair() {
+    static const DentedPair pair = [] {
+        DentedPair p;
+        p.reference = blob(TessellationScheme::Ico, 5);
+        Mesh damaged = p.reference;
+        apply_damage(damaged, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -8, 0}, .radius = 4, .depth = 1.0}});
+        p.truth = motion(4.0, {0, 1, 1}, {0.3, 0.2, -0.1});
+        p.examined = moved(damaged, p.truth.inverse());
+        return p;
+    }();
+    return pair;
+}
+
+class RobustLossOnADent : public ::testing::TestWithParam<RobustLoss> {};
+
+TEST_P(RobustLossOnADent, IsNotPulledByTheDentWhilePlainLeastSquaresIs) {
+    const DentedPair& p = dented_pair();
+    const RegistrationResult r = register_meshes(p.reference, p.examined, {.loss = GetParam(), .samples = 6000});
+    const Errors robust = errors(r, p.truth);
+    const Errors plain = errors(register_meshes(p.reference, p.examined, {.loss = RobustLoss::None, .samples = 6000}), p.truth);
+    std::printf("dented pair: %s %.2e deg / %.2e mm (%s), plain %.2e deg / %.2e mm\n", to_string(GetParam()).c_str(),
+                robust.rotation_deg, robust.translation, r.termination.c_str(), plain.rotation_deg, plain.translation);
+    EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(robust.rotation_deg, 0.002);
     EXPECT_LT(robust.translation, 1e-4 * kSize);
     // Without the robust loss the dent drags the surface: the bias is at least 20× larger.
     EXPECT_GT(plain.translation, 20 * robust.translation + 1e-3);
 }
+
+INSTANTIATE_TEST_SUITE_P(Losses, RobustLossOnADent,
+                         ::testing::Values(RobustLoss::Cauchy, RobustLoss::Huber, RobustLoss::Tukey),
+                         [](const ::testing::TestParamInfo<RobustLoss>& p) { return to_string(p.param); });
 
 TEST(RegisterMeshes, DoesNotNeedVertexCorrespondence) {
     const Mesh ref = blob(TessellationScheme::Ico, 5);
@@ -92,20 +119,30 @@ TEST(RegisterMeshes, DoesNotNeedVertexCorrespondence) {
     EXPECT_LT(e.translation, 0.005);
 }
 
-TEST(RegisterMeshes, ConvergesFrom30DegreesAnd10PercentWithoutLandmarks) {
+class ThirtyDegreeStart : public ::testing::TestWithParam<Vec3d> {};
+
+TEST_P(ThirtyDegreeStart, ConvergesFrom30DegreesAnd10PercentWithoutLandmarks) {
     const Mesh ref = blob(TessellationScheme::Ico, 4);
-    const Rigid truth = motion(30.0, {1, -1, 0.5}, {2.4, -1.0, 0.8});  // 2.4 mm = 10% of the size
+    const Rigid truth = motion(30.0, GetParam(), {2.4, -1.0, 0.8});  // |t| ≈ 2.7 mm: > 10% of the size
     const Mesh exa = moved(ref, truth.inverse());
     const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000});
     const Errors e = errors(r, truth);
-    std::printf("30 deg start: rotation error %.2e deg (%s)\n", e.rotation_deg, r.coarse.c_str());
-    EXPECT_TRUE(r.converged) << r.termination;
+    std::printf("30 deg start about (%g, %g, %g): rotation error %.2e deg, translation error %.2e mm (%s, %s)\n",
+                GetParam().x(), GetParam().y(), GetParam().z(), e.rotation_deg, e.translation, r.coarse.c_str(),
+                r.termination.c_str());
+    EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(e.rotation_deg, 0.001);
+    EXPECT_LT(e.translation, 1e-4 * kSize);
 }
 
-TEST(RegisterMeshes, ConvergesFrom120DegreesWithThreeLandmarks) {
+INSTANTIATE_TEST_SUITE_P(Axes, ThirtyDegreeStart,
+                         ::testing::Values(Vec3d(1, -1, 0.5), Vec3d(0, 0, 1), Vec3d(0.3, 1, -0.2)));
+
+class LandmarkStart : public ::testing::TestWithParam<double> {};
+
+TEST_P(LandmarkStart, ConvergesWithThreeLandmarks) {
     const Mesh ref = blob(TessellationScheme::Ico, 4);
-    const Rigid truth = motion(120.0, {0.2, 1, 0.3}, {5, 3, -2});
+    const Rigid truth = motion(GetParam(), {0.2, 1, 0.3}, {5, 3, -2});
     const Mesh exa = moved(ref, truth.inverse());
     // Three landmarks picked on the reference, their examined positions perturbed by 0.2 mm
     // as a hand-placed landmark would be.
@@ -115,9 +152,16 @@ TEST(RegisterMeshes, ConvergesFrom120DegreesWithThreeLandmarks) {
     for (std::size_t i = 0; i < 3; ++i) on_exa.push_back(truth.inverse() * on_ref[i] + jitter[i]);
     RegistrationOptions o{.samples = 4000};
     o.initial = fit_landmarks(on_exa, on_ref);
-    const Errors e = errors(register_meshes(ref, exa, o), truth);
+    const RegistrationResult r = register_meshes(ref, exa, o);
+    const Errors e = errors(r, truth);
+    std::printf("%.0f deg start with landmarks: rotation error %.2e deg, translation error %.2e mm (%s)\n", GetParam(),
+                e.rotation_deg, e.translation, r.termination.c_str());
+    EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(e.rotation_deg, 0.001);
+    EXPECT_LT(e.translation, 1e-4 * kSize);
 }
+
+INSTANTIATE_TEST_SUITE_P(Angles, LandmarkStart, ::testing::Values(120.0, 180.0));
 
 TEST(RegisterMeshes, FitsOnTheStableHalfWhenTheOtherHalfIsDeformed) {
     const Mesh ref = blob(TessellationScheme::Ico, 5);
@@ -170,22 +214,99 @@ TEST(RegisterMeshes, AVertexMaskRoiFitsOnTheMaskedRegionOnly) {
     EXPECT_LT(e.translation, 1e-3);
 }
 
+// A flat square plate of side `side` at height z, its normals pointing down (−z).
+Mesh plate(double side, double z) {
+    Mesh m;
+    for (int y = 0; y <= 10; ++y)
+        for (int x = 0; x <= 10; ++x)
+            m.positions.emplace_back(float(side * (x - 5) / 10), float(side * (y - 5) / 10), float(z));
+    for (std::uint32_t y = 0; y < 10; ++y)
+        for (std::uint32_t x = 0; x < 10; ++x) {
+            const std::uint32_t a = y * 11 + x;
+            m.triangles.push_back({a, a + 11, a + 1});  // clockwise from above: normal −z
+            m.triangles.push_back({a + 1, a + 11, a + 12});
+        }
+    return m;
+}
+
 TEST(RegisterMeshes, MeshesThatDoNotOverlapGiveAnHonestFailure) {
     // A flat plate floating above the blob, facing it: every closest point on the blob
     // faces the other way, so no pair is compatible and no fit can be claimed.
     const Mesh ref = blob(TessellationScheme::Ico, 3);
-    Mesh plate;
-    for (int y = 0; y <= 10; ++y)
-        for (int x = 0; x <= 10; ++x) plate.positions.emplace_back(float(x - 5), float(y - 5), 30.f);
-    for (std::uint32_t y = 0; y < 10; ++y)
-        for (std::uint32_t x = 0; x < 10; ++x) {
-            const std::uint32_t a = y * 11 + x;
-            plate.triangles.push_back({a, a + 11, a + 1});  // clockwise from above: normal −z
-            plate.triangles.push_back({a + 1, a + 11, a + 12});
-        }
-    const RegistrationResult r = register_meshes(ref, plate, {.samples = 1000, .coarse = false});
+    const RegistrationResult r = register_meshes(ref, plate(10.0, 30.0), {.samples = 1000, .coarse = false});
     EXPECT_FALSE(r.converged);
     EXPECT_NE(r.termination.find("no overlap"), std::string::npos) << r.termination;
+}
+
+TEST(RegisterMeshes, UnrelatedSurfacesGiveLowOverlapWithDefaultOptions) {
+    // With the coarse alignment on, a 30 mm plate is moved onto the blob's principal plane and
+    // ICP finds pairs wherever it can; only the overlap at the final pose (measured 0.08) tells
+    // that the two surfaces do not describe the same object.
+    const Mesh ref = blob(TessellationScheme::Ico, 3);
+    const RegistrationResult r = register_meshes(ref, plate(30.0, 30.0));
+    std::printf("plate: %s\n", r.termination_detail.c_str());
+    EXPECT_FALSE(r.converged) << r.termination_detail;
+    EXPECT_EQ(r.termination, "low overlap") << r.termination_detail;
+    EXPECT_LT(r.overlap, RegistrationOptions{}.min_overlap);
+}
+
+TEST(RegisterMeshes, ConvergesOnTheCostWhenTheParameterTolerancesAreOff) {
+    // Re-tessellated pair: the matching keeps moving by tiny amounts, the robust cost settles.
+    const Mesh ref = blob(TessellationScheme::Ico, 5);
+    const Rigid truth = motion(6.0, {3, -1, 2}, {-0.5, 0.4, 0.2});
+    const Mesh exa = moved(blob(TessellationScheme::Uv, 90), truth.inverse());
+    const RegistrationOptions o{.samples = 6000, .rotation_tolerance_deg = 0.0, .translation_tolerance = 0.0};
+    const RegistrationResult r = register_meshes(ref, exa, o);
+    const Errors e = errors(r, truth);
+    std::printf("cost convergence: %s, rotation error %.2e deg, translation error %.2e mm\n",
+                r.termination_detail.c_str(), e.rotation_deg, e.translation);
+    EXPECT_TRUE(r.converged) << r.termination_detail;
+    EXPECT_EQ(r.termination, "cost change");
+    ASSERT_EQ(r.log.size(), static_cast<std::size_t>(r.iterations));
+    ASSERT_GE(r.log.size(), 2u);
+    const double last = r.log.back().cost, before = r.log[r.log.size() - 2].cost;
+    EXPECT_GT(before, 0.0);
+    EXPECT_LT(std::abs(last - before) / before, o.cost_tolerance);
+    // Same bounds as DoesNotNeedVertexCorrespondence: stopping on the cost costs no accuracy.
+    EXPECT_LT(e.rotation_deg, 0.01);
+    EXPECT_LT(e.translation, 0.005);
+}
+
+TEST(RegisterMeshes, RejectsAVertexMaskOfTheWrongSize) {
+    const Mesh ref = blob(TessellationScheme::Ico, 3);
+    RegistrationOptions o;
+    o.roi.shape = RegistrationRoi::Shape::VertexMask;
+    o.roi.vertex_mask.assign(ref.vertex_count() - 1, 1);
+    try {
+        (void)register_meshes(ref, ref, o);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(std::to_string(ref.vertex_count() - 1) + " entries"), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(RegisterMeshes, ReportsTheEvidenceAtTheFinalPose) {
+    // One ICP iteration from 5°: the pose moves a lot in that step, so residuals from before
+    // the step would overstate the RMS many times over.
+    const Mesh ref = blob(TessellationScheme::Ico, 4);
+    const Rigid truth = motion(5.0, {1, 2, 3}, {0.4, -0.2, 0.3});
+    const Mesh exa = moved(ref, truth.inverse());
+    const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000, .max_iterations = 1, .coarse = false});
+    ASSERT_EQ(r.log.size(), 1u);
+    // Independent measurement: |distance| of the examined vertices, moved by the returned
+    // pose, to the reference surface.
+    const ClosestPointIndex index(ref);
+    std::vector<Vec3d> points;
+    for (const auto& p : exa.positions) points.push_back(r.reference_from_examined * p.cast<double>());
+    double ss = 0.0;
+    for (const auto& c : index.closest(points)) ss += c.distance * c.distance;
+    const double rms_at_pose = std::sqrt(ss / static_cast<double>(points.size()));
+    std::printf("one iteration: reported RMS %.3e, measured at the pose %.3e, before the step %.3e, overlap %.3f\n",
+                r.rms, rms_at_pose, r.log.back().rms, r.overlap);
+    EXPECT_GT(r.log.back().rms, 5 * rms_at_pose);  // what the evidence before the step would say
+    EXPECT_NEAR(r.rms, rms_at_pose, 0.5 * rms_at_pose);
+    EXPECT_GT(r.overlap, 0.99);
 }
 
 TEST(RegisterMeshes, RejectsAnEmptyRoi) {
@@ -208,6 +329,105 @@ TEST(FitLandmarks, RejectsTooFewAndCollinearPoints) {
     std::vector<Vec3d> b;
     for (const auto& p : a) b.push_back(t * p);
     EXPECT_TRUE(fit_landmarks(a, b).isApprox(t, 1e-12));
+}
+
+// Writes `text` into a file of the test output folder and returns its path.
+std::string write_text(const std::string& name, const std::string& text) {
+    const auto path = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / name;
+    std::ofstream(path) << text;
+    return path.string();
+}
+
+TEST(ReadLandmarks, TurnsWrongTypesAndShapesIntoInputErrorsNamingFileAndPair) {
+    const std::string good = R"({"examined": [0, 0, 0], "reference": [1, 1, 1]})";
+    const std::vector<std::pair<std::string, std::string>> cases{
+        {R"({"pairs": [)" + good + R"(, {"examined": ["a", 0, 0], "reference": [1, 1, 1]}]})", "pair 2"},
+        {R"({"pairs": [)" + good + R"(, {"examined": [0, 0], "reference": [1, 1, 1]}]})", "pair 2"},
+        {R"({"pairs": [{"examined": [0, 0, 0], "reference": 5}]})", "pair 1"},
+        {R"({"pairs": [{"examined": [0, 0, 0]}]})", "pair 1"},
+        {R"({"pairs": [)" + good + R"(, 7]})", "pair 2"},
+        {R"({"pairs": [{"examined": {"view": {"azimuth": "east", "elevation": 0, "size": 64}, "pixel": [1, 2]},
+                        "reference": [0, 0, 0]}]})", "pair 1"},
+        {R"({"pairs": [{"examined": {"view": {"azimuth": 0, "elevation": 0, "size": 64}, "pixel": [1]},
+                        "reference": [0, 0, 0]}]})", "pair 1"},
+        {R"({"pairs": [{"examined": {"view": {"azimuth": 0, "elevation": 0}, "pixel": [1, 2]},
+                        "reference": [0, 0, 0]}]})", "pair 1"},
+        {R"({"pairs": {"examined": [0, 0, 0]}})", "pairs"},
+        {R"([1, 2, 3])", "pairs"},
+    };
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        const std::string path = write_text("landmarks_bad_" + std::to_string(i) + ".json", cases[i].first);
+        try {
+            (void)read_landmarks(path);
+            ADD_FAILURE() << "case " << i << " was accepted: " << cases[i].first;
+        } catch (const InputError& e) {
+            const std::string what = e.what();
+            EXPECT_NE(what.find(path), std::string::npos) << what;
+            EXPECT_NE(what.find(cases[i].second), std::string::npos) << what;
+        }
+    }
+    EXPECT_THROW((void)read_landmarks(write_text("missing_dir_is_not_this.json", "") + ".none"), IoError);
+}
+
+TEST(ReadLandmarks, ReadsPointsAndPickedPixels) {
+    const std::string path = write_text("landmarks_mixed.json", R"({"pairs": [
+        {"examined": [1, 2, 3], "reference": {"view": {"azimuth": 30, "elevation": -10, "size": 128, "footprint": 0.5},
+                                              "pixel": [64.5, 10.5]}},
+        {"examined": {"view": {"azimuth": 90, "elevation": 45, "size": 256}, "pixel": [1, 2]}, "reference": [4, 5, 6]}]})");
+    const auto pairs = read_landmarks(path);
+    ASSERT_EQ(pairs.size(), 2u);
+    ASSERT_TRUE(pairs[0].examined.point);
+    EXPECT_EQ(*pairs[0].examined.point, Vec3d(1, 2, 3));
+    EXPECT_FALSE(pairs[0].reference.point);
+    EXPECT_EQ(pairs[0].reference.view.azimuth_deg, 30);
+    EXPECT_EQ(pairs[0].reference.view.elevation_deg, -10);
+    EXPECT_EQ(pairs[0].reference.view.size, 128);
+    EXPECT_EQ(pairs[0].reference.view.footprint, 0.5);
+    EXPECT_EQ(pairs[0].reference.u, 64.5);
+    EXPECT_EQ(pairs[0].reference.v, 10.5);
+    EXPECT_FALSE(pairs[1].examined.point);
+    EXPECT_EQ(pairs[1].examined.view.footprint, 0.0);  // left out: frame the mesh
+    EXPECT_EQ(pairs[1].examined.view.size, 256);
+}
+
+TEST(RegistrationJson, RecordsTheRoiNumbersAndSourceFiles) {
+    RegistrationOptions o;
+    o.roi = parse_registration_roi("sphere:1,2,3,4.5");
+    o.initial = motion(10, {0, 0, 1}, {1, 0, 0});
+    const auto sphere = nlohmann::json::parse(to_json({}, o, {.init_file = "start.json"}))["options"];
+    EXPECT_EQ(sphere["roi"]["shape"], "sphere");
+    EXPECT_EQ(sphere["roi"]["center"], nlohmann::json::array({1.0, 2.0, 3.0}));
+    EXPECT_EQ(sphere["roi"]["radius"], 4.5);
+    EXPECT_EQ(sphere["init_file"], "start.json");
+    EXPECT_NEAR(sphere["initial"][0][3].get<double>(), 1.0, 1e-12);
+    o.roi = parse_registration_roi("box:-1,-2,-3,4,5,6");
+    const auto box = nlohmann::json::parse(to_json({}, o))["options"]["roi"];
+    EXPECT_EQ(box["min"], nlohmann::json::array({-1.0, -2.0, -3.0}));
+    EXPECT_EQ(box["max"], nlohmann::json::array({4.0, 5.0, 6.0}));
+    o.roi = {};
+    o.roi.shape = RegistrationRoi::Shape::VertexMask;
+    o.roi.vertex_mask = {1, 0, 1};
+    const auto mask = nlohmann::json::parse(
+        to_json({}, o, {.roi_mask_file = "stable.ply", .roi_mask_property = "bone", .landmarks_file = "lm.json"}))["options"];
+    EXPECT_EQ(mask["roi"]["file"], "stable.ply");
+    EXPECT_EQ(mask["roi"]["property"], "bone");
+    EXPECT_EQ(mask["roi"]["masked_vertices"], 2);
+    EXPECT_EQ(mask["landmarks_file"], "lm.json");
+}
+
+TEST(RegistrationJson, WritesTheTransformAndItsInverse) {
+    RegistrationResult r;
+    r.reference_from_examined = motion(33, {1, 2, -1}, {3, -4, 5});
+    r.examined_from_reference = r.reference_from_examined.inverse();
+    const auto j = nlohmann::json::parse(to_json(r, {}));
+    Eigen::Matrix4d a, b;
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 4; ++k) {
+            a(i, k) = j["reference_from_examined"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>();
+            b(i, k) = j["examined_from_reference"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>();
+        }
+    EXPECT_TRUE((a * b).isApprox(Eigen::Matrix4d::Identity(), 1e-12));
+    EXPECT_TRUE(a.isApprox(r.reference_from_examined.matrix(), 1e-15));
 }
 
 TEST(RegistrationOptions, RejectsBadValuesNamingTheField) {
