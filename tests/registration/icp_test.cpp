@@ -163,6 +163,25 @@ TEST_P(LandmarkStart, ConvergesWithThreeLandmarks) {
 
 INSTANTIATE_TEST_SUITE_P(Angles, LandmarkStart, ::testing::Values(120.0, 180.0));
 
+// A symmetric shape (a plain ellipsoid: its four principal-axis flips fit equally well) with a
+// small pit that is all that tells the flips apart, which the robust loss discounts. The fit
+// must keep the pose nearest the scan's own placement, not a flip that moves the pit to the
+// other side (it did before the tie rule: a 180° error).
+TEST(RegisterMeshes, KeepsTheNearestPoseOfASymmetricShape) {
+    const Mesh ref = make_phantom({.kind = PhantomKind::Ellipsoid, .scheme = TessellationScheme::Ico, .resolution = 5,
+                                   .radii = {12, 8, 6}});
+    Mesh exa = make_phantom({.kind = PhantomKind::Ellipsoid, .scheme = TessellationScheme::Uv, .resolution = 80,
+                             .radii = {12, 8, 6}});
+    apply_damage(exa, {DamageSpec{.kind = DamageKind::Pit, .center = {0, 8, 0}, .radius = 1.2, .depth = 0.4}});
+    const Rigid truth = motion(5.0, {3, -2, 4}, {0.3, -0.2, 0.1});
+    const RegistrationResult r = register_meshes(ref, moved(exa, truth.inverse()), {});
+    const Errors e = errors(r, truth);
+    EXPECT_TRUE(r.converged) << r.termination;
+    EXPECT_LT(e.rotation_deg, 0.01) << r.coarse;
+    EXPECT_LT(e.translation, 1e-3 * kSize);
+    EXPECT_NE(r.coarse.find("symmetric"), std::string::npos) << r.coarse;
+}
+
 TEST(RegisterMeshes, FitsOnTheStableHalfWhenTheOtherHalfIsDeformed) {
     const Mesh ref = blob(TessellationScheme::Ico, 5);
     Mesh deformed = ref;
