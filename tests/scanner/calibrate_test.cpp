@@ -46,11 +46,16 @@ TEST(Calibrate, OnlyDeformationsLargerThanTheReferentialOneAreFlagged) {
     ASSERT_GT(c.ladder.size(), 3u);
     EXPECT_GT(c.ladder.front().regions, 0u);
     std::printf("calibration footprint %.3f mm/px (threshold %.1f deg)\n", c.footprint, c.threshold_deg);
-    // A larger dent (3 mm / 0.5 mm) is flagged at the calibrated zoom, a smaller one
-    // (0.7 mm / 0.08 mm) is not.
-    EXPECT_GE(regions_at(dented(3.0, 0.5), c), 1u);
-    EXPECT_EQ(regions_at(dented(0.7, 0.08), c), 0u);
+    // Dents on either side of the referential one, scaled by 1.5 in radius and depth (the
+    // same shape, so the same slopes, over a larger or smaller footprint): the larger is
+    // flagged at the calibrated zoom, the smaller is not — though it is a real, visible
+    // deformation at the finest rung, so its absence is the calibration's doing.
+    EXPECT_GE(regions_at(dented(2.25, 0.3), c), 1u);
+    EXPECT_EQ(regions_at(dented(1.0, 0.133), c), 0u);
     EXPECT_EQ(regions_at(dented(1.5, 0.2), c), 0u);
+    Calibration finest = c;
+    finest.footprint = c.ladder.front().footprint;
+    EXPECT_GE(regions_at(dented(1.0, 0.133), finest), 1u);
 }
 
 TEST(Calibrate, RejectsBadLadders) {
