@@ -20,6 +20,9 @@ double seconds_since(Clock::time_point t0) {
 
 // Barycentric weights of the point where `ray` meets the plane of triangle t, clamped to the
 // triangle (the pixel centre may fall just outside the triangle its sub-sample hit).
+// cos_incidence is signed: positive when the triangle's front (its winding's normal, the side
+// its vertex normals point to) faces the camera. The back of a surface — an open mesh seen
+// from behind, or through a hole — is not an observation of it.
 bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<float, 3>& w,
                  double& cos_incidence) {
     const auto& tri = mesh.triangles[t];
@@ -30,7 +33,7 @@ bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<f
     const double area2 = n.norm();
     if (!(area2 > 0)) return false;
     const double denom = n.dot(ray.direction);
-    cos_incidence = std::abs(denom) / area2;
+    cos_incidence = -denom / area2;
     if (std::abs(denom) < 1e-12 * area2) return false;
     const double s = n.dot(a - ray.origin) / denom;
     const Vec3d p = ray.origin + s * ray.direction;

@@ -86,6 +86,52 @@ TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
     EXPECT_TRUE(z.regions.regions.empty());
 }
 
+/// The upper half of a sphere: an open dome, its rim a boundary.
+Mesh dome(const Mesh& sphere) {
+    Mesh d;
+    d.positions = sphere.positions;
+    d.normals = sphere.normals;
+    for (const auto& t : sphere.triangles) {
+        const float z = sphere.positions[t[0]].z() + sphere.positions[t[1]].z() + sphere.positions[t[2]].z();
+        if (z > 0.0f) d.triangles.push_back(t);
+    }
+    return d;
+}
+
+TEST(Sweep, TheHiddenSideOfAnOpenMeshIsReportedUnseen) {
+    // An open dome seen only from below: the views see the outside of its lower band and,
+    // through the opening, the inner (back) side of its top, which the coverage rule does not
+    // count as an observation of the surface. A dent on top must come out unseen, not
+    // undamaged (before the rule was signed, the back side counted as seen).
+    const Mesh sphere = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh ref = dome(sphere);
+    Mesh exa_sphere = sphere;
+    apply_damage(exa_sphere, {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 3, .depth = 0.5}});
+    const Mesh exa = dome(exa_sphere);
+    SweepOptions below = options_with(0.15);
+    below.plan.elevations_deg = {-60, -30};
+    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, below.plan), below);
+    const auto& z = r.zooms[0];
+    EXPECT_LT(z.coverage, 0.8);  // measured 0.72: the band below 60° from the top
+    std::size_t top_seen = 0, top = 0;
+    for (std::size_t v = 0; v < ref.vertex_count(); ++v) {
+        if (ref.positions[v].z() < 8.0f) continue;
+        ++top;
+        top_seen += z.seen[v];
+        EXPECT_EQ(z.regions.region_of_vertex[v], 0);
+    }
+    EXPECT_GT(top, 50u);
+    EXPECT_EQ(top_seen, 0u);
+    EXPECT_TRUE(z.regions.regions.empty());
+    // From above, the same dome is seen and the dent found.
+    SweepOptions above = options_with(0.15);
+    above.plan.elevations_deg = {30, 60, 90};
+    const SweepResult a = run_sweep(ref, exa, make_sweep_plan(ref, above.plan), above);
+    EXPECT_GT(a.zooms[0].coverage, 0.9);
+    ASSERT_EQ(a.zooms[0].regions.regions.size(), 1u);
+    EXPECT_EQ(a.zooms[0].regions.regions[0].kind, RegionKind::Dent);
+}
+
 TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
