@@ -109,8 +109,9 @@ Mesh make_atlas_mesh(const Mesh& reference, const SweepResult& result, const Rep
             region[v] = static_cast<float>(zr.regions.region_of_vertex[v]);
         }
         const auto k = zoom_suffix(z);
-        atlas.set_scalar("angle_max" + k, std::move(angle));
-        atlas.set_scalar("angle_mean" + k, std::move(mean));
+        const std::string metric = result.options.metric == Metric::RgbAbs ? "rgb" : "angle";
+        atlas.set_scalar(metric + "_max" + k, std::move(angle));
+        atlas.set_scalar(metric + "_mean" + k, std::move(mean));
         atlas.set_scalar("depth" + k, std::move(depth));
         atlas.set_scalar("count" + k, std::move(count));
         atlas.set_scalar("seen" + k, std::move(seen));
@@ -121,7 +122,8 @@ Mesh make_atlas_mesh(const Mesh& reference, const SweepResult& result, const Rep
         const auto& z0 = result.zooms[0];
         ColorScale scale;
         scale.high = std::max(2.0 * z0.threshold_deg, 1.0);
-        atlas.colors = colorize(atlas.find_scalar("angle_mean_z0")->values, scale);
+        atlas.colors = colorize(atlas.find_scalar((result.options.metric == Metric::RgbAbs ? "rgb" : "angle") +
+                                                  std::string("_mean_z0"))->values, scale);
     }
     return atlas;
 }
@@ -177,7 +179,9 @@ std::string sweep_report_json(const Mesh& reference, const SweepResult& result, 
                   {"margin", o.margin}, {"target", vec_json(plan.target)}, {"radius", plan.radius},
                   {"roi", o.roi ? json(to_string(*o.roi)) : json(nullptr)}, {"roi_vertices", plan.roi_vertices},
                   {"views", plan.views.size()}}},
-        {"analysis", {{"backend_requested", to_string(result.options.render.backend)},
+        {"analysis", {{"metric", to_string(result.options.metric)},
+                      {"metric_unit", result.options.metric == Metric::RgbAbs ? "8-bit colour (0-255)" : "degrees"},
+                      {"backend_requested", to_string(result.options.render.backend)},
                       {"device_requested", result.options.render.device},
                       {"supersample", result.options.render.supersample},
                       {"min_coverage", result.options.render.min_coverage},
@@ -275,9 +279,14 @@ ViewObserver SweepExporter::observer() {
             std::snprintf(az, sizeof az, "%.6g", v.azimuth_deg);
             std::snprintf(el, sizeof el, "%.6g", v.elevation_deg);
             std::snprintf(fp, sizeof fp, "%.6g", v.footprint);
+            std::vector<std::string> names{"angle_deg", "signed_depth", "silhouette"};
+            std::vector<const std::vector<float>*> channels{&dev.angle_deg, &dev.signed_depth, &sil};
+            if (!dev.rgb_abs.empty()) {  // the paper's metric, when the sweep uses it
+                names.emplace_back("rgb_abs");
+                channels.push_back(&dev.rgb_abs);
+            }
             write_exr_channels(impl.folder->file(fs::path("views") / (std::string(name) + ".exr")), dev.width,
-                               dev.height, {"angle_deg", "signed_depth", "silhouette"},
-                               {&dev.angle_deg, &dev.signed_depth, &sil},
+                               dev.height, names, channels,
                                {{"azimuth_deg", az}, {"elevation_deg", el}, {"footprint", fp},
                                 {"silhouette_codes", "0 same, 1 reference only, 2 examined only"}});
         }

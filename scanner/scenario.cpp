@@ -342,6 +342,10 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         if (auto v = r.optional<std::int64_t>("size", "an integer (pixels)")) so.plan.size = static_cast<int>(*v);
         if (auto v = r.optional<std::int64_t>("supersample", "an integer")) so.render.supersample = static_cast<int>(*v);
         if (auto v = r.positive("max_incidence")) so.max_incidence_deg = *v;
+        if (auto v = r.optional<std::string>("metric", "a string (angle or rgb)")) {
+            if (*v != "angle" && *v != "rgb") r.fail(r.get("metric"), "metric", "expected angle or rgb");
+            so.metric = parse_metric(*v);
+        }
         r.finish();
     }
     if (const auto* t = table("threshold", false)) {

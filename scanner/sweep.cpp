@@ -51,6 +51,14 @@ bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<f
 
 }  // namespace
 
+Metric parse_metric(const std::string& text) {
+    if (text == "angle") return Metric::AngleDeg;
+    if (text == "rgb") return Metric::RgbAbs;
+    throw InputError("metric \"" + text + "\": expected angle or rgb");
+}
+
+std::string to_string(Metric metric) { return metric == Metric::RgbAbs ? "rgb" : "angle"; }
+
 void SweepOptions::validate() const {
     plan.validate();
     render.validate();
@@ -60,7 +68,11 @@ void SweepOptions::validate() const {
         throw InputError(s.str());
     };
     if (!(max_incidence_deg > 0 && max_incidence_deg < 90)) bad("max incidence", max_incidence_deg, "must be in (0, 90) degrees");
-    if (threshold_deg && !(*threshold_deg > 0 && *threshold_deg <= 180)) bad("threshold", *threshold_deg, "must be in (0, 180] degrees");
+    if (metric == Metric::RgbAbs) {
+        if (threshold_deg && !(*threshold_deg > 0 && *threshold_deg <= 255)) bad("threshold", *threshold_deg, "must be in (0, 255] colour units (metric rgb)");
+    } else if (threshold_deg && !(*threshold_deg > 0 && *threshold_deg <= 180)) {
+        bad("threshold", *threshold_deg, "must be in (0, 180] degrees");
+    }
     if (!(noise_k > 0)) bad("noise k", noise_k, "must be > 0");
     if (!(min_threshold_deg >= 0)) bad("minimum threshold", min_threshold_deg, "must be ≥ 0 degrees");
     if (!(compare.min_coverage > 0 && compare.min_coverage <= 1)) bad("min coverage", compare.min_coverage, "must be in (0, 1]");
@@ -98,6 +110,11 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     std::vector<AtlasAccumulator> acc;
     for (double f : plan.footprints) acc.emplace_back(reference, f);
     const double min_cos = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0);
+    // The metric folded onto the surface (the atlas' "angle" fields carry it).
+    const bool use_rgb = options.metric == Metric::RgbAbs;
+    CompareOptions compare = options.compare;
+    compare.compute_rgb = compare.compute_rgb || use_rgb;
+    const float missing_value = use_rgb ? 255.0f : 90.0f;  // no examined surface behind the pixel
 
     std::vector<View> views;
     views.reserve(plan.views.size());
@@ -116,7 +133,8 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         const Frame exa_frame = exa_renderer.render(views[i]);
         render_s += seconds_since(t_view);
         const auto t_cmp = Clock::now();
-        const DeviationMap dev = compare_frames(frame_view(ref_frame), frame_view(exa_frame), options.compare);
+        const DeviationMap dev = compare_frames(frame_view(ref_frame), frame_view(exa_frame), compare);
+        const std::vector<float>& deviation = use_rgb ? dev.rgb_abs : dev.angle_deg;
 
         ViewSummary s;
         s.index = pv.index;
@@ -146,10 +164,10 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
                 if (cos_inc < min_cos) continue;
                 sample.cos_incidence = static_cast<float>(cos_inc);
                 if (dev.silhouette[px] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly)) {
-                    sample.angle_deg = 90.0f;
+                    sample.angle_deg = missing_value;
                     sample.signed_depth = std::numeric_limits<float>::quiet_NaN();
-                } else if (!std::isnan(dev.angle_deg[px])) {
-                    sample.angle_deg = dev.angle_deg[px];
+                } else if (!std::isnan(deviation[px])) {
+                    sample.angle_deg = deviation[px];
                     sample.signed_depth = dev.signed_depth[px];
                 } else {
                     sample.valid_deviation = false;
@@ -194,10 +212,10 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
             const double cos_inc = reference.normals[v].cast<double>().dot(to_camera);
             if (cos_inc < min_cos) continue;
             if (dev.silhouette[px] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly))
-                a.add_vertex(static_cast<std::uint32_t>(v), 90.0f, std::numeric_limits<float>::quiet_NaN(),
+                a.add_vertex(static_cast<std::uint32_t>(v), missing_value, std::numeric_limits<float>::quiet_NaN(),
                              static_cast<float>(cos_inc), pv.index);
-            else if (!std::isnan(dev.angle_deg[px]))
-                a.add_vertex(static_cast<std::uint32_t>(v), dev.angle_deg[px], dev.signed_depth[px],
+            else if (!std::isnan(deviation[px]))
+                a.add_vertex(static_cast<std::uint32_t>(v), deviation[px], dev.signed_depth[px],
                              static_cast<float>(cos_inc), pv.index);
         }
         result.views.push_back(s);

@@ -33,8 +33,21 @@
 
 namespace glint {
 
+/// The per-pixel deviation folded onto the surface and thresholded into regions.
+enum class Metric {
+    AngleDeg,  ///< angle between the reference and examined normals, degrees (primary)
+    RgbAbs,    ///< the paper's metric: mean |ΔR|,|ΔG|,|ΔB| of the 8-bit normal colours, 0…255
+};
+/// "angle" / "rgb". \throw InputError.
+[[nodiscard]] Metric parse_metric(const std::string& text);
+[[nodiscard]] std::string to_string(Metric metric);
+
 struct SweepOptions {
     SweepPlanOptions plan;
+    /// The deviation the atlas, the thresholds and the regions use. With RgbAbs every
+    /// "deg" field below (threshold, noise floor, region angles) is in 8-bit colour units, and
+    /// a reference pixel with no examined surface behind it counts 255 instead of 90°.
+    Metric metric = Metric::AngleDeg;
     RenderOptions render;          ///< backend, device, supersample (footprint averaging)
     CompareOptions compare;
     double max_incidence_deg = 75.0;     ///< coverage rule (see file comment)

@@ -41,6 +41,7 @@ struct SweepArgs {
     double min_threshold_deg = 2.0;
     double max_incidence = 75.0;
     std::string backend = "auto";
+    std::string metric = "angle";
     std::string device;
     bool no_views = false;
     bool no_exr = false;
@@ -79,6 +80,7 @@ void run(const SweepArgs& a) {
     options.noise_k = a.noise_k;
     options.min_threshold_deg = a.min_threshold_deg;
     options.max_incidence_deg = a.max_incidence;
+    options.metric = parse_metric(a.metric);
     if (!a.calibration.empty()) {
         // The calibrated zoom and threshold: only deformations larger than the referential
         // one show.
@@ -151,6 +153,10 @@ void setup(CLI::App& app) {
     cmd->add_option("--min-threshold-deg", a.min_threshold_deg, "Noise floor never below this")->capture_default_str();
     cmd->add_option("--max-incidence", a.max_incidence, "Coverage rule: max incidence angle, degrees")->capture_default_str();
     cmd->add_option("--backend", a.backend, "auto | vulkan | embree")->capture_default_str();
+    cmd->add_option("--metric", a.metric,
+                    "angle (degrees between normals) | rgb (the paper's 8-bit colour difference, 0-255; "
+                    "thresholds then in colour units)")
+        ->capture_default_str();
     cmd->add_option("--device", a.device, "Vulkan device name (substring)");
     cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");
     cmd->add_flag("--no-exr", a.no_exr, "Do not write per-view EXR files");

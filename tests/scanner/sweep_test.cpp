@@ -86,6 +86,29 @@ TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
     EXPECT_TRUE(z.regions.regions.empty());
 }
 
+TEST(Sweep, ThePapersRgbMetricFindsTheSameDent) {
+    const Mesh ref = condyle(TessellationScheme::Ico, 5);
+    Mesh exa = condyle(TessellationScheme::Uv, 64);
+    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+    const SweepOptions angle = options_with(0.12);
+    SweepOptions rgb = angle;
+    rgb.metric = Metric::RgbAbs;
+    const SweepResult a = run_sweep(ref, exa, make_sweep_plan(ref, angle.plan), angle);
+    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, rgb.plan), rgb);
+    ASSERT_EQ(a.zooms[0].regions.regions.size(), 1u);
+    ASSERT_EQ(r.zooms[0].regions.regions.size(), 1u);
+    const Region& ra = a.zooms[0].regions.regions[0];
+    const Region& rr = r.zooms[0].regions.regions[0];
+    EXPECT_EQ(rr.kind, RegionKind::Dent);
+    EXPECT_LT((ra.centroid - rr.centroid).norm(), 0.3);
+    // Colour units, not degrees: a 0.4 mm dent of 2.5 mm radius tilts normals by up to ~15°,
+    // which moves an 8-bit normal colour by tens of units.
+    EXPECT_GT(rr.max_angle_deg, ra.max_angle_deg);
+    EXPECT_LE(rr.max_angle_deg, 255.0);
+    // Area agrees within a factor of 1.5 (the two thresholds are each the run's noise floor).
+    EXPECT_LT(std::max(ra.area, rr.area) / std::min(ra.area, rr.area), 1.5);
+}
+
 /// The upper half of a sphere: an open dome, its rim a boundary.
 Mesh dome(const Mesh& sphere) {
     Mesh d;
