@@ -119,6 +119,24 @@ VkDebugUtilsMessengerCreateInfoEXT messenger_info(MessageLog* log) {
     return info;
 }
 
+/// Keeps the drivers that the loader found loaded for the rest of the process: one plain
+/// instance, created once after the first instance succeeded and never destroyed.
+/// note: the loader unloads a driver when its last instance goes and loads it again at the
+/// next vkCreateInstance; NVIDIA's driver (580, H100) stopped loading after ~50 such cycles in
+/// one process (vkCreateInstance → VK_ERROR_INCOMPATIBLE_DRIVER), which a batch run of
+/// scenarios (two renderers each) reaches. With the anchor the cycles are reference counts.
+void keep_drivers_loaded(const VkApplicationInfo& app) {
+    static std::once_flag once;
+    std::call_once(once, [&] {
+        VkInstanceCreateInfo info{};
+        info.sType = VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO;
+        info.pApplicationInfo = &app;
+        VkInstance anchor = VK_NULL_HANDLE;
+        // An anchor that cannot be made changes nothing: each renderer still has its own.
+        (void)vkCreateInstance(&info, nullptr, &anchor);
+    });
+}
+
 /// Owns a VkInstance (and the debug messenger when validation is on).
 class Instance {
 public:
@@ -171,6 +189,7 @@ public:
                               "): no Vulkan driver found; check the ICD (VK_ICD_FILENAMES, "
                               "mesa-vulkan-drivers for lavapipe) or use --backend embree");
         }
+        keep_drivers_loaded(app);
         if (validation) {
             auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
                 vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -240,22 +241,38 @@ TEST(VulkanDevice, UnknownDeviceNameThrowsDeviceErrorListingDevices) {
     }
 }
 
+/// Sets an environment variable for a scope (unset when `value` is null), restoring it after.
+class ScopedEnv {
+public:
+    ScopedEnv(const char* name, const char* value) : name_(name) {
+        if (const char* old = std::getenv(name)) saved_ = old;
+        if (value != nullptr) ::setenv(name, value, 1);
+        else ::unsetenv(name);
+    }
+    ~ScopedEnv() {
+        if (saved_) ::setenv(name_.c_str(), saved_->c_str(), 1);
+        else ::unsetenv(name_.c_str());
+    }
+    ScopedEnv(const ScopedEnv&) = delete;
+    ScopedEnv& operator=(const ScopedEnv&) = delete;
+
+private:
+    std::string name_;
+    std::optional<std::string> saved_;
+};
+
 TEST(VulkanDevice, NoDriverThrowsDeviceError) {
-    // The loader reads VK_ICD_FILENAMES at every instance creation.
-    const char* old = std::getenv("VK_ICD_FILENAMES");
-    const std::string saved = old != nullptr ? old : "";
-    ::setenv("VK_ICD_FILENAMES", "/nonexistent/icd.json", 1);
+    // The loader reads these at every instance creation; newer loaders let VK_DRIVER_FILES
+    // override VK_ICD_FILENAMES, and VK_ADD_DRIVER_FILES adds drivers back: point all at nothing.
+    const ScopedEnv icd("VK_ICD_FILENAMES", "/nonexistent/icd.json");
+    const ScopedEnv driver("VK_DRIVER_FILES", "/nonexistent/icd.json");
+    const ScopedEnv added("VK_ADD_DRIVER_FILES", nullptr);
     const Mesh mesh = make_icosphere(1);
     EXPECT_THROW(Renderer(mesh, RenderOptions{.backend = Backend::Vulkan}), DeviceError);
     EXPECT_THROW((void)list_devices(), DeviceError);
     // Auto falls back to Embree and says why.
     Renderer fallback(mesh, RenderOptions{.backend = Backend::Auto});
     EXPECT_EQ(fallback.info().backend, Backend::Embree);
-    if (old != nullptr) {
-        ::setenv("VK_ICD_FILENAMES", saved.c_str(), 1);
-    } else {
-        ::unsetenv("VK_ICD_FILENAMES");
-    }
 }
 
 TEST(VulkanDevice, ValidationAndSyncValidationStaySilentOverAStream) {
