@@ -50,15 +50,16 @@ struct SweepArgs {
 };
 
 void print_summary(const SweepResult& r, const fs::path& out) {
+    const char* unit = r.options.metric == Metric::RgbAbs ? " (rgb)" : "°";
     for (std::size_t z = 0; z < r.zooms.size(); ++z) {
         const auto& zr = r.zooms[z];
-        std::printf("zoom %zu: footprint %.4g/px (%d px), coverage %.1f%%, threshold %.2f° (%s), %zu region(s)\n", z,
-                    r.plan.footprints[z], r.plan.sizes[z], 100.0 * zr.coverage, zr.threshold_deg,
+        std::printf("zoom %zu: footprint %.4g/px (%d px), coverage %.1f%%, threshold %.2f%s (%s), %zu region(s)\n", z,
+                    r.plan.footprints[z], r.plan.sizes[z], 100.0 * zr.coverage, zr.threshold_deg, unit,
                     zr.threshold_rule == "given" ? "given" : "noise floor", zr.regions.regions.size());
         for (const auto& g : zr.regions.regions)
-            std::printf("  region %d: %s, area %.4g, max %.2f°, mean %.2f°, max depth %+.4g, centroid (%.3f, %.3f, %.3f)\n",
-                        g.id, to_string(g.kind).c_str(), g.area, g.max_angle_deg, g.mean_angle_deg, g.max_depth,
-                        g.centroid.x(), g.centroid.y(), g.centroid.z());
+            std::printf("  region %d: %s, area %.4g, max %.2f%s, mean %.2f%s, max depth %+.4g, centroid (%.3f, %.3f, %.3f)\n",
+                        g.id, to_string(g.kind).c_str(), g.area, g.max_angle_deg, unit, g.mean_angle_deg, unit,
+                        g.max_depth, g.centroid.x(), g.centroid.y(), g.centroid.z());
     }
     std::printf("%zu views in %.1f s (%s on %s); atlas, views, mosaics and report in %s\n", r.views.size(),
                 r.total_seconds, to_string(r.renderer.backend).c_str(), r.renderer.device_name.c_str(),
