@@ -150,6 +150,24 @@ std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t, cons
     return pairs;
 }
 
+/// Residuals within 3σ: how many, and their RMS (0 when none).
+struct InlierStats {
+    std::size_t inliers = 0;
+    double rms = 0.0;
+};
+
+InlierStats inlier_stats(const std::vector<double>& residuals, double sigma) {
+    InlierStats st;
+    double ss = 0.0;
+    for (double r : residuals)
+        if (std::abs(r) <= 3.0 * sigma) {
+            ++st.inliers;
+            ss += r * r;
+        }
+    st.rms = st.inliers ? std::sqrt(ss / static_cast<double>(st.inliers)) : 0.0;
+    return st;
+}
+
 struct Evidence {
     double rms = 0.0;
     double inlier_fraction = 0.0;
@@ -182,16 +200,9 @@ Evidence evaluate(const std::vector<Sample>& samples, const Rigid& t, const Clos
     Evidence e;
     if (candidates == 0 || residuals.empty()) return e;
     e.overlap = static_cast<double>(residuals.size()) / static_cast<double>(candidates);
-    const double sigma = 1.4826 * median_abs(residuals);
-    std::size_t inliers = 0;
-    double ss = 0.0;
-    for (double r : residuals)
-        if (std::abs(r) <= 3.0 * sigma) {
-            ++inliers;
-            ss += r * r;
-        }
-    e.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(residuals.size());
-    e.rms = inliers ? std::sqrt(ss / static_cast<double>(inliers)) : 0.0;
+    const InlierStats st = inlier_stats(residuals, 1.4826 * median_abs(residuals));
+    e.inlier_fraction = static_cast<double>(st.inliers) / static_cast<double>(residuals.size());
+    e.rms = st.rms;
     return e;
 }
 
@@ -268,14 +279,7 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         IcpIteration log;
         log.iteration = it + 1;
         log.cost = summary.final_cost;
-        std::size_t inliers = 0;
-        double ss = 0.0;
-        for (double r : residuals)
-            if (std::abs(r) <= 3.0 * sigma) {
-                ++inliers;
-                ss += r * r;
-            }
-        log.rms = inliers ? std::sqrt(ss / static_cast<double>(inliers)) : 0.0;
+        log.rms = inlier_stats(residuals, sigma).rms;
         log.loss_scale = o.loss == RobustLoss::None ? 0.0 : scale;
         log.overlap = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
         log.rotation_step_deg = rotation_angle_deg(step);
