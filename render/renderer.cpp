@@ -125,7 +125,7 @@ Renderer::Renderer(const Mesh& mesh, const RenderOptions& options) : options_(op
     if (options_.backend == Backend::Auto) info_.warnings.push_back(reason);
     if (options_.cull_back_faces) {
         // Culling is only correct for a closed surface: an open one would lose its back side
-        // (seen through a hole or from behind). Refused silently never: said in warnings.
+        // (seen through a hole or from behind). It is turned off, and the warnings say so.
         const ValidationReport report = validate_mesh(mesh, "renderer");
         if (!report.is_closed) {
             options_.cull_back_faces = false;

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <sstream>
 
 namespace glint {
 
@@ -153,11 +154,14 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
     }
     if (e.min_region_shape_change) {
         for (const auto& r : z0.regions.regions) {
-            if (std::abs(r.max_distance) < *e.min_region_shape_change)
-                fail("region " + std::to_string(r.id) + " at (" + fmt("%.1f, %.1f", r.centroid.x(), r.centroid.y()) +
-                     fmt(", %.1f): largest surface distance %.3g", r.centroid.z(), std::abs(r.max_distance)) +
-                     fmt(", expected at least %.3g (a region with no shape change behind it)%.0s",
-                         *e.min_region_shape_change, 0.0));
+            if (std::abs(r.max_distance) < *e.min_region_shape_change) {
+                std::ostringstream m;
+                m << "region " << r.id << " at (" << r.centroid.x() << ", " << r.centroid.y() << ", "
+                  << r.centroid.z() << "): largest surface distance " << std::abs(r.max_distance)
+                  << ", expected at least " << *e.min_region_shape_change
+                  << " (a region with no shape change behind it)";
+                fail(m.str());
+            }
         }
     }
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
