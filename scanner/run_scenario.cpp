@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 namespace glint {
@@ -156,8 +157,8 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
         for (const auto& r : z0.regions.regions) {
             if (std::abs(r.max_distance) < *e.min_region_shape_change) {
                 std::ostringstream m;
-                m << "region " << r.id << " at (" << r.centroid.x() << ", " << r.centroid.y() << ", "
-                  << r.centroid.z() << "): largest surface distance " << std::abs(r.max_distance)
+                m << std::fixed << std::setprecision(2) << "region " << r.id << " at (" << r.centroid.x() << ", " << r.centroid.y() << ", "
+                  << r.centroid.z() << "): largest surface distance " << std::setprecision(3) << std::abs(r.max_distance)
                   << ", expected at least " << *e.min_region_shape_change
                   << " (a region with no shape change behind it)";
                 fail(m.str());
