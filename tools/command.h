@@ -32,16 +32,10 @@ struct CheckFailed : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// Thrown at the next progress step once SIGINT or SIGTERM arrived: the run unwinds, staged
-/// outputs are removed, and glint exits 130 with nothing half-written.
-struct Interrupted : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-/// Installs the SIGINT / SIGTERM handlers (a second signal ends the process at once).
+/// Installs the SIGINT / SIGTERM handlers: the first signal requests cancellation
+/// (mesh/cancel.h: library loops throw Cancelled at their next safe point, the run unwinds,
+/// staged outputs are removed and glint exits 130); a second one ends the process at once.
 void install_interrupt_handlers();
-/// \throw Interrupted when a signal arrived since install_interrupt_handlers().
-void throw_if_interrupted();
 
 using CommandSetup = std::function<void(CLI::App& app)>;
 

@@ -1,4 +1,5 @@
 // glint: damage detection on 3D surfaces by light-reflection analysis.
+#include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "tools/command.h"
 
@@ -20,10 +21,8 @@ GlobalFlags& global_flags() {
 }
 
 namespace {
-volatile std::sig_atomic_t g_signal = 0;
-
 extern "C" void on_signal(int signal) {
-    g_signal = signal;
+    glint::request_cancel(signal);
     std::signal(signal, SIG_DFL);  // a second one ends the process at once
 }
 
@@ -40,13 +39,6 @@ CommandRegistrar::CommandRegistrar(int order, CommandSetup setup) {
 void install_interrupt_handlers() {
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-}
-
-void throw_if_interrupted() {
-    if (g_signal != 0) {
-        throw Interrupted(std::string(g_signal == SIGINT ? "SIGINT" : "SIGTERM") +
-                          " received: stopped, staged outputs removed, nothing half-written left");
-    }
 }
 
 void add_registered_commands(CLI::App& app) {
@@ -78,7 +70,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         const int code = app.exit(e);
         return code == 0 ? kExitOk : kExitBadInput;
-    } catch (const Interrupted& e) {
+    } catch (const glint::Cancelled& e) {
         std::cerr << "glint: interrupted: " << e.what() << '\n';
         return kExitInterrupted;
     } catch (const CheckFailed& e) {

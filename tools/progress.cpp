@@ -1,5 +1,6 @@
 #include "tools/progress.h"
 
+#include "mesh/cancel.h"
 #include "tools/command.h"
 
 #include <algorithm>
@@ -20,7 +21,7 @@ ProgressBar::~ProgressBar() {
 }
 
 void ProgressBar::update(std::size_t done) {
-    throw_if_interrupted();
+    throw_if_cancelled();
     if (!enabled_) return;
     done = std::min(done, total_);
     const auto now = std::chrono::steady_clock::now();
