@@ -3,15 +3,11 @@
 // Counter peak_rss_mib: the process's peak resident memory so far (includes the meshes).
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
-#include "scanner/fit.h"
-#include "scanner/output_folder.h"
-#include "scanner/report.h"
-#include "scanner/sweep.h"
+#include "scanner/analysis.h"
 
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
-#include <chrono>
 #include <filesystem>
 #include <map>
 #include <numbers>
@@ -38,39 +34,25 @@ void BM_Sweep(benchmark::State& state) {
     truth.translation() = Vec3d(0.48, 0, 0);
     transform_mesh(examined, truth.inverse());
 
-    SweepOptions options;
-    options.plan.azimuth_step_deg = 30.0;
-    options.plan.elevations_deg = {-75, -45, -15, 15, 45, 75};  // 12 × 6 = 72 views
-    options.plan.size = 512;
-    options.render.supersample = 1;
+    AnalysisOptions options;
+    options.fit.mode = FitMode::Register;
+    options.sweep.plan.azimuth_step_deg = 30.0;
+    options.sweep.plan.elevations_deg = {-75, -45, -15, 15, 45, 75};  // 12 × 6 = 72 views
+    options.sweep.plan.size = 512;
+    options.sweep.render.supersample = 1;
+    options.exports.output = std::filesystem::temp_directory_path() / "glint_bench_sweep";
+    options.exports.write_views = options.exports.write_exr = false;
     std::size_t regions = 0;
-    using Clock = std::chrono::steady_clock;
-    const auto since = [](Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); };
-    double fit_s = 0, distance_s = 0, render_s = 0, compare_s = 0, export_s = 0;
+    double fit_s = 0, distance_s = 0, render_s = 0, compare_s = 0, decision_s = 0, export_s = 0;
     for (auto _ : state) {
-        auto t0 = Clock::now();
-        const FitOutcome fit = fit_examined(reference, examined, {.mode = FitRequest::Mode::Register});
-        fit_s += since(t0);
-        Mesh fitted = examined;
-        transform_mesh(fitted, fit.reference_from_examined);
-        t0 = Clock::now();
-        const std::vector<float> distance = signed_distances(reference, fitted);
-        distance_s += since(t0);
-        const SweepPlan plan = make_sweep_plan(reference, options.plan);
-        OutputFolder folder(std::filesystem::temp_directory_path() / "glint_bench_sweep");
-        SweepExporter exporter(folder, plan, {.write_views = false, .write_exr = false});
-        const SweepResult result = run_sweep(reference, fitted, plan, options, exporter.observer(), distance);
-        render_s += result.render_seconds;
-        compare_s += result.compare_seconds;
-        t0 = Clock::now();
-        exporter.finish();
-        ReportContext context;
-        context.distance = distance;
-        context.fit_json = fit.json;
-        write_sweep_outputs(folder, reference, result, context);
-        folder.commit();
-        export_s += since(t0);
-        regions = result.zooms[0].regions.regions.size();
+        const AnalysisResult result = analyse(reference, examined, options);
+        fit_s += result.fit_seconds;
+        distance_s += result.distance_seconds;
+        render_s += result.sweep.render_seconds;
+        compare_s += result.sweep.compare_seconds;
+        decision_s += result.decision_seconds;
+        export_s += result.export_seconds;
+        regions = result.decisions[0].regions.regions.size();
     }
     const auto per_run = [&](double total) { return total / static_cast<double>(state.iterations()); };
     // Where the time goes (seconds per run): the anchor (Open3D) covers fit + distance.
@@ -78,6 +60,7 @@ void BM_Sweep(benchmark::State& state) {
     state.counters["distance_s"] = per_run(distance_s);
     state.counters["render_s"] = per_run(render_s);
     state.counters["compare_atlas_s"] = per_run(compare_s);
+    state.counters["decision_s"] = per_run(decision_s);
     state.counters["export_s"] = per_run(export_s);
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);

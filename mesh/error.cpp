@@ -1,6 +1,30 @@
 #include "mesh/error.h"
 
+#include <sstream>
 #include <string>
+
+namespace glint {
+
+namespace {
+std::string number_text(double value) {
+    std::ostringstream s;
+    s.precision(10);
+    s << value;
+    return s.str();
+}
+}  // namespace
+
+OptionError::OptionError(std::string key, double value, const std::string& rule)
+    : OptionError(std::move(key), number_text(value), rule) {}
+
+OptionError OptionError::prefixed(const std::string& section) const {
+    const std::string full = section + "." + key_;
+    const std::string message = what();
+    // The message starts with the key: put the prefix there too.
+    return OptionError(Whole{}, full, message.rfind(key_, 0) == 0 ? section + "." + message : message);
+}
+
+}  // namespace glint
 
 namespace glint::detail {
 

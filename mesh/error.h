@@ -22,6 +22,24 @@ public:
     using Error::Error;
 };
 
+/// An invalid option: an InputError that also names the option by its key as scenario files
+/// write it ("sweep.size", "registration.loss"), so a scenario loader can point at the line
+/// that set it. Message: "<key> = <value>: <rule>".
+class OptionError : public InputError {
+public:
+    OptionError(std::string key, const std::string& value, const std::string& rule)
+        : InputError(key + " = " + value + ": " + rule), key_(std::move(key)) {}
+    OptionError(std::string key, double value, const std::string& rule);
+    /// The same error under a section prefix: "size" → "sweep.size".
+    [[nodiscard]] OptionError prefixed(const std::string& section) const;
+    [[nodiscard]] const std::string& key() const noexcept { return key_; }
+
+private:
+    struct Whole {};  // the message is already complete
+    OptionError(Whole, std::string key, const std::string& message) : InputError(message), key_(std::move(key)) {}
+    std::string key_;
+};
+
 /// A read or write failed (missing file, unwritable folder, short write). Exit code 3.
 class IoError : public Error {
 public:

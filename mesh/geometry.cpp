@@ -36,21 +36,26 @@ Ray Camera::pixel_ray(double u, double v) const {
     return {world_from_camera * origin_cam, world_from_camera.linear() * dir_cam};
 }
 
-Eigen::Vector3d Camera::project(const Vec3d& world) const {
-    const Vec3d c = world_from_camera.inverse() * world;
+Eigen::Vector3d Camera::project(const Vec3d& world) const { return Projector(*this)(world); }
+
+Projector::Projector(const Camera& c)
+    : camera_from_world_(c.world_from_camera.inverse()),
+      orthographic_(c.projection == Projection::Orthographic),
+      width_(c.width),
+      height_(c.height) {
+    const double aspect = static_cast<double>(c.width) / c.height;
+    half_height_ = orthographic_ ? c.ortho_half_height : std::tan(0.5 * c.fov_y_rad);
+    half_width_ = half_height_ * aspect;
+}
+
+Eigen::Vector3d Projector::operator()(const Vec3d& world) const {
+    const Vec3d c = camera_from_world_ * world;
     const double depth = -c.z();
-    const double aspect = static_cast<double>(width) / height;
-    double x_ndc = 0.0;
-    double y_ndc = 0.0;
-    if (projection == Projection::Orthographic) {
-        x_ndc = c.x() / (ortho_half_height * aspect);
-        y_ndc = c.y() / ortho_half_height;
-    } else {
-        const double t = std::tan(0.5 * fov_y_rad);
-        x_ndc = c.x() / (depth * t * aspect);
-        y_ndc = c.y() / (depth * t);
-    }
-    return {0.5 * (x_ndc + 1.0) * width, 0.5 * (1.0 - y_ndc) * height, depth};
+    // Perspective: the image plane's half extent grows with depth.
+    const double scale = orthographic_ ? 1.0 : depth;
+    const double x_ndc = c.x() / (half_width_ * scale);
+    const double y_ndc = c.y() / (half_height_ * scale);
+    return {0.5 * (x_ndc + 1.0) * width_, 0.5 * (1.0 - y_ndc) * height_, depth};
 }
 
 double Camera::footprint_at(double depth) const {

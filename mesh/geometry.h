@@ -62,6 +62,23 @@ struct Camera {
     [[nodiscard]] Eigen::Matrix4d clip_from_world() const;
 };
 
+/// Camera::project for many points: the camera's inverse pose and scales computed once.
+class Projector {
+public:
+    explicit Projector(const Camera& camera);
+    /// Pixel coordinates (u, v) of a world point and its depth along the view axis, as
+    /// Camera::project.
+    [[nodiscard]] Eigen::Vector3d operator()(const Vec3d& world) const;
+
+private:
+    Rigid camera_from_world_;
+    bool orthographic_;
+    double half_width_;   ///< orthographic: world half width; perspective: tan(fov/2)·aspect
+    double half_height_;  ///< orthographic: world half height; perspective: tan(fov/2)
+    double width_;
+    double height_;
+};
+
 /// Camera frame looking from `eye` at `target`, `up` roughly up (must not be parallel to the
 /// viewing direction; a fallback axis is used when it is).
 [[nodiscard]] Rigid look_at(const Vec3d& eye, const Vec3d& target, const Vec3d& up);

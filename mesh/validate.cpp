@@ -1,5 +1,6 @@
 #include "mesh/validate.h"
 
+#include "mesh/components.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -12,14 +13,6 @@ namespace glint {
 namespace {
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t v) {
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]];  // path halving
-        v = parent[v];
-    }
-    return v;
-}
 
 }  // namespace
 
@@ -57,23 +50,19 @@ void check_mesh(const Mesh& mesh, const std::string& source) {
 
 std::size_t connected_components(const Mesh& mesh, std::vector<std::uint32_t>& component_of_vertex) {
     const std::size_t n = mesh.positions.size();
-    std::vector<std::uint32_t> parent(n);
-    std::iota(parent.begin(), parent.end(), 0u);
+    UnionFind sets(n);
     std::vector<bool> used(n, false);
     for (const auto& tri : mesh.triangles) {
         used[tri[0]] = used[tri[1]] = used[tri[2]] = true;
-        const auto r0 = find_root(parent, tri[0]);
-        for (int k = 1; k < 3; ++k) {
-            const auto rk = find_root(parent, tri[static_cast<std::size_t>(k)]);
-            if (rk != r0) parent[rk] = r0;
-        }
+        sets.unite(tri[1], tri[0]);
+        sets.unite(tri[2], tri[0]);
     }
     component_of_vertex.assign(n, 0xFFFFFFFFu);
     std::vector<std::uint32_t> id_of_root(n, 0xFFFFFFFFu);
     std::uint32_t count = 0;
     for (std::size_t v = 0; v < n; ++v) {
         if (!used[v]) continue;
-        const auto r = find_root(parent, static_cast<std::uint32_t>(v));
+        const auto r = sets.find(static_cast<std::uint32_t>(v));
         if (id_of_root[r] == 0xFFFFFFFFu) id_of_root[r] = count++;
         component_of_vertex[v] = id_of_root[r];
     }

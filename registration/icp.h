@@ -8,12 +8,15 @@
 //                     rejected; samples are drawn area-uniformly on the examined mesh
 //                     (Chen & Medioni 1992 point-to-plane; robust M-estimation as in
 //                     Open3D's RobustKernel).
+// Coarse alignment lives in registration/coarse.h, landmarks in registration/landmarks.h,
+// fit.json reading and writing in registration/fit_io.h.
 // Damage must not pull the fit: a robust loss down-weights the damaged area, an ROI can
 // restrict the fit to a stable region.
 #pragma once
 
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
+#include "mesh/roi.h"
 
 #include <optional>
 #include <string>
@@ -26,20 +29,6 @@ enum class RobustLoss { None, Huber, Cauchy, Tukey };
 /// "none" / "huber" / "cauchy" / "tukey". \throw InputError.
 [[nodiscard]] RobustLoss parse_loss(const std::string& text);
 [[nodiscard]] std::string to_string(RobustLoss loss);
-
-/// Region of the reference used for the fit.
-struct RegistrationRoi {
-    enum class Shape { None, Sphere, Box, VertexMask } shape = Shape::None;
-    Vec3d center{0, 0, 0};
-    double radius = 0.0;
-    Vec3d min{0, 0, 0};
-    Vec3d max{0, 0, 0};
-    std::vector<std::uint8_t> vertex_mask;  ///< per reference vertex (VertexMask)
-    [[nodiscard]] bool contains(const Vec3d& p) const;
-};
-
-/// "sphere:x,y,z,r" / "box:x0,y0,z0,x1,y1,z1". \throw InputError.
-[[nodiscard]] RegistrationRoi parse_registration_roi(const std::string& text);
 
 struct RegistrationOptions {
     RobustLoss loss = RobustLoss::Cauchy;
@@ -72,7 +61,9 @@ struct RegistrationOptions {
     double overlap_distance = 0.01;
     bool coarse = true;             ///< try principal-axis hypotheses first (not with landmarks/init)
     bool symmetric = false;         ///< also pull reference samples onto the examined mesh
-    RegistrationRoi roi;
+    /// Fit only on this region of the reference (a stable region, mesh/roi.h); a vertex
+    /// mask must already be read (Roi::needs_mask() false). Empty: the whole surface.
+    std::optional<Roi> roi;
     std::optional<Rigid> initial;   ///< start from this reference_from_examined
     std::uint32_t seed = 1;         ///< sampling is deterministic for a seed
 
@@ -113,55 +104,5 @@ struct RegistrationResult {
 /// error. \throw InputError invalid options, an ROI with no reference surface inside.
 [[nodiscard]] RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
                                                  const RegistrationOptions& options = {});
-
-/// Closed-form rigid fit of point pairs (Umeyama 1991, Eigen::umeyama, no scaling):
-/// reference ≈ T · examined. \throw InputError fewer than 3 pairs, collinear points.
-[[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>& reference);
-
-/// A view of one mesh as `glint pick` frames it (an orthographic view around the mesh's
-/// bounding sphere; registration/ does not frame views, scanner/landmarks.h resolves them).
-struct LandmarkView {
-    double azimuth_deg = 0.0;
-    double elevation_deg = 0.0;
-    int size = 256;           ///< image width = height, pixels
-    double footprint = 0.0;   ///< mesh units per pixel; 0 = frame the whole mesh
-};
-
-/// One side of a landmark pair: a 3D point, or a pixel (centres at +0.5) picked in a view.
-struct LandmarkSide {
-    std::optional<Vec3d> point;   ///< set for a 3D point; empty for a picked pixel
-    LandmarkView view;
-    double u = 0.0;
-    double v = 0.0;
-};
-
-struct LandmarkPair {
-    LandmarkSide examined;
-    LandmarkSide reference;
-};
-
-/// Reads landmark pairs: JSON {"pairs": [{"examined": SIDE, "reference": SIDE}, …]} where a
-/// SIDE is [x, y, z] or {"view": {"azimuth": A, "elevation": E, "size": N, "footprint": F
-/// (optional)}, "pixel": [u, v]}.
-/// \throw IoError cannot open; InputError naming the file, the pair and the side for a
-/// wrong type or shape.
-[[nodiscard]] std::vector<LandmarkPair> read_landmarks(const std::string& path);
-
-/// Where options came from, recorded in fit.json so that a fit can be reproduced.
-struct RegistrationSources {
-    std::string roi_mask_file;      ///< PLY whose per-vertex values gave the vertex mask
-    std::string roi_mask_property;  ///< "label" or the scalar's name
-    std::string init_file;          ///< fit.json the initial pose was read from
-    std::string landmarks_file;     ///< landmarks JSON the initial pose was fitted to
-};
-
-/// The result as JSON text (fit.json): matrices, evidence, per-iteration log, and the options
-/// (ROI numbers, source files) that reproduce it.
-[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options,
-                                  const RegistrationSources& sources = {});
-
-/// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).
-/// \throw IoError, InputError naming the file and what is missing.
-[[nodiscard]] Rigid read_fit(const std::string& path);
 
 }  // namespace glint

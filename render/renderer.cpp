@@ -33,22 +33,12 @@ std::string to_string(Backend backend) {
 void RenderOptions::validate() const {
     // note: 8×8 = 64 sub-samples per pixel is far beyond any useful footprint averaging and
     // keeps the s× target within device limits for the image sizes glint uses.
-    if (supersample < 1 || supersample > 8) {
-        throw InputError("render options: supersample = " + std::to_string(supersample) +
-                         ", expected 1..8");
-    }
-    if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) {
-        throw InputError("render options: min_coverage = " + std::to_string(min_coverage) +
-                         ", expected 0..1");
-    }
-    if (!device.empty() && backend == Backend::Embree) {
-        throw InputError("render options: device = \"" + device +
-                         "\" names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
-    }
-    if (threads < 0) {
-        throw InputError("render options: threads = " + std::to_string(threads) +
-                         ", expected ≥ 0 (0 = all cores)");
-    }
+    if (supersample < 1 || supersample > 8) throw OptionError("supersample", supersample, "expected 1..8");
+    if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) throw OptionError("min_coverage", min_coverage, "expected 0..1");
+    if (!device.empty() && backend == Backend::Embree)
+        throw OptionError("device", "\"" + device + "\"",
+                          "names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
+    if (threads < 0) throw OptionError("threads", threads, "expected ≥ 0 (0 = all cores)");
 }
 
 namespace {

@@ -24,30 +24,31 @@ void CalibrationOptions::validate() const {
     if (!(step > 1.05)) bad("step", step, "must be > 1.05");
 }
 
-Calibration calibrate(const Mesh& reference, const Mesh& examined, SweepOptions sweep,
+Calibration calibrate(const Mesh& reference, const Mesh& examined, AnalysisOptions analysis,
                       const CalibrationOptions& options, const std::string& referential) {
     options.validate();
     // The ladder, fine to coarse, framed as the sweep frames the mesh.
-    SweepPlanOptions probe = sweep.plan;
+    SweepPlanOptions probe = analysis.sweep.plan;
     probe.footprints.clear();
+    if (probe.roi && probe.roi->needs_mask()) read_roi_mask(*probe.roi, reference.vertex_count());
     const double radius = make_sweep_plan(reference, probe).radius;
     const double finest = options.finest > 0 ? options.finest : radius / 256.0;
     const double coarsest = options.coarsest > 0 ? options.coarsest : radius / 3.0;
     std::vector<double> ladder;
     for (double f = finest; f <= coarsest * 1.0001; f *= options.step) ladder.push_back(f);
-    sweep.plan.footprints = ladder;
-    sweep.threshold_deg = options.threshold_deg;
-    const SweepPlan plan = make_sweep_plan(reference, sweep.plan);
-    const SweepResult result = run_sweep(reference, examined, plan, sweep);
+    analysis.sweep.plan.footprints = ladder;
+    analysis.decision.threshold = options.threshold_deg;
+    analysis.exports = {};
+    const AnalysisResult result = analyse(reference, examined, analysis);
 
     Calibration c;
     c.threshold_deg = options.threshold_deg;
     c.referential = referential;
-    for (std::size_t z = 0; z < result.zooms.size(); ++z) {
-        const auto& zr = result.zooms[z];
-        CalibrationRung rung{plan.footprints[z], zr.regions.regions.size(), 0.0};
-        for (std::size_t v = 0; v < zr.seen.size(); ++v)
-            if (zr.seen[v]) rung.max_angle_deg = std::max(rung.max_angle_deg, double(zr.atlas.angle_mean_deg[v]));
+    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+        const auto& zoom = result.sweep.zooms[z];
+        CalibrationRung rung{result.sweep.plan.footprints[z], result.decisions[z].regions.regions.size(), 0.0};
+        for (std::size_t v = 0; v < zoom.coverage.seen.size(); ++v)
+            if (zoom.coverage.seen[v]) rung.max_angle_deg = std::max(rung.max_angle_deg, double(zoom.atlas.value_mean[v]));
         c.ladder.push_back(rung);
     }
     // The finest rung from which the deformation stays hidden at every coarser rung.

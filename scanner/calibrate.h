@@ -7,7 +7,7 @@
 #pragma once
 
 #include "mesh/mesh.h"
-#include "scanner/sweep.h"
+#include "scanner/analysis.h"
 
 #include <filesystem>
 #include <string>
@@ -37,9 +37,10 @@ struct Calibration {
     std::vector<CalibrationRung> ladder;
 };
 
-/// Sweeps the referential case (examined already fitted) at every rung of the ladder in one
-/// run. \throw InputError invalid options.
-[[nodiscard]] Calibration calibrate(const Mesh& reference, const Mesh& examined, SweepOptions sweep,
+/// Analyses the referential case (fitted as `analysis.fit` says) at every rung of the
+/// ladder in one sweep, with the calibration's threshold given. \throw InputError invalid
+/// options; the analysis' errors.
+[[nodiscard]] Calibration calibrate(const Mesh& reference, const Mesh& examined, AnalysisOptions analysis,
                                     const CalibrationOptions& options, const std::string& referential);
 
 [[nodiscard]] std::string to_json(const Calibration& calibration);

@@ -2,9 +2,6 @@
 
 #include "mesh/error.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,22 +14,14 @@ namespace {
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 bool covered(const FrameView& f, std::size_t i, float min_coverage) {
-    return f.primitive[i] != kNoPrimitiveId && f.coverage[i] >= min_coverage;
-}
-
-// The 8-bit normal colour image (rgb = 0.5·n + 0.5, quantised as the paper saved it).
-OIIO::ImageBuf paper_colours(const FrameView& f) {
-    OIIO::ImageBuf buf(OIIO::ImageSpec(f.width, f.height, 3, OIIO::TypeDesc::UINT8));
-    std::vector<std::uint8_t> px(f.normal.size());
-    for (std::size_t i = 0; i < px.size(); ++i) {
-        const float n = std::isfinite(f.normal[i]) ? f.normal[i] : 0.0f;
-        px[i] = static_cast<std::uint8_t>(std::lround(std::clamp(0.5f * n + 0.5f, 0.0f, 1.0f) * 255.0f));
-    }
-    buf.set_pixels(OIIO::ROI(0, f.width, 0, f.height, 0, 1, 0, 3), OIIO::TypeDesc::UINT8, px.data());
-    return buf;
+    return f.primitive[i] != kNoPrimitive && f.coverage[i] >= min_coverage;
 }
 
 }  // namespace
+
+FrameView frame_view(const Frame& f) {
+    return {f.width, f.height, f.normal, f.primitive_id, f.depth, f.coverage};
+}
 
 DeviationMap compare_frames(const FrameView& ref, const FrameView& exa, const CompareOptions& options) {
     if (ref.width != exa.width || ref.height != exa.height)
@@ -49,8 +38,8 @@ DeviationMap compare_frames(const FrameView& ref, const FrameView& exa, const Co
     d.silhouette.assign(n, static_cast<std::uint8_t>(Silhouette::Same));
     double sum = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
-        const bool in_ref = ref.primitive[i] != kNoPrimitiveId && ref.coverage[i] > 0.0f;
-        const bool in_exa = exa.primitive[i] != kNoPrimitiveId && exa.coverage[i] > 0.0f;
+        const bool in_ref = ref.primitive[i] != kNoPrimitive && ref.coverage[i] > 0.0f;
+        const bool in_exa = exa.primitive[i] != kNoPrimitive && exa.coverage[i] > 0.0f;
         if (in_ref != in_exa) {
             // note: a pixel half covered in one frame and empty in the other is an edge
             // shift of less than a pixel, not a silhouette change; only fully covered count.
@@ -83,15 +72,6 @@ DeviationMap compare_frames(const FrameView& ref, const FrameView& exa, const Co
     }
     d.mean_angle_deg = d.compared ? sum / static_cast<double>(d.compared) : 0.0;
 
-    if (options.compute_rgb) {
-        const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(paper_colours(ref), paper_colours(exa));
-        if (diff.has_error()) throw IoError("RGB difference: " + diff.geterror());
-        std::vector<float> px(3 * n);
-        diff.get_pixels(OIIO::ROI(0, ref.width, 0, ref.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, px.data());
-        d.rgb_abs.assign(n, kNaN);
-        for (std::size_t i = 0; i < n; ++i)
-            if (!std::isnan(d.angle_deg[i])) d.rgb_abs[i] = 255.0f * (px[3 * i] + px[3 * i + 1] + px[3 * i + 2]) / 3.0f;
-    }
     return d;
 }
 

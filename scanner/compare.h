@@ -5,10 +5,11 @@
 //   signed_depth = reference depth − examined depth along the ray: the examined surface
 //                  lies farther from the camera (inward, a dent or loss) → negative;
 //                  nearer (outward, a bump or growth) → positive;
-//   rgb_abs      = the paper's metric: mean over R,G,B of |c_ref − c_exa| on the 8-bit
-//                  normal colours (0…255), computed with ImageBufAlgo::absdiff.
+// The metric a sweep folds onto the surface (scanner/metric.h) fills DeviationMap::value.
 // Silhouette change: pixels covered in one frame only.
 #pragma once
+
+#include "render/frame.h"
 
 #include <cstdint>
 #include <span>
@@ -22,12 +23,10 @@ struct FrameView {
     int width = 0;
     int height = 0;
     std::span<const float> normal;               ///< 3 floats per pixel, unit where covered
-    std::span<const std::uint32_t> primitive;    ///< triangle id, kNoPrimitiveId where none
+    std::span<const std::uint32_t> primitive;    ///< triangle id, kNoPrimitive where none
     std::span<const float> depth;                ///< linear depth, mesh units
     std::span<const float> coverage;             ///< 0…1 share of the pixel's sub-samples hit
 };
-
-inline constexpr std::uint32_t kNoPrimitiveId = 0xFFFFFFFFu;
 
 enum class Silhouette : std::uint8_t { Same = 0, ReferenceOnly = 1, ExaminedOnly = 2 };
 
@@ -35,7 +34,6 @@ struct CompareOptions {
     /// A pixel counts as covered when at least this share of its sub-samples hit the surface;
     /// partly covered edge pixels average surface with background and are not compared.
     float min_coverage = 0.999f;
-    bool compute_rgb = false;  ///< also the paper's RGB difference
 };
 
 struct DeviationMap {
@@ -43,7 +41,7 @@ struct DeviationMap {
     int height = 0;
     std::vector<float> angle_deg;       ///< NaN where not compared
     std::vector<float> signed_depth;    ///< NaN where not compared
-    std::vector<float> rgb_abs;         ///< empty unless requested; NaN where not compared
+    std::vector<float> value;           ///< the sweep's metric (scanner/metric.h); NaN where not compared
     std::vector<std::uint8_t> silhouette;  ///< Silhouette per pixel
     std::size_t compared = 0;
     std::size_t reference_only = 0;
@@ -52,7 +50,11 @@ struct DeviationMap {
     double mean_angle_deg = 0.0;
 };
 
-/// Compares two frames of the same size. \throw InputError when sizes differ.
+/// Read-only view of a rendered frame.
+[[nodiscard]] FrameView frame_view(const Frame& frame);
+
+/// Compares two frames of the same size (angle, signed depth, silhouette; `value` is left
+/// empty: see scanner/metric.h). \throw InputError when sizes differ.
 [[nodiscard]] DeviationMap compare_frames(const FrameView& reference, const FrameView& examined,
                                           const CompareOptions& options = {});
 

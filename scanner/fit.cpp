@@ -2,47 +2,129 @@
 
 #include "mesh/error.h"
 #include "registration/closest_point.h"
-#include "registration/icp.h"
+#include "registration/fit_io.h"
+#include "registration/landmarks.h"
+#include "scanner/landmarks.h"
+
+#include <algorithm>
 
 namespace glint {
 
-FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitRequest& request) {
+namespace {
+
+// The starting pose from landmark pairs (points kept, picked pixels resolved).
+Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::filesystem::path& file) {
+    const std::vector<LandmarkPair> pairs = read_landmarks(file.string());
+    const std::string source = "landmarks \"" + file.string() + "\"";
+    // Indexes only when some side is a picked pixel (building one costs a BVH).
+    const bool has_pixels = std::any_of(pairs.begin(), pairs.end(),
+                                        [](const LandmarkPair& p) { return !p.examined.point || !p.reference.point; });
+    ResolvedLandmarks points;
+    if (has_pixels) {
+        points = resolve_landmarks(pairs, ClosestPointIndex(reference), ClosestPointIndex(examined), source);
+    } else {
+        for (const auto& p : pairs) {
+            points.examined.push_back(*p.examined.point);
+            points.reference.push_back(*p.reference.point);
+        }
+    }
+    try {
+        return fit_landmarks(points.examined, points.reference);
+    } catch (const InputError& e) {
+        throw InputError(source + ": " + e.what());
+    }
+}
+
+FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+    RegistrationOptions o = options.registration;
+    RegistrationSources sources;
+    if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
+    if (!options.init_file.empty()) {
+        o.initial = read_fit(options.init_file.string());
+        sources.init_file = options.init_file.string();
+    }
+    if (!options.landmarks_file.empty()) {
+        o.initial = landmark_start(reference, examined, options.landmarks_file);
+        sources.landmarks_file = options.landmarks_file.string();
+    }
     FitOutcome out;
-    switch (request.mode) {
-        case FitRequest::Mode::Identity:
-            out.mode = "identity";
+    out.mode = FitMode::Register;
+    const RegistrationResult r = register_meshes(reference, examined, o);
+    out.reference_from_examined = r.reference_from_examined;
+    out.converged = r.converged;
+    out.json = to_json(r, o, sources);
+    out.registration = r;
+    if (!r.converged) out.warnings.push_back("registration did not converge: " + r.termination_detail);
+    return out;
+}
+
+}  // namespace
+
+FitMode parse_fit_mode(const std::string& text) {
+    if (text == "identity") return FitMode::Identity;
+    if (text == "file") return FitMode::File;
+    if (text == "register") return FitMode::Register;
+    if (text == "truth") return FitMode::Truth;
+    throw InputError("fit mode \"" + text + "\": expected register, identity, truth or file");
+}
+
+std::string to_string(FitMode mode) {
+    switch (mode) {
+        case FitMode::Identity: return "identity";
+        case FitMode::File: return "file";
+        case FitMode::Register: return "register";
+        case FitMode::Truth: return "truth";
+    }
+    return "?";
+}
+
+void FitOptions::validate() const {
+    try {
+        registration.validate();
+    } catch (const OptionError& e) {
+        throw e.prefixed("registration");
+    }
+    if (mode == FitMode::File && fit_file.empty())
+        throw OptionError("registration.mode", "file", "needs a fit file (--fit FILE)");
+    if (mode != FitMode::File && !fit_file.empty())
+        throw OptionError("registration.fit", "\"" + fit_file.string() + "\"",
+                          "a fit file is given but the fit mode is " + to_string(mode));
+    // note: both would set the starting pose; composing them (landmarks picked on an
+    // already-moved mesh?) has no single obvious meaning, so the user must choose.
+    if (!landmarks_file.empty() && !init_file.empty())
+        throw OptionError("registration.landmarks", "\"" + landmarks_file.string() + "\"",
+                          "landmarks and an initial pose \"" + init_file.string() +
+                              "\" both set the starting pose: give one of them");
+    if ((!landmarks_file.empty() || !init_file.empty()) && mode != FitMode::Register)
+        throw OptionError("registration.mode", to_string(mode),
+                          "landmarks and an initial pose start a registration (mode register, --register)");
+}
+
+FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+    options.validate();
+    FitOutcome out;
+    out.mode = options.mode;
+    switch (options.mode) {
+        case FitMode::Identity:
             out.json = R"({"mode": "identity", "note": "the meshes were taken as already aligned"})";
             out.warnings.push_back("no fit requested (--fit or --register): the meshes are taken as already aligned");
-            break;
-        case FitRequest::Mode::Truth: {
-            out.mode = "truth";
-            out.reference_from_examined = request.truth;
+            return out;
+        case FitMode::Truth: {
+            out.reference_from_examined = options.truth;
             RegistrationResult r;
-            r.reference_from_examined = request.truth;
-            r.examined_from_reference = request.truth.inverse();
+            r.reference_from_examined = options.truth;
+            r.examined_from_reference = options.truth.inverse();
             r.converged = true;
             r.termination = "known transform (scenario ground truth)";
-            out.json = to_json(r, RegistrationOptions{});
-            break;
+            out.json = to_json(r, options.registration);
+            out.registration = r;
+            return out;
         }
-        case FitRequest::Mode::File:
-            out.mode = "file";
-            out.reference_from_examined = read_fit(request.fit_file.string());
-            out.json = R"({"mode": "file", "path": ")" + request.fit_file.string() + "\"}";
-            break;
-        case FitRequest::Mode::Register: {
-            out.mode = "register";
-            RegistrationOptions o;
-            o.loss = parse_loss(request.loss);
-            o.symmetric = request.symmetric;
-            if (!request.roi.empty()) o.roi = parse_registration_roi(request.roi);
-            const RegistrationResult r = register_meshes(reference, examined, o);
-            out.reference_from_examined = r.reference_from_examined;
-            out.converged = r.converged;
-            out.json = to_json(r, o);
-            if (!r.converged) out.warnings.push_back("registration did not converge: " + r.termination_detail);
-            break;
-        }
+        case FitMode::File:
+            out.reference_from_examined = read_fit(options.fit_file.string());
+            out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
+            return out;
+        case FitMode::Register: return register_examined(reference, examined, options);
     }
     return out;
 }

@@ -1,46 +1,60 @@
-// Fitting the examined mesh into the reference frame before a sweep, and the per-vertex
-// signed distance channel of the atlas. Wraps registration/ so that the command line and the
-// scenario runner ask for a fit the same way.
+// Fitting the examined mesh into the reference frame, and the per-vertex signed distance
+// (shape evidence). One entry point for the command line (sweep, register, calibrate) and
+// scenarios: typed options in, the transform and its evidence out.
 #pragma once
 
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
+#include "registration/icp.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace glint {
 
-struct FitRequest {
-    enum class Mode {
-        Identity,  ///< the meshes are already in one frame
-        File,      ///< a fit.json written by `glint register` (or any JSON with a 4×4
-                   ///< "reference_from_examined" matrix)
-        Register,  ///< run the robust registration (coarse + ICP)
-        Truth,     ///< a known transform (scenarios with a synthetic pose)
-    } mode = Mode::Identity;
-    std::filesystem::path fit_file;
-    std::string loss = "cauchy";   ///< robust loss: cauchy | huber | tukey | none
-    std::string roi;               ///< restrict the fit to a stable region (sphere:/box:)
-    bool symmetric = false;
-    Rigid truth = Rigid::Identity();
+enum class FitMode {
+    Identity,  ///< the meshes are already in one frame
+    File,      ///< a fit.json written by `glint register` (any JSON with a 4×4
+               ///< "reference_from_examined" matrix)
+    Register,  ///< the robust registration (coarse or landmarks/init start, then ICP)
+    Truth,     ///< a known transform (scenarios with a synthetic pose)
+};
+/// "identity" / "file" / "register" / "truth". \throw InputError.
+[[nodiscard]] FitMode parse_fit_mode(const std::string& text);
+[[nodiscard]] std::string to_string(FitMode mode);
+
+struct FitOptions {
+    FitMode mode = FitMode::Identity;
+    std::filesystem::path fit_file;        ///< File
+    /// Register: loss, samples, iterations, symmetric, coarse, ROI (a mask ROI is read by
+    /// fit_examined from its file), seed, … (registration/icp.h).
+    RegistrationOptions registration;
+    std::filesystem::path landmarks_file;  ///< Register: start from landmark pairs (JSON)
+    std::filesystem::path init_file;       ///< Register: start from this fit.json
+    Rigid truth = Rigid::Identity();       ///< Truth
+
+    /// Checks the options without reading any file. \throw InputError naming the field.
+    void validate() const;
 };
 
 struct FitOutcome {
     Rigid reference_from_examined = Rigid::Identity();
-    std::string mode;            ///< "identity", "file", "register", "truth"
-    std::string json;            ///< the fit's evidence as JSON text (for report.json)
+    FitMode mode = FitMode::Identity;
+    std::optional<RegistrationResult> registration;  ///< Register (and Truth, as a stub)
+    std::string json;            ///< the fit's evidence as JSON text (fit.json / report.json)
     bool converged = true;
     std::vector<std::string> warnings;
 };
 
-/// \throw InputError bad fit file / options; the registration's own errors.
-[[nodiscard]] FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitRequest& request);
+/// Fits `examined` onto `reference`: reads the fit file, the landmarks (resolving picked
+/// pixels) or the initial pose, and a mask ROI, then registers.
+/// \throw InputError bad options or files (naming them); the registration's own errors.
+[[nodiscard]] FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options);
 
-/// Per reference vertex: signed distance to the (fitted) examined surface along the robust
-/// pseudo-normal sign convention, negated so that negative = the examined surface lies inside
-/// the reference (loss, dent) and positive = outside (growth, bump).
+/// Per reference vertex: signed distance to the (fitted) examined surface, negative where the
+/// examined surface lies inside the reference (loss, dent), positive outside (gain, bump).
 [[nodiscard]] std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_examined);
 
 }  // namespace glint

@@ -6,7 +6,7 @@
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
 #include "registration/closest_point.h"
-#include "registration/icp.h"
+#include "registration/landmarks.h"
 #include "render/view.h"
 
 #include <string>

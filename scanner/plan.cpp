@@ -10,74 +10,21 @@
 
 namespace glint {
 
-namespace {
-
-std::vector<double> parse_numbers(const std::string& text, const std::string& what) {
-    return parse_number_list(text, what);
-}
-
-}  // namespace
-
-bool RoiSpec::contains(const Vec3d& p) const {
-    if (shape == Shape::Sphere) return (p - center).norm() <= radius;
-    return (p.array() >= min.array()).all() && (p.array() <= max.array()).all();
-}
-
-RoiSpec parse_roi(const std::string& text) {
-    const auto colon = text.find(':');
-    const std::string kind = text.substr(0, colon);
-    const std::string where = "ROI '" + text + "'";
-    if (colon == std::string::npos)
-        throw InputError(where + ": expected 'sphere:x,y,z,r' or 'box:x0,y0,z0,x1,y1,z1'");
-    const auto v = parse_numbers(text.substr(colon + 1), where);
-    RoiSpec roi;
-    if (kind == "sphere") {
-        if (v.size() != 4) throw InputError(where + ": sphere needs 4 numbers x,y,z,r, found " + std::to_string(v.size()));
-        roi.shape = RoiSpec::Shape::Sphere;
-        roi.center = {v[0], v[1], v[2]};
-        roi.radius = v[3];
-        if (!(roi.radius > 0)) throw InputError(where + ": radius must be > 0");
-    } else if (kind == "box") {
-        if (v.size() != 6) throw InputError(where + ": box needs 6 numbers, found " + std::to_string(v.size()));
-        roi.shape = RoiSpec::Shape::Box;
-        roi.min = {v[0], v[1], v[2]};
-        roi.max = {v[3], v[4], v[5]};
-        if ((roi.max.array() <= roi.min.array()).any()) throw InputError(where + ": box max must exceed min on every axis");
-    } else {
-        throw InputError(where + ": unknown shape '" + kind + "', expected sphere or box");
-    }
-    return roi;
-}
-
-std::string to_string(const RoiSpec& roi) {
-    std::ostringstream s;
-    s.precision(10);
-    if (roi.shape == RoiSpec::Shape::Sphere)
-        s << "sphere:" << roi.center.x() << ',' << roi.center.y() << ',' << roi.center.z() << ',' << roi.radius;
-    else
-        s << "box:" << roi.min.x() << ',' << roi.min.y() << ',' << roi.min.z() << ',' << roi.max.x() << ','
-          << roi.max.y() << ',' << roi.max.z();
-    return s.str();
-}
-
 void SweepPlanOptions::validate() const {
-    auto bad = [](const std::string& field, double value, const std::string& rule) {
-        std::ostringstream s;
-        s << "sweep plan: " << field << " = " << value << ": " << rule;
-        throw InputError(s.str());
-    };
     if (kind == Kind::Rotary) {
-        if (!(azimuth_step_deg > 0 && azimuth_step_deg <= 360)) bad("azimuth step", azimuth_step_deg, "must be in (0, 360]");
-        if (elevations_deg.empty()) throw InputError("sweep plan: no elevation rings: the plan would be empty");
+        if (!(azimuth_step_deg > 0 && azimuth_step_deg <= 360))
+            throw OptionError("azimuth_step", azimuth_step_deg, "must be in (0, 360] degrees");
+        if (elevations_deg.empty())
+            throw OptionError("elevations", "[]", "no elevation rings: the plan would be empty");
         for (double e : elevations_deg)
-            if (!(e >= -90 && e <= 90)) bad("elevation", e, "must be in [-90, 90]");
+            if (!(e >= -90 && e <= 90)) throw OptionError("elevations", e, "each elevation must be in [-90, 90] degrees");
     } else if (sphere_views < 1) {
-        bad("sphere views", sphere_views, "must be ≥ 1");
+        throw OptionError("plan", "sphere:" + std::to_string(sphere_views), "needs N ≥ 1 views");
     }
     for (double f : footprints)
-        if (!(f > 0) || !std::isfinite(f)) bad("zoom footprint", f, "must be > 0 mesh units per pixel");
-    if (size < 8 || size > max_size) bad("size", size, "must be in [8, max size " + std::to_string(max_size) + "]");
-    if (!(margin >= 1.0)) bad("margin", margin, "must be ≥ 1");
+        if (!(f > 0) || !std::isfinite(f)) throw OptionError("zoom", f, "each zoom footprint must be > 0 mesh units per pixel");
+    if (size < 8 || size > max_size) throw OptionError("size", size, "must be in [8, " + std::to_string(max_size) + "] pixels");
+    if (!(margin >= 1.0)) throw OptionError("margin", margin, "must be ≥ 1");
 }
 
 void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {
@@ -87,7 +34,7 @@ void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {
     }
     if (text.rfind("sphere:", 0) == 0) {
         options.kind = SweepPlanOptions::Kind::Sphere;
-        const auto v = parse_numbers(text.substr(7), "plan '" + text + "'");
+        const auto v = parse_number_list(text.substr(7), "plan '" + text + "'");
         if (v.size() != 1 || v[0] < 1 || v[0] != std::floor(v[0]))
             throw InputError("plan '" + text + "': expected sphere:N with N a positive integer");
         options.sphere_views = static_cast<int>(v[0]);
@@ -104,8 +51,12 @@ SweepPlan make_sweep_plan(const Mesh& reference, const SweepPlanOptions& options
     // Framed sphere: all vertices, or the ROI's vertices.
     std::vector<std::uint32_t> framed;
     if (options.roi) {
+        if (options.roi->shape == Roi::Shape::VertexMask && options.roi->vertex_mask.size() != reference.vertex_count())
+            throw InputError("ROI " + to_string(*options.roi) + ": the mask has " +
+                             std::to_string(options.roi->vertex_mask.size()) + " entries, the reference has " +
+                             std::to_string(reference.vertex_count()) + " vertices");
         for (std::size_t v = 0; v < reference.vertex_count(); ++v)
-            if (options.roi->contains(reference.positions[v].cast<double>())) framed.push_back(static_cast<std::uint32_t>(v));
+            if (options.roi->contains(v, reference.positions[v].cast<double>())) framed.push_back(static_cast<std::uint32_t>(v));
         if (framed.empty())
             throw InputError("ROI " + to_string(*options.roi) + " contains no vertex of the reference mesh");
         plan.roi_vertices = framed.size();
@@ -121,7 +72,11 @@ SweepPlan make_sweep_plan(const Mesh& reference, const SweepPlanOptions& options
     if (!(r > 0) && options.roi) {
         // A single vertex in the ROI: frame the ROI shape itself.
         const auto& roi = *options.roi;
-        r = roi.shape == RoiSpec::Shape::Sphere ? roi.radius : 0.5 * (roi.max - roi.min).norm();
+        // note: a mask of one vertex has no extent of its own; 1% of the mesh's size frames
+        // its neighbourhood.
+        r = roi.shape == Roi::Shape::Sphere ? roi.radius
+            : roi.shape == Roi::Shape::Box  ? 0.5 * (roi.max - roi.min).norm()
+                                            : 0.01 * bounds(reference).diagonal();
     }
     if (!(r > 0)) throw InputError("sweep plan: the framed part of the mesh has zero extent");
     plan.radius = r * options.margin;
@@ -197,15 +152,15 @@ SweepPlan make_sweep_plan(const Mesh& reference, const SweepPlanOptions& options
     for (std::size_t z = 0; z < plan.footprints.size(); ++z) {
         for (const auto& d : dirs) {
             PlannedView v;
-            v.index = index++;
-            v.azimuth_deg = d.az;
-            v.elevation_deg = d.el;
-            v.zoom_index = static_cast<int>(z);
-            v.footprint = plan.footprints[z];
+            v.view.index = index++;
+            v.view.azimuth_deg = d.az;
+            v.view.elevation_deg = d.el;
+            v.view.zoom_index = static_cast<int>(z);
+            v.view.footprint = plan.footprints[z];
             v.ring = d.ring;
             v.step = d.step;
             const Vec3d dir = direction_from_az_el(d.az, d.el);
-            Camera& cam = v.camera;
+            Camera& cam = v.view.camera;
             cam.projection = Projection::Orthographic;
             cam.world_from_camera = look_at(plan.target + 3.0 * plan.radius * dir, plan.target, Vec3d::UnitZ());
             cam.width = cam.height = plan.sizes[z];

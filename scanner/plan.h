@@ -14,26 +14,14 @@
 
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
+#include "mesh/roi.h"
+#include "render/view.h"
 
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace glint {
-
-/// A region of interest in reference coordinates: a sphere or an axis-aligned box.
-struct RoiSpec {
-    enum class Shape { Sphere, Box } shape = Shape::Sphere;
-    Vec3d center{0, 0, 0};   ///< sphere
-    double radius = 0.0;     ///< sphere
-    Vec3d min{0, 0, 0};      ///< box
-    Vec3d max{0, 0, 0};      ///< box
-    [[nodiscard]] bool contains(const Vec3d& p) const;
-};
-
-/// Parses "sphere:x,y,z,r" or "box:x0,y0,z0,x1,y1,z1". \throw InputError.
-[[nodiscard]] RoiSpec parse_roi(const std::string& text);
-[[nodiscard]] std::string to_string(const RoiSpec& roi);
 
 struct SweepPlanOptions {
     enum class Kind { Rotary, Sphere } kind = Kind::Rotary;
@@ -46,7 +34,8 @@ struct SweepPlanOptions {
     int size = 256;            ///< image size (square) of the level framing the whole sphere
     int max_size = 4096;       ///< larger images are refused (choose an ROI or a coarser zoom)
     double margin = 1.05;      ///< framed radius = margin × bounding radius
-    std::optional<RoiSpec> roi;
+    /// Analyse only this part of the reference (mesh/roi.h); a vertex mask must be read.
+    std::optional<Roi> roi;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -54,14 +43,9 @@ struct SweepPlanOptions {
 
 /// One view of the plan.
 struct PlannedView {
-    int index = 0;
-    double azimuth_deg = 0.0;
-    double elevation_deg = 0.0;
-    int zoom_index = 0;
-    double footprint = 0.0;    ///< mesh units per pixel
+    View view;                 ///< camera, azimuth / elevation, footprint, zoom and view index
     int ring = 0;              ///< rotary: elevation ring index (mosaic row); sphere: 0
     int step = 0;              ///< rotary: azimuth step (mosaic column); sphere: the view id
-    Camera camera;
 };
 
 struct SweepPlan {

@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/write.h"
+#include "scanner/coverage.h"
 #include "scanner/images.h"
 
 #include <nlohmann/json.hpp>
@@ -31,41 +32,103 @@ json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::string zoom_suffix(std::size_t z) { return "_z" + std::to_string(z); }
 
-json region_json(const Region& r, const SweepPlan& plan) {
+json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m) {
+    const std::string u = "_" + std::string(m.unit);
     json j = {{"id", r.id},
               {"kind", to_string(r.kind)},
               {"vertices", r.vertex_count},
               {"area", r.area},
-              {"max_angle_deg", r.max_angle_deg},
-              {"mean_angle_deg", r.mean_angle_deg},
-              {"max_depth", number(r.max_depth)},
-              {"max_distance", number(r.max_distance)},
+              {"max" + u, r.max_value},
+              {"mean" + u, r.mean_value},
+              {"peak_depth", number(r.peak_depth)},
+              {"mean_depth", number(r.mean_depth)},
+              {"volume", number(r.volume)},
+              {"missing_fraction", r.missing_fraction},
               {"centroid", vec_json(r.centroid)},
+              {"evidence", r.evidence},
               {"best_view", r.best_view}};
     if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {
-        const auto& v = plan.views[static_cast<std::size_t>(r.best_view)];
+        const auto& v = plan.views[static_cast<std::size_t>(r.best_view)].view;
         j["best_view_azimuth_deg"] = v.azimuth_deg;
         j["best_view_elevation_deg"] = v.elevation_deg;
     }
     return j;
 }
 
-// Unseen vertices grouped into patches (connected over the mesh), largest first.
-json unseen_json(const Mesh& reference, const ZoomResult& z) {
-    const std::size_t n = reference.vertex_count();
-    std::vector<float> unseen(n);
-    std::vector<std::uint8_t> all(n, 1);
-    for (std::size_t v = 0; v < n; ++v) unseen[v] = z.seen[v] ? 0.0f : 1.0f;
-    const RegionResult patches = find_regions(reference, {&unseen, nullptr, nullptr, nullptr, &all},
-                                              RegionOptions{.threshold_deg = 0.5, .min_vertices = 1, .fill_holes = false});
+json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& plan) {
+    const UnseenSummary u = unseen_patches(reference, z.coverage.seen, plan.options.roi);
     json list = json::array();
-    double area = 0.0;
-    for (const auto& p : patches.regions) {
-        area += p.area;
-        if (list.size() < 50) list.push_back({{"vertices", p.vertex_count}, {"area", p.area}, {"centroid", vec_json(p.centroid)}});
+    for (const auto& p : u.patches) {
+        if (list.size() >= 50) break;
+        list.push_back({{"vertices", p.vertices}, {"area", p.area}, {"centroid", vec_json(p.centroid)}});
     }
-    return {{"vertices", patches.damaged_vertices}, {"area", area}, {"patches", patches.regions.size()},
-            {"largest_patches", list}};
+    return {{"vertices", u.vertices}, {"area", u.area}, {"patches", u.patches.size()}, {"largest_patches", list}};
+}
+
+json floor_json(const Floor& f) {
+    return {{"value", f.value}, {"median", f.median}, {"mad", f.mad}, {"k", f.k}, {"minimum", f.minimum},
+            {"given", f.given}, {"implausible", f.implausible}, {"rule", f.rule}, {"note", f.note}};
+}
+
+json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
+    const auto& plan = result.sweep.plan;
+    const auto& sz = result.sweep.zooms[z];
+    const auto& d = result.decisions[z];
+    const MetricDescriptor& m = describe(result.sweep.options.metric);
+    const std::string u = "_" + std::string(m.unit);
+    json regions = json::array();
+    for (const auto& r : d.regions.regions) regions.push_back(region_json(r, plan, m));
+    json j = {{"zoom", z},
+              {"footprint", plan.footprints[z]},
+              {"image_size", plan.sizes[z]},
+              {"coverage", sz.coverage.fraction},
+              {"unseen", unseen_json(reference, sz, plan)},
+              {"rule", to_string(d.rule)},
+              {"rule_text", d.rule_text},
+              {"threshold" + u, d.normal.value},
+              {"normal_floor", floor_json(d.normal)},
+              {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
+              {"damaged_vertices", d.regions.damaged_vertices},
+              {"filled_vertices", d.regions.filled_vertices},
+              {"dropped_small_groups", d.regions.dropped_small},
+              {"regions", regions},
+              {"histogram", {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
+                             {"bin_width", m.histogram_bin}, {"unit", std::string(m.unit)},
+                             {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
+                             {"counts", d.histogram}}},
+              {"warnings", d.warnings}};
+    return j;
+}
+
+json inputs_json(const std::vector<InputRecord>& inputs) {
+    json list = json::array();
+    for (const auto& in : inputs) {
+        json j = {{"role", in.role}, {"vertices", in.vertices}, {"triangles", in.triangles}};
+        if (!in.path.empty()) {
+            j["path"] = in.path.string();
+            j["sha256"] = sha256_file(in.path);
+        }
+        if (!in.description.empty()) j["description"] = in.description;
+        list.push_back(j);
+    }
+    return list;
+}
+
+json plan_json(const SweepPlan& plan) {
+    return {{"footprints", plan.footprints}, {"image_sizes", plan.sizes}, {"target", vec_json(plan.target)},
+            {"radius", plan.radius}, {"roi_vertices", plan.roi_vertices}, {"views", plan.views.size()}};
+}
+
+json views_json(const SweepResult& s) {
+    json views = json::array();
+    for (const auto& v : s.views) {
+        const View& pv = s.plan.views[static_cast<std::size_t>(v.index)].view;
+        views.push_back({{"index", v.index}, {"azimuth_deg", pv.azimuth_deg}, {"elevation_deg", pv.elevation_deg},
+                         {"zoom", pv.zoom_index}, {"reference_pixels", v.reference_pixels}, {"compared", v.compared},
+                         {"reference_only", v.reference_only}, {"examined_only", v.examined_only},
+                         {"max_angle_deg", v.max_angle_deg}, {"mean_angle_deg", v.mean_angle_deg}});
+    }
+    return views;
 }
 
 }  // namespace
@@ -90,226 +153,104 @@ std::string sha256_file(const fs::path& path) {
     return hex.str();
 }
 
-Mesh make_atlas_mesh(const Mesh& reference, const SweepResult& result, const ReportContext& context) {
+Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     Mesh atlas = reference;
     atlas.scalars.clear();
     atlas.labels.clear();
     const std::size_t n = reference.vertex_count();
-    for (std::size_t z = 0; z < result.zooms.size(); ++z) {
-        const auto& zr = result.zooms[z];
-        const auto& a = zr.atlas;
-        std::vector<float> angle(n), mean(n), depth(n), count(n), seen(n), region(n);
+    const std::string metric(describe(result.sweep.options.metric).name);
+    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+        const auto& sz = result.sweep.zooms[z];
+        const auto& a = sz.atlas;
+        std::vector<float> max(n), mean(n), depth(n), missing(n), count(n), seen(n), region(n);
         for (std::size_t v = 0; v < n; ++v) {
-            const bool s = zr.seen[v] != 0;
-            angle[v] = s ? a.angle_max_deg[v] : kNaN;
-            mean[v] = s ? a.angle_mean_deg[v] : kNaN;
-            depth[v] = s ? a.depth_at_max[v] : kNaN;
+            const bool s = sz.coverage.seen[v] != 0;
+            max[v] = s ? a.value_max[v] : kNaN;
+            mean[v] = s ? a.value_mean[v] : kNaN;
+            depth[v] = s ? a.depth_mean[v] : kNaN;
+            missing[v] = s ? a.missing[v] : kNaN;
             count[v] = static_cast<float>(a.count[v]);
             seen[v] = s ? 1.0f : 0.0f;
-            region[v] = static_cast<float>(zr.regions.region_of_vertex[v]);
+            region[v] = static_cast<float>(result.decisions[z].regions.region_of_vertex[v]);
         }
         const auto k = zoom_suffix(z);
-        const std::string metric = result.options.metric == Metric::RgbAbs ? "rgb" : "angle";
-        atlas.set_scalar(metric + "_max" + k, std::move(angle));
+        atlas.set_scalar(metric + "_max" + k, std::move(max));
         atlas.set_scalar(metric + "_mean" + k, std::move(mean));
         atlas.set_scalar("depth" + k, std::move(depth));
+        atlas.set_scalar("missing" + k, std::move(missing));
         atlas.set_scalar("count" + k, std::move(count));
         atlas.set_scalar("seen" + k, std::move(seen));
         atlas.set_scalar("region" + k, std::move(region));
     }
-    if (context.distance.size() == n) atlas.set_scalar("distance", context.distance);
-    if (!result.zooms.empty()) {
-        const auto& z0 = result.zooms[0];
+    if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
+    if (!result.sweep.zooms.empty()) {
         ColorScale scale;
-        scale.high = std::max(2.0 * z0.threshold_deg, 1.0);
-        atlas.colors = colorize(atlas.find_scalar((result.options.metric == Metric::RgbAbs ? "rgb" : "angle") +
-                                                  std::string("_mean_z0"))->values, scale);
+        scale.high = std::max(2.0 * result.decisions[0].normal.value, 1.0);
+        atlas.colors = colorize(atlas.find_scalar(metric + "_mean_z0")->values, scale);
     }
     return atlas;
 }
 
-std::string sweep_report_json(const Mesh& reference, const SweepResult& result, const ReportContext& context) {
-    const auto& plan = result.plan;
-    json inputs = json::array();
-    for (const auto& in : context.inputs) {
-        json j = {{"role", in.role}, {"vertices", in.vertices}, {"triangles", in.triangles}};
-        if (!in.path.empty()) {
-            j["path"] = in.path.string();
-            j["sha256"] = sha256_file(in.path);
-        }
-        if (!in.description.empty()) j["description"] = in.description;
-        inputs.push_back(j);
-    }
-    const auto& o = plan.options;
-    json views = json::array();
-    for (const auto& v : result.views)
-        views.push_back({{"index", v.index}, {"azimuth_deg", v.azimuth_deg}, {"elevation_deg", v.elevation_deg},
-                         {"zoom", v.zoom_index}, {"size", v.size}, {"reference_pixels", v.reference_pixels},
-                         {"compared", v.compared}, {"reference_only", v.reference_only},
-                         {"examined_only", v.examined_only}, {"max_angle_deg", v.max_angle_deg},
-                         {"mean_angle_deg", v.mean_angle_deg}});
+std::string report_json(const Mesh& reference, const AnalysisResult& result, const AnalysisOptions& options) {
+    const auto& s = result.sweep;
+    const MetricDescriptor& m = describe(s.options.metric);
     json zooms = json::array();
-    for (std::size_t z = 0; z < result.zooms.size(); ++z) {
-        const auto& zr = result.zooms[z];
-        json regions = json::array();
-        for (const auto& r : zr.regions.regions) regions.push_back(region_json(r, plan));
-        zooms.push_back({{"zoom", z},
-                         {"footprint", plan.footprints[z]},
-                         {"image_size", plan.sizes[z]},
-                         {"coverage", zr.coverage},
-                         {"unseen", unseen_json(reference, zr)},
-                         {"threshold_deg", zr.threshold_deg},
-                         {"threshold_rule", zr.threshold_rule},
-                         {"noise_floor", {{"median_deg", zr.noise.median}, {"mad_deg", zr.noise.mad},
-                                          {"k", zr.noise.k}, {"threshold_deg", zr.noise.threshold}}},
-                         {"damaged_vertices", zr.regions.damaged_vertices},
-                         {"dropped_small_groups", zr.regions.dropped_small},
-                         {"regions", regions},
-                         {"histogram_deg", {{"bin_width_deg", 1}, {"last_bin", ">= 90"}, {"counts", zr.histogram}}}});
-    }
+    for (std::size_t z = 0; z < s.zooms.size(); ++z) zooms.push_back(zoom_json(reference, result, z));
     json report = {
         {"glint_version", "0.1.0"},
-        {"command_line", context.command_line},
-        {"inputs", inputs},
-        {"device", {{"backend", to_string(result.renderer.backend)}, {"name", result.renderer.device_name},
-                    {"type", result.renderer.device_type}, {"warnings", result.renderer.warnings}}},
-        {"plan", {{"kind", o.kind == SweepPlanOptions::Kind::Rotary ? "rotary" : "sphere"},
-                  {"azimuth_step_deg", o.azimuth_step_deg}, {"elevations_deg", o.elevations_deg},
-                  {"sphere_views", o.sphere_views}, {"footprints", plan.footprints}, {"image_sizes", plan.sizes},
-                  {"margin", o.margin}, {"target", vec_json(plan.target)}, {"radius", plan.radius},
-                  {"roi", o.roi ? json(to_string(*o.roi)) : json(nullptr)}, {"roi_vertices", plan.roi_vertices},
-                  {"views", plan.views.size()}}},
-        {"analysis", {{"metric", to_string(result.options.metric)},
-                      {"metric_unit", result.options.metric == Metric::RgbAbs ? "8-bit colour (0-255)" : "degrees"},
-                      {"backend_requested", to_string(result.options.render.backend)},
-                      {"device_requested", result.options.render.device},
-                      {"supersample", result.options.render.supersample},
-                      {"min_coverage", result.options.render.min_coverage},
-                      {"max_incidence_deg", result.options.max_incidence_deg},
-                      {"threshold_deg", result.options.threshold_deg ? json(*result.options.threshold_deg) : json(nullptr)},
-                      {"noise_k", result.options.noise_k},
-                      {"min_threshold_deg", result.options.min_threshold_deg},
-                      {"min_region_vertices", result.options.min_region_vertices}}},
-        {"fit", context.fit_json.empty() ? json(nullptr) : json::parse(context.fit_json)},
+        {"command_line", options.exports.command_line},
+        {"inputs", inputs_json(options.exports.inputs)},
+        {"device", {{"backend", to_string(s.renderer.backend)}, {"name", s.renderer.device_name},
+                    {"type", s.renderer.device_type}, {"warnings", s.renderer.warnings}}},
+        {"analysis", json::parse(to_json(options))},
+        {"metric", {{"name", std::string(m.name)}, {"unit", std::string(m.unit)}, {"description", std::string(m.description)}}},
+        {"plan", plan_json(s.plan)},
+        {"size", result.size},
+        {"fit", result.fit.json.empty() ? json(nullptr) : json::parse(result.fit.json)},
         {"zooms", zooms},
-        {"views", views},
-        {"timings_s", {{"render", result.render_seconds}, {"compare_and_atlas", result.compare_seconds},
-                       {"sweep_total", result.total_seconds}}},
-        {"warnings", context.warnings},
+        {"views", views_json(s)},
+        {"timings_s", {{"fit", result.fit_seconds}, {"distance", result.distance_seconds}, {"render", s.render_seconds},
+                       {"compare_and_atlas", s.compare_seconds}, {"sweep_total", s.total_seconds},
+                       {"decision", result.decision_seconds}, {"total", result.total_seconds}}},
+        {"warnings", result.warnings},
     };
     return report.dump(2) + "\n";
 }
 
-void write_sweep_outputs(const OutputFolder& folder, const Mesh& reference, const SweepResult& result,
-                         const ReportContext& context) {
-    const Mesh atlas = make_atlas_mesh(reference, result, context);
-    write_ply(atlas, folder.file("atlas.ply"));
-    write_vtk(atlas, folder.file("atlas.vtk"));
-
+std::string regions_csv(const AnalysisResult& result) {
+    const MetricDescriptor& m = describe(result.sweep.options.metric);
+    const std::string u(m.unit);
     std::ostringstream csv;
-    csv << "zoom,footprint,region,kind,vertices,area,max_angle_deg,mean_angle_deg,max_depth,max_distance,"
-           "centroid_x,centroid_y,centroid_z,best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
-    for (std::size_t z = 0; z < result.zooms.size(); ++z) {
-        for (const auto& r : result.zooms[z].regions.regions) {
+    csv << "zoom,footprint,region,kind,vertices,area,max_" << u << ",mean_" << u
+        << ",peak_depth,mean_depth,volume,missing_fraction,centroid_x,centroid_y,centroid_z,best_view,"
+           "best_view_azimuth_deg,best_view_elevation_deg\n";
+    const auto& plan = result.sweep.plan;
+    for (std::size_t z = 0; z < result.decisions.size(); ++z) {
+        for (const auto& r : result.decisions[z].regions.regions) {
             double az = std::nan(""), el = std::nan("");
             if (r.best_view >= 0) {
-                az = result.plan.views[static_cast<std::size_t>(r.best_view)].azimuth_deg;
-                el = result.plan.views[static_cast<std::size_t>(r.best_view)].elevation_deg;
+                az = plan.views[static_cast<std::size_t>(r.best_view)].view.azimuth_deg;
+                el = plan.views[static_cast<std::size_t>(r.best_view)].view.elevation_deg;
             }
-            char row[512];
-            std::snprintf(row, sizeof row, "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
-                          result.plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
-                          r.max_angle_deg, r.mean_angle_deg, r.max_depth, r.max_distance, r.centroid.x(),
+            char row[640];
+            std::snprintf(row, sizeof row,
+                          "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
+                          plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area, r.max_value,
+                          r.mean_value, r.peak_depth, r.mean_depth, r.volume, r.missing_fraction, r.centroid.x(),
                           r.centroid.y(), r.centroid.z(), r.best_view, az, el);
             csv << row;
         }
     }
-    write_file_atomically(folder.file("regions.csv"), csv.str());
-    write_file_atomically(folder.file("report.json"), sweep_report_json(reference, result, context));
+    return csv.str();
 }
 
-struct SweepExporter::Impl {
-    const OutputFolder* folder;
-    const SweepPlan* plan;
-    Options options;
-    std::vector<Mosaic> mosaics;
-    ColorScale scale;
-};
-
-SweepExporter::SweepExporter(const OutputFolder& folder, const SweepPlan& plan, Options options)
-    : impl_(std::make_unique<Impl>()) {
-    impl_->folder = &folder;
-    impl_->plan = &plan;
-    impl_->options = options;
-    impl_->scale.high = options.color_max_deg;
-    for (std::size_t z = 0; z < plan.footprints.size(); ++z) {
-        char title[160];
-        std::snprintf(title, sizeof title, "angle deviation, zoom %zu (footprint %.4g per px, %d px)", z,
-                      plan.footprints[z], plan.sizes[z]);
-        impl_->mosaics.emplace_back(plan.columns, plan.rows, options.mosaic_tile, title);
-    }
-}
-
-SweepExporter::~SweepExporter() = default;
-
-ViewObserver SweepExporter::observer() {
-    return [this](const PlannedView& v, const Frame&, const Frame&, const DeviationMap& dev) {
-        auto& impl = *impl_;
-        ScalarImage img{dev.width, dev.height, dev.angle_deg};
-        // Silhouette changes show at full scale: surface missing or added there.
-        for (std::size_t i = 0; i < img.values.size(); ++i)
-            if (dev.silhouette[i] != 0) img.values[i] = static_cast<float>(impl.scale.high);
-        char name[96];
-        std::snprintf(name, sizeof name, "z%d_az%05.1f_el%+05.1f", v.zoom_index, v.azimuth_deg, v.elevation_deg);
-        char label[64];
-        std::snprintf(label, sizeof label, "%.0f/%+.0f", v.azimuth_deg, v.elevation_deg);
-        const bool rotary = impl.plan->options.kind == SweepPlanOptions::Kind::Rotary;
-        const int col = rotary ? v.step : v.step % impl.plan->columns;
-        const int row = rotary ? v.ring : v.step / impl.plan->columns;
-        impl.mosaics[static_cast<std::size_t>(v.zoom_index)].place(col, row, img, impl.scale, rotary ? "" : label);
-        if (impl.options.write_views) {
-            char title[160];
-            std::snprintf(title, sizeof title, "view %d: azimuth %.1f, elevation %+.1f, zoom %d, max %.2f deg", v.index,
-                          v.azimuth_deg, v.elevation_deg, v.zoom_index, dev.max_angle_deg);
-            write_heatmap_png(img, impl.scale, title, impl.folder->file(fs::path("views") / (std::string(name) + ".png")));
-        }
-        if (impl.options.write_exr) {
-            std::vector<float> sil(dev.silhouette.begin(), dev.silhouette.end());
-            char az[32], el[32], fp[32];
-            std::snprintf(az, sizeof az, "%.6g", v.azimuth_deg);
-            std::snprintf(el, sizeof el, "%.6g", v.elevation_deg);
-            std::snprintf(fp, sizeof fp, "%.6g", v.footprint);
-            std::vector<std::string> names{"angle_deg", "signed_depth", "silhouette"};
-            std::vector<const std::vector<float>*> channels{&dev.angle_deg, &dev.signed_depth, &sil};
-            if (!dev.rgb_abs.empty()) {  // the paper's metric, when the sweep uses it
-                names.emplace_back("rgb_abs");
-                channels.push_back(&dev.rgb_abs);
-            }
-            write_exr_channels(impl.folder->file(fs::path("views") / (std::string(name) + ".exr")), dev.width,
-                               dev.height, names, channels,
-                               {{"azimuth_deg", az}, {"elevation_deg", el}, {"footprint", fp},
-                                {"silhouette_codes", "0 same, 1 reference only, 2 examined only"}});
-        }
-    };
-}
-
-void SweepExporter::finish() {
-    const auto& plan = *impl_->plan;
-    std::vector<std::string> cols, rows;
-    if (plan.options.kind == SweepPlanOptions::Kind::Rotary) {
-        for (int c = 0; c < plan.columns; ++c) {
-            char b[32];
-            std::snprintf(b, sizeof b, "az %.0f", c * plan.options.azimuth_step_deg);
-            cols.push_back(b);
-        }
-        for (double e : plan.options.elevations_deg) {
-            char b[32];
-            std::snprintf(b, sizeof b, "el %+.0f", e);
-            rows.push_back(b);
-        }
-    }
-    for (std::size_t z = 0; z < impl_->mosaics.size(); ++z)
-        impl_->mosaics[z].write(impl_->folder->file("mosaic_z" + std::to_string(z) + ".png"), impl_->scale, cols, rows);
+void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
+                   const AnalysisOptions& options) {
+    const Mesh atlas = make_atlas_mesh(reference, result);
+    write_ply(atlas, folder.file("atlas.ply"));
+    write_vtk(atlas, folder.file("atlas.vtk"));
+    write_file_atomically(folder.file("regions.csv"), regions_csv(result));
+    write_file_atomically(folder.file("report.json"), report_json(reference, result, options));
 }
 
 }  // namespace glint

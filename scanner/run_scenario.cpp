@@ -1,9 +1,7 @@
 #include "scanner/run_scenario.h"
 
 #include "mesh/error.h"
-#include "scanner/fit.h"
-#include "scanner/output_folder.h"
-#include "scanner/report.h"
+#include "scanner/analysis.h"
 
 #include <algorithm>
 #include <chrono>
@@ -35,7 +33,7 @@ std::string missing_input(const Scenario& sc) {
 
 }  // namespace
 
-ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& options) {
+ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) {
     const auto t0 = std::chrono::steady_clock::now();
     ScenarioOutcome out;
     out.name = sc.name;
@@ -52,74 +50,40 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
     out.reference_vertices = meshes.reference.vertex_count();
 
-    FitRequest request;
-    if (sc.registration_mode == "truth") {
-        request.mode = FitRequest::Mode::Truth;
-        request.truth = meshes.true_reference_from_examined;
-    } else if (sc.registration_mode == "identity") {
-        request.mode = FitRequest::Mode::Identity;
-    } else {
-        request.mode = FitRequest::Mode::Register;
-    }
-    request.loss = sc.registration_loss;
-    request.roi = sc.registration_roi;
-    request.symmetric = sc.registration_symmetric;
-    const FitOutcome fit = fit_examined(meshes.reference, meshes.examined, request);
-    out.fit_mode = fit.mode;
-    if (meshes.has_truth_pose) out.pose = pose_error(fit.reference_from_examined, meshes.true_reference_from_examined);
-
-    Mesh fitted = meshes.examined;
-    transform_mesh(fitted, fit.reference_from_examined);
-    const SweepPlan plan = make_sweep_plan(meshes.reference, sc.sweep.plan);
-    out.views = plan.views.size();
-
-    std::optional<OutputFolder> folder;
-    std::optional<SweepExporter> exporter;
-    if (!options.output_root.empty()) {
-        folder.emplace(options.output_root / sc.name);
-        exporter.emplace(*folder, plan, SweepExporter::Options{.write_views = options.write_views,
-                                                               .write_exr = options.write_views});
-    }
-    ViewObserver export_view = exporter ? exporter->observer() : ViewObserver{};
-    std::size_t done = 0;
-    const std::vector<float> distance = signed_distances(meshes.reference, fitted);
-    const SweepResult result =
-        run_sweep(meshes.reference, fitted, plan, sc.sweep,
-                  [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
-                      if (export_view) export_view(v, rf, ef, d);
-                      if (options.progress) options.progress(++done, plan.views.size());
-                  },
-                  distance);
-    const ZoomResult& z0 = result.zooms.front();
-    out.regions = z0.regions.regions.size();
-    out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
-    out.coverage = z0.coverage;
-    out.threshold_deg = z0.threshold_deg;
-    if (!meshes.truth.empty())
-        out.score = score_detection(meshes.reference, z0.regions.region_of_vertex, meshes.truth, z0.regions.regions);
-
-    if (folder) {
-        ReportContext context;
-        context.command_line = options.command_line;
-        auto describe = [](const SurfaceSource& s) {
+    AnalysisOptions options = sc.analysis;
+    if (options.fit.mode == FitMode::Truth) options.fit.truth = meshes.true_reference_from_examined;
+    if (!run.output_root.empty()) {
+        ExportOptions& e = options.exports;
+        e.output = run.output_root / sc.name;
+        e.write_views = e.write_exr = run.write_views;
+        e.command_line = run.command_line;
+        auto describe_source = [](const SurfaceSource& s) {
             return s.phantom ? "phantom " + to_string(s.phantom->kind) + " " + to_string(s.phantom->scheme) + " " +
                                    std::to_string(s.phantom->resolution)
                              : std::string();
         };
-        context.inputs.push_back({"scenario", sc.file, sc.name, 0, 0});
-        context.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
-                                  describe(sc.reference), meshes.reference.vertex_count(), meshes.reference.triangle_count()});
-        context.inputs.push_back({"examined", sc.examined_derived ? fs::path() : sc.examined.mesh,
-                                  sc.examined_derived ? "derived from the reference" : describe(sc.examined),
-                                  meshes.examined.vertex_count(), meshes.examined.triangle_count()});
-        context.fit_json = fit.json;
-        context.warnings = fit.warnings;
-        context.distance = distance;
-        exporter->finish();
-        write_sweep_outputs(*folder, meshes.reference, result, context);
-        folder->commit();
-        out.output = folder->target();
+        e.inputs.push_back({"scenario", sc.file, sc.name, 0, 0});
+        e.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
+                            describe_source(sc.reference), meshes.reference.vertex_count(),
+                            meshes.reference.triangle_count()});
+        e.inputs.push_back({"examined", sc.examined_derived ? fs::path() : sc.examined.mesh,
+                            sc.examined_derived ? "derived from the reference" : describe_source(sc.examined),
+                            meshes.examined.vertex_count(), meshes.examined.triangle_count()});
     }
+    AnalysisObserver observer;
+    observer.views = run.progress;
+    const AnalysisResult result = analyse(meshes.reference, meshes.examined, options, observer);
+    out.fit_mode = to_string(result.fit.mode);
+    if (meshes.has_truth_pose) out.pose = pose_error(result.fit.reference_from_examined, meshes.true_reference_from_examined);
+    out.views = result.sweep.plan.views.size();
+    out.output = result.output;
+    const ZoomDecision& z0 = result.decisions.front();
+    out.regions = z0.regions.regions.size();
+    out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
+    out.coverage = result.sweep.zooms.front().coverage.fraction;
+    out.threshold_deg = z0.normal.value;
+    if (!meshes.truth.empty())
+        out.score = score_detection(meshes.reference, z0.regions.region_of_vertex, meshes.truth, z0.regions.regions);
 
     // [expect]
     const auto& e = sc.expect;
@@ -155,10 +119,10 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& optio
     }
     if (e.min_region_shape_change) {
         for (const auto& r : z0.regions.regions) {
-            if (std::abs(r.max_distance) < *e.min_region_shape_change) {
+            if (std::abs(r.peak_depth) < *e.min_region_shape_change) {
                 std::ostringstream m;
                 m << std::fixed << std::setprecision(2) << "region " << r.id << " at (" << r.centroid.x() << ", " << r.centroid.y() << ", "
-                  << r.centroid.z() << "): largest surface distance " << std::setprecision(3) << std::abs(r.max_distance)
+                  << r.centroid.z() << "): largest surface distance " << std::setprecision(3) << std::abs(r.peak_depth)
                   << ", expected at least " << *e.min_region_shape_change
                   << " (a region with no shape change behind it)";
                 fail(m.str());

@@ -2,6 +2,8 @@
 
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "scanner/detail/scenario_options.h"
+#include "scanner/detail/toml_reader.h"
 
 #include <toml++/toml.h>
 
@@ -15,109 +17,11 @@
 namespace glint {
 
 namespace fs = std::filesystem;
+using detail::TableReader;
+using detail::read_analysis_sections;
+using detail::validate_analysis_sections;
 
 namespace {
-
-// Reads typed values from one TOML table and rejects keys nobody asked about.
-class TableReader {
-public:
-    TableReader(const toml::table& table, std::string file, std::string section)
-        : table_(table), file_(std::move(file)), section_(std::move(section)) {}
-
-    [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
-        std::ostringstream s;
-        s << "scenario \"" << file_ << "\"";
-        if (node) s << " line " << node->source().begin.line;
-        s << ": " << qualified(key) << ": " << what;
-        throw InputError(s.str());
-    }
-
-    [[nodiscard]] std::string qualified(const std::string& key) const {
-        return section_.empty() ? key : section_ + "." + key;
-    }
-
-    [[nodiscard]] const toml::node* get(const std::string& key) {
-        seen_.insert(key);
-        return table_.get(key);
-    }
-
-    [[nodiscard]] bool has(const std::string& key) const { return table_.contains(key); }
-
-    template <class T>
-    std::optional<T> optional(const std::string& key, const char* expected) {
-        const toml::node* node = get(key);
-        if (!node) return std::nullopt;
-        if constexpr (std::is_same_v<T, double>) {
-            if (auto v = node->value<double>()) return *v;  // integers convert too
-        } else if constexpr (std::is_same_v<T, std::int64_t>) {
-            if (node->is_integer()) return node->value<std::int64_t>();
-        } else if constexpr (std::is_same_v<T, bool>) {
-            if (node->is_boolean()) return node->value<bool>();
-        } else if constexpr (std::is_same_v<T, std::string>) {
-            if (node->is_string()) return node->value<std::string>();
-        }
-        fail(node, key, std::string("expected ") + expected + ", found " + type_name(*node));
-    }
-
-    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t min_count, std::size_t max_count) {
-        const toml::node* node = get(key);
-        if (!node) return std::nullopt;
-        std::vector<double> out;
-        if (auto v = node->value<double>()) {
-            out.push_back(*v);
-        } else if (const auto* arr = node->as_array()) {
-            for (const auto& e : *arr) {
-                auto v2 = e.value<double>();
-                if (!v2) fail(node, key, "expected an array of numbers, found an element of type " + type_name(e));
-                out.push_back(*v2);
-            }
-        } else {
-            fail(node, key, "expected a number or an array of numbers, found " + type_name(*node));
-        }
-        if (out.size() < min_count || out.size() > max_count) {
-            std::ostringstream s;
-            s << "expected " << min_count;
-            if (max_count != min_count) s << " to " << max_count;
-            s << " numbers, found " << out.size();
-            fail(node, key, s.str());
-        }
-        return out;
-    }
-
-    std::optional<double> positive(const std::string& key) {
-        auto v = optional<double>(key, "a number");
-        if (v && !(*v > 0)) fail(get(key), key, "must be > 0, found " + std::to_string(*v));
-        return v;
-    }
-
-    /// Every key of the table must have been asked for.
-    void finish() const {
-        for (const auto& [k, node] : table_) {
-            const std::string key(k.str());
-            if (!seen_.count(key)) fail(&node, key, "unknown key (check its spelling; README lists every key)");
-        }
-    }
-
-    static std::string type_name(const toml::node& n) {
-        switch (n.type()) {
-            case toml::node_type::string: return "a string";
-            case toml::node_type::integer: return "an integer";
-            case toml::node_type::floating_point: return "a number";
-            case toml::node_type::boolean: return "a boolean";
-            case toml::node_type::array: return "an array";
-            case toml::node_type::table: return "a table";
-            default: return "a date/time";
-        }
-    }
-
-    [[nodiscard]] const std::string& file() const { return file_; }
-
-private:
-    const toml::table& table_;
-    std::string file_;
-    std::string section_;
-    std::set<std::string> seen_;
-};
 
 Vec3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
 
@@ -312,52 +216,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         }
         if (!sc.examined_derived) top.fail(dmg, "damage", "damage applies to a derived examined surface, not to an examined mesh file");
     }
-    if (const auto* t = table("registration", false)) {
-        TableReader r(*t, name, "registration");
-        if (auto m = r.optional<std::string>("mode", "a string (register, truth, identity)")) {
-            if (*m != "register" && *m != "truth" && *m != "identity")
-                r.fail(r.get("mode"), "mode", "expected register, truth or identity, found '" + *m + "'");
-            sc.registration_mode = *m;
-        }
-        if (auto v = r.optional<std::string>("loss", "a string")) sc.registration_loss = *v;
-        if (auto v = r.optional<std::string>("roi", "a string (sphere:x,y,z,r or box:…)")) sc.registration_roi = *v;
-        if (auto v = r.optional<bool>("symmetric", "a boolean")) sc.registration_symmetric = *v;
-        r.finish();
-    }
-    SweepOptions& so = sc.sweep;
-    so.plan.size = 128;
-    so.render.supersample = 2;
-    if (const auto* t = table("sweep", false)) {
-        TableReader r(*t, name, "sweep");
-        try {
-            if (auto v = r.optional<std::string>("plan", "a string (rotary or sphere:N)")) parse_plan_kind(*v, so.plan);
-            if (auto v = r.optional<std::string>("backend", "a string (auto, vulkan, embree)")) so.render.backend = parse_backend(*v);
-            if (auto v = r.optional<std::string>("roi", "a string (sphere:x,y,z,r or box:…)")) so.plan.roi = parse_roi(*v);
-        } catch (const InputError& e) {
-            r.fail(nullptr, "plan", e.what());
-        }
-        if (auto v = r.positive("azimuth_step")) so.plan.azimuth_step_deg = *v;
-        if (auto v = r.numbers("elevations", 1, 64)) so.plan.elevations_deg = *v;
-        if (auto v = r.numbers("zoom", 1, 16)) so.plan.footprints = *v;
-        if (auto v = r.optional<std::int64_t>("size", "an integer (pixels)")) so.plan.size = static_cast<int>(*v);
-        if (auto v = r.optional<std::int64_t>("supersample", "an integer")) so.render.supersample = static_cast<int>(*v);
-        if (auto v = r.positive("max_incidence")) so.max_incidence_deg = *v;
-        if (auto v = r.optional<std::string>("metric", "a string (angle or rgb)")) {
-            if (*v != "angle" && *v != "rgb") r.fail(r.get("metric"), "metric", "expected angle or rgb");
-            so.metric = parse_metric(*v);
-        }
-        r.finish();
-    }
-    if (const auto* t = table("threshold", false)) {
-        TableReader r(*t, name, "threshold");
-        if (auto v = r.positive("deg")) sc.threshold_deg = *v;
-        if (auto v = r.positive("noise_k")) so.noise_k = *v;
-        if (auto v = r.optional<double>("min_deg", "a number")) so.min_threshold_deg = *v;
-        if (auto v = r.optional<std::int64_t>("min_region_vertices", "an integer"))
-            so.min_region_vertices = static_cast<std::size_t>(std::max<std::int64_t>(1, *v));
-        r.finish();
-    }
-    so.threshold_deg = sc.threshold_deg;
+    read_analysis_sections(top, dir, sc.analysis);
     if (const auto* t = table("expect", false)) {
         TableReader r(*t, name, "expect");
         auto e = [&](const char* key, std::optional<double>& out) { out = r.optional<double>(key, "a number"); };
@@ -383,11 +242,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         r.finish();
     }
     top.finish();
-    try {
-        so.validate();
-    } catch (const InputError& e) {
-        throw InputError("scenario \"" + name + "\": [sweep] " + e.what());
-    }
+    validate_analysis_sections(root, name, sc.analysis);
     return sc;
 }
 
@@ -471,7 +326,7 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                 throw InputError("scenario \"" + sc.file.string() + "\": truth mask has " + std::to_string(out.truth.size()) +
                                  " values, the reference has " + std::to_string(out.reference.vertex_count()) + " vertices");
         }
-        out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() || sc.registration_mode == "truth";
+        out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() || sc.analysis.fit.mode == FitMode::Truth;
         out.true_reference_from_examined = sc.pose.inverse();
     }
     return out;

@@ -9,7 +9,7 @@
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
 #include "mesh/phantom.h"
-#include "scanner/sweep.h"
+#include "scanner/analysis.h"
 
 #include <filesystem>
 #include <optional>
@@ -61,13 +61,9 @@ struct Scenario {
     Rigid pose = Rigid::Identity();               ///< examined = pose · (damaged surface)
     /// Per-vertex ground-truth mask on the *reference* from a file (tooth-wear .npy masks).
     std::filesystem::path truth_mask;
-    /// Registration: "truth" (use the known pose), "identity", or "register".
-    std::string registration_mode = "register";
-    std::string registration_loss = "cauchy";
-    std::string registration_roi;
-    bool registration_symmetric = false;
-    SweepOptions sweep;
-    std::optional<double> threshold_deg;          ///< copied into sweep.threshold_deg
+    /// The analysis: [registration] (fit mode register by default; "truth" uses the known
+    /// pose), [sweep], [threshold] and [decision], with the command line's defaults.
+    AnalysisOptions analysis;
     ScenarioExpect expect;
 };
 

@@ -3,8 +3,8 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "scanner/calibrate.h"
-#include "scanner/fit.h"
 #include "scanner/scenario.h"
+#include "tools/analysis_flags.h"
 #include "tools/command.h"
 
 #include <cstdio>
@@ -20,6 +20,7 @@ struct CalibrateArgs {
     std::string data_root;
     CalibrationOptions options;
     std::string output;
+    bool print = false;
 };
 
 void run(const CalibrateArgs& a) {
@@ -28,17 +29,14 @@ void run(const CalibrateArgs& a) {
     if (root.empty())
         if (const char* env = std::getenv("GLINT_DATA")) root = env;
     const Scenario sc = load_scenario(a.scenario, root);
+    if (a.print) {
+        print_options(sc.analysis);
+        return;
+    }
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
-    FitRequest request;
-    request.mode = sc.registration_mode == "truth" ? FitRequest::Mode::Truth
-                   : sc.registration_mode == "identity" ? FitRequest::Mode::Identity
-                                                        : FitRequest::Mode::Register;
-    request.truth = meshes.true_reference_from_examined;
-    request.loss = sc.registration_loss;
-    const FitOutcome fit = fit_examined(meshes.reference, meshes.examined, request);
-    Mesh fitted = meshes.examined;
-    transform_mesh(fitted, fit.reference_from_examined);
-    const Calibration c = calibrate(meshes.reference, fitted, sc.sweep, a.options,
+    AnalysisOptions analysis = sc.analysis;
+    if (analysis.fit.mode == FitMode::Truth) analysis.fit.truth = meshes.true_reference_from_examined;
+    const Calibration c = calibrate(meshes.reference, meshes.examined, analysis, a.options,
                                     sc.name + (sc.description.empty() ? "" : ": " + sc.description));
     write_file_atomically(a.output, to_json(c));
     if (global_flags().json) {
@@ -65,6 +63,7 @@ void setup(CLI::App& app) {
     cmd->add_option("--coarsest", a.options.coarsest, "Coarsest footprint of the ladder (default: radius/3)");
     cmd->add_option("--step", a.options.step, "Ratio between ladder rungs")->capture_default_str();
     cmd->add_option("-o,--output", a.output, "calibration.json")->required();
+    add_print_options_flag(*cmd, a.print);
     cmd->callback([] { run(a); });
 }
 

@@ -4,7 +4,7 @@
 #include "scanner/compare.h"
 #include "scanner/frame_file.h"
 #include "scanner/images.h"
-#include "scanner/sweep.h"
+#include "scanner/metric.h"
 #include "tools/command.h"
 
 #include <nlohmann/json.hpp>
@@ -29,13 +29,12 @@ void run(const CompareArgs& a) {
     const Frame exa = read_frame_exr(a.examined);
     CompareOptions options;
     options.min_coverage = a.min_coverage;
-    options.compute_rgb = true;
-    const DeviationMap d = compare_frames(frame_view(ref), frame_view(exa), options);
+    const DeviationMap d = compare_frames(frame_view(ref), frame_view(exa), options, Metric::RgbAbs);
     const std::string ext = std::filesystem::path(a.output).extension().string();
     if (ext == ".exr") {
         std::vector<float> sil(d.silhouette.begin(), d.silhouette.end());
         write_exr_channels(a.output, d.width, d.height, {"angle_deg", "signed_depth", "rgb_abs", "silhouette"},
-                           {&d.angle_deg, &d.signed_depth, &d.rgb_abs, &sil},
+                           {&d.angle_deg, &d.signed_depth, &d.value, &sil},
                            {{"reference", a.reference}, {"examined", a.examined},
                             {"silhouette_codes", "0 same, 1 reference only, 2 examined only"}});
     } else if (ext == ".png") {

@@ -3,6 +3,7 @@
 #include "mesh/error.h"
 #include "scanner/run_scenario.h"
 #include "scanner/scenario.h"
+#include "tools/analysis_flags.h"
 #include "tools/command.h"
 #include "tools/progress.h"
 
@@ -29,6 +30,7 @@ struct RunArgs {
     std::string data_root;
     bool views = false;
     bool full = false;
+    bool print = false;
 };
 
 fs::path data_root_of(const RunArgs& a) {
@@ -146,6 +148,13 @@ void check(const std::vector<ScenarioOutcome>& outcomes) {
 }
 
 void run_command(const RunArgs& a) {
+    if (a.print) {
+        // The options each scenario's analysis would run with, loading no mesh.
+        std::vector<Scenario> scenarios;
+        expand(a, data_root_of(a), scenarios);
+        for (const auto& sc : scenarios) print_options(sc.analysis);
+        return;
+    }
     const auto outcomes = run_all(a, false);
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::array();
@@ -213,6 +222,7 @@ void setup(CLI::App& app) {
     static RunArgs eval_args;
     auto* run = app.add_subcommand("run", "Run scenarios end to end (fit, sweep, atlas)");
     add_common(run, run_args);
+    add_print_options_flag(*run, run_args.print);
     run->callback([] { run_command(run_args); });
     auto* eval = app.add_subcommand("eval", "Run scenarios and score them against their ground truth; "
                                             "exit 1 when an [expect] fails");

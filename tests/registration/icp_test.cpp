@@ -7,6 +7,8 @@
 #include "mesh/error.h"
 #include "mesh/phantom.h"
 #include "registration/closest_point.h"
+#include "registration/fit_io.h"
+#include "registration/landmarks.h"
 
 #include <gtest/gtest.h>
 
@@ -193,7 +195,7 @@ TEST(RegisterMeshes, FitsOnTheStableHalfWhenTheOtherHalfIsDeformed) {
     const Rigid truth = motion(3.0, {1, 1, 0}, {0.2, 0.1, 0.3});
     const Mesh exa = moved(deformed, truth.inverse());
     RegistrationOptions o{.samples = 6000};
-    o.roi = parse_registration_roi("box:0.5,-20,-20,20,20,20");
+    o.roi = parse_roi("box:0.5,-20,-20,20,20,20");
     const Errors with_roi = errors(register_meshes(ref, exa, o), truth);
     std::printf("half deformed, ROI on the stable half: rotation error %.2e deg, translation error %.2e mm\n",
                 with_roi.rotation_deg, with_roi.translation);
@@ -226,8 +228,8 @@ TEST(RegisterMeshes, AVertexMaskRoiFitsOnTheMaskedRegionOnly) {
     const Rigid truth = motion(3.0, {1, 1, 0}, {0.2, 0.1, 0.3});
     const Mesh exa = moved(deformed, truth.inverse());
     RegistrationOptions o{.samples = 6000};
-    o.roi.shape = RegistrationRoi::Shape::VertexMask;
-    for (const auto& p : ref.positions) o.roi.vertex_mask.push_back(p.x() > 0.5f ? 1 : 0);
+    o.roi = Roi{.shape = Roi::Shape::VertexMask};
+    for (const auto& p : ref.positions) o.roi->vertex_mask.push_back(p.x() > 0.5f ? 1 : 0);
     const Errors e = errors(register_meshes(ref, exa, o), truth);
     EXPECT_LT(e.rotation_deg, 0.002);
     EXPECT_LT(e.translation, 1e-3);
@@ -294,8 +296,8 @@ TEST(RegisterMeshes, ConvergesOnTheCostWhenTheParameterTolerancesAreOff) {
 TEST(RegisterMeshes, RejectsAVertexMaskOfTheWrongSize) {
     const Mesh ref = blob(TessellationScheme::Ico, 3);
     RegistrationOptions o;
-    o.roi.shape = RegistrationRoi::Shape::VertexMask;
-    o.roi.vertex_mask.assign(ref.vertex_count() - 1, 1);
+    o.roi = Roi{.shape = Roi::Shape::VertexMask};
+    o.roi->vertex_mask.assign(ref.vertex_count() - 1, 1);
     try {
         (void)register_meshes(ref, ref, o);
         FAIL() << "expected InputError";
@@ -331,7 +333,7 @@ TEST(RegisterMeshes, ReportsTheEvidenceAtTheFinalPose) {
 TEST(RegisterMeshes, RejectsAnEmptyRoi) {
     const Mesh ref = blob(TessellationScheme::Ico, 3);
     RegistrationOptions o;
-    o.roi = parse_registration_roi("sphere:100,100,100,1");
+    o.roi = parse_roi("sphere:100,100,100,1");
     EXPECT_THROW((void)register_meshes(ref, ref, o), InputError);
 }
 
@@ -411,7 +413,7 @@ TEST(ReadLandmarks, ReadsPointsAndPickedPixels) {
 
 TEST(RegistrationJson, RecordsTheRoiNumbersAndSourceFiles) {
     RegistrationOptions o;
-    o.roi = parse_registration_roi("sphere:1,2,3,4.5");
+    o.roi = parse_roi("sphere:1,2,3,4.5");
     o.initial = motion(10, {0, 0, 1}, {1, 0, 0});
     const auto sphere = nlohmann::json::parse(to_json({}, o, {.init_file = "start.json"}))["options"];
     EXPECT_EQ(sphere["roi"]["shape"], "sphere");
@@ -419,15 +421,13 @@ TEST(RegistrationJson, RecordsTheRoiNumbersAndSourceFiles) {
     EXPECT_EQ(sphere["roi"]["radius"], 4.5);
     EXPECT_EQ(sphere["init_file"], "start.json");
     EXPECT_NEAR(sphere["initial"][0][3].get<double>(), 1.0, 1e-12);
-    o.roi = parse_registration_roi("box:-1,-2,-3,4,5,6");
+    o.roi = parse_roi("box:-1,-2,-3,4,5,6");
     const auto box = nlohmann::json::parse(to_json({}, o))["options"]["roi"];
     EXPECT_EQ(box["min"], nlohmann::json::array({-1.0, -2.0, -3.0}));
     EXPECT_EQ(box["max"], nlohmann::json::array({4.0, 5.0, 6.0}));
-    o.roi = {};
-    o.roi.shape = RegistrationRoi::Shape::VertexMask;
-    o.roi.vertex_mask = {1, 0, 1};
-    const auto mask = nlohmann::json::parse(
-        to_json({}, o, {.roi_mask_file = "stable.ply", .roi_mask_property = "bone", .landmarks_file = "lm.json"}))["options"];
+    o.roi = parse_roi("mask:stable.ply:bone");
+    o.roi->vertex_mask = {1, 0, 1};
+    const auto mask = nlohmann::json::parse(to_json({}, o, {.landmarks_file = "lm.json"}))["options"];
     EXPECT_EQ(mask["roi"]["file"], "stable.ply");
     EXPECT_EQ(mask["roi"]["property"], "bone");
     EXPECT_EQ(mask["roi"]["masked_vertices"], 2);
@@ -452,7 +452,7 @@ TEST(RegistrationJson, WritesTheTransformAndItsInverse) {
 TEST(RegistrationOptions, RejectsBadValuesNamingTheField) {
     EXPECT_THROW(RegistrationOptions{.samples = 3}.validate(), InputError);
     EXPECT_THROW((void)parse_loss("bisquare"), InputError);
-    EXPECT_THROW((void)parse_registration_roi("sphere:1,2,3"), InputError);
+    EXPECT_THROW((void)parse_roi("sphere:1,2,3"), InputError);
 }
 
 }  // namespace

@@ -19,26 +19,26 @@ Mesh dented(double radius, double depth) {
     return m;
 }
 
-SweepOptions sweep_options() {
-    SweepOptions o;
-    o.plan.azimuth_step_deg = 45;
-    o.plan.elevations_deg = {-20, 20};
-    o.render.backend = Backend::Embree;
-    o.render.supersample = 4;
+AnalysisOptions analysis_options() {
+    AnalysisOptions o;
+    o.fit.mode = FitMode::Identity;
+    o.sweep.plan.azimuth_step_deg = 45;
+    o.sweep.plan.elevations_deg = {-20, 20};
+    o.sweep.render.backend = Backend::Embree;
+    o.sweep.render.supersample = 4;
     return o;
 }
 
 std::size_t regions_at(const Mesh& examined, const Calibration& c) {
-    SweepOptions o = sweep_options();
-    o.plan.footprints = {c.footprint};
-    o.threshold_deg = c.threshold_deg;
-    const Mesh ref = condyle();
-    return run_sweep(ref, examined, make_sweep_plan(ref, o.plan), o).zooms[0].regions.regions.size();
+    AnalysisOptions o = analysis_options();
+    o.sweep.plan.footprints = {c.footprint};
+    o.decision.threshold = c.threshold_deg;
+    return analyse(condyle(), examined, o).decisions[0].regions.regions.size();
 }
 
 TEST(Calibrate, OnlyDeformationsLargerThanTheReferentialOneAreFlagged) {
     // Referential: a 0.2 mm dent of 1.5 mm radius.
-    const Calibration c = calibrate(condyle(), dented(1.5, 0.2), sweep_options(),
+    const Calibration c = calibrate(condyle(), dented(1.5, 0.2), analysis_options(),
                                     CalibrationOptions{.threshold_deg = 3.0, .finest = 0.05, .coarsest = 4.0, .step = 1.5},
                                     "dent 1.5 mm / 0.2 mm");
     ASSERT_TRUE(c.found);

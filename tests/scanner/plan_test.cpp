@@ -36,7 +36,8 @@ TEST(SweepPlan, RotaryPlanHasStepsTimesRingsTimesZooms) {
     EXPECT_EQ(plan.sizes[0], static_cast<int>(std::ceil(2 * plan.radius / 0.5)));
     EXPECT_EQ(plan.sizes[1], static_cast<int>(std::ceil(2 * plan.radius / 0.1)));
     // Every camera looks at the target from outside the framed sphere and keeps it in view.
-    for (const auto& v : plan.views) {
+    for (const auto& pv : plan.views) {
+        const View& v = pv.view;
         const auto uvd = v.camera.project(plan.target);
         EXPECT_NEAR(uvd.x(), v.camera.width / 2.0, 1e-6);
         EXPECT_NEAR(uvd.y(), v.camera.height / 2.0, 1e-6);
@@ -54,7 +55,7 @@ TEST(SweepPlan, FibonacciSphereIsNearUniform) {
     ASSERT_EQ(plan.views.size(), 200u);
     // Mean direction ~0 for a uniform covering of the sphere.
     Vec3d sum = Vec3d::Zero();
-    for (const auto& v : plan.views) sum += direction_from_az_el(v.azimuth_deg, v.elevation_deg);
+    for (const auto& v : plan.views) sum += direction_from_az_el(v.view.azimuth_deg, v.view.elevation_deg);
     EXPECT_LT(sum.norm() / 200.0, 0.01);
 }
 
@@ -65,7 +66,7 @@ TEST(SweepPlan, RoiKeepsOnlyViewsThatSeeIt) {
     o.roi = parse_roi("sphere:11,2,3,1");  // only the +x vertex
     const SweepPlan plan = make_sweep_plan(octahedron(), o);
     ASSERT_EQ(plan.views.size(), 1u);
-    EXPECT_DOUBLE_EQ(plan.views[0].azimuth_deg, 0.0);
+    EXPECT_DOUBLE_EQ(plan.views[0].view.azimuth_deg, 0.0);
     EXPECT_EQ(plan.roi_vertices, 1u);
 }
 
@@ -90,11 +91,19 @@ TEST(SweepPlan, RejectsEmptyPlansAndRoisAndHugeImages) {
 }
 
 TEST(ParseRoi, ReadsSphereAndBoxAndRejectsTypos) {
-    EXPECT_EQ(parse_roi("box:0,0,0,1,2,3").shape, RoiSpec::Shape::Box);
+    EXPECT_EQ(parse_roi("box:0,0,0,1,2,3").shape, Roi::Shape::Box);
     EXPECT_THROW((void)parse_roi("sphere:1,2,3"), InputError);
     EXPECT_THROW((void)parse_roi("cube:1,2,3,4"), InputError);
     EXPECT_THROW((void)parse_roi("sphere:1,2,x,4"), InputError);
     EXPECT_THROW((void)parse_roi("box:0,0,0,0,2,3"), InputError);
+    const Roi mask = parse_roi("mask:stable.ply:keep");
+    EXPECT_EQ(mask.shape, Roi::Shape::VertexMask);
+    EXPECT_EQ(mask.mask_file, "stable.ply");
+    EXPECT_EQ(mask.mask_property, "keep");
+    EXPECT_TRUE(mask.needs_mask());
+    EXPECT_EQ(parse_roi("mask:stable.ply").mask_property, "label");
+    EXPECT_EQ(to_string(parse_roi(to_string(mask))).rfind("mask:stable.ply:keep", 0), 0u);
+    EXPECT_THROW((void)parse_roi("mask:"), InputError);
 }
 
 }  // namespace

@@ -30,53 +30,52 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
     write_ply(ref, dir / "ref.ply");
 
-    SweepOptions options;
-    options.plan.azimuth_step_deg = 45;
-    options.plan.elevations_deg = {-30, 30};
-    options.plan.size = 48;
-    options.render.backend = Backend::Embree;
-    options.render.supersample = 2;
-    options.max_incidence_deg = 70.0;
-    const SweepPlan plan = make_sweep_plan(ref, options.plan);
-    ReportContext context;
-    context.command_line = "glint sweep ref.ply exa.ply -o atlas";
-    context.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
-    {
-        OutputFolder folder(dir / "atlas");
-        SweepExporter exporter(folder, plan, SweepExporter::Options{});
-        const SweepResult result = run_sweep(ref, exa, plan, options, exporter.observer());
-        exporter.finish();
-        write_sweep_outputs(folder, ref, result, context);
-        folder.commit();
-    }
+    AnalysisOptions options;
+    options.fit.mode = FitMode::Identity;
+    options.sweep.plan.azimuth_step_deg = 45;
+    options.sweep.plan.elevations_deg = {-30, 30};
+    options.sweep.plan.size = 48;
+    options.sweep.render.backend = Backend::Embree;
+    options.sweep.render.supersample = 2;
+    options.sweep.max_incidence_deg = 70.0;
+    options.exports.output = dir / "atlas";
+    options.exports.command_line = "glint sweep ref.ply exa.ply -o atlas";
+    options.exports.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
+    const AnalysisResult result = analyse(ref, exa, options);
+    EXPECT_EQ(result.output, dir / "atlas");
     for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "mosaic_z0.png",
                           "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
         EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
 
     std::ifstream in(dir / "atlas" / "report.json");
     const nlohmann::json r = nlohmann::json::parse(in);
-    EXPECT_EQ(r["command_line"], context.command_line);
+    EXPECT_EQ(r["command_line"], options.exports.command_line);
     ASSERT_EQ(r["inputs"].size(), 1u);
     EXPECT_EQ(r["inputs"][0]["sha256"], sha256_file(dir / "ref.ply"));
     EXPECT_EQ(r["inputs"][0]["sha256"].get<std::string>().size(), 64u);
     EXPECT_EQ(r["device"]["backend"], "embree");
     EXPECT_FALSE(r["device"]["name"].get<std::string>().empty());
-    EXPECT_EQ(r["plan"]["kind"], "rotary");
+    const auto& sweep = r["analysis"]["sweep"];
+    EXPECT_EQ(sweep["plan"], "rotary");
     EXPECT_EQ(r["plan"]["views"], 16);
-    EXPECT_EQ(r["plan"]["elevations_deg"], nlohmann::json({-30.0, 30.0}));
-    EXPECT_EQ(r["analysis"]["supersample"], 2);
-    EXPECT_EQ(r["analysis"]["backend_requested"], "embree");
-    EXPECT_DOUBLE_EQ(r["analysis"]["max_incidence_deg"].get<double>(), 70.0);
-    EXPECT_TRUE(r["analysis"]["threshold_deg"].is_null());  // the noise floor decided
+    EXPECT_EQ(sweep["elevations"], nlohmann::json({-30.0, 30.0}));
+    EXPECT_EQ(sweep["supersample"], 2);
+    EXPECT_EQ(sweep["backend"], "embree");
+    EXPECT_DOUBLE_EQ(sweep["max_incidence"].get<double>(), 70.0);
+    EXPECT_TRUE(r["analysis"]["decision"]["threshold"].is_null());  // the noise floor decided
+    EXPECT_EQ(r["analysis"]["registration"]["mode"], "identity");
+    EXPECT_EQ(r["metric"]["name"], "angle");
     ASSERT_EQ(r["zooms"].size(), 1u);
     const auto& z = r["zooms"][0];
     EXPECT_GT(z["threshold_deg"].get<double>(), 0.0);
-    EXPECT_FALSE(z["threshold_rule"].get<std::string>().empty());
+    EXPECT_EQ(z["normal_floor"]["value"], z["threshold_deg"]);
+    EXPECT_FALSE(z["normal_floor"]["rule"].get<std::string>().empty());
+    EXPECT_FALSE(z["rule_text"].get<std::string>().empty());
     EXPECT_GT(z["coverage"].get<double>(), 0.5);
     ASSERT_EQ(z["regions"].size(), 1u) << z["regions"].dump();
     EXPECT_EQ(z["regions"][0]["kind"], "dent");
     // The histogram counts every seen vertex once.
-    const auto counts = z["histogram_deg"]["counts"].get<std::vector<std::size_t>>();
+    const auto counts = z["histogram"]["counts"].get<std::vector<std::size_t>>();
     EXPECT_GT(std::accumulate(counts.begin(), counts.end(), std::size_t{0}), ref.vertex_count() / 2);
     EXPECT_EQ(r["views"].size(), 16u);
     EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);

@@ -74,9 +74,10 @@ TEST(LoadScenario, ReadsEverySection) {
     EXPECT_EQ(sc.damages[0].kind, DamageKind::Dent);
     EXPECT_DOUBLE_EQ(sc.damages[0].depth, 0.5);
     EXPECT_NEAR(rotation_angle_deg(sc.pose), std::hypot(2.0, 1.0), 0.05);
-    EXPECT_EQ(sc.sweep.plan.elevations_deg.size(), 2u);
-    ASSERT_TRUE(sc.sweep.threshold_deg);
-    EXPECT_DOUBLE_EQ(*sc.sweep.threshold_deg, 4.0);
+    EXPECT_EQ(sc.analysis.sweep.plan.elevations_deg.size(), 2u);
+    ASSERT_TRUE(sc.analysis.decision.threshold);
+    EXPECT_DOUBLE_EQ(*sc.analysis.decision.threshold, 4.0);
+    EXPECT_EQ(sc.analysis.fit.mode, FitMode::Register);  // a scenario registers by default
     EXPECT_EQ(sc.expect.regions, 1u);
 }
 
@@ -90,6 +91,17 @@ TEST(LoadScenario, RejectsAWrongType) {
     std::string text = kValid;
     text.replace(text.find("azimuth_step = 45"), 17, "azimuth_step = \"45\"");
     expect_error(text, {"sweep.azimuth_step", "expected a number", "found a string"});
+}
+
+TEST(LoadScenario, AnInvalidOptionNamesTheFileLineAndKey) {
+    // Checked by AnalysisOptions::validate (the one check the command line runs too), and
+    // placed by its key: before any mesh is built.
+    std::string text = kValid;
+    text.replace(text.find("azimuth_step = 45"), 17, "azimuth_step = 400");
+    expect_error(text, {"bad.toml", "line ", "sweep.azimuth_step = 400", "(0, 360]"});
+    std::string loss = kValid;
+    loss.replace(loss.find("[sweep]"), 7, "[registration]\nloss = \"bisquare\"\n\n[sweep]");
+    expect_error(loss, {"bad.toml", "registration.loss", "bisquare"});
 }
 
 TEST(LoadScenario, RejectsANegativeSize) {

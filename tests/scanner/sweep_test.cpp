@@ -1,7 +1,7 @@
 // The sweep's claims on phantoms (Embree backend: fast and identical to lavapipe, see the
 // renderer's agreement tests): partial analysis agrees with the full run inside the ROI, and
 // what no view sees is reported as unseen, never as undamaged.
-#include "scanner/sweep.h"
+#include "scanner/analysis.h"
 
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
@@ -18,40 +18,48 @@ Mesh condyle(TessellationScheme scheme, int resolution) {
     return make_phantom({.kind = PhantomKind::Condyle, .scheme = scheme, .resolution = resolution});
 }
 
-SweepOptions options_with(double footprint) {
-    SweepOptions o;
-    o.plan.azimuth_step_deg = 30;
-    o.plan.elevations_deg = {-30, 0, 30, 60};
-    o.plan.footprints = {footprint};
-    o.render.backend = Backend::Embree;
-    o.render.supersample = 2;
+AnalysisOptions options_with(double footprint) {
+    AnalysisOptions o;
+    o.fit.mode = FitMode::Identity;
+    o.sweep.plan.azimuth_step_deg = 30;
+    o.sweep.plan.elevations_deg = {-30, 0, 30, 60};
+    o.sweep.plan.footprints = {footprint};
+    o.sweep.render.backend = Backend::Embree;
+    o.sweep.render.supersample = 2;
     return o;
 }
+
+// What the tests read of one zoom level: its atlas and coverage, and its decision.
+struct Zoom {
+    const SweepZoom& sweep;
+    const ZoomDecision& decision;
+};
+Zoom zoom0(const AnalysisResult& r) { return {r.sweep.zooms[0], r.decisions[0]}; }
 
 TEST(Sweep, RoiRunAgreesWithTheFullRunInsideTheRoi) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
     apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = 2.5, .depth = 0.4}});
-    const SweepOptions full_options = options_with(0.1);
-    SweepOptions roi_options = full_options;
-    roi_options.plan.roi = parse_roi("sphere:0,-5,4,4");
-    const SweepResult full = run_sweep(ref, exa, make_sweep_plan(ref, full_options.plan), full_options);
-    const SweepResult part = run_sweep(ref, exa, make_sweep_plan(ref, roi_options.plan), roi_options);
-    EXPECT_LT(part.views.size(), full.views.size());
-    const auto& f = full.zooms[0];
-    const auto& p = part.zooms[0];
+    const AnalysisOptions full_options = options_with(0.1);
+    AnalysisOptions roi_options = full_options;
+    roi_options.sweep.plan.roi = parse_roi("sphere:0,-5,4,4");
+    const AnalysisResult full = analyse(ref, exa, full_options);
+    const AnalysisResult part = analyse(ref, exa, roi_options);
+    EXPECT_LT(part.sweep.views.size(), full.sweep.views.size());
+    const Zoom f = zoom0(full);
+    const Zoom p = zoom0(part);
     std::size_t both = 0, agree = 0, inside = 0;
     double worst = 0.0;
     for (std::size_t v = 0; v < ref.vertex_count(); ++v) {
-        if (!roi_options.plan.roi->contains(ref.positions[v].cast<double>())) {
-            EXPECT_EQ(p.seen[v], 0) << "vertex " << v << " outside the ROI was analysed";
+        if (!roi_options.sweep.plan.roi->contains_point(ref.positions[v].cast<double>())) {
+            EXPECT_EQ(p.sweep.coverage.seen[v], 0) << "vertex " << v << " outside the ROI was analysed";
             continue;
         }
         ++inside;
-        if (!f.seen[v] || !p.seen[v]) continue;
+        if (!f.sweep.coverage.seen[v] || !p.sweep.coverage.seen[v]) continue;
         ++both;
-        worst = std::max(worst, std::abs(double(f.atlas.angle_mean_deg[v]) - p.atlas.angle_mean_deg[v]));
-        agree += (f.regions.region_of_vertex[v] != 0) == (p.regions.region_of_vertex[v] != 0);
+        worst = std::max(worst, std::abs(double(f.sweep.atlas.value_mean[v]) - p.sweep.atlas.value_mean[v]));
+        agree += (f.decision.regions.region_of_vertex[v] != 0) == (p.decision.regions.region_of_vertex[v] != 0);
     }
     // The ROI plan keeps the full plan's views that see the ROI and frames them the same way
     // at the same footprint, so the vertices they see get the same observations except those
@@ -60,7 +68,7 @@ TEST(Sweep, RoiRunAgreesWithTheFullRunInsideTheRoi) {
     EXPECT_GT(both, inside * 95 / 100);
     EXPECT_LT(worst, 1.0);
     EXPECT_GT(agree, both * 98 / 100);
-    EXPECT_EQ(p.regions.regions.size(), 1u);
+    EXPECT_EQ(p.decision.regions.regions.size(), 1u);
 }
 
 TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
@@ -69,42 +77,42 @@ TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
     // A dent at the north pole, and a plan that only looks from the equator: the pole is seen
     // at grazing incidence only (beyond the 75° rule).
     apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 2, .depth = 0.3}});
-    SweepOptions o = options_with(0.15);
-    o.plan.elevations_deg = {0};
-    o.plan.azimuth_step_deg = 90;
-    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, o.plan), o);
-    const auto& z = r.zooms[0];
-    EXPECT_LT(z.coverage, 0.99);  // the polar caps (≈ 3.5% of the area) stay unseen
+    AnalysisOptions o = options_with(0.15);
+    o.sweep.plan.elevations_deg = {0};
+    o.sweep.plan.azimuth_step_deg = 90;
+    const AnalysisResult r = analyse(ref, exa, o);
+    const Zoom z = zoom0(r);
+    EXPECT_LT(z.sweep.coverage.fraction, 0.99);  // the polar caps (≈ 3.5% of the area) stay unseen
     std::size_t pole_seen = 0;
     for (std::size_t v = 0; v < ref.vertex_count(); ++v) {
         if (ref.positions[v].z() > 9.7f) {
-            pole_seen += z.seen[v];
-            EXPECT_EQ(z.regions.region_of_vertex[v], 0);
+            pole_seen += z.sweep.coverage.seen[v];
+            EXPECT_EQ(z.decision.regions.region_of_vertex[v], 0);
         }
     }
     EXPECT_EQ(pole_seen, 0u);
-    EXPECT_TRUE(z.regions.regions.empty());
+    EXPECT_TRUE(z.decision.regions.regions.empty());
 }
 
 TEST(Sweep, ThePapersRgbMetricFindsTheSameDent) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
     apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
-    const SweepOptions angle = options_with(0.12);
-    SweepOptions rgb = angle;
-    rgb.metric = Metric::RgbAbs;
-    const SweepResult a = run_sweep(ref, exa, make_sweep_plan(ref, angle.plan), angle);
-    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, rgb.plan), rgb);
-    ASSERT_EQ(a.zooms[0].regions.regions.size(), 1u);
-    ASSERT_EQ(r.zooms[0].regions.regions.size(), 1u);
-    const Region& ra = a.zooms[0].regions.regions[0];
-    const Region& rr = r.zooms[0].regions.regions[0];
+    const AnalysisOptions angle = options_with(0.12);
+    AnalysisOptions rgb = angle;
+    rgb.sweep.metric = Metric::RgbAbs;
+    const AnalysisResult a = analyse(ref, exa, angle);
+    const AnalysisResult r = analyse(ref, exa, rgb);
+    ASSERT_EQ(a.decisions[0].regions.regions.size(), 1u);
+    ASSERT_EQ(r.decisions[0].regions.regions.size(), 1u);
+    const Region& ra = a.decisions[0].regions.regions[0];
+    const Region& rr = r.decisions[0].regions.regions[0];
     EXPECT_EQ(rr.kind, RegionKind::Dent);
     EXPECT_LT((ra.centroid - rr.centroid).norm(), 0.3);
     // Colour units, not degrees: a 0.4 mm dent of 2.5 mm radius tilts normals by up to ~15°,
     // which moves an 8-bit normal colour by tens of units.
-    EXPECT_GT(rr.max_angle_deg, ra.max_angle_deg);
-    EXPECT_LE(rr.max_angle_deg, 255.0);
+    EXPECT_GT(rr.max_value, ra.max_value);
+    EXPECT_LE(rr.max_value, 255.0);
     // Area agrees within a factor of 1.5 (the two thresholds are each the run's noise floor).
     EXPECT_LT(std::max(ra.area, rr.area) / std::min(ra.area, rr.area), 1.5);
 }
@@ -131,28 +139,28 @@ TEST(Sweep, TheHiddenSideOfAnOpenMeshIsReportedUnseen) {
     Mesh exa_sphere = sphere;
     apply_damage(exa_sphere, {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 3, .depth = 0.5}});
     const Mesh exa = dome(exa_sphere);
-    SweepOptions below = options_with(0.15);
-    below.plan.elevations_deg = {-60, -30};
-    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, below.plan), below);
-    const auto& z = r.zooms[0];
-    EXPECT_LT(z.coverage, 0.8);  // measured 0.72: the band below 60° from the top
+    AnalysisOptions below = options_with(0.15);
+    below.sweep.plan.elevations_deg = {-60, -30};
+    const AnalysisResult r = analyse(ref, exa, below);
+    const Zoom z = zoom0(r);
+    EXPECT_LT(z.sweep.coverage.fraction, 0.8);  // measured 0.72: the band below 60° from the top
     std::size_t top_seen = 0, top = 0;
     for (std::size_t v = 0; v < ref.vertex_count(); ++v) {
         if (ref.positions[v].z() < 8.0f) continue;
         ++top;
-        top_seen += z.seen[v];
-        EXPECT_EQ(z.regions.region_of_vertex[v], 0);
+        top_seen += z.sweep.coverage.seen[v];
+        EXPECT_EQ(z.decision.regions.region_of_vertex[v], 0);
     }
     EXPECT_GT(top, 50u);
     EXPECT_EQ(top_seen, 0u);
-    EXPECT_TRUE(z.regions.regions.empty());
+    EXPECT_TRUE(z.decision.regions.regions.empty());
     // From above, the same dome is seen and the dent found.
-    SweepOptions above = options_with(0.15);
-    above.plan.elevations_deg = {30, 60, 90};
-    const SweepResult a = run_sweep(ref, exa, make_sweep_plan(ref, above.plan), above);
-    EXPECT_GT(a.zooms[0].coverage, 0.9);
-    ASSERT_EQ(a.zooms[0].regions.regions.size(), 1u);
-    EXPECT_EQ(a.zooms[0].regions.regions[0].kind, RegionKind::Dent);
+    AnalysisOptions above = options_with(0.15);
+    above.sweep.plan.elevations_deg = {30, 60, 90};
+    const AnalysisResult a = analyse(ref, exa, above);
+    EXPECT_GT(a.sweep.zooms[0].coverage.fraction, 0.9);
+    ASSERT_EQ(a.decisions[0].regions.regions.size(), 1u);
+    EXPECT_EQ(a.decisions[0].regions.regions[0].kind, RegionKind::Dent);
 }
 
 TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
@@ -160,9 +168,8 @@ TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
     Mesh exa = condyle(TessellationScheme::Uv, 64);
     const DamageSpec dent{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4};
     apply_damage(exa, {dent});
-    const SweepOptions o = options_with(0.12);
-    const SweepResult r = run_sweep(ref, exa, make_sweep_plan(ref, o.plan), o);
-    const auto& regions = r.zooms[0].regions.regions;
+    const AnalysisResult r = analyse(ref, exa, options_with(0.12));
+    const auto& regions = r.decisions[0].regions.regions;
     ASSERT_EQ(regions.size(), 1u);
     EXPECT_EQ(regions[0].kind, RegionKind::Dent);
     // Against the ground truth on the reference (the same dent applied to it): the region's
@@ -179,7 +186,7 @@ TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
             area += areas[v];
         }
     EXPECT_LT((regions[0].centroid - c / area).norm(), 0.3);
-    EXPECT_NEAR(r.zooms[0].coverage, 1.0, 0.02);
+    EXPECT_NEAR(r.sweep.zooms[0].coverage.fraction, 1.0, 0.02);
 }
 
 }  // namespace

@@ -1,0 +1,321 @@
+#include "registration/detail/icp_core.h"
+
+#include <ceres/ceres.h>
+#include <ceres/rotation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+#include <thread>
+
+namespace glint::detail {
+
+// Area-uniform samples: a triangle picked with probability ∝ area, a uniform point in it.
+std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t seed) {
+    const auto areas = triangle_areas(mesh);
+    std::vector<double> cumulative(areas.size());
+    double total = 0.0;
+    for (std::size_t t = 0; t < areas.size(); ++t) cumulative[t] = total += areas[t];
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    std::vector<Sample> out;
+    out.reserve(static_cast<std::size_t>(count));
+    for (int i = 0; i < count; ++i) {
+        const double pick = u01(rng) * total;
+        const auto t = static_cast<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+        const auto& tri = mesh.triangles[std::min(t, areas.size() - 1)];
+        // Uniform point in a triangle: (1 − √r1, √r1(1 − r2), √r1 r2).
+        const double r1 = std::sqrt(u01(rng)), r2 = u01(rng);
+        const double w[3] = {1 - r1, r1 * (1 - r2), r1 * r2};
+        Sample s{Vec3d::Zero(), Vec3d::Zero()};
+        for (int k = 0; k < 3; ++k) {
+            s.point += w[k] * mesh.positions[tri[static_cast<std::size_t>(k)]].cast<double>();
+            s.normal += w[k] * mesh.normals[tri[static_cast<std::size_t>(k)]].cast<double>();
+        }
+        if (s.normal.norm() > 0) s.normal.normalize();
+        out.push_back(s);
+    }
+    return out;
+}
+
+double median_abs(std::vector<double> v) {
+    if (v.empty()) return 0.0;
+    for (auto& x : v) x = std::abs(x);
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+namespace {
+
+// r = n_q · (R(x) p + t − q): point-to-plane residual of one pair, x = (angle-axis, t).
+struct PointToPlane {
+    Vec3d p, q, n;
+    template <class T>
+    bool operator()(const T* x, T* r) const {
+        const T pt[3] = {T(p.x()), T(p.y()), T(p.z())};
+        T rp[3];
+        ceres::AngleAxisRotatePoint(x, pt, rp);
+        r[0] = T(n.x()) * (rp[0] + x[3] - T(q.x())) + T(n.y()) * (rp[1] + x[4] - T(q.y())) +
+               T(n.z()) * (rp[2] + x[5] - T(q.z()));
+        return true;
+    }
+};
+
+// Symmetric direction: a reference point q against the plane of an examined point p with
+// normal n, both moving with the examined mesh: r = (R n) · (q − (R p + t)).
+struct PlaneToPoint {
+    Vec3d p, q, n;
+    template <class T>
+    bool operator()(const T* x, T* r) const {
+        const T pt[3] = {T(p.x()), T(p.y()), T(p.z())};
+        const T nt[3] = {T(n.x()), T(n.y()), T(n.z())};
+        T rp[3], rn[3];
+        ceres::AngleAxisRotatePoint(x, pt, rp);
+        ceres::AngleAxisRotatePoint(x, nt, rn);
+        r[0] = rn[0] * (T(q.x()) - rp[0] - x[3]) + rn[1] * (T(q.y()) - rp[1] - x[4]) + rn[2] * (T(q.z()) - rp[2] - x[5]);
+        return true;
+    }
+};
+
+ceres::LossFunction* make_loss(RobustLoss loss, double scale) {
+    switch (loss) {
+        case RobustLoss::None: return nullptr;
+        case RobustLoss::Huber: return new ceres::HuberLoss(scale);
+        case RobustLoss::Cauchy: return new ceres::CauchyLoss(scale);
+        case RobustLoss::Tukey: return new ceres::TukeyLoss(scale);
+    }
+    return nullptr;
+}
+
+Rigid from_params(const double* x) {
+    Eigen::Matrix3d r;
+    ceres::AngleAxisToRotationMatrix(x, ceres::ColumnMajorAdapter3x3(r.data()));
+    Rigid t = Rigid::Identity();
+    t.linear() = r;
+    t.translation() = Vec3d(x[3], x[4], x[5]);
+    return t;
+}
+
+// Whether a closest reference point lies in the ROI (a vertex mask keeps a triangle with at
+// least one masked vertex).
+bool in_roi(const ClosestPoint& c, const Mesh& ref, const std::optional<Roi>& roi) {
+    if (!roi) return true;
+    if (roi->shape == Roi::Shape::VertexMask) {
+        const auto& tri = ref.triangles[c.triangle];
+        return roi->vertex_mask[tri[0]] || roi->vertex_mask[tri[1]] || roi->vertex_mask[tri[2]];
+    }
+    return roi->contains_point(c.point);
+}
+
+}  // namespace
+
+// Pairs of the examined samples at pose T with the reference, after rejection.
+std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
+                        const RegistrationOptions& o, double max_distance) {
+    std::vector<Vec3d> moved(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) moved[i] = t * samples[i].point;
+    const auto cps = reference.closest(moved, max_distance);
+    const double min_cos = std::cos(o.max_normal_angle_deg * kDeg);
+    const Eigen::Matrix3d rot = t.linear();
+    std::vector<Pair> pairs;
+    pairs.reserve(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const auto& c = cps[i];
+        if (!c.found) continue;
+        if ((rot * samples[i].normal).dot(c.normal) < min_cos) continue;
+        if (!in_roi(c, reference.mesh(), o.roi)) continue;
+        pairs.push_back({moved[i], c.point, c.normal, c.normal.dot(moved[i] - c.point)});
+    }
+    return pairs;
+}
+
+namespace {
+
+/// Residuals within 3σ: how many, and their RMS (0 when none).
+struct InlierStats {
+    std::size_t inliers = 0;
+    double rms = 0.0;
+};
+
+InlierStats inlier_stats(const std::vector<double>& residuals, double sigma) {
+    InlierStats st;
+    double ss = 0.0;
+    for (double r : residuals)
+        if (std::abs(r) <= 3.0 * sigma) {
+            ++st.inliers;
+            ss += r * r;
+        }
+    st.rms = st.inliers ? std::sqrt(ss / static_cast<double>(st.inliers)) : 0.0;
+    return st;
+}
+
+struct IcpEvidence {
+    double rms = 0.0;
+    double inlier_fraction = 0.0;
+    double overlap = 0.0;
+};
+
+// The evidence at pose T (see RegistrationResult): closest points without a distance limit,
+// so that a sample whose closest point lies outside the ROI is left out rather than counted
+// as not overlapping; a pair is accepted within `gate` with compatible normals.
+// note: the gate is absolute (a share of the size), not a multiple of the residuals' spread:
+// a fit of unrelated surfaces has a wide spread, and a relative gate would call it overlap.
+IcpEvidence evaluate(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
+                  const RegistrationOptions& o, double gate) {
+    std::vector<Vec3d> moved(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) moved[i] = t * samples[i].point;
+    const auto cps = reference.closest(moved);
+    const double min_cos = std::cos(o.max_normal_angle_deg * kDeg);
+    const Eigen::Matrix3d rot = t.linear();
+    std::size_t candidates = 0;
+    std::vector<double> residuals;
+    residuals.reserve(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const auto& c = cps[i];
+        if (!c.found) continue;
+        if (!in_roi(c, reference.mesh(), o.roi)) continue;
+        ++candidates;
+        if (c.distance > gate || (rot * samples[i].normal).dot(c.normal) < min_cos) continue;
+        residuals.push_back(c.normal.dot(moved[i] - c.point));
+    }
+    IcpEvidence e;
+    if (candidates == 0 || residuals.empty()) return e;
+    e.overlap = static_cast<double>(residuals.size()) / static_cast<double>(candidates);
+    const InlierStats st = inlier_stats(residuals, 1.4826 * median_abs(residuals));
+    e.inlier_fraction = static_cast<double>(st.inliers) / static_cast<double>(residuals.size());
+    e.rms = st.rms;
+    return e;
+}
+
+}  // namespace
+
+IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
+               const ClosestPointIndex& reference, const ClosestPointIndex* examined, const Rigid& start,
+               const RegistrationOptions& o, int max_iterations, double diagonal) {
+    IcpRun run;
+    run.t = start;
+    RegistrationResult& res = run.result;
+    res.termination = "max iterations";
+    res.termination_detail = "max iterations: " + std::to_string(max_iterations) + " iterations without convergence";
+    // note: 1e-9 of the size keeps the loss scale positive on noise-free synthetic pairs.
+    const double sigma_floor = 1e-9 * diagonal;
+    double max_distance = std::numeric_limits<double>::infinity();
+    // Cost of the previous iteration when its loss scale was already fully annealed (the
+    // costs of two iterations compare only under the same anneal factor).
+    std::optional<double> previous_cost;
+    for (int it = 0; it < max_iterations; ++it) {
+        const std::vector<Pair> pairs = match(samples, run.t, reference, o, max_distance);
+        if (pairs.size() < std::max<std::size_t>(6, samples.size() / 33)) {
+            res.termination = "no overlap";
+            res.termination_detail = "no overlap: " + std::to_string(pairs.size()) + " of " +
+                                     std::to_string(samples.size()) +
+                                     " samples found a compatible reference surface";
+            res.converged = false;
+            res.iterations = it;
+            return run;
+        }
+        std::vector<double> residuals(pairs.size());
+        for (std::size_t i = 0; i < pairs.size(); ++i) residuals[i] = pairs[i].r;
+        const double sigma = std::max(1.4826 * median_abs(residuals), sigma_floor);
+        const double anneal = std::max(o.anneal_end, o.anneal_start / std::pow(2.0, it));
+        const double scale = anneal * sigma;
+        // Far outliers (beyond 20σ, or the initial spread) do not enter the next matching.
+        max_distance = std::max(20.0 * sigma, 1e-6 * diagonal);
+
+        double x[6] = {0, 0, 0, 0, 0, 0};
+        ceres::Problem::Options problem_options;
+        ceres::Problem problem(problem_options);
+        for (const auto& p : pairs)
+            problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
+                                     make_loss(o.loss, scale), x);
+        if (o.symmetric && examined) {
+            const Rigid inv = run.t.inverse();
+            std::vector<Vec3d> back(ref_samples.size());
+            for (std::size_t i = 0; i < ref_samples.size(); ++i) back[i] = inv * ref_samples[i].point;
+            const auto cps = examined->closest(back, max_distance);
+            for (std::size_t i = 0; i < cps.size(); ++i) {
+                if (!cps[i].found) continue;
+                const Vec3d pw = run.t * cps[i].point;
+                const Vec3d nw = run.t.linear() * cps[i].normal;
+                if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
+                problem.AddResidualBlock(
+                    new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(new PlaneToPoint{pw, ref_samples[i].point, nw}),
+                    make_loss(o.loss, scale), x);
+            }
+        }
+        ceres::Solver::Options so;
+        so.linear_solver_type = ceres::DENSE_QR;
+        so.max_num_iterations = o.inner_iterations;
+        so.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+        so.logging_type = ceres::SILENT;
+        so.minimizer_progress_to_stdout = false;
+        ceres::Solver::Summary summary;
+        ceres::Solve(so, &problem, &summary);
+
+        const Rigid step = from_params(x);
+        run.t = step * run.t;
+        IcpIteration log;
+        log.iteration = it + 1;
+        log.cost = summary.final_cost;
+        log.rms = inlier_stats(residuals, sigma).rms;
+        log.loss_scale = o.loss == RobustLoss::None ? 0.0 : scale;
+        log.overlap = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
+        log.rotation_step_deg = rotation_angle_deg(step);
+        log.translation_step = step.translation().norm();
+        res.log.push_back(log);
+        res.iterations = it + 1;
+        if (summary.termination_type == ceres::FAILURE) {
+            res.termination = "solver failure";
+            res.termination_detail = "solver failure: " + summary.message;
+            break;
+        }
+        const bool annealed = anneal <= o.anneal_end || o.loss == RobustLoss::None;
+        if (annealed && log.rotation_step_deg < o.rotation_tolerance_deg &&
+            log.translation_step < o.translation_tolerance * diagonal) {
+            res.converged = true;
+            res.termination = "parameter change";
+            std::ostringstream why;
+            why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step
+                << " below " << o.rotation_tolerance_deg << "° and " << o.translation_tolerance << " × size after "
+                << it + 1 << " iterations";
+            res.termination_detail = why.str();
+            break;
+        }
+        if (annealed && previous_cost) {
+            // note: the denominator's floor keeps 0/0 (a perfect fit) from reading as a change.
+            const double change = std::abs(log.cost - *previous_cost) /
+                                  std::max(*previous_cost, std::numeric_limits<double>::min());
+            if (change < o.cost_tolerance) {
+                res.converged = true;
+                res.termination = "cost change";
+                std::ostringstream why;
+                why << "cost change: relative change " << change << " below " << o.cost_tolerance << " after "
+                    << it + 1 << " iterations";
+                res.termination_detail = why.str();
+                break;
+            }
+        }
+        if (annealed) previous_cost = log.cost;
+    }
+    // The evidence at the pose returned, not at the one before the last step.
+    const IcpEvidence e = evaluate(samples, run.t, reference, o, o.overlap_distance * diagonal);
+    res.rms = e.rms;
+    res.inlier_fraction = e.inlier_fraction;
+    res.overlap = e.overlap;
+    if (e.overlap < o.min_overlap) {
+        res.converged = false;
+        res.termination = "low overlap";
+        std::ostringstream why;
+        why << "low overlap: " << e.overlap << " of the samples lie within " << o.overlap_distance
+            << " × size of a compatible reference surface at the final pose, below min overlap " << o.min_overlap
+            << " (ICP: " << res.termination_detail << ")";
+        res.termination_detail = why.str();
+    }
+    return run;
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,58 @@
+// ICP machinery shared by the fine fit (icp.cpp) and the coarse hypotheses (coarse.cpp):
+// surface sampling, matching with rejection, robust statistics, one ICP run. Internal.
+#pragma once
+
+#include "mesh/geometry.h"
+#include "mesh/mesh.h"
+#include "registration/closest_point.h"
+#include "registration/icp.h"
+
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace glint::detail {
+
+inline constexpr double kDeg = std::numbers::pi / 180.0;
+
+/// A point on a surface with its interpolated unit normal.
+struct Sample {
+    Vec3d point;
+    Vec3d normal;
+};
+
+/// `count` area-uniform samples with interpolated normals (deterministic for a seed).
+[[nodiscard]] std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t seed);
+
+/// Median of |v|, 0 for an empty vector.
+[[nodiscard]] double median_abs(std::vector<double> v);
+
+/// One examined sample matched with its closest reference point.
+struct Pair {
+    Vec3d p;   ///< examined sample, current pose (world)
+    Vec3d q;   ///< closest reference point
+    Vec3d n;   ///< reference normal at q
+    double r;  ///< point-to-plane residual
+};
+
+/// Pairs of the examined samples at pose `t` with the reference, after rejection (distance,
+/// normal compatibility, ROI).
+[[nodiscard]] std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t,
+                                      const ClosestPointIndex& reference, const RegistrationOptions& o,
+                                      double max_distance);
+
+/// An ICP run: the pose reached and its result (evidence, log, termination).
+struct IcpRun {
+    Rigid t = Rigid::Identity();
+    RegistrationResult result;
+};
+
+/// Point-to-plane ICP from `start` for at most `max_iterations`; `ref_samples` and
+/// `examined` are used only for the symmetric variant. `diagonal` is the larger bounding
+/// diagonal (scales the tolerances).
+[[nodiscard]] IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
+                             const ClosestPointIndex& reference, const ClosestPointIndex* examined,
+                             const Rigid& start, const RegistrationOptions& o, int max_iterations,
+                             double diagonal);
+
+}  // namespace glint::detail

@@ -1,0 +1,115 @@
+#include "scanner/analysis.h"
+
+#include "mesh/cancel.h"
+#include "mesh/error.h"
+#include "mesh/normals.h"
+#include "scanner/output_folder.h"
+#include "scanner/report.h"
+#include "scanner/view_exports.h"
+
+#include <chrono>
+#include <optional>
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+void announce(const AnalysisObserver& observer, std::string_view stage) {
+    throw_if_cancelled();
+    if (observer.stage) observer.stage(stage);
+}
+
+// The fit, refused when a registration did not converge: a sweep from a wrong pose would
+// report the misfit as damage.
+FitOutcome fit_or_refuse(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+    FitOutcome fit = fit_examined(reference, examined, options);
+    if (!fit.converged)
+        throw InputError("registration of the examined mesh onto the reference did not converge (" +
+                         (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
+                         "); the meshes may not overlap: give a fit file or start from landmarks (glint register)");
+    return fit;
+}
+
+// The plan's ROI with its mask read (a sweep ROI may be a vertex mask file).
+SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_count) {
+    SweepPlanOptions p = plan;
+    if (p.roi && p.roi->needs_mask()) read_roi_mask(*p.roi, vertex_count);
+    return p;
+}
+
+}  // namespace
+
+AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const AnalysisOptions& options,
+                       const AnalysisObserver& observer) {
+    const auto t_start = Clock::now();
+    options.validate();
+    std::optional<Mesh> with_normals;
+    if (!reference_in.has_normals()) {
+        with_normals = reference_in;
+        compute_vertex_normals(*with_normals);
+    }
+    const Mesh& reference = with_normals ? *with_normals : reference_in;
+    // The output location is checked before the long work.
+    std::optional<OutputFolder> folder;
+    if (!options.exports.output.empty()) folder.emplace(options.exports.output);
+
+    AnalysisResult result;
+    result.size = bounds(reference).diagonal();
+    result.warnings = options.exports.warnings;
+    announce(observer, "fit");
+    auto t = Clock::now();
+    result.fit = fit_or_refuse(reference, examined, options.fit);
+    for (const auto& w : result.fit.warnings) result.warnings.push_back(w);
+    Mesh fitted = examined;
+    transform_mesh(fitted, result.fit.reference_from_examined);
+    result.fit_seconds = seconds_since(t);
+
+    announce(observer, "distance");
+    t = Clock::now();
+    result.distance = signed_distances(reference, fitted);
+    result.distance_seconds = seconds_since(t);
+
+    announce(observer, "sweep");
+    const SweepPlan plan = make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
+    std::optional<ViewExporter> exporter;
+    if (folder) exporter.emplace(*folder, plan, options.sweep.metric, options.exports);
+    std::size_t done = 0;
+    result.sweep = run_sweep(reference, fitted, plan, options.sweep,
+                             [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
+                                 if (exporter) exporter->add(v, rf, ef, d);
+                                 if (observer.views) observer.views(++done, plan.views.size());
+                             });
+
+    announce(observer, "decide");
+    t = Clock::now();
+    for (const auto& zoom : result.sweep.zooms) {
+        const DecisionEvidence evidence{.atlas = &zoom.atlas,
+                                        .coverage = &zoom.coverage,
+                                        .distance = &result.distance,
+                                        .metric = options.sweep.metric,
+                                        .size = result.size};
+        result.decisions.push_back(decide(reference, evidence, options.decision));
+        for (const auto& w : result.decisions.back().warnings)
+            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
+    }
+    result.decision_seconds = seconds_since(t);
+
+    if (folder) {
+        announce(observer, "export");
+        t = Clock::now();
+        exporter->finish();
+        result.total_seconds = seconds_since(t_start);
+        write_outputs(*folder, reference, result, options);
+        folder->commit();
+        result.output = folder->target();
+        result.export_seconds = seconds_since(t);
+    }
+    result.total_seconds = seconds_since(t_start);
+    return result;
+}
+
+}  // namespace glint

@@ -1,0 +1,95 @@
+// One analysis pipeline: fit → signed distance → plan → sweep → decide → export.
+//
+// Every caller — `glint sweep`, `glint calibrate`, scenario runs — fills one AnalysisOptions
+// and calls analyse(); nothing else assembles the pipeline. validate() checks every option
+// before any mesh is loaded and names the bad one by its scenario key (OptionError::key),
+// so a scenario file can point at its line.
+//
+//   reference ─┐
+//   examined ──┴─▶ fit (scanner/fit.h) ─▶ fitted examined ─▶ signed distance (shape evidence)
+//                                              │
+//   plan (scanner/plan.h) ─▶ sweep (scanner/sweep.h): atlas + coverage per zoom
+//                                              │
+//   decide (scanner/decision.h) per zoom ─▶ floors + regions ─▶ exports (scanner/report.h)
+#pragma once
+
+#include "mesh/mesh.h"
+#include "scanner/decision.h"
+#include "scanner/fit.h"
+#include "scanner/sweep.h"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace glint {
+
+/// One input of a run, for the report.
+struct InputRecord {
+    std::string role;               ///< "reference", "examined", "fit", "scenario", "calibration"
+    std::filesystem::path path;     ///< empty for a generated mesh
+    std::string description;        ///< e.g. "phantom condyle ico 5"
+    std::size_t vertices = 0;
+    std::size_t triangles = 0;
+};
+
+struct ExportOptions {
+    /// The output folder (written complete or not at all, scanner/output_folder.h); empty:
+    /// nothing is written.
+    std::filesystem::path output;
+    bool write_views = true;        ///< per-view PNG heat maps
+    bool write_exr = true;          ///< per-view EXR with the raw numbers
+    int mosaic_tile = 128;          ///< mosaic thumbnail size, pixels
+    // Provenance recorded in report.json.
+    std::string command_line;
+    std::vector<InputRecord> inputs;
+    std::vector<std::string> warnings;  ///< e.g. repairs done while loading
+
+    /// \throw OptionError.
+    void validate() const;
+};
+
+struct AnalysisOptions {
+    FitOptions fit;
+    SweepOptions sweep;
+    DecisionOptions decision;
+    ExportOptions exports;
+
+    /// Every option, before anything is loaded. \throw OptionError naming the key.
+    void validate() const;
+};
+
+/// The options as JSON (report.json's "analysis"; two callers that mean the same run
+/// produce the same text).
+[[nodiscard]] std::string to_json(const AnalysisOptions& options);
+
+struct AnalysisResult {
+    FitOutcome fit;
+    std::vector<float> distance;           ///< per reference vertex, signed (negative = loss)
+    SweepResult sweep;
+    std::vector<ZoomDecision> decisions;   ///< one per zoom level
+    double size = 0.0;                     ///< bounding diagonal of the reference (mesh units)
+    std::filesystem::path output;          ///< the folder written (empty when none)
+    std::vector<std::string> warnings;     ///< load, fit and decision warnings
+    double fit_seconds = 0.0;
+    double distance_seconds = 0.0;
+    double decision_seconds = 0.0;
+    double export_seconds = 0.0;
+    double total_seconds = 0.0;
+};
+
+/// Progress of a long analysis; every member may be empty.
+struct AnalysisObserver {
+    std::function<void(std::string_view stage)> stage;  ///< "fit", "distance", "sweep", "decide", "export"
+    std::function<void(std::size_t done, std::size_t total)> views;
+};
+
+/// Runs the pipeline. The reference must have vertex normals (loaded meshes do).
+/// \throw OptionError invalid options; InputError a fit that did not converge, surfaces that
+/// do not overlap; IoError, DeviceError; Cancelled (nothing half-written is left).
+[[nodiscard]] AnalysisResult analyse(const Mesh& reference, const Mesh& examined, const AnalysisOptions& options,
+                                     const AnalysisObserver& observer = {});
+
+}  // namespace glint

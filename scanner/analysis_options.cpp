@@ -1,0 +1,104 @@
+// AnalysisOptions: checking every option before anything is loaded, and the options as JSON.
+#include "scanner/analysis.h"
+
+#include "mesh/error.h"
+
+#include <nlohmann/json.hpp>
+
+namespace glint {
+
+namespace {
+
+using nlohmann::json;
+
+json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
+json path_or_null(const std::filesystem::path& p) { return p.empty() ? json(nullptr) : json(p.string()); }
+
+json matrix_json(const Rigid& t) {
+    json rows = json::array();
+    for (int i = 0; i < 4; ++i) rows.push_back({t(i, 0), t(i, 1), t(i, 2), t(i, 3)});
+    return rows;
+}
+
+std::string plan_kind(const SweepPlanOptions& p) {
+    return p.kind == SweepPlanOptions::Kind::Rotary ? "rotary" : "sphere:" + std::to_string(p.sphere_views);
+}
+
+json fit_json(const FitOptions& f) {
+    const RegistrationOptions& r = f.registration;
+    json j = {{"mode", to_string(f.mode)},
+              {"fit", path_or_null(f.fit_file)},
+              {"loss", to_string(r.loss)},
+              {"roi", r.roi ? json(to_string(*r.roi)) : json(nullptr)},
+              {"symmetric", r.symmetric},
+              {"samples", r.samples},
+              {"max_iterations", r.max_iterations},
+              {"coarse", r.coarse},
+              {"seed", r.seed},
+              {"landmarks", path_or_null(f.landmarks_file)},
+              {"init", path_or_null(f.init_file)}};
+    if (f.mode == FitMode::Truth) j["truth"] = matrix_json(f.truth);
+    return j;
+}
+
+json sweep_json(const SweepOptions& s) {
+    const SweepPlanOptions& p = s.plan;
+    return {{"plan", plan_kind(p)},
+            {"azimuth_step", p.azimuth_step_deg},
+            {"elevations", p.elevations_deg},
+            {"zoom", p.footprints},
+            {"size", p.size},
+            {"margin", p.margin},
+            {"roi", p.roi ? json(to_string(*p.roi)) : json(nullptr)},
+            {"metric", to_string(s.metric)},
+            {"backend", to_string(s.render.backend)},
+            {"device", s.render.device},
+            {"supersample", s.render.supersample},
+            {"max_incidence", s.max_incidence_deg},
+            {"min_coverage", s.compare.min_coverage}};
+}
+
+json decision_json(const DecisionOptions& d) {
+    return {{"rule", to_string(d.rule)},
+            {"threshold", optional_number(d.threshold)},
+            {"noise_k", d.noise_k},
+            {"min_threshold", d.min_threshold},
+            {"max_plausible_deg", d.max_plausible_threshold_deg},
+            {"shape_threshold", optional_number(d.shape_threshold)},
+            {"shape_k", d.shape_k},
+            {"min_shape_fraction", d.min_shape_fraction},
+            {"max_plausible_shape_fraction", d.max_plausible_shape_fraction},
+            {"grow_fraction", d.grow_fraction},
+            {"min_region_vertices", d.min_region_vertices},
+            {"fill_holes", d.fill_holes}};
+}
+
+}  // namespace
+
+void ExportOptions::validate() const {
+    if (mosaic_tile < 16 || mosaic_tile > 1024) throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
+}
+
+void AnalysisOptions::validate() const {
+    fit.validate();
+    sweep.validate();
+    decision.validate();
+    exports.validate();
+    const MetricDescriptor& m = describe(sweep.metric);
+    if (decision.threshold && *decision.threshold > m.max_value)
+        throw OptionError("threshold.deg", *decision.threshold,
+                          "must be in (0, " + std::to_string(static_cast<int>(m.max_value)) + "] " +
+                              std::string(m.unit) + " (metric " + std::string(m.name) + ")");
+}
+
+std::string to_json(const AnalysisOptions& o) {
+    const json j = {{"registration", fit_json(o.fit)},
+                    {"sweep", sweep_json(o.sweep)},
+                    {"decision", decision_json(o.decision)},
+                    {"exports", {{"views", o.exports.write_views}, {"exr", o.exports.write_exr},
+                                 {"mosaic_tile", o.exports.mosaic_tile}}}};
+    return j.dump(2);
+}
+
+}  // namespace glint

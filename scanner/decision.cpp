@@ -1,0 +1,181 @@
+#include "scanner/decision.h"
+
+#include "mesh/components.h"
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace glint {
+
+namespace {
+
+std::string fixed(double v, int digits) {
+    std::ostringstream s;
+    s.setf(std::ios::fixed);
+    s.precision(digits);
+    s << v;
+    return s.str();
+}
+
+std::string general(double v) {
+    std::ostringstream s;
+    s.precision(3);
+    s << v;
+    return s.str();
+}
+
+double median_of(std::vector<float>& v) {
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return static_cast<double>(*mid);
+}
+
+std::vector<std::size_t> histogram_of(const std::vector<float>& value, const std::vector<std::uint8_t>& seen,
+                                      const MetricDescriptor& m) {
+    const auto bins = static_cast<std::size_t>(std::ceil(m.histogram_max / m.histogram_bin));
+    std::vector<std::size_t> h(bins + 1, 0);  // the last bin: ≥ histogram_max
+    for (std::size_t v = 0; v < value.size(); ++v)
+        if (seen[v]) ++h[std::min(bins, static_cast<std::size_t>(std::max(0.0f, value[v]) / m.histogram_bin))];
+    return h;
+}
+
+// The normal-evidence floor: given, or the run's noise floor.
+Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m) {
+    const double plausible = o.max_plausible_threshold_deg * m.color_max / describe(Metric::AngleDeg).color_max;
+    Floor f;
+    if (o.threshold) {
+        f.value = *o.threshold;
+        f.given = true;
+        f.rule = "given";
+        return f;
+    }
+    f = robust_floor(e.atlas->value_mean, e.coverage->seen, o.noise_k, o.min_threshold, plausible);
+    f.rule = "median + " + general(o.noise_k) + "·1.4826·MAD of the per-vertex mean " + std::string(m.name) +
+             " over seen vertices, at least " + general(o.min_threshold) + std::string(m.symbol);
+    if (f.implausible)
+        f.note = "the estimated floor " + fixed(f.median + f.k * 1.4826 * f.mad, 2) + std::string(m.symbol) +
+                 " exceeds the plausible " + fixed(plausible, 1) + std::string(m.symbol) +
+                 ": more than half of the seen surface differs (a large edit, a poor fit, or surfaces that do not "
+                 "correspond); capped at " + fixed(plausible, 1) + std::string(m.symbol);
+    return f;
+}
+
+// The shape-evidence floor over |distance| of seen vertices.
+Floor shape_floor(const DecisionEvidence& e, const DecisionOptions& o) {
+    Floor f;
+    if (o.shape_threshold) {
+        f.value = *o.shape_threshold;
+        f.given = true;
+        f.rule = "given";
+        return f;
+    }
+    std::vector<float> magnitude(e.distance->size());
+    std::vector<std::uint8_t> use(e.distance->size());
+    for (std::size_t v = 0; v < magnitude.size(); ++v) {
+        magnitude[v] = std::abs((*e.distance)[v]);
+        use[v] = e.coverage->seen[v] && std::isfinite(magnitude[v]);
+    }
+    const double plausible = o.max_plausible_shape_fraction * e.size;
+    f = robust_floor(magnitude, use, o.shape_k, o.min_shape_fraction * e.size, plausible);
+    f.rule = "median + " + general(o.shape_k) + "·1.4826·MAD of |signed distance| over seen vertices, at least " +
+             general(o.min_shape_fraction) + " × the size";
+    if (f.implausible)
+        f.note = "the estimated shape floor " + general(f.median + f.k * 1.4826 * f.mad) + " exceeds " +
+                 general(o.max_plausible_shape_fraction * 100) +
+                 " % of the size: more than half of the seen surface moved (a large edit, a poor fit, or different "
+                 "surfaces); capped at " + general(plausible);
+    return f;
+}
+
+std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floor& normal) {
+    const auto& value = e.atlas->value_mean;
+    std::vector<std::uint8_t> damaged(value.size(), 0);
+    for (std::size_t v = 0; v < value.size(); ++v) damaged[v] = e.coverage->seen[v] && value[v] >= normal.value;
+    return damaged;
+}
+
+}  // namespace
+
+DecisionRule parse_decision_rule(const std::string& text) {
+    if (text == "normal") return DecisionRule::Normal;
+    if (text == "fused") return DecisionRule::Fused;
+    throw InputError("decision rule \"" + text + "\": expected fused or normal");
+}
+
+std::string to_string(DecisionRule rule) { return rule == DecisionRule::Fused ? "fused" : "normal"; }
+
+void DecisionOptions::validate() const {
+    if (threshold && !(*threshold > 0)) throw OptionError("threshold.deg", *threshold, "must be > 0 (metric units)");
+    if (!(noise_k > 0)) throw OptionError("threshold.noise_k", noise_k, "must be > 0");
+    if (!(min_threshold >= 0)) throw OptionError("threshold.min_deg", min_threshold, "must be ≥ 0");
+    if (!(max_plausible_threshold_deg > 0))
+        throw OptionError("decision.max_plausible_deg", max_plausible_threshold_deg, "must be > 0");
+    if (shape_threshold && !(*shape_threshold > 0))
+        throw OptionError("decision.shape_threshold", *shape_threshold, "must be > 0 mesh units");
+    if (!(shape_k > 0)) throw OptionError("decision.shape_k", shape_k, "must be > 0");
+    if (!(min_shape_fraction >= 0)) throw OptionError("decision.min_shape_fraction", min_shape_fraction, "must be ≥ 0");
+    if (!(max_plausible_shape_fraction > 0))
+        throw OptionError("decision.max_plausible_shape_fraction", max_plausible_shape_fraction, "must be > 0");
+    if (!(grow_fraction > 0 && grow_fraction < 1)) throw OptionError("decision.grow_fraction", grow_fraction, "must be in (0, 1)");
+    if (min_region_vertices < 1)
+        throw OptionError("threshold.min_region_vertices", static_cast<double>(min_region_vertices), "must be ≥ 1");
+}
+
+Floor robust_floor(const std::vector<float>& values, const std::vector<std::uint8_t>& use, double k, double minimum,
+                   double plausible_max) {
+    std::vector<float> x;
+    x.reserve(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if (use[i]) x.push_back(values[i]);
+    Floor f;
+    f.k = k;
+    f.minimum = minimum;
+    if (x.empty()) {
+        f.value = minimum;
+        return f;
+    }
+    f.median = median_of(x);
+    for (auto& e : x) e = static_cast<float>(std::abs(e - f.median));
+    f.mad = median_of(x);
+    const double estimate = f.median + k * 1.4826 * f.mad;
+    f.value = std::max(estimate, minimum);
+    if (f.value > plausible_max) {
+        f.implausible = true;
+        f.value = std::max(plausible_max, minimum);
+    }
+    return f;
+}
+
+ZoomDecision decide(const Mesh& reference, const DecisionEvidence& e, const DecisionOptions& o) {
+    o.validate();
+    GLINT_ASSERT(e.atlas && e.coverage, "decision without an atlas or coverage");
+    const MetricDescriptor& m = describe(e.metric);
+    ZoomDecision d;
+    d.rule = o.rule;
+    d.normal = normal_floor(e, o, m);
+    if (d.normal.implausible) d.warnings.push_back("normal evidence floor: " + d.normal.note);
+    d.histogram = histogram_of(e.atlas->value_mean, e.coverage->seen, m);
+    const bool have_distance = e.distance && e.distance->size() == reference.vertex_count();
+    RegionFields fields{.value = &e.atlas->value_mean,
+                        .shape = have_distance ? e.distance : &e.atlas->depth_mean,
+                        .missing = &e.atlas->missing,
+                        .view = &e.atlas->max_view};
+    const RegionOptions region_options{.min_vertices = o.min_region_vertices, .fill_holes = o.fill_holes};
+    if (o.rule == DecisionRule::Fused && !have_distance) {
+        d.rule = DecisionRule::Normal;
+        d.warnings.push_back("no shape evidence (signed distance) was measured: the normal rule decided alone");
+    }
+    if (d.rule == DecisionRule::Fused) d.shape = shape_floor(e, o);
+    if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
+    d.rule_text = "a seen vertex whose per-vertex mean " + std::string(m.name) + " reaches the normal floor " +
+                  fixed(d.normal.value, 2) + std::string(m.symbol) + " is damaged; regions are connected groups";
+    d.regions = find_regions(reference, normal_rule_mask(e, d.normal), e.coverage->seen, fields, region_options);
+    for (auto& r : d.regions.regions)
+        r.evidence = std::string(m.name) + " " + fixed(r.max_value, 2) + std::string(m.symbol) + " ≥ floor " +
+                     fixed(d.normal.value, 2) + std::string(m.symbol);
+    return d;
+}
+
+}  // namespace glint
