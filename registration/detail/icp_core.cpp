@@ -191,6 +191,102 @@ IcpEvidence evaluate(const std::vector<Sample>& samples, const Rigid& t, const C
     return e;
 }
 
+// One linearised step: the pairs' point-to-plane residuals (and, symmetric, the reference
+// samples against the examined planes) under the robust loss of `scale`, solved for a small
+// motion x = (angle-axis, translation) applied on top of `t`.
+struct StepSolution {
+    Rigid step = Rigid::Identity();
+    ceres::Solver::Summary summary;
+};
+
+StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample>& ref_samples,
+                        const ClosestPointIndex* examined, const Rigid& t, const RegistrationOptions& o, double scale,
+                        double max_distance) {
+    double x[6] = {0, 0, 0, 0, 0, 0};
+    ceres::Problem::Options problem_options;
+    ceres::Problem problem(problem_options);
+    for (const auto& p : pairs)
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
+                                 make_loss(o.loss, scale), x);
+    if (o.symmetric && examined) {
+        const Rigid inv = t.inverse();
+        std::vector<Vec3d> back(ref_samples.size());
+        for (std::size_t i = 0; i < ref_samples.size(); ++i) back[i] = inv * ref_samples[i].point;
+        const auto cps = examined->closest(back, max_distance);
+        for (std::size_t i = 0; i < cps.size(); ++i) {
+            if (!cps[i].found) continue;
+            const Vec3d pw = t * cps[i].point;
+            const Vec3d nw = t.linear() * cps[i].normal;
+            if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
+            problem.AddResidualBlock(
+                new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(new PlaneToPoint{pw, ref_samples[i].point, nw}),
+                make_loss(o.loss, scale), x);
+        }
+    }
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = o.inner_iterations;
+    so.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    so.logging_type = ceres::SILENT;
+    so.minimizer_progress_to_stdout = false;
+    StepSolution out;
+    ceres::Solve(so, &problem, &out.summary);
+    out.step = from_params(x);
+    return out;
+}
+
+// Whether the iteration just logged ends the run (converged or failed); fills the
+// termination fields. `previous_cost` is the cost of the previous fully annealed iteration.
+bool finished(const IcpIteration& log, bool annealed, const std::optional<double>& previous_cost,
+              const RegistrationOptions& o, double diagonal, RegistrationResult& res) {
+    if (annealed && log.rotation_step_deg < o.rotation_tolerance_deg &&
+        log.translation_step < o.translation_tolerance * diagonal) {
+        res.converged = true;
+        res.termination = "parameter change";
+        std::ostringstream why;
+        why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step << " below "
+            << o.rotation_tolerance_deg << "° and " << o.translation_tolerance << " × size after " << log.iteration
+            << " iterations";
+        res.termination_detail = why.str();
+        return true;
+    }
+    if (annealed && previous_cost) {
+        // note: the denominator's floor keeps 0/0 (a perfect fit) from reading as a change.
+        const double change =
+            std::abs(log.cost - *previous_cost) / std::max(*previous_cost, std::numeric_limits<double>::min());
+        if (change < o.cost_tolerance) {
+            res.converged = true;
+            res.termination = "cost change";
+            std::ostringstream why;
+            why << "cost change: relative change " << change << " below " << o.cost_tolerance << " after "
+                << log.iteration << " iterations";
+            res.termination_detail = why.str();
+            return true;
+        }
+    }
+    return false;
+}
+
+// The evidence at the pose returned (not at the one before the last step); too little
+// overlap turns a converged run into "low overlap".
+void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& reference, const RegistrationOptions& o,
+                   double diagonal, IcpRun& run) {
+    RegistrationResult& res = run.result;
+    const IcpEvidence e = evaluate(samples, run.t, reference, o, o.overlap_distance * diagonal);
+    res.rms = e.rms;
+    res.inlier_fraction = e.inlier_fraction;
+    res.overlap = e.overlap;
+    if (e.overlap < o.min_overlap) {
+        res.converged = false;
+        res.termination = "low overlap";
+        std::ostringstream why;
+        why << "low overlap: " << e.overlap << " of the samples lie within " << o.overlap_distance
+            << " × size of a compatible reference surface at the final pose, below min overlap " << o.min_overlap
+            << " (ICP: " << res.termination_detail << ")";
+        res.termination_detail = why.str();
+    }
+}
+
 }  // namespace
 
 IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
@@ -212,8 +308,7 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         if (pairs.size() < std::max<std::size_t>(6, samples.size() / 33)) {
             res.termination = "no overlap";
             res.termination_detail = "no overlap: " + std::to_string(pairs.size()) + " of " +
-                                     std::to_string(samples.size()) +
-                                     " samples found a compatible reference surface";
+                                     std::to_string(samples.size()) + " samples found a compatible reference surface";
             res.converged = false;
             res.iterations = it;
             return run;
@@ -225,96 +320,28 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         const double scale = anneal * sigma;
         // Far outliers (beyond 20σ, or the initial spread) do not enter the next matching.
         max_distance = std::max(20.0 * sigma, 1e-6 * diagonal);
-
-        double x[6] = {0, 0, 0, 0, 0, 0};
-        ceres::Problem::Options problem_options;
-        ceres::Problem problem(problem_options);
-        for (const auto& p : pairs)
-            problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
-                                     make_loss(o.loss, scale), x);
-        if (o.symmetric && examined) {
-            const Rigid inv = run.t.inverse();
-            std::vector<Vec3d> back(ref_samples.size());
-            for (std::size_t i = 0; i < ref_samples.size(); ++i) back[i] = inv * ref_samples[i].point;
-            const auto cps = examined->closest(back, max_distance);
-            for (std::size_t i = 0; i < cps.size(); ++i) {
-                if (!cps[i].found) continue;
-                const Vec3d pw = run.t * cps[i].point;
-                const Vec3d nw = run.t.linear() * cps[i].normal;
-                if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
-                problem.AddResidualBlock(
-                    new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(new PlaneToPoint{pw, ref_samples[i].point, nw}),
-                    make_loss(o.loss, scale), x);
-            }
-        }
-        ceres::Solver::Options so;
-        so.linear_solver_type = ceres::DENSE_QR;
-        so.max_num_iterations = o.inner_iterations;
-        so.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-        so.logging_type = ceres::SILENT;
-        so.minimizer_progress_to_stdout = false;
-        ceres::Solver::Summary summary;
-        ceres::Solve(so, &problem, &summary);
-
-        const Rigid step = from_params(x);
-        run.t = step * run.t;
+        const StepSolution solved = solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance);
+        run.t = solved.step * run.t;
         IcpIteration log;
         log.iteration = it + 1;
-        log.cost = summary.final_cost;
+        log.cost = solved.summary.final_cost;
         log.rms = inlier_stats(residuals, sigma).rms;
         log.loss_scale = o.loss == RobustLoss::None ? 0.0 : scale;
         log.overlap = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
-        log.rotation_step_deg = rotation_angle_deg(step);
-        log.translation_step = step.translation().norm();
+        log.rotation_step_deg = rotation_angle_deg(solved.step);
+        log.translation_step = solved.step.translation().norm();
         res.log.push_back(log);
         res.iterations = it + 1;
-        if (summary.termination_type == ceres::FAILURE) {
+        if (solved.summary.termination_type == ceres::FAILURE) {
             res.termination = "solver failure";
-            res.termination_detail = "solver failure: " + summary.message;
+            res.termination_detail = "solver failure: " + solved.summary.message;
             break;
         }
         const bool annealed = anneal <= o.anneal_end || o.loss == RobustLoss::None;
-        if (annealed && log.rotation_step_deg < o.rotation_tolerance_deg &&
-            log.translation_step < o.translation_tolerance * diagonal) {
-            res.converged = true;
-            res.termination = "parameter change";
-            std::ostringstream why;
-            why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step
-                << " below " << o.rotation_tolerance_deg << "° and " << o.translation_tolerance << " × size after "
-                << it + 1 << " iterations";
-            res.termination_detail = why.str();
-            break;
-        }
-        if (annealed && previous_cost) {
-            // note: the denominator's floor keeps 0/0 (a perfect fit) from reading as a change.
-            const double change = std::abs(log.cost - *previous_cost) /
-                                  std::max(*previous_cost, std::numeric_limits<double>::min());
-            if (change < o.cost_tolerance) {
-                res.converged = true;
-                res.termination = "cost change";
-                std::ostringstream why;
-                why << "cost change: relative change " << change << " below " << o.cost_tolerance << " after "
-                    << it + 1 << " iterations";
-                res.termination_detail = why.str();
-                break;
-            }
-        }
+        if (finished(log, annealed, previous_cost, o, diagonal, res)) break;
         if (annealed) previous_cost = log.cost;
     }
-    // The evidence at the pose returned, not at the one before the last step.
-    const IcpEvidence e = evaluate(samples, run.t, reference, o, o.overlap_distance * diagonal);
-    res.rms = e.rms;
-    res.inlier_fraction = e.inlier_fraction;
-    res.overlap = e.overlap;
-    if (e.overlap < o.min_overlap) {
-        res.converged = false;
-        res.termination = "low overlap";
-        std::ostringstream why;
-        why << "low overlap: " << e.overlap << " of the samples lie within " << o.overlap_distance
-            << " × size of a compatible reference surface at the final pose, below min overlap " << o.min_overlap
-            << " (ICP: " << res.termination_detail << ")";
-        res.termination_detail = why.str();
-    }
+    judge_overlap(samples, reference, o, diagonal, run);
     return run;
 }
 
