@@ -70,7 +70,10 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const Ana
 
     announce(observer, "distance");
     t = Clock::now();
-    result.distance = signed_distances(reference, fitted);
+    ShapeEvidence shape = measure_shape(reference, fitted);
+    result.distance = std::move(shape.distance);
+    result.tolerance = std::move(shape.tolerance);
+    result.at_border = std::move(shape.at_border);
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");
@@ -90,6 +93,8 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const Ana
         const DecisionEvidence evidence{.atlas = &zoom.atlas,
                                         .coverage = &zoom.coverage,
                                         .distance = &result.distance,
+                                        .tolerance = &result.tolerance,
+                                        .at_border = &result.at_border,
                                         .metric = options.sweep.metric,
                                         .size = result.size};
         result.decisions.push_back(decide(reference, evidence, options.decision));

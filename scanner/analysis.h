@@ -68,6 +68,8 @@ struct AnalysisOptions {
 struct AnalysisResult {
     FitOutcome fit;
     std::vector<float> distance;           ///< per reference vertex, signed (negative = loss)
+    std::vector<float> tolerance;          ///< per reference vertex, tessellation tolerance (scanner/fit.h)
+    std::vector<std::uint8_t> at_border;   ///< per reference vertex, closest examined point on a border
     SweepResult sweep;
     std::vector<ZoomDecision> decisions;   ///< one per zoom level
     double size = 0.0;                     ///< bounding diagonal of the reference (mesh units)

@@ -67,6 +67,7 @@ json decision_json(const DecisionOptions& d) {
             {"max_plausible_deg", d.max_plausible_threshold_deg},
             {"shape_threshold", optional_number(d.shape_threshold)},
             {"shape_k", d.shape_k},
+            {"shape_low_k", d.shape_low_k},
             {"min_shape_fraction", d.min_shape_fraction},
             {"max_plausible_shape_fraction", d.max_plausible_shape_fraction},
             {"grow_fraction", d.grow_fraction},

@@ -2,6 +2,7 @@
 
 #include "mesh/components.h"
 #include "mesh/error.h"
+#include "scanner/detail/fused_rule.h"
 
 #include <algorithm>
 #include <cmath>
@@ -62,31 +63,51 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
     return f;
 }
 
-// The shape-evidence floor over |distance| of seen vertices.
-Floor shape_floor(const DecisionEvidence& e, const DecisionOptions& o) {
+// The shape-evidence floor over |excess| of seen vertices with an examined surface.
+Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess, const DecisionOptions& o) {
     Floor f;
     if (o.shape_threshold) {
         f.value = *o.shape_threshold;
+        f.low = 0.5 * f.value;
         f.given = true;
-        f.rule = "given";
+        f.rule = "given (lower floor: half of it)";
         return f;
     }
-    std::vector<float> magnitude(e.distance->size());
-    std::vector<std::uint8_t> use(e.distance->size());
+    std::vector<float> magnitude(excess.size());
+    std::vector<std::uint8_t> use(excess.size());
     for (std::size_t v = 0; v < magnitude.size(); ++v) {
-        magnitude[v] = std::abs((*e.distance)[v]);
-        use[v] = e.coverage->seen[v] && std::isfinite(magnitude[v]);
+        magnitude[v] = std::abs(excess[v]);
+        use[v] = e.coverage->seen[v] && std::isfinite(magnitude[v]) && e.atlas->missing[v] <= 0.5f;
     }
     const double plausible = o.max_plausible_shape_fraction * e.size;
     f = robust_floor(magnitude, use, o.shape_k, o.min_shape_fraction * e.size, plausible);
-    f.rule = "median + " + general(o.shape_k) + "·1.4826·MAD of |signed distance| over seen vertices, at least " +
-             general(o.min_shape_fraction) + " × the size";
+    f.low = std::min(f.value, std::max(f.median + o.shape_low_k * 1.4826 * f.mad, o.min_shape_fraction * e.size));
+    f.rule = "median + " + general(o.shape_k) + "·1.4826·MAD of the shape excess |d| − tessellation tolerance over "
+             "seen vertices, at least " + general(o.min_shape_fraction) + " × the size; lower floor with k = " +
+             general(o.shape_low_k);
     if (f.implausible)
         f.note = "the estimated shape floor " + general(f.median + f.k * 1.4826 * f.mad) + " exceeds " +
                  general(o.max_plausible_shape_fraction * 100) +
                  " % of the size: more than half of the seen surface moved (a large edit, a poor fit, or different "
                  "surfaces); capped at " + general(plausible);
     return f;
+}
+
+// e = sign(d)·max(0, |d| − tolerance) (decision.h, fused rule step 1).
+std::vector<float> shape_excess(const DecisionEvidence& e) {
+    const auto& d = *e.distance;
+    std::vector<float> excess(d.size());
+    for (std::size_t v = 0; v < d.size(); ++v) {
+        const float tol = e.tolerance && e.tolerance->size() == d.size() ? (*e.tolerance)[v] : 0.0f;
+        excess[v] = std::copysign(std::max(0.0f, std::abs(d[v]) - tol), d[v]);
+    }
+    return excess;
+}
+
+std::string fused_rule_text(const ZoomDecision& d, const MetricDescriptor& m) {
+    return "fused: a region holds a shape change beyond the tessellation tolerance of at least " + general(d.shape.value) +
+           " (grown from " + general(d.shape.low) + ") and a per-vertex mean " + std::string(m.name) + " of at least " +
+           fixed(d.normal.value, 2) + std::string(m.symbol) + "; its extent reaches a tenth of its peak shape change";
 }
 
 std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floor& normal) {
@@ -115,6 +136,8 @@ void DecisionOptions::validate() const {
     if (shape_threshold && !(*shape_threshold > 0))
         throw OptionError("decision.shape_threshold", *shape_threshold, "must be > 0 mesh units");
     if (!(shape_k > 0)) throw OptionError("decision.shape_k", shape_k, "must be > 0");
+    if (!(shape_low_k > 0 && shape_low_k <= shape_k))
+        throw OptionError("decision.shape_low_k", shape_low_k, "must be in (0, shape_k]");
     if (!(min_shape_fraction >= 0)) throw OptionError("decision.min_shape_fraction", min_shape_fraction, "must be ≥ 0");
     if (!(max_plausible_shape_fraction > 0))
         throw OptionError("decision.max_plausible_shape_fraction", max_plausible_shape_fraction, "must be > 0");
@@ -167,8 +190,16 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& e, const Deci
         d.rule = DecisionRule::Normal;
         d.warnings.push_back("no shape evidence (signed distance) was measured: the normal rule decided alone");
     }
-    if (d.rule == DecisionRule::Fused) d.shape = shape_floor(e, o);
-    if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
+    if (d.rule == DecisionRule::Fused) {
+        const std::vector<float> excess = shape_excess(e);
+        d.shape = shape_floor(e, excess, o);
+        if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
+        d.rule_text = fused_rule_text(d, m);
+        d.regions = find_regions(reference, detail::fused_mask(reference, e, excess, d.normal, d.shape, o),
+                                 e.coverage->seen, fields, region_options);
+        detail::describe_evidence(d.regions, e, excess, d.normal, d.shape);
+        return d;
+    }
     d.rule_text = "a seen vertex whose per-vertex mean " + std::string(m.name) + " reaches the normal floor " +
                   fixed(d.normal.value, 2) + std::string(m.symbol) + " is damaged; regions are connected groups";
     d.regions = find_regions(reference, normal_rule_mask(e, d.normal), e.coverage->seen, fields, region_options);

@@ -15,7 +15,21 @@
 // Rules:
 //   normal  the paper's rule: a seen vertex whose normal evidence reaches its floor is
 //           damaged; regions are its connected groups.
-//   fused   (default) both kinds of evidence: see decision.cpp for the rule and its reasons.
+//   fused   both kinds of evidence, each against its floor:
+//           1. shape excess e = sign(d)·max(0, |d| − tolerance): the signed distance beyond
+//              what the two tessellations may differ by (scanner/fit.h ShapeEvidence);
+//           2. candidates: seen vertices whose excess of one sign reaches the lower shape
+//              floor, grouped through mesh edges;
+//           3. a group becomes a region only when it holds both a shape excess above the
+//              shape floor (so tessellation-only normal differences do not count) and a
+//              normal deviation above the normal floor (so isolated distance speckle from
+//              noise does not count);
+//           4. hysteresis: its extent is where the shape change reaches a tenth
+//              (grow_fraction) of the group's peak, connected to strong evidence — where a
+//              change of shape is, not only the steep rim the normals show;
+//           5. where the examined surface is missing (views found no surface behind the
+//              reference, or the closest examined point lies on a border with a large
+//              distance) the region is "missing surface", not a dent or a bump.
 #pragma once
 
 #include "mesh/mesh.h"
@@ -36,7 +50,7 @@ enum class DecisionRule { Normal, Fused };
 [[nodiscard]] std::string to_string(DecisionRule rule);
 
 struct DecisionOptions {
-    DecisionRule rule = DecisionRule::Normal;
+    DecisionRule rule = DecisionRule::Fused;
     /// Normal evidence: the threshold given (metric units: degrees for angle); else the floor.
     std::optional<double> threshold;
     double noise_k = 6.0;               ///< normal floor: median + k·1.4826·MAD …
@@ -46,7 +60,8 @@ struct DecisionOptions {
     double max_plausible_threshold_deg = 20.0;
     /// Shape evidence: the floor given (mesh units); else estimated.
     std::optional<double> shape_threshold;
-    double shape_k = 6.0;               ///< shape floor: median + k·1.4826·MAD of |distance| …
+    double shape_k = 6.0;               ///< shape floor: median + k·1.4826·MAD of |shape excess| …
+    double shape_low_k = 3.0;           ///< lower (hysteresis) floor: median + k_low·1.4826·MAD
     /// … never below this share of the bounding diagonal (the distance's numerical noise).
     double min_shape_fraction = 1e-5;
     /// A shape floor above this share of the bounding diagonal is implausible (capped, reported).
@@ -64,6 +79,7 @@ struct DecisionOptions {
 /// A floor and how it was obtained.
 struct Floor {
     double value = 0.0;        ///< the threshold used (metric units, or mesh units for shape)
+    double low = 0.0;          ///< hysteresis: the lower floor candidates must reach (shape only)
     double median = 0.0;
     double mad = 0.0;          ///< raw median absolute deviation
     double k = 0.0;
@@ -83,6 +99,8 @@ struct DecisionEvidence {
     const ZoomAtlas* atlas = nullptr;          ///< normal evidence and view of the maxima
     const Coverage* coverage = nullptr;        ///< seen mask
     const std::vector<float>* distance = nullptr;  ///< shape evidence (may be null: normal rule only)
+    const std::vector<float>* tolerance = nullptr; ///< tessellation tolerance of the distance (may be null)
+    const std::vector<std::uint8_t>* at_border = nullptr;  ///< closest examined point on a border (may be null)
     Metric metric = Metric::AngleDeg;
     double size = 1.0;                         ///< bounding diagonal of the reference (mesh units)
 };

@@ -1,5 +1,6 @@
 #include "scanner/fit.h"
 
+#include "mesh/components.h"
 #include "mesh/error.h"
 #include "registration/closest_point.h"
 #include "registration/fit_io.h"
@@ -7,6 +8,7 @@
 #include "scanner/landmarks.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace glint {
 
@@ -139,6 +141,61 @@ std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_ex
     std::vector<float> out(d.size());
     for (std::size_t v = 0; v < d.size(); ++v) out[v] = static_cast<float>(-d[v]);
     return out;
+}
+
+namespace {
+
+// Sagitta bound h·θ/8 of the edge (a, b) of a mesh (see ShapeEvidence).
+double edge_sagitta(const Mesh& m, std::uint32_t a, std::uint32_t b) {
+    const double h = (m.positions[a] - m.positions[b]).cast<double>().norm();
+    const double c = std::clamp(static_cast<double>(m.normals[a].dot(m.normals[b])), -1.0, 1.0);
+    return h * std::acos(c) / 8.0;
+}
+
+std::vector<float> vertex_sagitta(const Mesh& m) {
+    std::vector<float> out(m.vertex_count(), 0.0f);
+    for (const auto& t : m.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto a = t[k], b = t[(k + 1) % 3];
+            const auto s = static_cast<float>(edge_sagitta(m, a, b));
+            out[a] = std::max(out[a], s);
+            out[b] = std::max(out[b], s);
+        }
+    return out;
+}
+
+}  // namespace
+
+ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
+    GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
+    const ClosestPointIndex index(fitted_examined);
+    const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
+    std::vector<Vec3d> points(reference.vertex_count());
+    for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();
+    const auto closest = index.closest(points);
+    const auto border = border_vertices(exa);
+    const auto ref_sagitta = vertex_sagitta(reference);
+    ShapeEvidence e;
+    e.distance.resize(points.size());
+    e.tolerance.resize(points.size());
+    e.at_border.assign(points.size(), 0);
+    for (std::size_t v = 0; v < points.size(); ++v) {
+        const ClosestPoint& c = closest[v];
+        // A reference vertex outside the examined surface (positive) means the examined
+        // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
+        e.distance[v] = static_cast<float>(-c.signed_distance);
+        const auto& t = exa.triangles[c.triangle];
+        double tri = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) tri = std::max(tri, edge_sagitta(exa, t[k], t[(k + 1) % 3]));
+        e.tolerance[v] = std::max(ref_sagitta[v], static_cast<float>(tri));
+        // On the border: every corner the closest point depends on is a border vertex.
+        // note: 1e-9 separates a true zero barycentric weight from rounding.
+        bool on_border = c.feature != ClosestFeature::Face;
+        for (std::size_t k = 0; k < 3 && on_border; ++k)
+            if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]]) on_border = false;
+        e.at_border[v] = on_border ? 1 : 0;
+    }
+    return e;
 }
 
 }  // namespace glint

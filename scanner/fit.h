@@ -57,4 +57,21 @@ struct FitOutcome {
 /// examined surface lies inside the reference (loss, dent), positive outside (gain, bump).
 [[nodiscard]] std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_examined);
 
+/// The shape evidence the decision reads, per reference vertex.
+///
+/// Tessellation tolerance: two tessellations of one smooth surface lie apart by up to the
+/// sagitta of their triangles. A chord of length h across which the surface normal turns by
+/// θ (radians) deviates from the arc by about h·θ/8 (sagitta r(1 − cos(θ/2)) with r = h/θ).
+/// The tolerance of a reference vertex is the larger of that bound over the reference edges
+/// at the vertex and over the edges of the examined triangle its closest point lies on: what
+/// the two meshes may differ by there without any change of shape.
+struct ShapeEvidence {
+    std::vector<float> distance;        ///< signed distance, mesh units (negative = loss)
+    std::vector<float> tolerance;       ///< tessellation tolerance, mesh units (see above)
+    std::vector<std::uint8_t> at_border;  ///< 1: the closest examined point lies on its border (a hole, a cut)
+};
+
+/// \pre both meshes have vertex normals (loaded meshes do).
+[[nodiscard]] ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined);
+
 }  // namespace glint

@@ -66,7 +66,7 @@ json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& pla
 }
 
 json floor_json(const Floor& f) {
-    return {{"value", f.value}, {"median", f.median}, {"mad", f.mad}, {"k", f.k}, {"minimum", f.minimum},
+    return {{"value", f.value}, {"low", f.low}, {"median", f.median}, {"mad", f.mad}, {"k", f.k}, {"minimum", f.minimum},
             {"given", f.given}, {"implausible", f.implausible}, {"rule", f.rule}, {"note", f.note}};
 }
 
@@ -183,6 +183,7 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
         atlas.set_scalar("region" + k, std::move(region));
     }
     if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
+    if (result.tolerance.size() == n) atlas.set_scalar("distance_tolerance", result.tolerance);
     if (!result.sweep.zooms.empty()) {
         ColorScale scale;
         scale.high = std::max(2.0 * result.decisions[0].normal.value, 1.0);

@@ -75,6 +75,7 @@ void read_decision(TableReader& r, DecisionOptions& d) {
     parse_key(r, "rule", "a string (fused or normal)", [&](const std::string& v) { d.rule = parse_decision_rule(v); });
     if (auto v = r.optional<double>("shape_threshold", "a number (mesh units)")) d.shape_threshold = *v;
     if (auto v = r.optional<double>("shape_k", "a number")) d.shape_k = *v;
+    if (auto v = r.optional<double>("shape_low_k", "a number")) d.shape_low_k = *v;
     if (auto v = r.optional<double>("grow_fraction", "a number in (0, 1)")) d.grow_fraction = *v;
     if (auto v = r.optional<double>("max_plausible_deg", "a number")) d.max_plausible_threshold_deg = *v;
     if (auto v = r.optional<double>("max_plausible_shape_fraction", "a number")) d.max_plausible_shape_fraction = *v;
