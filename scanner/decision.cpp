@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace glint {
@@ -73,18 +74,35 @@ Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess, c
         f.rule = "given (lower floor: half of it)";
         return f;
     }
-    std::vector<float> magnitude(excess.size());
-    std::vector<std::uint8_t> use(excess.size());
-    for (std::size_t v = 0; v < magnitude.size(); ++v) {
-        magnitude[v] = std::abs(excess[v]);
-        use[v] = e.coverage->seen[v] && std::isfinite(magnitude[v]) && e.atlas->missing[v] <= 0.5f;
+    // The scale is the spread of the signed distance over the undamaged majority (tessellation,
+    // registration and noise together), the location the median of the excess. Beyond the
+    // tessellation tolerance most vertices have no excess at all, so the excess's own MAD is
+    // zero and would make any speck a shape change.
+    std::vector<float> distance;
+    std::vector<float> magnitude;
+    for (std::size_t v = 0; v < excess.size(); ++v) {
+        if (!e.coverage->seen[v] || e.atlas->missing[v] > 0.5f || !std::isfinite(excess[v])) continue;
+        distance.push_back((*e.distance)[v]);
+        magnitude.push_back(std::abs(excess[v]));
     }
+    const std::vector<std::uint8_t> all(distance.size(), 1);
+    const Floor spread = robust_floor(distance, all, o.shape_k, 0.0, std::numeric_limits<double>::infinity());
+    const double minimum = o.min_shape_fraction * e.size;
     const double plausible = o.max_plausible_shape_fraction * e.size;
-    f = robust_floor(magnitude, use, o.shape_k, o.min_shape_fraction * e.size, plausible);
-    f.low = std::min(f.value, std::max(f.median + o.shape_low_k * 1.4826 * f.mad, o.min_shape_fraction * e.size));
-    f.rule = "median + " + general(o.shape_k) + "·1.4826·MAD of the shape excess |d| − tessellation tolerance over "
-             "seen vertices, at least " + general(o.min_shape_fraction) + " × the size; lower floor with k = " +
-             general(o.shape_low_k);
+    f.k = o.shape_k;
+    f.minimum = minimum;
+    f.mad = spread.mad;
+    f.median = magnitude.empty() ? 0.0 : median_of(magnitude);
+    const double sigma = 1.4826 * f.mad;
+    f.value = std::max(f.median + o.shape_k * sigma, minimum);
+    if (f.value > plausible) {
+        f.implausible = true;
+        f.value = std::max(plausible, minimum);
+    }
+    f.low = std::min(f.value, std::max(f.median + o.shape_low_k * sigma, minimum));
+    f.rule = "median of the shape excess (|d| − tessellation tolerance) + " + general(o.shape_k) +
+             "·1.4826·MAD of the signed distance d, over seen vertices with an examined surface, at least " +
+             general(o.min_shape_fraction) + " × the size; lower floor with k = " + general(o.shape_low_k);
     if (f.implausible)
         f.note = "the estimated shape floor " + general(f.median + f.k * 1.4826 * f.mad) + " exceeds " +
                  general(o.max_plausible_shape_fraction * 100) +

@@ -145,22 +145,28 @@ std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_ex
 
 namespace {
 
-// Sagitta bound h·θ/8 of the edge (a, b) of a mesh (see ShapeEvidence).
-double edge_sagitta(const Mesh& m, std::uint32_t a, std::uint32_t b) {
-    const double h = (m.positions[a] - m.positions[b]).cast<double>().norm();
-    const double c = std::clamp(static_cast<double>(m.normals[a].dot(m.normals[b])), -1.0, 1.0);
-    return h * std::acos(c) / 8.0;
-}
+// Per vertex of a mesh: the longest edge at it (h) and its sharpness θ, the largest angle
+// between its vertex normal and the normals of the triangles around it (radians).
+struct LocalShape {
+    std::vector<float> edge;
+    std::vector<float> sharpness;
+};
 
-std::vector<float> vertex_sagitta(const Mesh& m) {
-    std::vector<float> out(m.vertex_count(), 0.0f);
-    for (const auto& t : m.triangles)
+LocalShape local_shape(const Mesh& m) {
+    LocalShape out{std::vector<float>(m.vertex_count(), 0.0f), std::vector<float>(m.vertex_count(), 0.0f)};
+    for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+        const auto& tri = m.triangles[t];
+        const Vec3f n = face_normal(m, t);
         for (std::size_t k = 0; k < 3; ++k) {
-            const auto a = t[k], b = t[(k + 1) % 3];
-            const auto s = static_cast<float>(edge_sagitta(m, a, b));
-            out[a] = std::max(out[a], s);
-            out[b] = std::max(out[b], s);
+            const auto a = tri[k], b = tri[(k + 1) % 3];
+            const float h = (m.positions[a] - m.positions[b]).norm();
+            out.edge[a] = std::max(out.edge[a], h);
+            out.edge[b] = std::max(out.edge[b], h);
+            if (n.squaredNorm() == 0.0f) continue;  // a degenerate triangle has no direction
+            const float c = std::clamp(m.normals[a].dot(n), -1.0f, 1.0f);
+            out.sharpness[a] = std::max(out.sharpness[a], std::acos(c));
         }
+    }
     return out;
 }
 
@@ -174,7 +180,8 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
     for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();
     const auto closest = index.closest(points);
     const auto border = border_vertices(exa);
-    const auto ref_sagitta = vertex_sagitta(reference);
+    const LocalShape ref_shape = local_shape(reference);
+    const LocalShape exa_shape = local_shape(exa);
     ShapeEvidence e;
     e.distance.resize(points.size());
     e.tolerance.resize(points.size());
@@ -185,9 +192,12 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
         // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
         e.distance[v] = static_cast<float>(-c.signed_distance);
         const auto& t = exa.triangles[c.triangle];
-        double tri = 0.0;
-        for (std::size_t k = 0; k < 3; ++k) tri = std::max(tri, edge_sagitta(exa, t[k], t[(k + 1) % 3]));
-        e.tolerance[v] = std::max(ref_sagitta[v], static_cast<float>(tri));
+        float h = ref_shape.edge[v], theta = ref_shape.sharpness[v];
+        for (const auto corner : t) {
+            h = std::max(h, exa_shape.edge[corner]);
+            theta = std::max(theta, exa_shape.sharpness[corner]);
+        }
+        e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
         // On the border: every corner the closest point depends on is a border vertex.
         // note: 1e-9 separates a true zero barycentric weight from rounding.
         bool on_border = c.feature != ClosestFeature::Face;

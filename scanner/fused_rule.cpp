@@ -34,27 +34,61 @@ struct Group {
     float max_normal = 0.0f;
 };
 
-// Step 4: within an accepted group, the vertices whose shape change reaches grow_fraction of
-// the group's peak (and the lower floor), connected to a vertex of strong shape evidence.
-void grow(const Mesh& mesh, const std::vector<std::int32_t>& group, const std::vector<Group>& groups,
+// Vertex neighbours through mesh edges, in compressed rows: neighbours of v are
+// index[offset[v] .. offset[v + 1]).
+struct Adjacency {
+    std::vector<std::uint32_t> offset;
+    std::vector<std::uint32_t> index;
+};
+
+Adjacency adjacency(const Mesh& mesh) {
+    const std::size_t n = mesh.vertex_count();
+    Adjacency a;
+    a.offset.assign(n + 1, 0);
+    for (const auto& t : mesh.triangles)
+        for (const auto v : t) a.offset[v + 1] += 2;
+    for (std::size_t v = 0; v < n; ++v) a.offset[v + 1] += a.offset[v];
+    a.index.resize(a.offset[n]);
+    std::vector<std::uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            a.index[fill[t[k]]++] = t[(k + 1) % 3];
+            a.index[fill[t[k]]++] = t[(k + 2) % 3];
+        }
+    return a;
+}
+
+// Step 4: from the strong vertices of each accepted group (shape excess at the floor), grow
+// through connected vertices whose signed distance reaches grow_fraction of the group's peak
+// distance (and the lower floor): the region's extent is where the surface moved, not only
+// where it moved beyond the tessellation tolerance.
+void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
+          const std::vector<std::int32_t>& group, const std::vector<Group>& groups,
           const std::vector<std::uint8_t>& accepted, const std::vector<float>& signed_distance,
           const std::vector<float>& signed_excess, const Floor& shape, double grow_fraction,
           std::vector<std::uint8_t>& damaged) {
     const std::size_t n = group.size();
-    std::vector<std::uint8_t> extent(n, 0);
+    const Adjacency adj = adjacency(mesh);
+    std::vector<std::int32_t> visited(n, -1);
+    std::vector<std::uint32_t> stack;
     for (std::size_t v = 0; v < n; ++v) {
         const auto g = group[v];
-        if (g < 0 || !accepted[static_cast<std::size_t>(g)]) continue;
+        if (g < 0 || !accepted[static_cast<std::size_t>(g)] || signed_excess[v] < shape.value || visited[v] == g) continue;
         const double reach = std::max(grow_fraction * groups[static_cast<std::size_t>(g)].peak_distance, shape.low);
-        extent[v] = signed_distance[v] >= reach;
+        stack.assign(1, static_cast<std::uint32_t>(v));
+        visited[v] = g;
+        while (!stack.empty()) {
+            const std::uint32_t u = stack.back();
+            stack.pop_back();
+            damaged[u] = 1;
+            for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
+                const std::uint32_t w = adj.index[i];
+                if (visited[w] == g || !e.coverage->seen[w] || missing[w] || signed_distance[w] < reach) continue;
+                visited[w] = g;
+                stack.push_back(w);
+            }
+        }
     }
-    std::vector<std::int32_t> part;
-    const std::size_t parts = masked_components(mesh, extent, part);
-    std::vector<std::uint8_t> strong(parts, 0);
-    for (std::size_t v = 0; v < n; ++v)
-        if (part[v] >= 0 && signed_excess[v] >= shape.value) strong[static_cast<std::size_t>(part[v])] = 1;
-    for (std::size_t v = 0; v < n; ++v)
-        if (part[v] >= 0 && strong[static_cast<std::size_t>(part[v])]) damaged[v] = 1;
 }
 
 // Steps 2–4 for one sign of the shape change (+1 gain, −1 loss).
@@ -83,7 +117,7 @@ void one_sign(const Mesh& mesh, const DecisionEvidence& e, const std::vector<flo
     std::vector<std::uint8_t> accepted(count, 0);
     for (std::size_t g = 0; g < count; ++g)
         accepted[g] = groups[g].peak_excess >= shape.value && groups[g].max_normal >= normal.value;
-    grow(mesh, group, groups, accepted, signed_distance, signed_excess, shape, o.grow_fraction, damaged);
+    grow(mesh, e, missing, group, groups, accepted, signed_distance, signed_excess, shape, o.grow_fraction, damaged);
 }
 
 }  // namespace

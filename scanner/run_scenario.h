@@ -2,6 +2,7 @@
 #pragma once
 
 #include "scanner/evaluate.h"
+#include "scanner/pair_truth.h"
 #include "scanner/scenario.h"
 #include "scanner/sweep.h"
 
@@ -34,6 +35,15 @@ struct ScenarioOutcome {
     double threshold_deg = 0.0;        ///< zoom 0
     std::optional<DetectionScore> score;  ///< when the scenario has ground truth
     std::optional<PoseError> pose;        ///< when the scenario knows the true pose
+    std::optional<RegionTally> tally;     ///< false regions, damages detected (truth or true distances)
+    /// The same pair decided by a plain distance threshold (|atlas distance| > threshold,
+    /// connected components): what glint's decision is compared with.
+    struct Baseline {
+        double threshold = 0.0;
+        DetectionScore score;
+        RegionTally tally;
+    };
+    std::optional<Baseline> baseline;
     std::string fit_mode;
     double seconds = 0.0;
     std::vector<std::string> failures;    ///< [expect] entries that did not hold

@@ -2,6 +2,8 @@
 
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/remesh.h"
+#include "scanner/pair_truth.h"
 #include "scanner/detail/scenario_options.h"
 #include "scanner/detail/toml_reader.h"
 
@@ -130,6 +132,76 @@ Rigid read_pose(TableReader& r) {
     r.fail(node, "pose", "expected [rx, ry, rz, tx, ty, tz] (degrees, mesh units) or a pose string");
 }
 
+void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_root, Scenario& sc) {
+    sc.examined = read_surface(r, dir, data_root, false);
+    sc.examined_derived = sc.examined.mesh.empty();
+    sc.pose = read_pose(r);
+    if (auto v = r.optional<double>("noise", "a number (σ, mesh units)")) {
+        if (*v < 0) r.fail(r.get("noise"), "noise", "must be ≥ 0");
+        sc.noise_sigma = *v;
+    }
+    if (auto v = r.optional<std::int64_t>("noise_seed", "an integer")) sc.noise_seed = static_cast<std::uint32_t>(*v);
+    if (auto m = r.optional<std::string>("truth_mask", "a string (a .npy file)")) {
+        bool needs = false;
+        sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
+    }
+    sc.remesh = r.positive("remesh");
+    if (auto v = r.optional<std::int64_t>("remesh_iterations", "an integer ≥ 1")) {
+        if (*v < 1) r.fail(r.get("remesh_iterations"), "remesh_iterations", "must be ≥ 1");
+        sc.remesh_iterations = static_cast<int>(*v);
+    }
+    if (auto v = r.optional<bool>("shuffle", "true or false")) sc.shuffle = *v;
+    if (auto v = r.optional<std::int64_t>("seed", "an integer")) sc.shuffle_seed = static_cast<std::uint32_t>(*v);
+    if ((sc.remesh || sc.shuffle) && (!sc.examined_derived || sc.reference.phantom))
+        r.fail(r.get(sc.remesh ? "remesh" : "shuffle"), sc.remesh ? "remesh" : "shuffle",
+               "re-meshing and shuffling derive the examined surface from a reference mesh file");
+    if (sc.examined.phantom && sc.reference.phantom) {
+        // Re-tessellation of the reference phantom: same shape, other scheme/resolution.
+        PhantomOptions o = *sc.reference.phantom;
+        const auto& e = *sc.examined.phantom;
+        if (r.has("phantom") && e.kind != o.kind)
+            r.fail(r.get("phantom"), "phantom", "an examined phantom must be the reference's shape (re-tessellation)");
+        o.scheme = r.has("scheme") ? e.scheme : o.scheme;
+        o.resolution = r.has("resolution") ? e.resolution : o.resolution;
+        o.radii = r.has("size") ? e.radii : o.radii;
+        sc.examined.phantom = o;
+    } else if (sc.examined.phantom && !sc.reference.phantom) {
+        r.fail(nullptr, "scheme", "re-tessellation needs a phantom reference");
+    }
+    r.finish();
+}
+
+void read_expect(TableReader& r, ScenarioExpect& x) {
+    auto e = [&](const char* key, std::optional<double>& out) { out = r.optional<double>(key, "a number"); };
+    auto count = [&](const char* key, std::optional<std::size_t>& out) {
+        if (auto v = r.optional<std::int64_t>(key, "an integer ≥ 0")) {
+            if (*v < 0) r.fail(r.get(key), key, "must be ≥ 0");
+            out = static_cast<std::size_t>(*v);
+        }
+    };
+    count("regions", x.regions);
+    count("min_regions", x.min_regions);
+    count("max_regions", x.max_regions);
+    count("max_false_regions", x.max_false_regions);
+    count("max_close_region_vertices", x.max_close_region_vertices);
+    e("min_iou", x.min_iou);
+    e("min_f1", x.min_f1);
+    e("min_precision", x.min_precision);
+    e("min_recall", x.min_recall);
+    e("max_rotation_error_deg", x.max_rotation_error_deg);
+    e("max_translation_error", x.max_translation_error);
+    e("max_centroid_error", x.max_centroid_error);
+    e("min_coverage", x.min_coverage);
+    e("min_region_shape_change", x.min_region_shape_change);
+    if (auto v = r.positive("region_min_true_distance")) x.region_min_true_distance = *v;
+    if (auto v = r.optional<bool>("all_damages_detected", "true or false")) x.all_damages_detected = *v;
+    if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
+        if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
+        x.kind = *v;
+    }
+    r.finish();
+}
+
 }  // namespace
 
 Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
@@ -180,32 +252,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     }
     if (const auto* t = table("examined", false)) {
         TableReader r(*t, name, "examined");
-        sc.examined = read_surface(r, dir, data_root, false);
-        sc.examined_derived = sc.examined.mesh.empty();
-        sc.pose = read_pose(r);
-        if (auto v = r.optional<double>("noise", "a number (σ, mesh units)")) {
-            if (*v < 0) r.fail(r.get("noise"), "noise", "must be ≥ 0");
-            sc.noise_sigma = *v;
-        }
-        if (auto v = r.optional<std::int64_t>("noise_seed", "an integer")) sc.noise_seed = static_cast<std::uint32_t>(*v);
-        if (auto m = r.optional<std::string>("truth_mask", "a string (a .npy file)")) {
-            bool needs = false;
-            sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
-        }
-        if (sc.examined.phantom && sc.reference.phantom) {
-            // Re-tessellation of the reference phantom: same shape, other scheme/resolution.
-            PhantomOptions o = *sc.reference.phantom;
-            const auto& e = *sc.examined.phantom;
-            if (r.has("phantom") && e.kind != o.kind)
-                r.fail(r.get("phantom"), "phantom", "an examined phantom must be the reference's shape (re-tessellation)");
-            o.scheme = r.has("scheme") ? e.scheme : o.scheme;
-            o.resolution = r.has("resolution") ? e.resolution : o.resolution;
-            o.radii = r.has("size") ? e.radii : o.radii;
-            sc.examined.phantom = o;
-        } else if (sc.examined.phantom && !sc.reference.phantom) {
-            r.fail(nullptr, "scheme", "re-tessellation needs a phantom reference");
-        }
-        r.finish();
+        read_examined(r, dir, data_root, sc);
     }
     if (const toml::node* dmg = top.get("damage")) {
         const auto* arr = dmg->as_array();
@@ -219,26 +266,11 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     read_analysis_sections(top, dir, sc.analysis);
     if (const auto* t = table("expect", false)) {
         TableReader r(*t, name, "expect");
-        auto e = [&](const char* key, std::optional<double>& out) { out = r.optional<double>(key, "a number"); };
-        auto count = [&](const char* key, std::optional<std::size_t>& out) {
-            if (auto v = r.optional<std::int64_t>(key, "an integer")) out = static_cast<std::size_t>(*v);
-        };
-        count("regions", sc.expect.regions);
-        count("min_regions", sc.expect.min_regions);
-        count("max_regions", sc.expect.max_regions);
-        e("min_iou", sc.expect.min_iou);
-        e("min_f1", sc.expect.min_f1);
-        e("min_precision", sc.expect.min_precision);
-        e("min_recall", sc.expect.min_recall);
-        e("max_rotation_error_deg", sc.expect.max_rotation_error_deg);
-        e("max_translation_error", sc.expect.max_translation_error);
-        e("max_centroid_error", sc.expect.max_centroid_error);
-        e("min_coverage", sc.expect.min_coverage);
-        e("min_region_shape_change", sc.expect.min_region_shape_change);
-        if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
-            if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
-            sc.expect.kind = *v;
-        }
+        read_expect(r, sc.expect);
+    }
+    if (const auto* t = table("baseline", false)) {
+        TableReader r(*t, name, "baseline");
+        sc.baseline_distance = r.positive("distance_threshold");
         r.finish();
     }
     top.finish();
@@ -283,6 +315,60 @@ std::vector<std::uint8_t> read_npy_mask(const fs::path& path) {
     return mask;
 }
 
+namespace {
+
+// The derived examined surface: the reference (or its re-tessellated phantom, or its CGAL
+// remesh), damaged, then noise, then the pose. Truth on the reference, by the distance rule
+// (scanner/pair_truth.h) for mesh files, by the displacement rule for phantoms.
+void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
+    const bool from_file = !sc.reference.phantom;
+    if (sc.examined.phantom) {
+        out.examined = make_phantom(*sc.examined.phantom);
+    } else if (sc.remesh) {
+        const EdgeStats edges = edge_stats(out.reference);
+        out.examined = remesh_isotropic(out.reference, {*sc.remesh * edges.median, sc.remesh_iterations});
+        std::ostringstream note;
+        note << "examined: reference remeshed at " << *sc.remesh << "× its median edge (" << edges.median << " → "
+             << edge_stats(out.examined).median << "), " << out.examined.vertex_count() << " vertices";
+        out.notes.push_back(note.str());
+    } else {
+        out.examined = out.reference;
+    }
+    if (sc.shuffle) shuffle_mesh(out.examined, sc.shuffle_seed);
+    if (!sc.damages.empty()) apply_damage(out.examined, sc.damages);
+    if (from_file) {
+        // The damaged surface before noise and motion is what the truth is measured against.
+        Mesh footprint = out.reference;
+        if (!sc.damages.empty()) apply_damage(footprint, sc.damages);
+        const std::vector<std::int32_t> labels =
+            footprint.labels.empty() ? std::vector<std::int32_t>(out.reference.vertex_count(), 0) : footprint.labels;
+        PairTruth truth = distance_truth(out.reference, out.examined, labels, sc.damages);
+        out.truth = std::move(truth.damaged);
+        out.truth_damage = std::move(truth.damage_id);
+        out.true_distance = vertex_distances(out.reference, out.examined);
+    } else if (!sc.damages.empty()) {
+        Mesh truth_mesh = out.reference;
+        apply_damage(truth_mesh, sc.damages);
+        out.truth.resize(truth_mesh.vertex_count());
+        for (std::size_t v = 0; v < out.truth.size(); ++v) out.truth[v] = truth_mesh.labels[v] != 0;
+        out.truth_damage = truth_mesh.labels;
+    } else {
+        out.truth.assign(out.reference.vertex_count(), 0);
+    }
+    if (sc.noise_sigma > 0) {
+        DamageSpec noise;
+        noise.kind = DamageKind::Noise;
+        noise.sigma = sc.noise_sigma;
+        noise.seed = sc.noise_seed;
+        apply_damage(out.examined, {noise});  // labels and gt_displacement of the damages are kept
+    }
+    transform_mesh(out.examined, sc.pose);
+    out.true_reference_from_examined = sc.pose.inverse();
+    out.has_truth_pose = true;
+}
+
+}  // namespace
+
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     ScenarioMeshes out;
     auto load = [&](const SurfaceSource& s, const std::string& role) {
@@ -296,38 +382,24 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     };
     out.reference = load(sc.reference, "reference");
     if (sc.examined_derived) {
-        out.examined = sc.examined.phantom ? make_phantom(*sc.examined.phantom) : out.reference;
-        std::vector<DamageSpec> all = sc.damages;
-        if (sc.noise_sigma > 0) {
-            DamageSpec noise;
-            noise.kind = DamageKind::Noise;
-            noise.sigma = sc.noise_sigma;
-            noise.seed = sc.noise_seed;
-            all.push_back(noise);
-        }
-        if (!all.empty()) apply_damage(out.examined, all);
-        if (!sc.damages.empty()) {
-            // Ground truth on the reference: the same damages applied to a copy of it.
-            Mesh truth_mesh = out.reference;
-            apply_damage(truth_mesh, sc.damages);
-            out.truth.resize(truth_mesh.vertex_count());
-            for (std::size_t v = 0; v < out.truth.size(); ++v) out.truth[v] = truth_mesh.labels[v] != 0;
-        } else {
-            out.truth.assign(out.reference.vertex_count(), 0);
-        }
-        transform_mesh(out.examined, sc.pose);
-        out.true_reference_from_examined = sc.pose.inverse();
-        out.has_truth_pose = true;
-    } else {
-        out.examined = load(sc.examined, "examined");
-        if (!sc.truth_mask.empty()) {
-            out.truth = read_npy_mask(sc.truth_mask);
-            if (out.truth.size() != out.reference.vertex_count())
-                throw InputError("scenario \"" + sc.file.string() + "\": truth mask has " + std::to_string(out.truth.size()) +
-                                 " values, the reference has " + std::to_string(out.reference.vertex_count()) + " vertices");
-        }
-        out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() || sc.analysis.fit.mode == FitMode::Truth;
-        out.true_reference_from_examined = sc.pose.inverse();
+        derive_examined(sc, out);
+        return out;
+    }
+    out.examined = load(sc.examined, "examined");
+    if (!sc.truth_mask.empty()) {
+        out.truth = read_npy_mask(sc.truth_mask);
+        if (out.truth.size() != out.reference.vertex_count())
+            throw InputError("scenario \"" + sc.file.string() + "\": truth mask has " + std::to_string(out.truth.size()) +
+                             " values, the reference has " + std::to_string(out.reference.vertex_count()) + " vertices");
+    }
+    out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() || sc.analysis.fit.mode == FitMode::Truth;
+    out.true_reference_from_examined = sc.pose.inverse();
+    if (sc.expect.max_close_region_vertices) {
+        // Two scans given in one frame (or with the stated pose): the true distance is to the
+        // examined surface placed back with that pose.
+        Mesh placed = out.examined;
+        transform_mesh(placed, out.true_reference_from_examined);
+        out.true_distance = vertex_distances(out.reference, placed);
     }
     return out;
 }

@@ -43,6 +43,13 @@ struct ScenarioExpect {
     /// reference lies at least this far (mesh units) from the examined surface. For pairs that
     /// differ where a decimation or a re-meshing really moved the surface.
     std::optional<double> min_region_shape_change;
+    /// Real-data pairs: regions that hold no damaged vertex (truth needed).
+    std::optional<std::size_t> max_false_regions;
+    bool all_damages_detected = false;            ///< every damage touched by a region
+    /// Pairs without labels (two scans of one surface): region vertices whose true distance to
+    /// the examined surface is below region_min_true_distance count as false.
+    std::optional<std::size_t> max_close_region_vertices;
+    double region_min_true_distance = 0.1;
 };
 
 struct Scenario {
@@ -59,6 +66,15 @@ struct Scenario {
     double noise_sigma = 0.0;
     std::uint32_t noise_seed = 1;
     Rigid pose = Rigid::Identity();               ///< examined = pose · (damaged surface)
+    /// Re-tessellation of a reference mesh file (mesh/remesh.h): target edge = remesh × the
+    /// reference's median edge; vertices lie on the reference surface.
+    std::optional<double> remesh;
+    int remesh_iterations = 3;
+    bool shuffle = false;                         ///< shuffle vertex and triangle order
+    std::uint32_t shuffle_seed = 1;
+    /// The plain distance threshold glint's decision is compared with (mesh units); default
+    /// 10 % of the smallest damage depth.
+    std::optional<double> baseline_distance;
     /// Per-vertex ground-truth mask on the *reference* from a file (tooth-wear .npy masks).
     std::filesystem::path truth_mask;
     /// The analysis: [registration] (fit mode register by default; "truth" uses the known
@@ -79,6 +95,10 @@ struct ScenarioMeshes {
     Rigid true_reference_from_examined = Rigid::Identity();
     bool has_truth_pose = false;
     std::vector<std::uint8_t> truth;   ///< per reference vertex: 1 = damaged (empty if none)
+    std::vector<std::int32_t> truth_damage;  ///< per reference vertex: 1-based damage id (derived pairs)
+    /// Per reference vertex: distance to the examined surface placed back with the true pose,
+    /// before noise (derived pairs; mesh-file pairs whose frames agree). Empty when unknown.
+    std::vector<float> true_distance;
     std::vector<std::string> notes;
 };
 

@@ -86,6 +86,16 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
                       {"truth_vertices", o.score->truth_vertices},
                       {"centroid_error", o.score->centroid_error ? nlohmann::json(*o.score->centroid_error) : nlohmann::json()}};
     if (o.pose) j["pose_error"] = {{"rotation_deg", o.pose->rotation_deg}, {"translation", o.pose->translation}};
+    auto tally_json = [](const RegionTally& t) {
+        return nlohmann::json{{"regions", t.regions}, {"false_regions", t.false_regions}, {"damages", t.damages},
+                              {"damages_detected", t.damages_detected},
+                              {"close_region_vertices", t.close_region_vertices}};
+    };
+    if (o.tally) j["tally"] = tally_json(*o.tally);
+    if (o.baseline)
+        j["baseline_distance"] = {{"threshold", o.baseline->threshold}, {"precision", o.baseline->score.precision},
+                                  {"recall", o.baseline->score.recall}, {"f1", o.baseline->score.f1},
+                                  {"tally", tally_json(o.baseline->tally)}};
     return j;
 }
 
@@ -169,11 +179,13 @@ void eval_command(const RunArgs& a) {
     nlohmann::json all = nlohmann::json::array();
     std::ostringstream csv;
     csv << "scenario,status,regions,kind,coverage,threshold_deg,precision,recall,f1,iou,centroid_error,"
-           "rotation_error_deg,translation_error,seconds\n";
+           "rotation_error_deg,translation_error,seconds,false_regions,damages,damages_detected,close_region_vertices,"
+           "baseline_threshold,baseline_f1,baseline_regions,baseline_false_regions\n";
     std::ostringstream table;
     char line[512];
-    std::snprintf(line, sizeof line, "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s\n", "scenario", "status",
-                  "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU", "centroid", "rot°", "transl", "s");
+    std::snprintf(line, sizeof line, "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s %5s %5s %5s %6s %5s\n",
+                  "scenario", "status", "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU", "centroid", "rot°",
+                  "transl", "s", "false", "found", "close", "b.F1", "b.reg");
     table << line;
     for (const auto& o : outcomes) {
         all.push_back(outcome_json(o));
@@ -189,17 +201,34 @@ void eval_command(const RunArgs& a) {
         const std::optional<double> cen = o.score ? o.score->centroid_error : std::nullopt;
         const std::optional<double> rot = o.pose ? std::optional<double>(o.pose->rotation_deg) : std::nullopt;
         const std::optional<double> tr = o.pose ? std::optional<double>(o.pose->translation) : std::nullopt;
-        std::snprintf(line, sizeof line, "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f\n",
+        const auto tally = [&](auto getter) -> std::optional<double> {
+            if (!o.tally) return std::nullopt;
+            return static_cast<double>(getter(*o.tally));
+        };
+        const auto false_regions = tally([](const RegionTally& t) { return t.false_regions; });
+        const auto close = tally([](const RegionTally& t) { return t.close_region_vertices; });
+        const std::string found =
+            o.tally && o.tally->damages ? std::to_string(o.tally->damages_detected) + "/" + std::to_string(o.tally->damages) : "-";
+        const std::optional<double> bf1 = o.baseline ? std::optional<double>(o.baseline->score.f1) : std::nullopt;
+        const std::optional<double> breg =
+            o.baseline ? std::optional<double>(static_cast<double>(o.baseline->tally.regions)) : std::nullopt;
+        std::snprintf(line, sizeof line, "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
                       o.name.substr(0, 34).c_str(), status.c_str(), o.regions, o.largest_kind.substr(0, 4).c_str(),
                       o.coverage, o.threshold_deg, opt(prec).c_str(), opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(),
-                      opt(cen, "%.3g").c_str(), opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds);
+                      opt(cen, "%.3g").c_str(), opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
+                      opt(false_regions, "%.0f").c_str(), found.c_str(), opt(close, "%.0f").c_str(), opt(bf1).c_str(),
+                      opt(breg, "%.0f").c_str());
         table << line;
         for (const auto& f : o.failures) table << "    " << f << '\n';
         if (o.skipped) table << "    " << o.skip_reason << '\n';
         csv << o.name << ',' << status << ',' << o.regions << ',' << o.largest_kind << ',' << o.coverage << ','
             << o.threshold_deg << ',' << opt(prec, "%.6f") << ',' << opt(rec, "%.6f") << ',' << opt(f1, "%.6f") << ','
             << opt(iou, "%.6f") << ',' << opt(cen, "%.6g") << ',' << opt(rot, "%.6g") << ',' << opt(tr, "%.6g") << ','
-            << o.seconds << '\n';
+            << o.seconds << ',' << opt(false_regions, "%.0f") << ',' << (o.tally ? std::to_string(o.tally->damages) : "-")
+            << ',' << (o.tally ? std::to_string(o.tally->damages_detected) : "-") << ',' << opt(close, "%.0f") << ','
+            << (o.baseline ? std::to_string(o.baseline->threshold) : "-") << ',' << opt(bf1, "%.6f") << ','
+            << opt(breg, "%.0f") << ','
+            << (o.baseline ? std::to_string(o.baseline->tally.false_regions) : "-") << '\n';
     }
     write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
     write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());
