@@ -49,11 +49,15 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
     Floor f;
     if (o.threshold) {
         f.value = *o.threshold;
+        f.low = f.value;
         f.given = true;
         f.rule = "given";
         return f;
     }
     f = robust_floor(e.atlas->value_mean, e.coverage->seen, o.noise_k, o.min_threshold, plausible);
+    // The fused rule asks the normal field for corroboration of a shape change, not for proof
+    // on its own: the lower floor (k = shape_low_k, as for the shape) is what a group must reach.
+    f.low = std::min(f.value, std::max(f.median + o.shape_low_k * 1.4826 * f.mad, o.min_threshold));
     f.rule = "median + " + general(o.noise_k) + "·1.4826·MAD of the per-vertex mean " + std::string(m.name) +
              " over seen vertices, at least " + general(o.min_threshold) + std::string(m.symbol);
     if (f.implausible)
@@ -125,7 +129,7 @@ std::vector<float> shape_excess(const DecisionEvidence& e) {
 std::string fused_rule_text(const ZoomDecision& d, const MetricDescriptor& m) {
     return "fused: a region holds a shape change beyond the tessellation tolerance of at least " + general(d.shape.value) +
            " (grown from " + general(d.shape.low) + ") and a per-vertex mean " + std::string(m.name) + " of at least " +
-           fixed(d.normal.value, 2) + std::string(m.symbol) + "; its extent reaches a tenth of its peak shape change";
+           fixed(d.normal.low, 2) + std::string(m.symbol) + " (the normal floor's lower level)" + "; its extent reaches a tenth of its peak shape change";
 }
 
 std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floor& normal) {

@@ -20,13 +20,14 @@
 //              what the two tessellations may differ by (scanner/fit.h ShapeEvidence);
 //           2. candidates: seen vertices whose excess of one sign reaches the lower shape
 //              floor, grouped through mesh edges;
-//           3. a group becomes a region only when it holds both a shape excess above the
-//              shape floor (so tessellation-only normal differences do not count) and a
-//              normal deviation above the normal floor (so isolated distance speckle from
-//              noise does not count);
-//           4. hysteresis: its extent is where the shape change reaches a tenth
-//              (grow_fraction) of the group's peak, connected to strong evidence — where a
-//              change of shape is, not only the steep rim the normals show;
+//           3. growth: from the vertices of each group whose excess reaches the shape floor
+//              (so tessellation-only normal differences do not count), the extent grows
+//              through connected vertices whose signed distance reaches a tenth
+//              (grow_fraction) of the group's peak, the lower shape floor and half the local
+//              tessellation tolerance — where the shape changed, not only its steep rim;
+//           4. the grown extent is a region only when its normal deviation reaches the
+//              normal floor's lower level (so isolated distance speckle from noise does not
+//              count; a smooth dent turns the normals most on its flanks, not at its core);
 //           5. where the examined surface is missing (views found no surface behind the
 //              reference, or the closest examined point lies on a border with a large
 //              distance) the region is "missing surface", not a dent or a bump.
@@ -79,7 +80,7 @@ struct DecisionOptions {
 /// A floor and how it was obtained.
 struct Floor {
     double value = 0.0;        ///< the threshold used (metric units, or mesh units for shape)
-    double low = 0.0;          ///< hysteresis: the lower floor candidates must reach (shape only)
+    double low = 0.0;          ///< lower level (k = shape_low_k): shape growth; normal corroboration in the fused rule
     double median = 0.0;
     double mad = 0.0;          ///< raw median absolute deviation
     double k = 0.0;

@@ -192,7 +192,10 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
         // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
         e.distance[v] = static_cast<float>(-c.signed_distance);
         const auto& t = exa.triangles[c.triangle];
-        float h = ref_shape.edge[v], theta = ref_shape.sharpness[v];
+        // The examined triangle's size decides how far it can cut a corner of the reference
+        // (its vertices lie on the surface, its interior does not); the sharper of the two
+        // surfaces there decides how much it turns.
+        float h = 0.0f, theta = ref_shape.sharpness[v];
         for (const auto corner : t) {
             h = std::max(h, exa_shape.edge[corner]);
             theta = std::max(theta, exa_shape.sharpness[corner]);

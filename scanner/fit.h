@@ -64,11 +64,13 @@ struct FitOutcome {
 /// edge. Smooth parts give the sagitta (≈ h·θ/8 across a chord); sharp parts — a cusp, a
 /// ridge, a cone tip whose vertex the other mesh does not share — give much more, because the
 /// other mesh cuts the corner. Measured on the real jaw remeshed at 0.5× (vertices on the
-/// surface): the distance of every reference vertex to the remesh stayed below 0.92·h·θ.
+/// surface): the distance of every reference vertex to the remesh stayed below 0.92·h·θ with
+/// h the remesh's median edge, and half of h·θ with h the longest edge at the examined
+/// triangle's corners left no excess above the shape floor on the clean jaw and molar pairs.
 /// A reference vertex's tolerance is kTessellationTolerance·h·θ with h the longest edge at the
-/// vertex or at the corners of the examined triangle its closest point lies on, and θ the
-/// largest angle between a vertex normal and an adjacent face normal there (either mesh).
-inline constexpr double kTessellationTolerance = 1.0;
+/// corners of the examined triangle its closest point lies on, and θ the largest angle between
+/// a vertex normal and an adjacent face normal at the reference vertex or at those corners.
+inline constexpr double kTessellationTolerance = 0.5;
 
 struct ShapeEvidence {
     std::vector<float> distance;        ///< signed distance, mesh units (negative = loss)

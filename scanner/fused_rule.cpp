@@ -28,6 +28,10 @@ std::vector<std::uint8_t> missing_mask(const DecisionEvidence& e, const std::vec
     return m;
 }
 
+// note: 1/2 of the tolerance (kTessellationTolerance·h·θ) — on the jaw remeshed at 1.2× a
+// chord's offset on the convex condyle reached 0.06–0.09 mm where h·θ was ~0.44 mm.
+constexpr double kGrowToleranceShare = 0.5;
+
 struct Group {
     float peak_excess = 0.0f;    // largest signed excess magnitude (in the group's sign)
     float peak_distance = 0.0f;  // largest signed distance magnitude
@@ -58,37 +62,52 @@ Adjacency adjacency(const Mesh& mesh) {
     return a;
 }
 
-// Step 4: from the strong vertices of each accepted group (shape excess at the floor), grow
-// through connected vertices whose signed distance reaches grow_fraction of the group's peak
-// distance (and the lower floor): the region's extent is where the surface moved, not only
-// where it moved beyond the tessellation tolerance.
+// Steps 3–4: from the strong vertices of each group whose peak excess reaches the shape floor,
+// grow through connected vertices whose signed distance reaches grow_fraction of the group's
+// peak distance (and the lower floor, and a share of the local tessellation tolerance): the
+// region's extent is where the surface moved, not only where it moved beyond the tolerance.
+// The grown extent is kept when its normal evidence reaches the normal floor's lower level:
+// the normal field turns most on a damage's flanks, which the extent holds and the strong core
+// of a smooth dent does not.
 void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
           const std::vector<std::int32_t>& group, const std::vector<Group>& groups,
-          const std::vector<std::uint8_t>& accepted, const std::vector<float>& signed_distance,
-          const std::vector<float>& signed_excess, const Floor& shape, double grow_fraction,
-          std::vector<std::uint8_t>& damaged) {
+          const std::vector<float>& signed_distance, const std::vector<float>& signed_excess, const Floor& normal,
+          const Floor& shape, double grow_fraction, std::vector<std::uint8_t>& damaged) {
     const std::size_t n = group.size();
     const Adjacency adj = adjacency(mesh);
+    const bool have_tolerance = e.tolerance && e.tolerance->size() == n;
     std::vector<std::int32_t> visited(n, -1);
+    std::vector<std::vector<std::uint32_t>> extent(groups.size());
+    std::vector<float> extent_normal(groups.size(), 0.0f);
     std::vector<std::uint32_t> stack;
     for (std::size_t v = 0; v < n; ++v) {
         const auto g = group[v];
-        if (g < 0 || !accepted[static_cast<std::size_t>(g)] || signed_excess[v] < shape.value || visited[v] == g) continue;
-        const double reach = std::max(grow_fraction * groups[static_cast<std::size_t>(g)].peak_distance, shape.low);
+        if (g < 0 || signed_excess[v] < shape.value || visited[v] == g) continue;
+        const auto gi = static_cast<std::size_t>(g);
+        if (groups[gi].peak_excess < shape.value) continue;
+        const double reach = std::max(grow_fraction * groups[gi].peak_distance, shape.low);
         stack.assign(1, static_cast<std::uint32_t>(v));
         visited[v] = g;
         while (!stack.empty()) {
             const std::uint32_t u = stack.back();
             stack.pop_back();
-            damaged[u] = 1;
+            extent[gi].push_back(u);
+            extent_normal[gi] = std::max(extent_normal[gi], e.atlas->value_mean[u]);
             for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
                 const std::uint32_t w = adj.index[i];
-                if (visited[w] == g || !e.coverage->seen[w] || missing[w] || signed_distance[w] < reach) continue;
+                // A share of the local tessellation tolerance: where a coarse tessellation lies
+                // systematically off a curved surface (a chord inside a convex part), the
+                // offset is not a change of shape and must not carry a region along.
+                const double tol = have_tolerance ? kGrowToleranceShare * (*e.tolerance)[w] : 0.0;
+                if (visited[w] == g || !e.coverage->seen[w] || missing[w] || signed_distance[w] < std::max(reach, tol)) continue;
                 visited[w] = g;
                 stack.push_back(w);
             }
         }
     }
+    for (std::size_t g = 0; g < groups.size(); ++g)
+        if (extent_normal[g] >= normal.low)
+            for (const auto u : extent[g]) damaged[u] = 1;
 }
 
 // Steps 2–4 for one sign of the shape change (+1 gain, −1 loss).
@@ -113,11 +132,7 @@ void one_sign(const Mesh& mesh, const DecisionEvidence& e, const std::vector<flo
         g.peak_distance = std::max(g.peak_distance, signed_distance[v]);
         g.max_normal = std::max(g.max_normal, e.atlas->value_mean[v]);
     }
-    // Step 3: both kinds of evidence, each above its floor.
-    std::vector<std::uint8_t> accepted(count, 0);
-    for (std::size_t g = 0; g < count; ++g)
-        accepted[g] = groups[g].peak_excess >= shape.value && groups[g].max_normal >= normal.value;
-    grow(mesh, e, missing, group, groups, accepted, signed_distance, signed_excess, shape, o.grow_fraction, damaged);
+    grow(mesh, e, missing, group, groups, signed_distance, signed_excess, normal, shape, o.grow_fraction, damaged);
 }
 
 }  // namespace

@@ -47,7 +47,9 @@ TEST(PairTruth, DamagedWhereTheSurfaceMovedByATenthOfTheDepth) {
         }
         // Far from both damages nothing is damaged, whatever the tessellation difference.
         const Vec3d p = reference.positions[v].cast<double>();
-        if ((p - Vec3d(0, 0, 10)).norm() > 3.5 && (p - Vec3d(10, 0, 0)).norm() > 2.5) EXPECT_EQ(id, 0);
+        if ((p - Vec3d(0, 0, 10)).norm() > 3.5 && (p - Vec3d(10, 0, 0)).norm() > 2.5) {
+            EXPECT_EQ(id, 0);
+        }
     }
     EXPECT_GT(first, 20u);
     EXPECT_GT(second, 5u);
