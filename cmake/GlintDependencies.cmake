@@ -58,6 +58,9 @@ glint_require(CGAL_FOUND libcgal-dev)
 enable_language(C)
 find_package(ITK 5 QUIET COMPONENTS ITKCommon ITKIOImageBase ITKIOMeta ITKIONIFTI ITKIONRRD ITKIOGDCM)
 glint_require(ITK_FOUND libinsighttoolkit5-dev)
+# GDCM itself (ITK's DICOM IO uses Debian's GDCM): only to silence its warning trace.
+find_package(GDCM QUIET)
+glint_require(GDCM_FOUND libgdcm-dev)
 find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel CommonTransforms FiltersCore FiltersGeneral
              FiltersExtraction)
 glint_require(VTK_FOUND libvtk9-dev)

@@ -9,6 +9,7 @@
 #include <itkImage.h>
 #include <itkImageFileWriter.h>
 #include <itkMetaDataObject.h>
+#include <gdcmTrace.h>
 
 #include <algorithm>
 #include <cmath>
@@ -57,12 +58,15 @@ ShortSlice::Pointer slice_image(const RawVolume& v, std::size_t k) {
 
 void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
     itk::Object::GlobalWarningDisplayOff();
+    gdcm::Trace::WarningOff();  // library code never prints
     std::mt19937_64 rng(std::random_device{}());
     const std::string study = new_uid(rng), series = new_uid(rng), frame = new_uid(rng);
     for (std::size_t k = 0; k < v.size[2]; ++k) {
         auto io = itk::GDCMImageIO::New();
         io->KeepOriginalUIDOn();
-        itk::MetaDataDictionary& dict = io->GetMetaDataDictionary();
+        const ShortSlice::Pointer slice = slice_image(v, k);
+        // note: ImageFileWriter hands the image's dictionary to the ImageIO.
+        itk::MetaDataDictionary& dict = slice->GetMetaDataDictionary();
         auto set = [&](const char* tag, const std::string& value) { itk::EncapsulateMetaData<std::string>(dict, tag, value); };
         set("0008|0016", "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
         set("0008|0018", new_uid(rng));
@@ -78,7 +82,7 @@ void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
         auto writer = itk::ImageFileWriter<ShortSlice>::New();
         writer->SetImageIO(io);
         writer->SetFileName((folder / name).string());
-        writer->SetInput(slice_image(v, k));
+        writer->SetInput(slice);
         try {
             writer->Update();
         } catch (const itk::ExceptionObject& e) {

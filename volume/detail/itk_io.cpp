@@ -13,10 +13,12 @@
 #include <itkMetaImageIO.h>
 #include <itkNiftiImageIO.h>
 #include <itkNrrdImageIO.h>
+#include <gdcmTrace.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace glint::detail {
@@ -78,6 +80,29 @@ void check_header(const itk::ImageIOBase& io, const fs::path& path) {
             throw InputError(quoted(path) + ": size " + size_text(io) + ", expected at least 2 voxels along every axis");
 }
 
+// A file pattern "CThead.%d 1 113 1" (printf pattern, first, last, step): one file per slice,
+// each exactly one slice of bytes (MetaIO would read a missing slice as nothing and go on).
+void require_slice_files(const itk::ImageIOBase& io, const fs::path& header, const std::string& pattern) {
+    std::istringstream in(pattern);
+    std::string format;
+    long first = 0, last = 0, step = 1;
+    in >> format >> first >> last >> step;
+    if (!in || step <= 0 || last < first) return;  // not a pattern MetaIO reads either: let it say so
+    const auto slice_bytes = static_cast<std::uintmax_t>(io.GetImageSizeInBytes() / io.GetDimensions(2));
+    for (long n = first; n <= last; n += step) {
+        char name[1024];
+        std::snprintf(name, sizeof name, format.c_str(), n);
+        const fs::path slice = header.parent_path() / name;
+        std::error_code ec;
+        if (!fs::exists(slice, ec))
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" is missing (pattern \"" + pattern + "\")");
+        const auto found = fs::file_size(slice, ec);
+        if (!ec && found != slice_bytes)
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" holds " + std::to_string(found) +
+                             " bytes, one slice needs " + std::to_string(slice_bytes));
+    }
+}
+
 // A detached, uncompressed MetaImage data file must hold what the header promises (the
 // reader would otherwise fail with a message that names neither file nor sizes).
 void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
@@ -85,9 +110,12 @@ void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     if (!meta) return;
     MetaImage* m = meta->GetMetaImagePointer();
     const std::string data_name = m->ElementDataFileName();
-    // note: LOCAL data, a file pattern ("CThead.%d 1 113 1") or a LIST are left to MetaIO.
-    if (m->CompressedData() || data_name == "LOCAL" || data_name == "LIST" || data_name.find(' ') != std::string::npos)
+    // note: LOCAL data and a LIST are left to MetaIO.
+    if (m->CompressedData() || data_name == "LOCAL" || data_name == "LIST") return;
+    if (data_name.find(' ') != std::string::npos) {
+        require_slice_files(io, header, data_name);
         return;
+    }
     const fs::path data = header.parent_path() / data_name;
     std::error_code ec;
     if (!fs::exists(data, ec))
@@ -190,6 +218,7 @@ std::string volume_format(const fs::path& path) {
 
 RawVolume itk_read(const fs::path& path) {
     itk::Object::GlobalWarningDisplayOff();  // library code never prints
+    gdcm::Trace::WarningOff();
     try {
         std::error_code ec;
         if (fs::is_directory(path, ec)) return read_dicom_folder(path);
