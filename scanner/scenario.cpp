@@ -4,6 +4,7 @@
 #include "mesh/io.h"
 #include "mesh/remesh.h"
 #include "scanner/pair_truth.h"
+#include "volume/load.h"
 #include "scanner/detail/scenario_options.h"
 #include "scanner/detail/toml_reader.h"
 
@@ -43,15 +44,43 @@ fs::path resolve_mesh(TableReader& r, const std::string& key, const std::string&
     return local;
 }
 
+// The surface keys of a [reference] / [examined] volume (volume/surface.h).
+void read_surface_options(TableReader& r, SurfaceOptions& o) {
+    if (auto v = r.optional<double>("iso", "a number (the volume's units)")) o.iso = *v;
+    if (auto v = r.optional<std::string>("surface_roi", "a string (sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1, mm)")) {
+        try {
+            o.roi = parse_roi(*v);
+        } catch (const InputError& e) {
+            r.fail(r.get("surface_roi"), "surface_roi", e.what());
+        }
+    }
+    if (auto v = r.optional<bool>("largest", "a boolean")) o.largest = *v;
+    if (auto v = r.numbers("seed", 3, 3)) o.seed = vec3(*v);
+    if (auto v = r.optional<std::int64_t>("smooth", "an integer (iterations)")) o.smooth_iterations = static_cast<int>(*v);
+    if (auto v = r.optional<double>("passband", "a number in (0, 2)")) o.passband = *v;
+    if (auto v = r.optional<double>("edge", "a number (mm)")) o.edge_mm = *v;
+    if (auto v = r.optional<double>("tolerance", "a number (mm)")) o.tolerance_mm = *v;
+    if (!o.iso && !o.any()) return;
+    try {
+        if (o.iso) o.validate();
+    } catch (const OptionError& e) {
+        r.fail(r.get(e.key()), e.key(), e.what());
+    }
+}
+
 SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const fs::path& data_root, bool required) {
     SurfaceSource s;
     const auto phantom = r.optional<std::string>("phantom", "a string (sphere, ellipsoid, torus, condyle)");
-    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh file path)");
+    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh or volume file path)");
     if (phantom && mesh) r.fail(r.get("mesh"), "mesh", "give either phantom or mesh, not both");
     if (mesh) {
         s.mesh_as_written = *mesh;
         s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
     }
+    read_surface_options(r, s.surface);
+    if ((s.surface.iso || s.surface.any()) && !mesh)
+        r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
+               "surface keys need a volume file: mesh = \"scan.nii.gz\"");
     const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
     const auto resolution = r.optional<std::int64_t>("resolution", "an integer");
     const auto size = r.numbers("size", 1, 3);
@@ -378,7 +407,9 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
             throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" + s.mesh_as_written +
                           "\" not found (looked at \"" + s.mesh.string() + "\"" +
                           (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") + ")");
-        return load_mesh(s.mesh).mesh;
+        // An examined volume without its own surface keys is cut as the reference was.
+        const bool inherit = &s == &sc.examined && is_volume_path(s.mesh) && !s.surface.iso;
+        return load_surface(s.mesh, inherit ? sc.reference.surface : s.surface).mesh;
     };
     out.reference = load(sc.reference, "reference");
     if (sc.examined_derived) {

@@ -10,6 +10,7 @@
 #include "mesh/mesh.h"
 #include "mesh/phantom.h"
 #include "scanner/analysis.h"
+#include "volume/surface.h"
 
 #include <filesystem>
 #include <optional>
@@ -24,6 +25,10 @@ struct SurfaceSource {
     std::filesystem::path mesh;   ///< resolved path (relative to the scenario or the data root)
     std::string mesh_as_written;  ///< as written in the file
     bool needs_data_root = false; ///< path was resolved against the data root
+    /// For a volume file (keys iso, surface_roi, largest, seed, smooth, passband, edge,
+    /// tolerance): how its surface is extracted. An examined volume without iso takes the
+    /// reference's options.
+    SurfaceOptions surface;
 };
 
 struct ScenarioExpect {
