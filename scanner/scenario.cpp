@@ -310,8 +310,8 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
             sc.damages.push_back(read_damage(r));
         }
         if (!sc.examined_derived) top.fail(dmg, "damage", "damage applies to a derived examined surface, not to an examined mesh file");
-        if (!sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh))
-            top.fail(dmg, "damage", "a volume reference takes erode = [x, y, z, r] in [examined], not [[damage]]");
+        if (sc.resample_volume)
+            top.fail(dmg, "damage", "a resampled examined volume takes erode = [x, y, z, r] in [examined], not [[damage]]");
     }
     read_analysis_sections(top, dir, sc.analysis);
     if (const auto* t = table("expect", false)) {

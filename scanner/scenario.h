@@ -84,6 +84,8 @@ struct Scenario {
     /// A volume reference: the examined scan is the reference volume resampled under `pose`
     /// about `pivot` ([examined] pivot = [x, y, z]) with erosions ([examined] erode =
     /// [x, y, z, r], erode_to = value), its surface cut with the reference's options.
+    /// Without pivot or erode, a volume reference's examined surface is derived from the
+    /// reference mesh like any other (pose, [[damage]], noise), no resampling.
     Vec3d pivot{0, 0, 0};
     std::vector<Erosion> erosions;
     bool resample_volume = false;                 ///< pivot or erode given
