@@ -22,6 +22,10 @@
 
 namespace glint::detail {
 
+namespace {
+VtkSurface run_flying_edges(vtkImageData* image, double iso);
+}  // namespace
+
 std::size_t VtkSurface::triangle_count() const { return poly ? static_cast<std::size_t>(poly->GetNumberOfPolys()) : 0; }
 
 VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t, 3>, 2>& crop, double iso) {
@@ -36,7 +40,15 @@ VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t
     image->SetOrigin(static_cast<double>(crop[0][0]), static_cast<double>(crop[0][1]), static_cast<double>(crop[0][2]));
     image->SetSpacing(1, 1, 1);
     auto scalars = vtkSmartPointer<vtkFloatArray>::New();
-    scalars->SetNumberOfTuples(static_cast<vtkIdType>(n[0] * n[1] * n[2]));
+    const auto count = static_cast<vtkIdType>(n[0] * n[1] * n[2]);
+    if (n == g.size) {
+        // The whole volume: VTK reads our buffer in place (save = 1: VTK never frees it; the
+        // filter only reads, and the image dies with this function).
+        scalars->SetArray(const_cast<float*>(volume.voxels.data()), count, 1);
+        image->GetPointData()->SetScalars(scalars);
+        return run_flying_edges(image, iso);
+    }
+    scalars->SetNumberOfTuples(count);
     float* dst = scalars->GetPointer(0);
     for (std::size_t k = 0; k < n[2]; ++k)
         for (std::size_t j = 0; j < n[1]; ++j) {
@@ -44,6 +56,11 @@ VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t
             std::copy_n(src, n[0], dst + n[0] * (j + n[1] * k));
         }
     image->GetPointData()->SetScalars(scalars);
+    return run_flying_edges(image, iso);
+}
+
+namespace {
+VtkSurface run_flying_edges(vtkImageData* image, double iso) {
     auto fe = vtkSmartPointer<vtkFlyingEdges3D>::New();
     fe->SetInputData(image);
     fe->SetValue(0, iso);
@@ -54,6 +71,7 @@ VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t
     throw_if_cancelled();
     return {fe->GetOutput()};
 }
+}  // namespace
 
 void VtkSurface::to_physical(const VolumeGeometry& g) {
     const Eigen::Matrix3d m = g.direction * g.spacing.asDiagonal();
