@@ -51,6 +51,21 @@ glint_require(meshoptimizer_FOUND libmeshoptimizer-dev)
 set(CGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE TRUE)
 find_package(CGAL QUIET)
 glint_require(CGAL_FOUND libcgal-dev)
+# ITK reads the volumes (MetaImage, NIfTI, NRRD; DICOM through GDCM) with their geometry; VTK
+# extracts the surface (flying edges, connectivity, windowed-sinc smoothing). Only the
+# modules glint uses, so configuring pulls in none of VTK's rendering or Qt parts.
+# note: ITK's package configuration looks for HDF5 with a C test program, so C is enabled.
+enable_language(C)
+find_package(ITK 5 QUIET COMPONENTS ITKCommon ITKIOImageBase ITKIOMeta ITKIONIFTI ITKIONRRD ITKIOGDCM)
+glint_require(ITK_FOUND libinsighttoolkit5-dev)
+# GDCM itself (ITK's DICOM IO uses Debian's GDCM): only to silence its warning trace.
+find_package(GDCM QUIET)
+glint_require(GDCM_FOUND libgdcm-dev)
+find_package(VTK 9 QUIET COMPONENTS CommonCore CommonDataModel CommonTransforms FiltersCore FiltersGeneral
+             FiltersExtraction)
+glint_require(VTK_FOUND libvtk9-dev)
+set(GLINT_VTK_LIBRARIES VTK::CommonCore VTK::CommonDataModel VTK::CommonTransforms VTK::FiltersCore
+    VTK::FiltersGeneral VTK::FiltersExtraction)
 find_package(CLI11 QUIET)
 glint_require(CLI11_FOUND libcli11-dev)
 find_package(PkgConfig QUIET)

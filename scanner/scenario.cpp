@@ -4,6 +4,7 @@
 #include "mesh/io.h"
 #include "mesh/remesh.h"
 #include "scanner/pair_truth.h"
+#include "volume/load.h"
 #include "scanner/detail/scenario_options.h"
 #include "scanner/detail/toml_reader.h"
 
@@ -43,15 +44,43 @@ fs::path resolve_mesh(TableReader& r, const std::string& key, const std::string&
     return local;
 }
 
+// The surface keys of a [reference] / [examined] volume (volume/surface.h).
+void read_surface_options(TableReader& r, SurfaceOptions& o) {
+    if (auto v = r.optional<double>("iso", "a number (the volume's units)")) o.iso = *v;
+    if (auto v = r.optional<std::string>("surface_roi", "a string (sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1, mm)")) {
+        try {
+            o.roi = parse_roi(*v);
+        } catch (const InputError& e) {
+            r.fail(r.get("surface_roi"), "surface_roi", e.what());
+        }
+    }
+    if (auto v = r.optional<bool>("largest", "a boolean")) o.largest = *v;
+    if (auto v = r.numbers("surface_seed", 3, 3)) o.seed = vec3(*v);
+    if (auto v = r.optional<std::int64_t>("smooth", "an integer (iterations)")) o.smooth_iterations = static_cast<int>(*v);
+    if (auto v = r.optional<double>("passband", "a number in (0, 2)")) o.passband = *v;
+    if (auto v = r.optional<double>("edge", "a number (mm)")) o.edge_mm = *v;
+    if (auto v = r.optional<double>("tolerance", "a number (mm)")) o.tolerance_mm = *v;
+    if (!o.iso && !o.any()) return;
+    try {
+        if (o.iso) o.validate();
+    } catch (const OptionError& e) {
+        r.fail(r.get(e.key()), e.key(), e.what());
+    }
+}
+
 SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const fs::path& data_root, bool required) {
     SurfaceSource s;
     const auto phantom = r.optional<std::string>("phantom", "a string (sphere, ellipsoid, torus, condyle)");
-    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh file path)");
+    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh or volume file path)");
     if (phantom && mesh) r.fail(r.get("mesh"), "mesh", "give either phantom or mesh, not both");
     if (mesh) {
         s.mesh_as_written = *mesh;
         s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
     }
+    read_surface_options(r, s.surface);
+    if ((s.surface.iso || s.surface.any()) && !mesh)
+        r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
+               "surface keys need a volume file: mesh = \"scan.nii.gz\"");
     const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
     const auto resolution = r.optional<std::int64_t>("resolution", "an integer");
     const auto size = r.numbers("size", 1, 3);
@@ -112,6 +141,22 @@ DamageSpec read_damage(TableReader& r) {
     return d;
 }
 
+// [examined] pivot / erode / erode_to: a longitudinal pair resampled from a volume reference.
+void read_volume_edit(TableReader& r, Scenario& sc) {
+    if (auto v = r.numbers("pivot", 3, 3)) sc.pivot = vec3(*v);
+    const auto erode = r.numbers("erode", 4, 4);
+    const auto erode_to = r.optional<double>("erode_to", "a number (the volume's units)");
+    if (erode) {
+        if (!((*erode)[3] > 0)) r.fail(r.get("erode"), "erode", "radius (4th number) must be > 0");
+        sc.erosions.push_back({Vec3d((*erode)[0], (*erode)[1], (*erode)[2]), (*erode)[3], static_cast<float>(erode_to.value_or(0.0))});
+    }
+    if (erode_to && !erode) r.fail(r.get("erode_to"), "erode_to", "needs erode = [x, y, z, r]");
+    sc.resample_volume = erode || r.has("pivot");
+    const bool volume_reference = !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh);
+    if ((erode || r.has("pivot")) && !volume_reference)
+        r.fail(r.get(erode ? "erode" : "pivot"), erode ? "erode" : "pivot", "needs a volume reference (mesh = \"scan.nii.gz\")");
+}
+
 Rigid read_pose(TableReader& r) {
     const toml::node* node = r.get("pose");
     if (!node) return Rigid::Identity();
@@ -145,6 +190,9 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
         bool needs = false;
         sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
     }
+    read_volume_edit(r, sc);
+    if (sc.noise_sigma > 0 && sc.resample_volume)
+        r.fail(r.get("noise"), "noise", "a resampled examined volume (pivot, erode) takes no mesh noise");
     sc.remesh = r.positive("remesh");
     if (auto v = r.optional<std::int64_t>("remesh_iterations", "an integer ≥ 1")) {
         if (*v < 1) r.fail(r.get("remesh_iterations"), "remesh_iterations", "must be ≥ 1");
@@ -262,6 +310,8 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
             sc.damages.push_back(read_damage(r));
         }
         if (!sc.examined_derived) top.fail(dmg, "damage", "damage applies to a derived examined surface, not to an examined mesh file");
+        if (sc.resample_volume)
+            top.fail(dmg, "damage", "a resampled examined volume takes erode = [x, y, z, r] in [examined], not [[damage]]");
     }
     read_analysis_sections(top, dir, sc.analysis);
     if (const auto* t = table("expect", false)) {
@@ -367,9 +417,41 @@ void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
     out.has_truth_pose = true;
 }
 
+// A longitudinal pair from one volume: the reference's surface, and the surface of the volume
+// resampled under the known motion with the erosions; truth = reference vertices inside a ball.
+ScenarioMeshes build_volume_pair(const Scenario& sc) {
+    ScenarioMeshes out;
+    const Volume volume = read_volume(sc.reference.mesh);
+    if (!sc.reference.surface.iso)
+        throw InputError("scenario \"" + sc.file.string() + "\": reference volume \"" + sc.reference.mesh_as_written +
+                         "\" needs iso = VALUE in [reference]");
+    out.reference = extract_surface(volume, sc.reference.surface).mesh;
+    VolumeEdit edit;
+    edit.moved_from_original = motion_about(sc.pose, sc.pivot);
+    edit.erosions = sc.erosions;
+    out.examined = extract_surface(edit_volume(volume, edit), sc.reference.surface).mesh;
+    out.truth.assign(out.reference.vertex_count(), 0);
+    for (std::size_t v = 0; v < out.truth.size(); ++v)
+        for (const Erosion& e : sc.erosions)
+            if ((out.reference.positions[v].cast<double>() - e.center).norm() <= e.radius) out.truth[v] = 1;
+    out.true_reference_from_examined = edit.moved_from_original.inverse();
+    out.has_truth_pose = true;
+    out.notes.push_back("examined: the reference volume resampled under the known motion with " +
+                        std::to_string(sc.erosions.size()) + " erosion(s)");
+    return out;
+}
+
 }  // namespace
 
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
+    if (sc.examined_derived && sc.resample_volume) {
+        std::error_code ec;
+        if (!fs::exists(sc.reference.mesh, ec))
+            throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" + sc.reference.mesh_as_written +
+                          "\" not found (looked at \"" + sc.reference.mesh.string() + "\"" +
+                          (sc.reference.needs_data_root ? "; give --data-root or GLINT_DATA" : "") + ")");
+        return build_volume_pair(sc);
+    }
     ScenarioMeshes out;
     auto load = [&](const SurfaceSource& s, const std::string& role) {
         if (s.phantom) return make_phantom(*s.phantom);
@@ -378,7 +460,9 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
             throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" + s.mesh_as_written +
                           "\" not found (looked at \"" + s.mesh.string() + "\"" +
                           (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") + ")");
-        return load_mesh(s.mesh).mesh;
+        // An examined volume without its own surface keys is cut as the reference was.
+        const bool inherit = &s == &sc.examined && is_volume_path(s.mesh) && !s.surface.iso;
+        return load_surface(s.mesh, inherit ? sc.reference.surface : s.surface).mesh;
     };
     out.reference = load(sc.reference, "reference");
     if (sc.examined_derived) {

@@ -10,6 +10,8 @@
 #include "mesh/mesh.h"
 #include "mesh/phantom.h"
 #include "scanner/analysis.h"
+#include "volume/edit.h"
+#include "volume/surface.h"
 
 #include <filesystem>
 #include <optional>
@@ -24,6 +26,10 @@ struct SurfaceSource {
     std::filesystem::path mesh;   ///< resolved path (relative to the scenario or the data root)
     std::string mesh_as_written;  ///< as written in the file
     bool needs_data_root = false; ///< path was resolved against the data root
+    /// For a volume file (keys iso, surface_roi, largest, surface_seed, smooth, passband, edge,
+    /// tolerance): how its surface is extracted. An examined volume without iso takes the
+    /// reference's options.
+    SurfaceOptions surface;
 };
 
 struct ScenarioExpect {
@@ -75,6 +81,14 @@ struct Scenario {
     /// The plain distance threshold glint's decision is compared with (mesh units); default
     /// 10 % of the smallest damage depth.
     std::optional<double> baseline_distance;
+    /// A volume reference: the examined scan is the reference volume resampled under `pose`
+    /// about `pivot` ([examined] pivot = [x, y, z]) with erosions ([examined] erode =
+    /// [x, y, z, r], erode_to = value), its surface cut with the reference's options.
+    /// Without pivot or erode, a volume reference's examined surface is derived from the
+    /// reference mesh like any other (pose, [[damage]], noise), no resampling.
+    Vec3d pivot{0, 0, 0};
+    std::vector<Erosion> erosions;
+    bool resample_volume = false;                 ///< pivot or erode given
     /// Per-vertex ground-truth mask on the *reference* from a file (tooth-wear .npy masks).
     std::filesystem::path truth_mask;
     /// The analysis: [registration] (fit mode register by default; "truth" uses the known

@@ -1,7 +1,10 @@
 // glint info MESH…: what a mesh file holds, what loading repaired, what validation found.
+#include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/validate.h"
 #include "tools/command.h"
+#include "tools/surface_flags.h"
+#include "volume/surface.h"
 
 #include <nlohmann/json.hpp>
 
@@ -71,13 +74,77 @@ void print_text(const nlohmann::json& j) {
     for (const auto& w : j["warnings"]) std::cout << "  warning     " << w.get<std::string>() << '\n';
 }
 
+nlohmann::json volume_json(const Volume& v) {
+    const VolumeGeometry& g = v.geometry;
+    const auto range = v.range();
+    nlohmann::json direction = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r) direction.push_back({g.direction(r, 0), g.direction(r, 1), g.direction(r, 2)});
+    const Vec3d far = g.physical_from_index(Vec3d(double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1)));
+    return {{"path", v.path.string()},
+            {"format", v.format},
+            {"stored_type", v.stored_type},
+            {"size", g.size},
+            {"spacing_mm", {g.spacing.x(), g.spacing.y(), g.spacing.z()}},
+            {"origin_mm", {g.origin.x(), g.origin.y(), g.origin.z()}},
+            {"direction", direction},
+            {"last_voxel_mm", {far.x(), far.y(), far.z()}},
+            {"range", {range[0], range[1]}}};
+}
+
+void print_volume(const nlohmann::json& j) {
+    const auto& d = j["direction"];
+    std::printf("%s\n  format      %s volume, %s voxels\n  size        %zu x %zu x %zu\n"
+                "  spacing     %.6g x %.6g x %.6g mm\n  origin      (%.6g, %.6g, %.6g) mm\n"
+                "  direction   [%.4g %.4g %.4g; %.4g %.4g %.4g; %.4g %.4g %.4g]\n  range       %.6g … %.6g\n",
+                j["path"].get<std::string>().c_str(), j["format"].get<std::string>().c_str(),
+                j["stored_type"].get<std::string>().c_str(), j["size"][0].get<std::size_t>(), j["size"][1].get<std::size_t>(),
+                j["size"][2].get<std::size_t>(), j["spacing_mm"][0].get<double>(), j["spacing_mm"][1].get<double>(),
+                j["spacing_mm"][2].get<double>(), j["origin_mm"][0].get<double>(), j["origin_mm"][1].get<double>(),
+                j["origin_mm"][2].get<double>(), d[0][0].get<double>(), d[0][1].get<double>(), d[0][2].get<double>(),
+                d[1][0].get<double>(), d[1][1].get<double>(), d[1][2].get<double>(), d[2][0].get<double>(),
+                d[2][1].get<double>(), d[2][2].get<double>(), j["range"][0].get<double>(), j["range"][1].get<double>());
+}
+
+// A volume: its geometry and range; with --iso also the surface, as for a mesh.
+nlohmann::json volume_info(const std::string& path, const SurfaceOptions& surface) {
+    const Volume volume = read_volume(path);
+    nlohmann::json j = volume_json(volume);
+    if (!global_flags().json) print_volume(j);
+    if (!surface.iso) {
+        if (!global_flags().json) std::printf("  surface     give --iso VALUE to extract one\n");
+        return j;
+    }
+    ExtractedSurface s = extract_surface(volume, surface);
+    LoadedMesh loaded{std::move(s.mesh), {}};
+    loaded.report.path = path;
+    loaded.report.format = "surface at iso";
+    const ValidationReport v = validate_mesh(loaded.mesh, path);
+    j["surface"] = to_json(loaded, v);
+    if (!global_flags().json) {
+        std::printf("  surface     %s\n", describe(s.report).c_str());
+        print_text(j["surface"]);
+    }
+    return j;
+}
+
 void setup(CLI::App& app) {
-    auto* cmd = app.add_subcommand("info", "Counts, bounds, unit, repairs and validation findings of mesh files");
+    auto* cmd = app.add_subcommand("info", "Counts, bounds, unit, repairs and validation findings of mesh files; geometry and range of volumes");
     static std::vector<std::string> paths;
-    cmd->add_option("MESH", paths, "Mesh files (PLY, STL, OBJ, OFF, glTF/GLB, VTK legacy)")->required();
+    static SurfaceOptions surface;
+    cmd->add_option("MESH", paths,
+                    "Mesh files (PLY, STL, OBJ, OFF, glTF/GLB, VTK legacy) or volumes (.mhd .mha .nii .nii.gz .nrrd "
+                    ".nhdr, a DICOM folder)")
+        ->required();
+    add_surface_flags(*cmd, surface);
     cmd->callback([] {
         nlohmann::json all = nlohmann::json::array();
         for (const auto& path : paths) {
+            if (is_volume_path(path)) {
+                all.push_back(volume_info(path, surface));
+                continue;
+            }
+            if (surface.iso || surface.any())
+                throw InputError("mesh \"" + path + "\": surface options (--iso, …) apply to volumes, this is a mesh file");
             const LoadedMesh loaded = load_mesh(path);
             const ValidationReport v = validate_mesh(loaded.mesh, path);
             all.push_back(to_json(loaded, v));

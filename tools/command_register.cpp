@@ -7,6 +7,8 @@
 #include "scanner/fit.h"
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
+#include "tools/surface_flags.h"
+#include "volume/load.h"
 
 #include <cstdio>
 #include <iostream>
@@ -18,6 +20,7 @@ namespace {
 struct RegisterArgs {
     std::string reference;
     std::string examined;
+    SurfaceOptions surface;
     FitOptions fit;
     std::string roi_mask;
     std::string output;
@@ -39,8 +42,8 @@ void run(RegisterArgs& a) {
     fit.mode = FitMode::Register;
     if (!a.roi_mask.empty()) fit.registration.roi = parse_roi("mask:" + a.roi_mask);
     fit.validate();
-    const LoadedMesh ref = load_mesh(a.reference);
-    const LoadedMesh exa = load_mesh(a.examined);
+    const LoadedSurface ref = load_surface(a.reference, a.surface);
+    const LoadedSurface exa = load_surface(a.examined, a.surface);
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
     write_file_atomically(a.output, outcome.json);
@@ -57,8 +60,9 @@ void run(RegisterArgs& a) {
 void setup(CLI::App& app) {
     static RegisterArgs a;
     auto* cmd = app.add_subcommand("register", "Fit the examined mesh onto the reference (robust ICP)");
-    cmd->add_option("REF", a.reference, "Reference mesh")->required();
-    cmd->add_option("EXA", a.examined, "Examined mesh")->required();
+    cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
+    cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
+    add_surface_flags(*cmd, a.surface);
     add_fit_flags(*cmd, a.fit, "--roi", false);
     cmd->add_option("--roi-mask", a.roi_mask, "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
                                                "non-zero label (or scalar); the same as --roi mask:FILE[:SCALAR]")

@@ -7,6 +7,8 @@
 #include "scanner/report.h"
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
+#include "tools/surface_flags.h"
+#include "volume/load.h"
 #include "tools/progress.h"
 
 #include <cstdio>
@@ -23,6 +25,7 @@ namespace fs = std::filesystem;
 struct SweepArgs {
     std::string reference;
     std::string examined;
+    SurfaceOptions surface;
     AnalysisOptions options;
     bool no_views = false;
     bool no_exr = false;
@@ -67,11 +70,12 @@ void run(SweepArgs& a) {
         print_options(options);
         return;
     }
-    const LoadedMesh ref = load_mesh(a.reference);
-    const LoadedMesh exa = load_mesh(a.examined);
+    const LoadedSurface ref = load_surface(a.reference, a.surface);
+    const LoadedSurface exa = load_surface(a.examined, a.surface);
     ExportOptions& e = options.exports;
-    e.inputs.push_back({"reference", a.reference, "", ref.mesh.vertex_count(), ref.mesh.triangle_count()});
-    e.inputs.push_back({"examined", a.examined, "", exa.mesh.vertex_count(), exa.mesh.triangle_count()});
+    auto described = [](const LoadedSurface& s) { return s.surface ? "surface of a volume: " + describe(*s.surface) : ""; };
+    e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(), ref.mesh.triangle_count()});
+    e.inputs.push_back({"examined", a.examined, described(exa), exa.mesh.vertex_count(), exa.mesh.triangle_count()});
     if (!options.fit.fit_file.empty()) e.inputs.push_back({"fit", options.fit.fit_file, "", 0, 0});
     if (!a.calibration.empty()) e.inputs.push_back({"calibration", a.calibration, "", 0, 0});
     for (const auto* r : {&ref.report, &exa.report})
@@ -92,8 +96,9 @@ void run(SweepArgs& a) {
 void setup(CLI::App& app) {
     static SweepArgs a;
     auto* cmd = app.add_subcommand("sweep", "Fit, sweep the virtual rotary scanner, compare and write the damage atlas");
-    cmd->add_option("REF", a.reference, "Reference mesh")->required();
-    cmd->add_option("EXA", a.examined, "Examined mesh")->required();
+    cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
+    cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
+    add_surface_flags(*cmd, a.surface);
     add_fit_flags(*cmd, a.options.fit, "--fit-roi");
     add_sweep_flags(*cmd, a.options);
     cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");

@@ -1,0 +1,245 @@
+// Volume reading and writing through ITK (GDCM for DICOM). Every ITK exception becomes a
+// one-line InputError / IoError naming the file. No Eigen here (see itk_io.h).
+#include "volume/detail/itk_io.h"
+
+#include "mesh/error.h"
+
+#include <itkGDCMImageIO.h>
+#include <itkGDCMSeriesFileNames.h>
+#include <itkImage.h>
+#include <itkImageFileReader.h>
+#include <itkImageFileWriter.h>
+#include <itkImageSeriesReader.h>
+#include <itkMetaImageIO.h>
+#include <itkNiftiImageIO.h>
+#include <itkNrrdImageIO.h>
+#include <gdcmTrace.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace glint::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using FloatImage = itk::Image<float, 3>;
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+           });
+}
+
+std::string quoted(const fs::path& p) { return "volume \"" + p.string() + "\""; }
+
+// ITK's messages span several lines and start with the source location: keep one line.
+std::string one_line(const itk::ExceptionObject& e) {
+    std::string text = e.GetDescription();
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    std::replace(text.begin(), text.end(), '\r', ' ');
+    text.erase(std::unique(text.begin(), text.end(), [](char a, char b) { return a == ' ' && b == ' '; }), text.end());
+    while (!text.empty() && text.back() == ' ') text.pop_back();
+    return text;
+}
+
+// The ImageIO for a file name, chosen by extension (no factory search: the formats glint
+// reads are exactly these).
+itk::ImageIOBase::Pointer image_io_for(const fs::path& path) {
+    const std::string format = volume_format(path);
+    if (format == "metaimage") return itk::MetaImageIO::New().GetPointer();
+    if (format == "nifti") return itk::NiftiImageIO::New().GetPointer();
+    if (format == "nrrd") return itk::NrrdImageIO::New().GetPointer();
+    if (format == "dicom") return itk::GDCMImageIO::New().GetPointer();
+    throw InputError(quoted(path) + ": unknown volume format, expected .mhd .mha .nii .nii.gz .nrrd .nhdr .dcm or a "
+                                    "DICOM folder");
+}
+
+std::string size_text(const itk::ImageIOBase& io) {
+    std::ostringstream s;
+    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d) s << (d ? " x " : "") << io.GetDimensions(d);
+    return s.str();
+}
+
+// Rejects what is not one scalar 3D volume, before any voxel is read.
+void check_header(const itk::ImageIOBase& io, const fs::path& path) {
+    const unsigned dims = io.GetNumberOfDimensions();
+    if (dims == 2) throw InputError(quoted(path) + ": a 2D image (" + size_text(io) + "), expected a 3D volume");
+    if (dims == 4 && io.GetDimensions(3) != 1)
+        throw InputError(quoted(path) + ": a 4D image (" + size_text(io) + "), expected a 3D volume");
+    if (dims < 2 || dims > 4) throw InputError(quoted(path) + ": a " + std::to_string(dims) + "D image, expected a 3D volume");
+    if (io.GetNumberOfComponents() != 1)
+        throw InputError(quoted(path) + ": " + std::to_string(io.GetNumberOfComponents()) +
+                         " components per voxel, expected a scalar volume");
+    for (unsigned d = 0; d < 3; ++d)
+        if (io.GetDimensions(d) < 2)
+            throw InputError(quoted(path) + ": size " + size_text(io) + ", expected at least 2 voxels along every axis");
+}
+
+// A file pattern "CThead.%d 1 113 1" (printf pattern, first, last, step): one file per slice,
+// each exactly one slice of bytes (MetaIO would read a missing slice as nothing and go on).
+void require_slice_files(const itk::ImageIOBase& io, const fs::path& header, const std::string& pattern) {
+    std::istringstream in(pattern);
+    std::string format;
+    long first = 0, last = 0, step = 1;
+    in >> format >> first >> last >> step;
+    if (!in || step <= 0 || last < first) return;  // not a pattern MetaIO reads either: let it say so
+    const auto slice_bytes = static_cast<std::uintmax_t>(io.GetImageSizeInBytes() / io.GetDimensions(2));
+    for (long n = first; n <= last; n += step) {
+        char name[1024];
+        std::snprintf(name, sizeof name, format.c_str(), n);
+        const fs::path slice = header.parent_path() / name;
+        std::error_code ec;
+        if (!fs::exists(slice, ec))
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" is missing (pattern \"" + pattern + "\")");
+        const auto found = fs::file_size(slice, ec);
+        if (!ec && found != slice_bytes)
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" holds " + std::to_string(found) +
+                             " bytes, one slice needs " + std::to_string(slice_bytes));
+    }
+}
+
+// A detached, uncompressed MetaImage data file must hold what the header promises (the
+// reader would otherwise fail with a message that names neither file nor sizes).
+void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
+    auto* meta = dynamic_cast<itk::MetaImageIO*>(const_cast<itk::ImageIOBase*>(&io));
+    if (!meta) return;
+    MetaImage* m = meta->GetMetaImagePointer();
+    const std::string data_name = m->ElementDataFileName();
+    // note: LOCAL data and a LIST are left to MetaIO.
+    if (m->CompressedData() || data_name == "LOCAL" || data_name == "LIST") return;
+    if (data_name.find(' ') != std::string::npos) {
+        require_slice_files(io, header, data_name);
+        return;
+    }
+    const fs::path data = header.parent_path() / data_name;
+    std::error_code ec;
+    if (!fs::exists(data, ec))
+        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" is missing");
+    const auto found = fs::file_size(data, ec);
+    const auto expected = static_cast<std::uintmax_t>(io.GetImageSizeInBytes());
+    if (!ec && found != expected)
+        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" holds " + std::to_string(found) +
+                         " bytes, the header (" + size_text(io) + " " +
+                         itk::ImageIOBase::GetComponentTypeAsString(io.GetComponentType()) + ") needs " +
+                         std::to_string(expected));
+}
+
+RawVolume from_itk(const FloatImage& image, std::string format, std::string stored) {
+    RawVolume v;
+    const auto size = image.GetLargestPossibleRegion().GetSize();
+    for (unsigned d = 0; d < 3; ++d) {
+        v.size[d] = size[d];
+        v.spacing[d] = image.GetSpacing()[d];
+        v.origin[d] = image.GetOrigin()[d];
+        for (unsigned c = 0; c < 3; ++c) v.direction[3 * d + c] = image.GetDirection()[d][c];
+    }
+    const float* data = image.GetBufferPointer();
+    v.voxels.assign(data, data + size[0] * size[1] * size[2]);
+    v.format = std::move(format);
+    v.stored_type = std::move(stored);
+    return v;
+}
+
+RawVolume read_file(const fs::path& path) {
+    itk::ImageIOBase::Pointer io = image_io_for(path);
+    const std::string format = volume_format(path);
+    io->SetFileName(path.string());
+    if (!io->CanReadFile(path.string().c_str())) throw InputError(quoted(path) + ": not a readable " + format + " file");
+    io->ReadImageInformation();
+    check_header(*io, path);
+    require_data_size(*io, path);
+    const std::string stored = itk::ImageIOBase::GetComponentTypeAsString(io->GetComponentType());
+    auto reader = itk::ImageFileReader<FloatImage>::New();
+    reader->SetImageIO(io);
+    reader->SetFileName(path.string());
+    reader->Update();
+    return from_itk(*reader->GetOutput(), format, stored);
+}
+
+RawVolume read_dicom_folder(const fs::path& folder) {
+    auto names = itk::GDCMSeriesFileNames::New();
+    names->SetUseSeriesDetails(true);
+    names->SetDirectory(folder.string());
+    const auto& uids = names->GetSeriesUIDs();
+    if (uids.empty()) throw InputError(quoted(folder) + ": a folder with no DICOM series in it");
+    // note: the series with the most slices; a folder often also holds a scout or a dose report.
+    std::vector<std::string> files;
+    for (const auto& uid : uids) {
+        auto f = names->GetFileNames(uid);
+        if (f.size() > files.size()) files = f;
+    }
+    if (files.size() < 2)
+        throw InputError(quoted(folder) + ": the DICOM series has " + std::to_string(files.size()) +
+                         " slice, expected a 3D volume (2 or more slices)");
+    auto io = itk::GDCMImageIO::New();
+    auto reader = itk::ImageSeriesReader<FloatImage>::New();
+    reader->SetImageIO(io);
+    reader->SetFileNames(files);
+    reader->Update();
+    return from_itk(*reader->GetOutput(), "dicom", itk::ImageIOBase::GetComponentTypeAsString(io->GetComponentType()));
+}
+
+FloatImage::Pointer to_itk(const RawVolume& v) {
+    auto image = FloatImage::New();
+    FloatImage::SizeType size;
+    FloatImage::SpacingType spacing;
+    FloatImage::PointType origin;
+    FloatImage::DirectionType direction;
+    for (unsigned d = 0; d < 3; ++d) {
+        size[d] = v.size[d];
+        spacing[d] = v.spacing[d];
+        origin[d] = v.origin[d];
+        for (unsigned c = 0; c < 3; ++c) direction[d][c] = v.direction[3 * d + c];
+    }
+    image->SetRegions(FloatImage::RegionType(size));
+    image->SetSpacing(spacing);
+    image->SetOrigin(origin);
+    image->SetDirection(direction);
+    image->Allocate();
+    std::copy(v.voxels.begin(), v.voxels.end(), image->GetBufferPointer());
+    return image;
+}
+
+}  // namespace
+
+std::string volume_format(const fs::path& path) {
+    const std::string name = path.filename().string();
+    if (ends_with(name, ".mha") || ends_with(name, ".mhd")) return "metaimage";
+    if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return "nifti";
+    if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) return "nrrd";
+    if (ends_with(name, ".dcm")) return "dicom";
+    return "";
+}
+
+RawVolume itk_read(const fs::path& path) {
+    itk::Object::GlobalWarningDisplayOff();  // library code never prints
+    gdcm::Trace::WarningOff();
+    try {
+        std::error_code ec;
+        if (fs::is_directory(path, ec)) return read_dicom_folder(path);
+        return read_file(path);
+    } catch (const itk::ExceptionObject& e) {
+        throw InputError(quoted(path) + ": " + one_line(e));
+    }
+}
+
+void itk_write(const RawVolume& volume, const fs::path& path) {
+    itk::Object::GlobalWarningDisplayOff();
+    try {
+        auto writer = itk::ImageFileWriter<FloatImage>::New();
+        writer->SetImageIO(image_io_for(path));
+        writer->SetFileName(path.string());
+        writer->SetInput(to_itk(volume));
+        writer->SetUseCompression(ends_with(path.string(), ".gz") || ends_with(path.string(), ".nhdr"));
+        writer->Update();
+    } catch (const itk::ExceptionObject& e) {
+        throw IoError(quoted(path) + ": cannot write: " + one_line(e));
+    }
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,41 @@
+// A known change applied to a volume, to make longitudinal pairs with exact ground truth: the
+// object moved by a rigid motion and locally eroded (values lowered inside a ball), resampled
+// on the same grid.
+#pragma once
+
+#include "mesh/geometry.h"
+#include "volume/volume.h"
+
+#include <string>
+#include <vector>
+
+namespace glint {
+
+/// Values inside a ball lowered to `value` (never raised), in the original object's frame.
+struct Erosion {
+    Vec3d center{0, 0, 0};  ///< physical, mm (before the motion)
+    double radius = 1.0;    ///< mm
+    float value = 0.0f;     ///< what the eroded material becomes (CT soft tissue, air, …)
+};
+
+struct VolumeEdit {
+    /// Where a point of the object goes: p_new = moved_from_original · p (physical mm).
+    Rigid moved_from_original = Rigid::Identity();
+    std::vector<Erosion> erosions;
+};
+
+/// The motion "rx,ry,rz,tx,ty,tz" (degrees, mm; mesh/damage.h parse_pose_spec) about a pivot:
+/// p' = R (p - pivot) + pivot + t.
+[[nodiscard]] Rigid motion_about(const Rigid& pose, const Vec3d& pivot);
+
+/// The edited volume on the input's grid: each output voxel at x takes the eroded input at
+/// p = moved_from_original⁻¹ · x (trilinear; outside the input: the input's smallest value).
+/// Erosion is partial-volume correct: the weight of a ball falls linearly from 1 to 0 over
+/// one voxel (the mean spacing) across its surface, value ← value + w · (min(value, target) − value).
+[[nodiscard]] Volume edit_volume(const Volume& input, const VolumeEdit& edit);
+
+/// The edit as JSON (motion as a 4×4 matrix, erosion centres before and after the motion,
+/// radii, values): the ground truth written beside an edited volume.
+[[nodiscard]] std::string edit_json(const VolumeEdit& edit);
+
+}  // namespace glint
