@@ -43,7 +43,7 @@ SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_
 
 }  // namespace
 
-AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const AnalysisOptions& options,
+AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const AnalysisOptions& options,
                        const AnalysisObserver& observer) {
     const auto t_start = Clock::now();
     options.validate();
@@ -53,13 +53,22 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const Ana
         compute_vertex_normals(*with_normals);
     }
     const Mesh& reference = with_normals ? *with_normals : reference_in;
-    // The output location is checked before the long work.
-    std::optional<OutputFolder> folder;
-    if (!options.exports.output.empty()) folder.emplace(options.exports.output);
-
+    // Units and sizes, then the output location: both checked before the long work.
     AnalysisResult result;
+    result.units = resolve_units(reference, examined_in, options.units);
+    result.unit = result.units.unit;
+    std::optional<Mesh> scaled;
+    if (result.units.examined_scale != 1.0) {
+        scaled = examined_in;
+        for (auto& p : scaled->positions) p *= static_cast<float>(result.units.examined_scale);
+    }
+    const Mesh& examined = scaled ? *scaled : examined_in;
+    std::optional<OutputFolder> folder;
+    if (!options.exports.output.empty()) folder.emplace(options.exports.output, options.exports.replace_existing);
+
     result.size = bounds(reference).diagonal();
     result.warnings = options.exports.warnings;
+    for (const auto& w : result.units.warnings) result.warnings.push_back(w);
     announce(observer, "fit");
     auto t = Clock::now();
     result.fit = fit_or_refuse(reference, examined, options.fit);
