@@ -3,9 +3,9 @@
 //   PLY  binary; MeshLab maps only a vertex property named `quality`, CloudCompare imports
 //        only properties named `scalar_<name>`: WriteOptions adds those as copies.
 //   VTK  legacy ASCII (CloudCompare 2.11 refuses binary legacy VTK; its reader also needs a
-//        POINT_DATA line before every array, which VTK accepts), for ParaView, 3D Slicer and
-//        CloudCompare. VTK's legacy ASCII reader cannot parse NaN: NaN is written as
-//        WriteOptions::vtk_legacy_nan there.
+//        POINT_DATA line before every array, which VTK accepts after an empty CELL_DATA
+//        section: mesh/write_vtk.cpp), for ParaView, 3D Slicer and CloudCompare. VTK's
+//        legacy ASCII reader cannot parse NaN: NaN is written as WriteOptions::vtk_legacy_nan.
 //   VTP  VTK XML PolyData, binary (base64) arrays: exact values, NaN kept (ParaView, Slicer).
 // Files are written to a temporary name in the same folder and renamed into place.
 #pragma once
@@ -34,7 +34,7 @@ struct WriteOptions {
 void write_ply(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
 
 /// VTK legacy POLYDATA, ASCII: normals, colours (COLOR_SCALARS), scalars and labels as point
-/// data, each array after its own POINT_DATA line; NaN written as options.vtk_legacy_nan; the
+/// data, each array after its own POINT_DATA line (the later ones after "CELL_DATA 0"); NaN written as options.vtk_legacy_nan; the
 /// unit, when known, in the title line ("glint mesh unit mm"). \throw IoError.
 void write_vtk(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
 

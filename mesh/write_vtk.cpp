@@ -1,11 +1,15 @@
 // VTK writers (mesh/write.h): legacy ASCII for every viewer, XML PolyData for exact values.
 //
-// note: the legacy layout is shaped by CloudCompare 2.11's reader (qCC_io VTKFilter): it
+// note: the legacy layout is shaped by two readers. CloudCompare 2.11's (qCC_io VTKFilter)
 // refuses BINARY files, and every NORMALS / COLOR_SCALARS / SCALARS block consumes the size
-// set by the POINT_DATA line before it, so without a POINT_DATA line of its own each array
-// after the first is refused as "malformed". VTK (ParaView, 3D Slicer) accepts the repeated
-// POINT_DATA line. VTK's legacy ASCII reader parses numbers with operator>>, which fails on
-// "nan": NaN becomes a finite number there (WriteOptions::vtk_legacy_nan).
+// set by the POINT_DATA line before it: without a POINT_DATA line of its own, each array
+// after the first is refused as "malformed". VTK's (ParaView, 3D Slicer) refuses a second
+// POINT_DATA line inside point data ("Unsupported point attribute type") but follows a switch
+// to CELL_DATA and back. So arrays after the first are introduced by "CELL_DATA 0" (an empty
+// cell section: VTK reads nothing, CloudCompare skips 0 lines) and "POINT_DATA n"; both
+// programs were checked to read every array (tests/tools/viewers_test.sh). VTK's legacy
+// ASCII reader parses numbers with operator>>, which fails on "nan": NaN becomes a finite
+// number there (WriteOptions::vtk_legacy_nan).
 #include "mesh/write.h"
 
 #include "mesh/atomic_file.h"
@@ -59,7 +63,12 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     const bool labels = options.write_labels && mesh.labels.size() == n && n > 0;
     const bool scalars = options.write_scalars && !mesh.scalars.empty();
     const float nan_as = options.vtk_legacy_nan;
-    const std::string point_data = "POINT_DATA " + std::to_string(n) + "\n";
+    // The first array opens point data; every later one re-opens it (see the note above).
+    std::string point_data = "POINT_DATA " + std::to_string(n) + "\n";
+    auto open_array = [&](std::string& text) {
+        text += point_data;
+        point_data = "CELL_DATA 0\nPOINT_DATA " + std::to_string(n) + "\n";
+    };
 
     std::string out;
     out.reserve(n * (40 + (scalars ? 10 * mesh.scalars.size() : 0)) + 16 * mesh.triangles.size());
@@ -76,11 +85,13 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         out.push_back('\n');
     }
     if (normals) {
-        out += point_data + "NORMALS Normals float\n";
+        open_array(out);
+        out += "NORMALS Normals float\n";
         append_floats(out, mesh.normals[0].data(), 3 * n, 3, 0.0f);
     }
     if (colors) {
-        out += point_data + "COLOR_SCALARS rgb 3\n";  // ASCII colour scalars are floats in [0, 1]
+        open_array(out);
+        out += "COLOR_SCALARS rgb 3\n";  // ASCII colour scalars are floats in [0, 1]
         std::vector<float> c(3 * n);
         for (std::size_t v = 0; v < n; ++v)
             for (int k = 0; k < 3; ++k) c[3 * v + static_cast<std::size_t>(k)] = mesh.colors[v][static_cast<std::size_t>(k)] / 255.0f;
@@ -88,11 +99,13 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     }
     if (scalars)
         for (const auto& f : mesh.scalars) {
-            out += point_data + "SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n";
+            open_array(out);
+            out += "SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n";
             append_floats(out, f.values.data(), n, 9, nan_as);
         }
     if (labels) {
-        out += point_data + "SCALARS label int 1\nLOOKUP_TABLE default\n";
+        open_array(out);
+        out += "SCALARS label int 1\nLOOKUP_TABLE default\n";
         for (std::size_t v = 0; v < n; ++v) {
             append_number(out, static_cast<std::int64_t>(mesh.labels[v]));
             out.push_back((v + 1) % 9 == 0 || v + 1 == n ? '\n' : ' ');

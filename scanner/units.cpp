@@ -22,8 +22,8 @@ std::string size_text(double size, const std::string& unit) { return with_unit(s
 // "the examined mesh is 1000× larger": the ratio in words for the message.
 std::string ratio_text(double reference, double examined) {
     char b[96];
-    if (examined >= reference) std::snprintf(b, sizeof b, "the examined mesh is %.3g× larger", examined / reference);
-    else std::snprintf(b, sizeof b, "the examined mesh is %.3g× smaller", reference / examined);
+    if (examined >= reference) std::snprintf(b, sizeof b, "the examined mesh is %.4g× larger", examined / reference);
+    else std::snprintf(b, sizeof b, "the examined mesh is %.4g× smaller", reference / examined);
     return b;
 }
 
@@ -56,8 +56,11 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined, const 
     const double lo = std::min(r.reference_size, r.examined_size), hi = std::max(r.reference_size, r.examined_size);
     const bool mismatch = !(lo > 0) || hi / lo > kMaxScaleRatio;
     if (mismatch) {
-        const std::string what = "mesh sizes differ: reference " + size_text(r.reference_size, r.unit) +
-                                 ", examined " + size_text(r.examined_size, r.unit) + " (bounding-box diagonals; " +
+        // Each size in the unit known for that mesh ("units" when its file states none).
+        const std::string& ref_label = !stated.empty() ? stated : ref_unit;
+        const std::string& exa_label = !stated.empty() ? stated : r.examined_scale != 1.0 ? ref_unit : exa_unit;
+        const std::string what = "mesh sizes differ: reference " + size_text(r.reference_size, ref_label) +
+                                 ", examined " + size_text(r.examined_size, exa_label) + " (bounding-box diagonals; " +
                                  (lo > 0 ? ratio_text(r.reference_size, r.examined_size) : "one is empty") + ")";
         if (!options.allow_scale_mismatch)
             throw InputError(what + ", expected within " + std::to_string(static_cast<int>(kMaxScaleRatio)) +

@@ -107,13 +107,15 @@ std::size_t count(const std::string& text, const std::string& part) {
 }
 
 TEST(WriteVtk, EveryArrayHasItsOwnPointDataLineAndNaNIsANumber) {
-    // CloudCompare 2.11 reads one array per POINT_DATA line; VTK's ASCII reader fails on "nan".
+    // CloudCompare 2.11 reads one array per POINT_DATA line, VTK refuses a POINT_DATA inside
+    // point data but follows CELL_DATA and back; VTK's ASCII reader fails on "nan".
     Mesh in = octahedron();
     in.scalars[0].values[2] = std::numeric_limits<float>::quiet_NaN();
     const auto path = out_dir() / "nan.vtk";
     write_vtk(in, path, {.vtk_legacy_nan = -9999.0f});
     const std::string text = read_text(path);
     EXPECT_EQ(count(text, "POINT_DATA 6\n"), 5u);  // normals, colours, 2 scalars, labels
+    EXPECT_EQ(count(text, "CELL_DATA 0\nPOINT_DATA 6\n"), 4u);  // VTK's way back into point data
     EXPECT_EQ(count(text, "nan"), 0u);
     const LoadedMesh loaded = load_mesh(path, kAsStored);
     EXPECT_EQ(loaded.mesh.find_scalar("damage")->values[2], -9999.0f);
