@@ -8,6 +8,7 @@
 #include "scanner/view_exports.h"
 
 #include <chrono>
+#include <cstdio>
 #include <optional>
 
 namespace glint {
@@ -39,6 +40,23 @@ SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_
     SweepPlanOptions p = plan;
     if (p.roi && p.roi->needs_mask()) read_roi_mask(*p.roi, vertex_count);
     return p;
+}
+
+// A reference and examined given the wrong way round (the intact surface as EXA): the
+// examined then has surface the reference lacks, so every region is a gain. Only a hint (a
+// growth can look the same), given when the examined surface is 10 % larger and every
+// region at zoom 0 is a bump. note: 10 % because two scans of one surface differ by a few %.
+std::string swap_hint(const Mesh& reference, const Mesh& examined, const AnalysisResult& result) {
+    if (result.decisions.empty() || result.decisions[0].regions.regions.empty()) return "";
+    for (const auto& r : result.decisions[0].regions.regions)
+        if (r.kind != RegionKind::Bump) return "";
+    const double ref_area = surface_area(reference), exa_area = surface_area(examined);
+    if (!(exa_area > 1.1 * ref_area)) return "";
+    char b[240];
+    std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and every region is a gain: "
+                  "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
+                  100.0 * (exa_area / ref_area - 1.0));
+    return b;
 }
 
 }  // namespace
@@ -111,6 +129,8 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
             result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
     }
     result.decision_seconds = seconds_since(t);
+    result.swap_hint = swap_hint(reference, examined, result);
+    if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 
     if (folder) {
         announce(observer, "export");

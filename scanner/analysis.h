@@ -81,7 +81,10 @@ struct AnalysisResult {
     std::string unit;                      ///< of every length reported ("" = unknown; scanner/units.h)
     UnitResolution units;                  ///< how the unit was found, both sizes
     std::filesystem::path output;          ///< the folder written (empty when none)
-    std::vector<std::string> warnings;     ///< load, fit and decision warnings
+    std::vector<std::string> warnings;     ///< load, unit, fit and decision warnings
+    /// Non-empty when REF and EXA look swapped (every region a gain, the examined surface
+    /// > 10 % larger): a hint for people, also in warnings.
+    std::string swap_hint;
     double fit_seconds = 0.0;
     double distance_seconds = 0.0;
     double decision_seconds = 0.0;
