@@ -59,6 +59,14 @@ std::string swap_hint(const Mesh& reference, const Mesh& examined, const Analysi
     return b;
 }
 
+// The examined mesh in the analysis unit: itself, or a scaled copy kept in `storage`.
+const Mesh& in_analysis_unit(const Mesh& examined, const UnitResolution& units, std::optional<Mesh>& storage) {
+    if (units.examined_scale == 1.0) return examined;
+    storage = examined;
+    for (auto& p : storage->positions) p *= static_cast<float>(units.examined_scale);
+    return *storage;
+}
+
 }  // namespace
 
 AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const AnalysisOptions& options,
@@ -76,11 +84,7 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     result.units = resolve_units(reference, examined_in, options.units);
     result.unit = result.units.unit;
     std::optional<Mesh> scaled;
-    if (result.units.examined_scale != 1.0) {
-        scaled = examined_in;
-        for (auto& p : scaled->positions) p *= static_cast<float>(result.units.examined_scale);
-    }
-    const Mesh& examined = scaled ? *scaled : examined_in;
+    const Mesh& examined = in_analysis_unit(examined_in, result.units, scaled);
     std::optional<OutputFolder> folder;
     if (!options.exports.output.empty()) folder.emplace(options.exports.output, options.exports.replace_existing);
 
