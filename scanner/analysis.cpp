@@ -42,18 +42,19 @@ SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_
     return p;
 }
 
-// A reference and examined given the wrong way round (the intact surface as EXA): the
-// examined then has surface the reference lacks, so every region is a gain. Only a hint (a
-// growth can look the same), given when the examined surface is 10 % larger and every
-// region at zoom 0 is a bump. note: 10 % because two scans of one surface differ by a few %.
+// A reference and examined given the wrong way round (the intact surface as EXA, the
+// resected one as REF): the examined has surface the reference lacks, which the atlas on the
+// reference cannot show as a loss: no region, or gains only. Only a hint (a growth can look
+// the same), given when the examined surface is 10 % larger and no region at zoom 0 is a
+// loss. note: 10 % because two scans of one surface differ by a few %.
 std::string swap_hint(const Mesh& reference, const Mesh& examined, const AnalysisResult& result) {
-    if (result.decisions.empty() || result.decisions[0].regions.regions.empty()) return "";
+    if (result.decisions.empty()) return "";
     for (const auto& r : result.decisions[0].regions.regions)
         if (r.kind != RegionKind::Bump) return "";
     const double ref_area = surface_area(reference), exa_area = surface_area(examined);
     if (!(exa_area > 1.1 * ref_area)) return "";
     char b[240];
-    std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and every region is a gain: "
+    std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and no region is a loss: "
                   "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
                   100.0 * (exa_area / ref_area - 1.0));
     return b;

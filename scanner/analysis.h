@@ -82,7 +82,7 @@ struct AnalysisResult {
     UnitResolution units;                  ///< how the unit was found, both sizes
     std::filesystem::path output;          ///< the folder written (empty when none)
     std::vector<std::string> warnings;     ///< load, unit, fit and decision warnings
-    /// Non-empty when REF and EXA look swapped (every region a gain, the examined surface
+    /// Non-empty when REF and EXA look swapped (no region a loss, the examined surface
     /// > 10 % larger): a hint for people, also in warnings.
     std::string swap_hint;
     double fit_seconds = 0.0;
