@@ -41,6 +41,7 @@ void BM_Sweep(benchmark::State& state) {
     options.sweep.plan.size = 512;
     options.sweep.render.supersample = 1;
     options.exports.output = std::filesystem::temp_directory_path() / "glint_bench_sweep";
+    options.exports.replace_existing = true;  // the benchmark repeats into one folder
     options.exports.write_views = options.exports.write_exr = false;
     std::size_t regions = 0;
     double fit_s = 0, distance_s = 0, render_s = 0, compare_s = 0, decision_s = 0, export_s = 0;

@@ -7,6 +7,7 @@
 #include "mesh/detail/vtk_reader.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/units.h"
 #include "mesh/validate.h"
 #include "mesh/weld.h"
 
@@ -47,9 +48,9 @@ public:
     FileBytes(const fs::path& path, const std::string& source) {
         std::error_code ec;
         const auto status = fs::status(path, ec);
-        if (ec || !fs::exists(status)) throw IoError(quoted(source) + ": file not found");
+        if (ec || !fs::exists(status)) throw InputError(quoted(source) + ": file not found");
         if (fs::is_directory(status))
-            throw IoError(quoted(source) + ": is a folder, expected a mesh file");
+            throw InputError(quoted(source) + ": is a folder, expected a mesh file");
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
         struct stat st {};
@@ -118,6 +119,22 @@ Format detect(std::span<const char> data, const std::string& ext) {
     return Format::AssimpBinary;  // let assimp try by extension (glb, 3ds, dae, fbx, …)
 }
 
+// assimp gives an OBJ one vertex per face corner; the file's own count is its "v" lines.
+// Welding merges the corners back: that is not a repair of the file, so finish() keeps it
+// apart from welded_vertices.
+void count_obj_vertices(std::span<const char> data, LoadReport& report) {
+    std::size_t v_lines = 0;
+    bool line_start = true;
+    for (std::size_t i = 0; i + 1 < data.size(); ++i) {
+        if (line_start && data[i] == 'v' && (data[i + 1] == ' ' || data[i + 1] == '\t')) ++v_lines;
+        line_start = data[i] == '\n';
+    }
+    if (report.file_vertices > v_lines) {
+        report.importer_corner_vertices = report.file_vertices;
+        report.file_vertices = v_lines;
+    }
+}
+
 void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& source) {
     Mesh& mesh = loaded.mesh;
     LoadReport& report = loaded.report;
@@ -152,6 +169,12 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
         if (options.drop_unused) drop_unused_vertices(mesh, counts);
     }
     report.welded_vertices = counts.welded_vertices;
+    if (report.importer_corner_vertices > 0) {
+        // The corners assimp made beyond the file's vertices were merged first; what welding
+        // merged beyond that were duplicate vertices of the file itself.
+        const std::size_t split = report.importer_corner_vertices - report.file_vertices;
+        report.welded_vertices -= std::min(report.welded_vertices, split);
+    }
     report.degenerate_triangles = counts.degenerate_triangles;
     report.duplicate_triangles = counts.duplicate_triangles;
     report.unused_vertices = counts.unused_vertices;
@@ -227,6 +250,9 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
             throw InputError(quoted(source) + ": unknown mesh format (no extension and no known "
                                               "signature); expected PLY, STL, OBJ, OFF, glTF or VTK");
     }
+    if (format == Format::AssimpText && ext == ".obj") count_obj_vertices(data, loaded.report);
+    // note: 64 KiB holds any header glint has met; a unit comment further in is not looked for.
+    if (loaded.mesh.unit.empty()) loaded.mesh.unit = unit_from_header(data.first(std::min<std::size_t>(data.size(), 65536)), ext);
     file.release();
     finish(loaded, options, source);
     return loaded;

@@ -24,7 +24,10 @@ struct LoadReport {
     MeshReader reader = MeshReader::Assimp;
     std::size_t file_vertices = 0;         ///< vertices as stored (STL: 3 per facet)
     std::size_t file_triangles = 0;        ///< triangles as stored (after fan-splitting polygons)
-    std::size_t welded_vertices = 0;       ///< vertices merged into another (identical position)
+    std::size_t welded_vertices = 0;       ///< file vertices merged into another (identical position)
+    /// OBJ through assimp: the importer's vertex count, one per face corner (file_vertices is
+    /// the file's "v" lines); welding merged them back, which welded_vertices does not count.
+    std::size_t importer_corner_vertices = 0;
     std::size_t degenerate_triangles = 0;  ///< dropped: repeated vertex or zero area
     std::size_t duplicate_triangles = 0;   ///< dropped: same three vertices as an earlier one
     std::size_t unused_vertices = 0;       ///< dropped: referenced by no triangle
@@ -48,7 +51,9 @@ struct LoadedMesh {
 };
 
 /// Loads a mesh file, detecting the format from content and extension.
-/// \throw IoError missing file, directory, unreadable
+/// The unit, when the file states one (mesh/units.h), is in mesh.unit.
+/// \throw InputError missing file or a folder (bad input, like malformed content)
+/// \throw IoError unreadable file
 /// \throw InputError malformed or inconsistent content (message names file and line/element),
 ///        non-finite coordinates, index out of range, no triangles (unless allow_points_only)
 [[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path, const LoadOptions& options = {});

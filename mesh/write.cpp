@@ -1,6 +1,7 @@
 #include "mesh/write.h"
 
 #include "mesh/atomic_file.h"
+#include "mesh/detail/write_common.h"
 #include "mesh/error.h"
 
 #include <bit>
@@ -9,12 +10,16 @@
 #include <cstring>
 #include <ostream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace glint {
 
 namespace fs = std::filesystem;
+using detail::check_sizes;
+using detail::safe_name;
 
-namespace {
+namespace detail {
 
 // Property / array names are single words in both formats: anything else becomes '_'.
 std::string safe_name(const std::string& name) {
@@ -43,6 +48,10 @@ void check_sizes(const Mesh& mesh, const fs::path& path) {
                                  std::to_string(n) + " vertices");
 }
 
+}  // namespace detail
+
+namespace {
+
 // Appends raw values in little- or big-endian byte order.
 template <bool BigEndian>
 struct Bytes {
@@ -65,13 +74,36 @@ struct Bytes {
 
 }  // namespace
 
+namespace {
+
+// The scalars a PLY carries, in order: every field under its own name, then (options) the
+// quality copy for MeshLab and the scalar_<name> copies for CloudCompare.
+std::vector<std::pair<std::string, const ScalarField*>> ply_scalars(const Mesh& mesh, const fs::path& path,
+                                                                    const WriteOptions& options) {
+    std::vector<std::pair<std::string, const ScalarField*>> out;
+    if (!options.write_scalars) return out;
+    for (const auto& f : mesh.scalars) out.emplace_back(safe_name(f.name), &f);
+    if (!options.quality_scalar.empty()) {
+        const ScalarField* q = mesh.find_scalar(options.quality_scalar);
+        if (!q)
+            throw InputError("cannot write \"" + path.string() + "\": quality scalar \"" + options.quality_scalar +
+                             "\" is not a scalar of the mesh");
+        if (!mesh.find_scalar("quality")) out.emplace_back("quality", q);
+    }
+    if (options.cloudcompare_names)
+        for (const auto& f : mesh.scalars) out.emplace_back("scalar_" + safe_name(f.name), &f);
+    return out;
+}
+
+}  // namespace
+
 void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
     check_sizes(mesh, path);
     const std::size_t n = mesh.positions.size();
     const bool normals = options.write_normals && mesh.has_normals();
     const bool colors = options.write_colors && mesh.colors.size() == n && n > 0;
     const bool labels = options.write_labels && mesh.labels.size() == n && n > 0;
-    const bool scalars = options.write_scalars;
+    const auto scalars = ply_scalars(mesh, path, options);
 
     std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by glint\n";
     if (!mesh.unit.empty()) header += "comment unit " + mesh.unit + "\n";
@@ -79,15 +111,13 @@ void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     header += "property float x\nproperty float y\nproperty float z\n";
     if (normals) header += "property float nx\nproperty float ny\nproperty float nz\n";
     if (colors) header += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
-    if (scalars)
-        for (const auto& f : mesh.scalars) header += "property float " + safe_name(f.name) + "\n";
+    for (const auto& [name, field] : scalars) header += "property float " + name + "\n";
     if (labels) header += "property int label\n";
     header += "element face " + std::to_string(mesh.triangles.size()) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
 
     Bytes<false> body;
-    std::size_t per_vertex = 12 + (normals ? 12 : 0) + (colors ? 3 : 0) + (labels ? 4 : 0) +
-                             (scalars ? 4 * mesh.scalars.size() : 0);
+    std::size_t per_vertex = 12 + (normals ? 12 : 0) + (colors ? 3 : 0) + (labels ? 4 : 0) + 4 * scalars.size();
     body.buffer.reserve(per_vertex * n + 13 * mesh.triangles.size());
     for (std::size_t v = 0; v < n; ++v) {
         for (int k = 0; k < 3; ++k) body.put(mesh.positions[v][k]);
@@ -95,8 +125,7 @@ void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
             for (int k = 0; k < 3; ++k) body.put(mesh.normals[v][k]);
         if (colors)
             for (auto c : mesh.colors[v]) body.put(c);
-        if (scalars)
-            for (const auto& f : mesh.scalars) body.put(f.values[v]);
+        for (const auto& s : scalars) body.put(s.second->values[v]);
         if (labels) body.put(mesh.labels[v]);
     }
     for (const auto& t : mesh.triangles) {
@@ -109,68 +138,14 @@ void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     });
 }
 
-void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
-    check_sizes(mesh, path);
-    const std::size_t n = mesh.positions.size();
-    const bool normals = options.write_normals && mesh.has_normals();
-    const bool colors = options.write_colors && mesh.colors.size() == n && n > 0;
-    const bool labels = options.write_labels && mesh.labels.size() == n && n > 0;
-    const bool scalars = options.write_scalars && !mesh.scalars.empty();
-
-    // Legacy VTK, BINARY: every array is big endian and followed by a newline.
-    Bytes<true> out;
-    auto text = [&](const std::string& s) { out.buffer += s; };
-    text("# vtk DataFile Version 3.0\nglint mesh" + (mesh.unit.empty() ? std::string() : " unit " + mesh.unit) +
-         "\nBINARY\nDATASET POLYDATA\n");
-    text("POINTS " + std::to_string(n) + " float\n");
-    for (const auto& p : mesh.positions)
-        for (int k = 0; k < 3; ++k) out.put(p[k]);
-    text("\nPOLYGONS " + std::to_string(mesh.triangles.size()) + " " +
-         std::to_string(4 * mesh.triangles.size()) + "\n");
-    for (const auto& t : mesh.triangles) {
-        out.put(std::int32_t{3});
-        for (auto i : t) out.put(static_cast<std::int32_t>(i));
-    }
-    text("\n");
-    if (normals || colors || labels || scalars) {
-        text("POINT_DATA " + std::to_string(n) + "\n");
-        if (normals) {
-            text("NORMALS Normals float\n");
-            for (const auto& nv : mesh.normals)
-                for (int k = 0; k < 3; ++k) out.put(nv[k]);
-            text("\n");
-        }
-        if (colors) {
-            text("COLOR_SCALARS rgb 3\n");  // BINARY colour scalars are unsigned bytes
-            for (const auto& c : mesh.colors)
-                for (auto b : c) out.put(b);
-            text("\n");
-        }
-        if (scalars) {
-            for (const auto& f : mesh.scalars) {
-                text("SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n");
-                for (float v : f.values) out.put(v);
-                text("\n");
-            }
-        }
-        if (labels) {
-            text("SCALARS label int 1\nLOOKUP_TABLE default\n");
-            for (auto l : mesh.labels) out.put(l);
-            text("\n");
-        }
-    }
-    write_atomically(path, [&](std::ostream& s) {
-        s.write(out.buffer.data(), static_cast<std::streamsize>(out.buffer.size()));
-    });
-}
-
 void write_mesh(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".ply") return write_ply(mesh, path, options);
     if (ext == ".vtk") return write_vtk(mesh, path, options);
+    if (ext == ".vtp") return write_vtp(mesh, path, options);
     throw InputError("cannot write \"" + path.string() + "\": unknown extension \"" +
-                     path.extension().string() + "\", expected .ply or .vtk");
+                     path.extension().string() + "\", expected .ply, .vtk or .vtp");
 }
 
 }  // namespace glint

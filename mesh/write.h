@@ -1,5 +1,12 @@
-// Writing meshes: binary PLY with colour + named scalars (MeshLab "quality"/CloudCompare
-// scalar fields), VTK legacy with point-data arrays (ParaView, 3D Slicer).
+// Writing meshes, in the forms the viewers people use actually read (each proven by loading a
+// written file with the real program: tests/tools/viewers_test.sh):
+//   PLY  binary; MeshLab maps only a vertex property named `quality`, CloudCompare imports
+//        only properties named `scalar_<name>`: WriteOptions adds those as copies.
+//   VTK  legacy ASCII (CloudCompare 2.11 refuses binary legacy VTK; its reader also needs a
+//        POINT_DATA line before every array, which VTK accepts after an empty CELL_DATA
+//        section: mesh/write_vtk.cpp), for ParaView, 3D Slicer and CloudCompare. VTK's
+//        legacy ASCII reader cannot parse NaN: NaN is written as WriteOptions::vtk_legacy_nan.
+//   VTP  VTK XML PolyData, binary (base64) arrays: exact values, NaN kept (ParaView, Slicer).
 // Files are written to a temporary name in the same folder and renamed into place.
 #pragma once
 
@@ -14,16 +21,29 @@ struct WriteOptions {
     bool write_colors = true;   ///< when mesh.colors is set
     bool write_scalars = true;  ///< every ScalarField as a float property
     bool write_labels = true;   ///< labels as an int property "label"
+    /// PLY: this scalar also as the property `quality` (MeshLab's only per-vertex scalar);
+    /// empty: none. \throw InputError from the writers when the mesh has no such scalar.
+    std::string quality_scalar;
+    /// PLY: every scalar also as `scalar_<name>` (the names CloudCompare imports).
+    bool cloudcompare_names = false;
+    /// VTK legacy ASCII: the number written for NaN (VTK's ASCII reader fails on "nan").
+    float vtk_legacy_nan = -9999.0f;
 };
 
 /// Binary little-endian PLY. \throw IoError on any write failure (nothing left behind).
 void write_ply(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
 
-/// VTK legacy POLYDATA (binary big-endian), scalars and labels as POINT_DATA arrays,
-/// colours as COLOR_SCALARS. \throw IoError on any write failure.
+/// VTK legacy POLYDATA, ASCII: normals, colours (COLOR_SCALARS), scalars and labels as point
+/// data, each array after its own POINT_DATA line (the later ones after "CELL_DATA 0"); NaN written as options.vtk_legacy_nan; the
+/// unit, when known, in the title line ("glint mesh unit mm"). \throw IoError.
 void write_vtk(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
 
-/// Writes by extension (.ply, .vtk); \throw InputError for another extension.
+/// VTK XML PolyData (.vtp), arrays inline as base64 binary (little endian, UInt32 headers):
+/// float positions, normals, scalars (NaN kept), Int32 labels, UInt8 colours.
+/// \throw IoError on any write failure.
+void write_vtp(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+
+/// Writes by extension (.ply, .vtk, .vtp); \throw InputError for another extension.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
 
 }  // namespace glint

@@ -8,6 +8,7 @@
 #include "scanner/view_exports.h"
 
 #include <chrono>
+#include <cstdio>
 #include <optional>
 
 namespace glint {
@@ -41,9 +42,35 @@ SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_
     return p;
 }
 
+// A reference and examined given the wrong way round (the intact surface as EXA, the
+// resected one as REF): the examined has surface the reference lacks, which the atlas on the
+// reference cannot show as a loss: no region, or gains only. Only a hint (a growth can look
+// the same), given when the examined surface is 10 % larger and no region at zoom 0 is a
+// loss. note: 10 % because two scans of one surface differ by a few %.
+std::string swap_hint(const Mesh& reference, const Mesh& examined, const AnalysisResult& result) {
+    if (result.decisions.empty()) return "";
+    for (const auto& r : result.decisions[0].regions.regions)
+        if (r.kind != RegionKind::Bump) return "";
+    const double ref_area = surface_area(reference), exa_area = surface_area(examined);
+    if (!(exa_area > 1.1 * ref_area)) return "";
+    char b[240];
+    std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and no region is a loss: "
+                  "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
+                  100.0 * (exa_area / ref_area - 1.0));
+    return b;
+}
+
+// The examined mesh in the analysis unit: itself, or a scaled copy kept in `storage`.
+const Mesh& in_analysis_unit(const Mesh& examined, const UnitResolution& units, std::optional<Mesh>& storage) {
+    if (units.examined_scale == 1.0) return examined;
+    storage = examined;
+    for (auto& p : storage->positions) p *= static_cast<float>(units.examined_scale);
+    return *storage;
+}
+
 }  // namespace
 
-AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const AnalysisOptions& options,
+AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const AnalysisOptions& options,
                        const AnalysisObserver& observer) {
     const auto t_start = Clock::now();
     options.validate();
@@ -53,13 +80,18 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const Ana
         compute_vertex_normals(*with_normals);
     }
     const Mesh& reference = with_normals ? *with_normals : reference_in;
-    // The output location is checked before the long work.
-    std::optional<OutputFolder> folder;
-    if (!options.exports.output.empty()) folder.emplace(options.exports.output);
-
+    // Units and sizes, then the output location: both checked before the long work.
     AnalysisResult result;
+    result.units = resolve_units(reference, examined_in, options.units);
+    result.unit = result.units.unit;
+    std::optional<Mesh> scaled;
+    const Mesh& examined = in_analysis_unit(examined_in, result.units, scaled);
+    std::optional<OutputFolder> folder;
+    if (!options.exports.output.empty()) folder.emplace(options.exports.output, options.exports.replace_existing);
+
     result.size = bounds(reference).diagonal();
     result.warnings = options.exports.warnings;
+    for (const auto& w : result.units.warnings) result.warnings.push_back(w);
     announce(observer, "fit");
     auto t = Clock::now();
     result.fit = fit_or_refuse(reference, examined, options.fit);
@@ -102,6 +134,8 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined, const Ana
             result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
     }
     result.decision_seconds = seconds_since(t);
+    result.swap_hint = swap_hint(reference, examined, result);
+    if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 
     if (folder) {
         announce(observer, "export");

@@ -17,6 +17,7 @@
 #include "scanner/decision.h"
 #include "scanner/fit.h"
 #include "scanner/sweep.h"
+#include "scanner/units.h"
 
 #include <filesystem>
 #include <functional>
@@ -41,17 +42,21 @@ struct ExportOptions {
     std::filesystem::path output;
     bool write_views = true;        ///< per-view PNG heat maps
     bool write_exr = true;          ///< per-view EXR with the raw numbers
+    /// An existing output folder is replaced (atomically, when the run completes); false:
+    /// it is refused before anything is loaded (--force).
+    bool replace_existing = false;
     int mosaic_tile = 128;          ///< mosaic thumbnail size, pixels
     // Provenance recorded in report.json.
     std::string command_line;
     std::vector<InputRecord> inputs;
     std::vector<std::string> warnings;  ///< e.g. repairs done while loading
 
-    /// \throw OptionError.
+    /// \throw OptionError; InputError when the output folder exists and may not be replaced.
     void validate() const;
 };
 
 struct AnalysisOptions {
+    UnitOptions units;
     FitOptions fit;
     SweepOptions sweep;
     DecisionOptions decision;
@@ -73,8 +78,13 @@ struct AnalysisResult {
     SweepResult sweep;
     std::vector<ZoomDecision> decisions;   ///< one per zoom level
     double size = 0.0;                     ///< bounding diagonal of the reference (mesh units)
+    std::string unit;                      ///< of every length reported ("" = unknown; scanner/units.h)
+    UnitResolution units;                  ///< how the unit was found, both sizes
     std::filesystem::path output;          ///< the folder written (empty when none)
-    std::vector<std::string> warnings;     ///< load, fit and decision warnings
+    std::vector<std::string> warnings;     ///< load, unit, fit and decision warnings
+    /// Non-empty when REF and EXA look swapped (no region a loss, the examined surface
+    /// > 10 % larger): a hint for people, also in warnings.
+    std::string swap_hint;
     double fit_seconds = 0.0;
     double distance_seconds = 0.0;
     double decision_seconds = 0.0;
@@ -89,8 +99,8 @@ struct AnalysisObserver {
 };
 
 /// Runs the pipeline. The reference must have vertex normals (loaded meshes do).
-/// \throw OptionError invalid options; InputError a fit that did not converge, surfaces that
-/// do not overlap; IoError, DeviceError; Cancelled (nothing half-written is left).
+/// \throw OptionError invalid options; InputError meshes whose sizes differ by more than
+/// kMaxScaleRatio (unless allowed), a fit that did not converge, surfaces that do not overlap; IoError, DeviceError; Cancelled (nothing half-written is left).
 [[nodiscard]] AnalysisResult analyse(const Mesh& reference, const Mesh& examined, const AnalysisOptions& options,
                                      const AnalysisObserver& observer = {});
 

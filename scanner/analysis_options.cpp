@@ -79,9 +79,14 @@ json decision_json(const DecisionOptions& d) {
 
 void ExportOptions::validate() const {
     if (mosaic_tile < 16 || mosaic_tile > 1024) throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
+    std::error_code ec;
+    if (!output.empty() && !replace_existing && std::filesystem::exists(output, ec))
+        throw InputError("output folder \"" + output.string() + "\" exists; give --force to replace it (the new "
+                         "results replace it only when the run completes)");
 }
 
 void AnalysisOptions::validate() const {
+    units.validate();
     fit.validate();
     sweep.validate();
     decision.validate();
@@ -94,7 +99,9 @@ void AnalysisOptions::validate() const {
 }
 
 std::string to_json(const AnalysisOptions& o) {
-    const json j = {{"registration", fit_json(o.fit)},
+    const json j = {{"units", {{"unit", o.units.unit.empty() ? json(nullptr) : json(o.units.unit)},
+                               {"allow_scale_mismatch", o.units.allow_scale_mismatch}}},
+                    {"registration", fit_json(o.fit)},
                     {"sweep", sweep_json(o.sweep)},
                     {"decision", decision_json(o.decision)},
                     {"exports", {{"views", o.exports.write_views}, {"exr", o.exports.write_exr},

@@ -10,7 +10,7 @@ namespace glint {
 
 Frame read_frame_exr(const std::filesystem::path& path) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) throw IoError("frame \"" + path.string() + "\": no such file");
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError("frame \"" + path.string() + "\": no such file");
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw InputError("frame \"" + path.string() + "\": cannot read as an image: " + OIIO::geterror());
     const OIIO::ImageSpec& spec = in->spec();

@@ -9,7 +9,8 @@ namespace glint {
 
 namespace fs = std::filesystem;
 
-OutputFolder::OutputFolder(fs::path target) : target_(fs::absolute(std::move(target)).lexically_normal()) {
+OutputFolder::OutputFolder(fs::path target, bool replace_existing)
+    : target_(fs::absolute(std::move(target)).lexically_normal()) {
     if (target_.filename().empty()) target_ = target_.parent_path();
     std::error_code ec;
     const fs::path parent = target_.parent_path();
@@ -18,6 +19,8 @@ OutputFolder::OutputFolder(fs::path target) : target_(fs::absolute(std::move(tar
                       "\" does not exist");
     if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
         throw InputError("output \"" + target_.string() + "\" exists and is not a folder");
+    if (!replace_existing && fs::exists(target_, ec))
+        throw InputError("output folder \"" + target_.string() + "\" exists; give --force to replace it");
     staging_ = parent / (target_.filename().string() + ".partial-" + std::to_string(::getpid()));
     fs::remove_all(staging_, ec);
     fs::create_directories(staging_, ec);

@@ -2,6 +2,7 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/units.h"
 #include "mesh/write.h"
 #include "scanner/coverage.h"
 #include "scanner/images.h"
@@ -9,12 +10,14 @@
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 namespace glint {
 
@@ -32,14 +35,18 @@ json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::string zoom_suffix(std::size_t z) { return "_z" + std::to_string(z); }
 
-json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m) {
+json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m, double peak_value) {
     const std::string u = "_" + std::string(m.unit);
+    const std::string nu = "_" + std::string(m.name) + u;
     json j = {{"id", r.id},
               {"kind", to_string(r.kind)},
               {"vertices", r.vertex_count},
               {"area", r.area},
-              {"max" + u, r.max_value},
+              {"max" + u, r.max_value},  // kept for readers: the largest per-vertex mean (max_mean_…)
               {"mean" + u, r.mean_value},
+              {"max_mean" + nu, r.max_value},
+              {"mean" + nu, r.mean_value},
+              {"max" + nu, number(peak_value)},
               {"peak_depth", number(r.peak_depth)},
               {"mean_depth", number(r.mean_depth)},
               {"volume", number(r.volume)},
@@ -53,6 +60,22 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         j["best_view_elevation_deg"] = v.elevation_deg;
     }
     return j;
+}
+
+// The largest per-vertex maximum (the strongest pixel deviation seen) in each region, by
+// region id; NaN for a region without seen vertices.
+std::vector<double> region_peak_values(const AnalysisResult& result, std::size_t z) {
+    const auto& d = result.decisions[z];
+    const auto& atlas = result.sweep.zooms[z].atlas;
+    const auto& seen = result.sweep.zooms[z].coverage.seen;
+    std::vector<double> peak(d.regions.regions.size() + 1, std::nan(""));
+    for (std::size_t v = 0; v < d.regions.region_of_vertex.size(); ++v) {
+        const auto id = d.regions.region_of_vertex[v];
+        if (id <= 0 || static_cast<std::size_t>(id) >= peak.size() || !seen[v]) continue;
+        double& p = peak[static_cast<std::size_t>(id)];
+        p = std::isnan(p) ? atlas.value_max[v] : std::max(p, static_cast<double>(atlas.value_max[v]));
+    }
+    return peak;
 }
 
 json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& plan) {
@@ -77,7 +100,9 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string u = "_" + std::string(m.unit);
     json regions = json::array();
-    for (const auto& r : d.regions.regions) regions.push_back(region_json(r, plan, m));
+    const std::vector<double> peaks = region_peak_values(result, z);
+    for (const auto& r : d.regions.regions)
+        regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)]));
     json j = {{"zoom", z},
               {"footprint", plan.footprints[z]},
               {"image_size", plan.sizes[z]},
@@ -131,6 +156,18 @@ json views_json(const SweepResult& s) {
     return views;
 }
 
+// What every length in this report is measured in, and how that was found.
+json units_json(const AnalysisResult& r) {
+    const std::string u = r.unit.empty() ? "units" : r.unit;
+    return {{"length", u}, {"area", u + "²"}, {"volume", u + "³"},
+            {"known", !r.unit.empty()},
+            {"note", r.unit.empty() ? "unknown: the files state no unit and none was given (--unit, scenario key unit)"
+                                    : "every length, area and volume in this report (depths, distances, footprints, "
+                                      "centroids, sizes) is in " + r.unit},
+            {"reference_size", r.units.reference_size}, {"examined_size", r.units.examined_size},
+            {"examined_scale", r.units.examined_scale}};
+}
+
 }  // namespace
 
 std::string sha256_file(const fs::path& path) {
@@ -153,8 +190,13 @@ std::string sha256_file(const fs::path& path) {
     return hex.str();
 }
 
+std::string atlas_quality_scalar(const AnalysisResult& result) {
+    return std::string(describe(result.sweep.options.metric).name) + "_mean" + zoom_suffix(0);
+}
+
 Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     Mesh atlas = reference;
+    atlas.unit = result.unit;
     atlas.scalars.clear();
     atlas.labels.clear();
     const std::size_t n = reference.vertex_count();
@@ -187,7 +229,7 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     if (!result.sweep.zooms.empty()) {
         ColorScale scale;
         scale.high = std::max(2.0 * result.decisions[0].normal.value, 1.0);
-        atlas.colors = colorize(atlas.find_scalar(metric + "_mean_z0")->values, scale);
+        atlas.colors = colorize(atlas.find_scalar(atlas_quality_scalar(result))->values, scale);
     }
     return atlas;
 }
@@ -207,6 +249,8 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result, con
         {"metric", {{"name", std::string(m.name)}, {"unit", std::string(m.unit)}, {"description", std::string(m.description)}}},
         {"plan", plan_json(s.plan)},
         {"size", result.size},
+        {"unit", result.unit.empty() ? json(nullptr) : json(result.unit)},
+        {"units", units_json(result)},
         {"fit", result.fit.json.empty() ? json(nullptr) : json::parse(result.fit.json)},
         {"zooms", zooms},
         {"views", views_json(s)},
@@ -220,25 +264,31 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result, con
 
 std::string regions_csv(const AnalysisResult& result) {
     const MetricDescriptor& m = describe(result.sweep.options.metric);
-    const std::string u(m.unit);
+    const std::string nu = std::string(m.name) + "_" + std::string(m.unit);
+    const std::string l = unit_suffix(result.unit), a2 = unit_suffix(result.unit, 2), v3 = unit_suffix(result.unit, 3);
     std::ostringstream csv;
-    csv << "zoom,footprint,region,kind,vertices,area,max_" << u << ",mean_" << u
-        << ",peak_depth,mean_depth,volume,missing_fraction,centroid_x,centroid_y,centroid_z,best_view,"
-           "best_view_azimuth_deg,best_view_elevation_deg\n";
+    // max_<metric>: the strongest pixel deviation seen in the region; max_mean_<metric>: the
+    // largest per-vertex mean (the field regions are grown on); mean_<metric>: area-weighted.
+    csv << "zoom,footprint" << l << "_per_px,region,kind,vertices,area" << a2 << ",max_" << nu << ",max_mean_" << nu
+        << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l << ",volume" << v3
+        << ",missing_fraction,centroid_x" << l << ",centroid_y" << l << ",centroid_z" << l
+        << ",best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
     const auto& plan = result.sweep.plan;
     for (std::size_t z = 0; z < result.decisions.size(); ++z) {
+        const std::vector<double> peaks = region_peak_values(result, z);
         for (const auto& r : result.decisions[z].regions.regions) {
             double az = std::nan(""), el = std::nan("");
             if (r.best_view >= 0) {
                 az = plan.views[static_cast<std::size_t>(r.best_view)].view.azimuth_deg;
                 el = plan.views[static_cast<std::size_t>(r.best_view)].view.elevation_deg;
             }
-            char row[640];
+            char row[700];
             std::snprintf(row, sizeof row,
-                          "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
-                          plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area, r.max_value,
-                          r.mean_value, r.peak_depth, r.mean_depth, r.volume, r.missing_fraction, r.centroid.x(),
-                          r.centroid.y(), r.centroid.z(), r.best_view, az, el);
+                          "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
+                          plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
+                          peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, r.peak_depth, r.mean_depth,
+                          r.volume, r.missing_fraction, r.centroid.x(), r.centroid.y(), r.centroid.z(), r.best_view, az,
+                          el);
             csv << row;
         }
     }
@@ -248,8 +298,12 @@ std::string regions_csv(const AnalysisResult& result) {
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
                    const AnalysisOptions& options) {
     const Mesh atlas = make_atlas_mesh(reference, result);
-    write_ply(atlas, folder.file("atlas.ply"));
-    write_vtk(atlas, folder.file("atlas.vtk"));
+    WriteOptions viewers;
+    viewers.cloudcompare_names = true;
+    if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
+    write_ply(atlas, folder.file("atlas.ply"), viewers);
+    write_vtk(atlas, folder.file("atlas.vtk"), viewers);
+    write_vtp(atlas, folder.file("atlas.vtp"), viewers);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     write_file_atomically(folder.file("report.json"), report_json(reference, result, options));
 }

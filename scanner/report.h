@@ -1,5 +1,6 @@
 // Exports of an analysis into its output folder (DESIGN.md "Outputs a user opens"):
-//   atlas.ply / atlas.vtk  reference surface coloured by damage, with per-vertex scalars
+//   atlas.ply / .vtk / .vtp  reference surface coloured by damage, with per-vertex scalars in
+//                          the forms MeshLab, CloudCompare, ParaView and 3D Slicer read (mesh/write.h)
 //   regions.csv            one row per region and zoom
 //   report.json            inputs with SHA-256, device, backend, options, fit, floors and
 //                          rule, coverage, unseen patches, regions, histograms, views, timings
@@ -23,6 +24,10 @@ namespace glint {
 /// colours from zoom 0's normal evidence (inferno, 0…2×floor, unseen grey).
 [[nodiscard]] Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result);
 
+/// The atlas scalar MeshLab shows as `quality`: the metric's per-vertex mean at zoom 0 (the
+/// normal evidence the decision and the atlas colours use), e.g. "angle_mean_z0".
+[[nodiscard]] std::string atlas_quality_scalar(const AnalysisResult& result);
+
 /// The report as JSON text (what report.json holds).
 [[nodiscard]] std::string report_json(const Mesh& reference, const AnalysisResult& result,
                                       const AnalysisOptions& options);
@@ -30,7 +35,7 @@ namespace glint {
 /// regions.csv as text.
 [[nodiscard]] std::string regions_csv(const AnalysisResult& result);
 
-/// Writes atlas.ply, atlas.vtk, regions.csv and report.json into the folder.
+/// Writes atlas.ply, atlas.vtk, atlas.vtp, regions.csv and report.json into the folder.
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
                    const AnalysisOptions& options);
 

@@ -129,7 +129,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
         // Scenarios tagged "data" use the shared data folder: its absence is a skip, not an
         // error. Any other missing input is an error.
         const bool shared = std::find(sc.tags.begin(), sc.tags.end(), "data") != sc.tags.end();
-        if (!shared) throw IoError("scenario \"" + sc.file.string() + "\": input not found: " + missing);
+        if (!shared) throw InputError("scenario \"" + sc.file.string() + "\": input not found: " + missing);
         out.skipped = true;
         out.skip_reason = "input not found: " + missing;
         return out;
@@ -139,10 +139,13 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
 
     AnalysisOptions options = sc.analysis;
     if (options.fit.mode == FitMode::Truth) options.fit.truth = meshes.true_reference_from_examined;
+    if (!run.unit.empty()) options.units.unit = run.unit;
+    options.units.allow_scale_mismatch = options.units.allow_scale_mismatch || run.allow_scale_mismatch;
     if (!run.output_root.empty()) {
         ExportOptions& e = options.exports;
         e.output = run.output_root / sc.name;
         e.write_views = e.write_exr = run.write_views;
+        e.replace_existing = run.replace_existing;
         e.command_line = run.command_line;
         auto describe_source = [](const SurfaceSource& s) {
             return s.phantom ? "phantom " + to_string(s.phantom->kind) + " " + to_string(s.phantom->scheme) + " " +

@@ -19,6 +19,9 @@ struct ScenarioRunOptions {
     bool write_views = false;           ///< per-view PNG/EXR (mosaics, atlas and report always)
     std::function<void(std::size_t done, std::size_t total)> progress;
     std::string command_line;           ///< recorded in report.json
+    bool replace_existing = false;      ///< an existing atlas folder of a scenario is replaced (--force)
+    std::string unit;                   ///< when given, wins over the scenario's `unit` (--unit)
+    bool allow_scale_mismatch = false;  ///< --allow-scale-mismatch
 };
 
 struct ScenarioOutcome {

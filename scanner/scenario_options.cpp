@@ -88,6 +88,11 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
     // Scenarios register unless told otherwise (the command line's default is to take the
     // meshes as aligned: a scenario with a pose always needs a fit).
     options.fit.mode = FitMode::Register;
+    // The unit both meshes are in (scanner/units.h); phantoms are in mm.
+    parse_key(top, "unit", "a string (um, mm, cm, m, in)", [&](const std::string& v) {
+        options.units.unit = v;
+        options.units.validate();
+    });
     auto section = [&](const std::string& key, auto read) {
         const toml::node* node = top.get(key);
         if (!node) return;

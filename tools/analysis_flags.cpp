@@ -1,5 +1,7 @@
 #include "tools/analysis_flags.h"
 
+#include "mesh/units.h"
+
 #include <iostream>
 
 namespace glint::cli {
@@ -73,6 +75,14 @@ void add_sweep_flags(CLI::App& cmd, AnalysisOptions& o) {
         "--shape-threshold", [&d](double v) { d.shape_threshold = v; },
         "Shape evidence threshold, mesh units (default: the run's floor)");
     cmd.add_option("--min-region-vertices", d.min_region_vertices, "Smaller groups are dropped")->capture_default_str();
+}
+
+void add_unit_flags(CLI::App& cmd, UnitOptions& units) {
+    cmd.add_option("--unit", units.unit,
+                   "Length unit of both meshes: " + known_units() +
+                       " (default: what the files state; unknown lengths are printed as 'units')");
+    cmd.add_flag("--allow-scale-mismatch", units.allow_scale_mismatch,
+                  "Run even when the meshes' sizes differ by more than 5x (different units?)");
 }
 
 void add_print_options_flag(CLI::App& cmd, bool& print) {

@@ -22,6 +22,10 @@ void add_fit_flags(CLI::App& command, FitOptions& fit, const std::string& roi_fl
 /// --noise-k, --min-threshold-deg, --shape-threshold, --min-region-vertices.
 void add_sweep_flags(CLI::App& command, AnalysisOptions& options);
 
+/// --unit (the unit both meshes are in; wins over what the files state) and
+/// --allow-scale-mismatch (scanner/units.h).
+void add_unit_flags(CLI::App& command, UnitOptions& units);
+
 /// --print-options: print the resolved AnalysisOptions as JSON and stop, loading nothing.
 void add_print_options_flag(CLI::App& command, bool& print);
 

@@ -2,6 +2,7 @@
 // deformation stops showing; `glint sweep --calibration` then flags only larger ones.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/units.h"
 #include "scanner/calibrate.h"
 #include "scanner/scenario.h"
 #include "tools/analysis_flags.h"
@@ -42,12 +43,14 @@ void run(const CalibrateArgs& a) {
     if (global_flags().json) {
         std::cout << to_json(c);
     } else if (!global_flags().quiet) {
+        const std::string unit =
+            !analysis.units.unit.empty() ? canonical_unit(analysis.units.unit) : canonical_unit(meshes.reference.unit);
         for (const auto& r : c.ladder)
-            std::printf("  footprint %8.4f/px: %zu region(s), strongest mean angle %.2f°\n", r.footprint, r.regions,
-                        r.max_angle_deg);
+            std::printf("  footprint %s/px: %zu region(s), strongest mean angle %.2f°\n",
+                        with_unit(r.footprint, unit, 1, "%8.4f").c_str(), r.regions, r.max_angle_deg);
         if (c.found)
-            std::printf("calibrated: the referential deformation hides from %.4f per pixel at %.1f°; wrote %s\n",
-                        c.footprint, c.threshold_deg, a.output.c_str());
+            std::printf("calibrated: the referential deformation hides from %s per pixel at %.1f°; wrote %s\n",
+                        with_unit(c.footprint, unit, 1, "%.4f").c_str(), c.threshold_deg, a.output.c_str());
     }
     if (!c.found) throw CheckFailed("the referential deformation shows even at the coarsest footprint; raise --coarsest");
 }

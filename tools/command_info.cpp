@@ -1,6 +1,7 @@
 // glint info MESH…: what a mesh file holds, what loading repaired, what validation found.
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/units.h"
 #include "mesh/validate.h"
 #include "tools/command.h"
 #include "tools/surface_flags.h"
@@ -41,6 +42,7 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
         {"repairs", {{"file_vertices", r.file_vertices},
                      {"file_triangles", r.file_triangles},
                      {"welded_vertices", r.welded_vertices},
+                     {"importer_corner_vertices", r.importer_corner_vertices},
                      {"degenerate_triangles", r.degenerate_triangles},
                      {"duplicate_triangles", r.duplicate_triangles},
                      {"unused_vertices", r.unused_vertices},
@@ -52,19 +54,25 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
 
 void print_text(const nlohmann::json& j) {
     auto num = [](const nlohmann::json& x) { return x.dump(); };
+    const std::string unit = j["unit"].get<std::string>();
     std::cout << j["path"].get<std::string>() << '\n'
-              << "  format      " << j["format"].get<std::string>()
-              << (j["unit"].get<std::string>().empty() ? "" : ", unit " + j["unit"].get<std::string>()) << '\n'
+              << "  format      " << j["format"].get<std::string>() << ", unit "
+              << (unit.empty() ? "unknown (the file states none; give --unit to sweep/register/run)" : unit) << '\n'
               << "  vertices    " << num(j["vertices"]) << "   triangles " << num(j["triangles"]) << '\n';
     const auto& e = j["bounds"]["extent"];
     char line[160];
-    std::snprintf(line, sizeof line, "  extent      %.4g x %.4g x %.4g   area %.6g\n", e[0].get<double>(),
-                  e[1].get<double>(), e[2].get<double>(), j["area"].get<double>());
+    std::snprintf(line, sizeof line, "  extent      %.4g x %.4g x %s   area %s\n", e[0].get<double>(),
+                  e[1].get<double>(), with_unit(e[2].get<double>(), unit).c_str(),
+                  with_unit(j["area"].get<double>(), unit, 2, "%.6g").c_str());
     std::cout << line;
     std::cout << "  topology    " << (j["closed"].get<bool>() ? "closed" : "open") << ", "
               << num(j["components"]) << " component(s), " << num(j["boundary_edges"])
               << " boundary / " << num(j["non_manifold_edges"]) << " non-manifold edges\n";
     const auto& r = j["repairs"];
+    if (r["importer_corner_vertices"].get<std::size_t>() > 0)
+        std::cout << "  OBJ         the importer made one vertex per face corner ("
+                  << num(r["importer_corner_vertices"]) << "), merged back to the file's " << num(r["file_vertices"])
+                  << " vertices (v lines)\n";
     std::cout << "  repairs     welded " << num(r["welded_vertices"]) << " vertices, dropped "
               << num(r["degenerate_triangles"]) << " degenerate + " << num(r["duplicate_triangles"])
               << " duplicate triangles and " << num(r["unused_vertices"]) << " unused vertices, split "

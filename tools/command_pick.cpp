@@ -44,7 +44,8 @@ void run(const PickArgs& a) {
     else if (!hit.hit) std::cout << "pixel (" << a.pixel[0] << ", " << a.pixel[1] << ") shows no surface\n";
     else
         std::cout << "pixel (" << a.pixel[0] << ", " << a.pixel[1] << ") shows (" << hit.point.x() << ", " << hit.point.y()
-                  << ", " << hit.point.z() << ") on triangle " << hit.triangle << '\n';
+                  << ", " << hit.point.z() << ") on triangle " << hit.triangle << " (coordinates in "
+                  << (m.mesh.unit.empty() ? std::string("units: the file states none") : m.mesh.unit) << ")\n";
 }
 
 void setup(CLI::App& app) {

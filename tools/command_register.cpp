@@ -3,8 +3,10 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/units.h"
 #include "mesh/write.h"
 #include "scanner/fit.h"
+#include "scanner/units.h"
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
 #include "tools/surface_flags.h"
@@ -22,18 +24,20 @@ struct RegisterArgs {
     std::string examined;
     SurfaceOptions surface;
     FitOptions fit;
+    UnitOptions units;
     std::string roi_mask;
     std::string output;
     std::string apply;
 };
 
-void print_result(const RegistrationResult& r, const std::string& output) {
-    std::printf("%s after %d iterations (%s start): rotation %.6f°, translation (%.6g, %.6g, %.6g), RMS %.4g, "
+void print_result(const RegistrationResult& r, const std::string& output, const std::string& unit) {
+    std::printf("%s after %d iterations (%s start): rotation %.6f°, translation (%.6g, %.6g, %.6g) %s, RMS %s, "
                 "inliers %.1f%%, overlap %.1f%%; wrote %s\n",
                 r.converged ? "converged" : "did NOT converge", r.iterations, r.coarse.c_str(),
                 rotation_angle_deg(r.reference_from_examined), r.reference_from_examined.translation().x(),
-                r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(), r.rms,
-                100 * r.inlier_fraction, 100 * r.overlap, output.c_str());
+                r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(),
+                unit.empty() ? "units" : unit.c_str(), with_unit(r.rms, unit).c_str(), 100 * r.inlier_fraction,
+                100 * r.overlap, output.c_str());
     if (!r.converged) std::printf("  %s\n", r.termination_detail.c_str());
 }
 
@@ -42,8 +46,15 @@ void run(RegisterArgs& a) {
     fit.mode = FitMode::Register;
     if (!a.roi_mask.empty()) fit.registration.roi = parse_roi("mask:" + a.roi_mask);
     fit.validate();
+    a.units.validate();
     const LoadedSurface ref = load_surface(a.reference, a.surface);
-    const LoadedSurface exa = load_surface(a.examined, a.surface);
+    LoadedSurface exa = load_surface(a.examined, a.surface);
+    // Sizes checked before the fit; files in two stated units are fitted in the reference's.
+    const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.units);
+    if (units.examined_scale != 1.0)
+        for (auto& p : exa.mesh.positions) p *= static_cast<float>(units.examined_scale);
+    if (!global_flags().quiet)
+        for (const auto& w : units.warnings) std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
     write_file_atomically(a.output, outcome.json);
@@ -53,7 +64,7 @@ void run(RegisterArgs& a) {
         write_mesh(moved, a.apply);
     }
     if (global_flags().json) std::cout << outcome.json;
-    else if (!global_flags().quiet) print_result(r, a.output);
+    else if (!global_flags().quiet) print_result(r, a.output, units.unit);
     if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);
 }
 
@@ -67,6 +78,7 @@ void setup(CLI::App& app) {
     cmd->add_option("--roi-mask", a.roi_mask, "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
                                                "non-zero label (or scalar); the same as --roi mask:FILE[:SCALAR]")
         ->excludes("--roi");
+    add_unit_flags(*cmd, a.units);
     cmd->add_option("-o,--output", a.output, "fit.json")->required();
     cmd->add_option("--apply", a.apply, "Also write the fitted examined mesh (.ply or .vtk)");
     cmd->callback([] { run(a); });

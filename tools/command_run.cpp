@@ -31,6 +31,8 @@ struct RunArgs {
     bool views = false;
     bool full = false;
     bool print = false;
+    bool force = false;
+    UnitOptions units;
 };
 
 fs::path data_root_of(const RunArgs& a) {
@@ -107,6 +109,12 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
     const fs::path root = data_root_of(a);
     std::vector<Scenario> scenarios;
     expand(a, root, scenarios);
+    // Earlier results are refused before any scenario runs (not after the first one).
+    if (!a.force)
+        for (const auto& sc : scenarios)
+            if (std::error_code e; fs::exists(fs::path(a.output) / sc.name, e))
+                throw InputError("output folder \"" + (fs::path(a.output) / sc.name).string() +
+                                 "\" exists (an earlier run of scenario " + sc.name + "); give --force to replace it");
     std::error_code ec;
     fs::create_directories(a.output, ec);
     if (ec) throw IoError("output folder \"" + a.output + "\": " + ec.message());
@@ -116,6 +124,9 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         ScenarioRunOptions options;
         options.output_root = a.output;
         options.write_views = a.views;
+        options.replace_existing = a.force;
+        options.unit = a.units.unit;
+        options.allow_scale_mismatch = a.units.allow_scale_mismatch;
         options.command_line = global_flags().command_line;
         options.progress = [&](std::size_t done, std::size_t total) {
             bar.set_total(total);
@@ -244,6 +255,8 @@ void add_common(CLI::App* cmd, RunArgs& a) {
                                                 "(default: $GLINT_DATA)");
     cmd->add_flag("--views", a.views, "Also write per-view heat maps (PNG + EXR)");
     cmd->add_flag("--full", a.full, "Folders: include scenarios tagged 'full' (longer than the CI suite)");
+    cmd->add_flag("--force", a.force, "Replace existing atlas folders of these scenarios (each once its run completes)");
+    add_unit_flags(*cmd, a.units);
 }
 
 void setup(CLI::App& app) {

@@ -2,6 +2,7 @@
 // sweep, decision, exports.
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/units.h"
 #include "scanner/analysis.h"
 #include "scanner/calibrate.h"
 #include "scanner/report.h"
@@ -32,21 +33,31 @@ struct SweepArgs {
     std::string calibration;
     std::string output;
     bool print = false;
+    bool force = false;
 };
 
 void print_summary(const AnalysisResult& r) {
     const MetricDescriptor& m = describe(r.sweep.options.metric);
     const std::string sym(m.symbol);
+    const std::string& u = r.unit;
+    std::printf("unit %s; reference %s across, examined %s\n",
+                u.empty() ? "unknown (the files state none; --unit states it)" : u.c_str(),
+                with_unit(r.units.reference_size, u).c_str(), with_unit(r.units.examined_size, u).c_str());
     for (std::size_t z = 0; z < r.decisions.size(); ++z) {
         const auto& d = r.decisions[z];
-        std::printf("zoom %zu: footprint %.4g/px (%d px), coverage %.1f%%, normal floor %.2f%s (%s), %zu region(s)\n", z,
-                    r.sweep.plan.footprints[z], r.sweep.plan.sizes[z], 100.0 * r.sweep.zooms[z].coverage.fraction,
-                    d.normal.value, sym.c_str(), d.normal.given ? "given" : "noise floor", d.regions.regions.size());
+        std::printf("zoom %zu: footprint %s/px (%d px), coverage %.1f%%, normal floor %.2f%s (%s), %zu region(s)\n", z,
+                    with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
+                    100.0 * r.sweep.zooms[z].coverage.fraction, d.normal.value, sym.c_str(),
+                    d.normal.given ? "given" : "noise floor", d.regions.regions.size());
         for (const auto& g : d.regions.regions)
-            std::printf("  region %d: %s, area %.4g, peak depth %+.4g, max %.2f%s, mean %.2f%s, centroid (%.3f, %.3f, %.3f)\n",
-                        g.id, to_string(g.kind).c_str(), g.area, g.peak_depth, g.max_value, sym.c_str(), g.mean_value,
-                        sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z());
+            std::printf("  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "
+                        "centroid (%.3f, %.3f, %.3f) %s\n",
+                        g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
+                        with_unit(g.peak_depth, u, 1, "%+.4g").c_str(), g.max_value, sym.c_str(), g.mean_value,
+                        sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(), u.empty() ? "units" : u.c_str());
     }
+    for (const auto& w : r.units.warnings) std::printf("note: %s\n", w.c_str());
+    if (!r.swap_hint.empty()) std::printf("warning: %s\n", r.swap_hint.c_str());
     std::printf("%zu views in %.1f s (%s on %s); atlas, views, mosaics and report in %s\n", r.sweep.views.size(),
                 r.total_seconds, to_string(r.sweep.renderer.backend).c_str(), r.sweep.renderer.device_name.c_str(),
                 r.output.string().c_str());
@@ -62,6 +73,7 @@ void run(SweepArgs& a) {
         options.decision.threshold = c.threshold_deg;
     }
     options.exports.output = a.output;
+    options.exports.replace_existing = a.force;
     options.exports.write_views = !a.no_views;
     options.exports.write_exr = !a.no_exr;
     options.exports.command_line = global_flags().command_line;
@@ -106,7 +118,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--calibration", a.calibration, "calibration.json from glint calibrate: its zoom and threshold")
         ->excludes("--zoom")
         ->excludes("--threshold-deg");
+    add_unit_flags(*cmd, a.options.units);
     cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")->required();
+    cmd->add_flag("--force", a.force, "Replace an existing output folder (only once the new results are complete)");
     add_print_options_flag(*cmd, a.print);
     cmd->callback([] { run(a); });
 }

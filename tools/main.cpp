@@ -4,6 +4,7 @@
 #include "tools/command.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <csignal>
@@ -50,6 +51,59 @@ void add_registered_commands(CLI::App& app) {
 
 }  // namespace glint::cli
 
+namespace {
+
+using namespace glint::cli;
+
+// One line on stderr, "glint: <kind>: <message>"; with --json also {"error": …} on stdout, so
+// a script reading stdout learns why there is no result.
+int fail(int code, const std::string& kind, const std::string& message) {
+    std::cerr << "glint: " << kind << ": " << message << '\n';
+    if (global_flags().json)
+        std::cout << nlohmann::json{{"error", message}, {"kind", kind}, {"exit_code", code}}.dump() << '\n';
+    return code;
+}
+
+std::string command_list(CLI::App& app) {
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    return names;
+}
+
+// Looks at the words before CLI11 does: --json (so even a parse error is reported as JSON)
+// and the command word, which must name a command. Returns a message when it does not.
+std::string check_command_word(CLI::App& app, int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string word = argv[i];
+        if (word == "--json") {
+            global_flags().json = true;
+            continue;
+        }
+        if (word.starts_with("-")) continue;  // global flags, --help, --version: CLI11's
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
+            if (sub->check_name(word)) return "";
+        return "unknown command '" + word + "'; commands: " + command_list(app);
+    }
+    return "";
+}
+
+// CLI11's own errors ("EXA is required") in glint's one-line form, naming the command.
+int parse_failure(CLI::App& app, const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? kExitOk : kExitBadInput;  // --help, --version
+    const auto parsed = app.get_subcommands();
+    if (parsed.empty()) {
+        if (dynamic_cast<const CLI::RequiredError*>(&e))
+            return fail(kExitBadInput, "error", "a command is required; commands: " + command_list(app) +
+                                                    " (glint --help)");
+        return fail(kExitBadInput, "error", std::string(e.what()) + " (glint --help)");
+    }
+    const std::string name = parsed.front()->get_name();
+    return fail(kExitBadInput, "error", name + ": " + e.what() + " (glint " + name + " --help)");
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
     using namespace glint::cli;
     CLI::App app{"glint: finds damage on 3D surfaces by light-reflection analysis"};
@@ -58,36 +112,33 @@ int main(int argc, char** argv) {
     app.fallthrough();
     auto& flags = global_flags();
     app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
-    app.add_flag("--json", flags.json, "Machine-readable JSON on stdout");
+    app.add_flag("--json", flags.json, "Machine-readable JSON on stdout (errors too: {\"error\": …})");
     add_registered_commands(app);
     install_interrupt_handlers();
     for (int i = 0; i < argc; ++i) {
         if (i > 0) global_flags().command_line += ' ';
         global_flags().command_line += argv[i];
     }
+    if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty())
+        return fail(kExitBadInput, "error", unknown);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        const int code = app.exit(e);
-        return code == 0 ? kExitOk : kExitBadInput;
+        return parse_failure(app, e);
     } catch (const glint::Cancelled& e) {
-        std::cerr << "glint: interrupted: " << e.what() << '\n';
-        return kExitInterrupted;
+        return fail(kExitInterrupted, "interrupted", e.what());
     } catch (const CheckFailed& e) {
+        // The command printed its result (JSON too) before its checks failed: stderr only.
         std::cerr << "glint: check failed: " << e.what() << '\n';
         return kExitCheckFailed;
     } catch (const glint::InputError& e) {
-        std::cerr << "glint: error: " << e.what() << '\n';
-        return kExitBadInput;
+        return fail(kExitBadInput, "error", e.what());
     } catch (const glint::IoError& e) {
-        std::cerr << "glint: error: " << e.what() << '\n';
-        return kExitDeviceOrIo;
+        return fail(kExitDeviceOrIo, "error", e.what());
     } catch (const glint::DeviceError& e) {
-        std::cerr << "glint: device error: " << e.what() << '\n';
-        return kExitDeviceOrIo;
+        return fail(kExitDeviceOrIo, "device error", e.what());
     } catch (const std::exception& e) {
-        std::cerr << "glint: internal error: " << e.what() << '\n';
-        return kExitInternal;
+        return fail(kExitInternal, "internal error", e.what());
     }
     return kExitOk;
 }

@@ -56,7 +56,7 @@ bool is_volume_path(const fs::path& path) {
 
 Volume read_volume(const fs::path& path) {
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw IoError(quoted(path) + ": no such file or folder");
+    if (!fs::exists(path, ec)) throw InputError(quoted(path) + ": no such file or folder");
     detail::RawVolume raw = detail::itk_read(path);
     Volume v;
     v.path = path;

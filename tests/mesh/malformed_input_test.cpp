@@ -173,15 +173,17 @@ TEST(MalformedInput, RejectsEmptyFile) {
     EXPECT_CONTAINS(load_error<InputError>(path), "\"" + path.string() + "\": file is empty");
 }
 
-TEST(MalformedInput, RejectsADirectoryAsIoError) {
+// A wrong path is bad input (exit 2), like a malformed file; IoError (exit 3) is for a file
+// that exists but cannot be read.
+TEST(MalformedInput, RejectsADirectoryAsInputError) {
     const auto path = out_dir() / "a_folder.stl";
     fs::create_directories(path);
-    EXPECT_CONTAINS(load_error<IoError>(path), "\"" + path.string() + "\": is a folder");
+    EXPECT_CONTAINS(load_error<InputError>(path), "\"" + path.string() + "\": is a folder");
 }
 
-TEST(MalformedInput, RejectsAMissingFileAsIoError) {
+TEST(MalformedInput, RejectsAMissingFileAsInputError) {
     const auto path = out_dir() / "does_not_exist.ply";
-    EXPECT_CONTAINS(load_error<IoError>(path), "\"" + path.string() + "\": file not found");
+    EXPECT_CONTAINS(load_error<InputError>(path), "\"" + path.string() + "\": file not found");
 }
 
 TEST(MalformedInput, RejectsABinaryFileWithAnObjName) {

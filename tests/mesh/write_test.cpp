@@ -7,10 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -85,8 +89,92 @@ TEST(WriteVtk, RoundTripKeepsPositionsNormalsColoursScalarsAndLabels) {
     const auto path = out_dir() / "octahedron.vtk";
     write_vtk(in, path);
     const LoadedMesh loaded = load_mesh(path, kAsStored);
-    EXPECT_EQ(loaded.report.format, "vtk-binary");
-    expect_round_trip(in, loaded.mesh);
+    EXPECT_EQ(loaded.report.format, "vtk-ascii");  // CloudCompare refuses binary legacy VTK
+    expect_round_trip(in, loaded.mesh);           // shortest round-trip text: floats exact
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    std::ostringstream s;
+    s << file.rdbuf();
+    return s.str();
+}
+
+std::size_t count(const std::string& text, const std::string& part) {
+    std::size_t n = 0;
+    for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+    return n;
+}
+
+TEST(WriteVtk, EveryArrayHasItsOwnPointDataLineAndNaNIsANumber) {
+    // CloudCompare 2.11 reads one array per POINT_DATA line, VTK refuses a POINT_DATA inside
+    // point data but follows CELL_DATA and back; VTK's ASCII reader fails on "nan".
+    Mesh in = octahedron();
+    in.scalars[0].values[2] = std::numeric_limits<float>::quiet_NaN();
+    const auto path = out_dir() / "nan.vtk";
+    write_vtk(in, path, {.vtk_legacy_nan = -9999.0f});
+    const std::string text = read_text(path);
+    EXPECT_EQ(count(text, "POINT_DATA 6\n"), 5u);  // normals, colours, 2 scalars, labels
+    EXPECT_EQ(count(text, "CELL_DATA 0\nPOINT_DATA 6\n"), 4u);  // VTK's way back into point data
+    EXPECT_EQ(count(text, "nan"), 0u);
+    const LoadedMesh loaded = load_mesh(path, kAsStored);
+    EXPECT_EQ(loaded.mesh.find_scalar("damage")->values[2], -9999.0f);
+    EXPECT_EQ(loaded.mesh.find_scalar("damage")->values[1], 0.25f);
+}
+
+TEST(WritePly, AddsQualityForMeshLabAndScalarNamesForCloudCompare) {
+    Mesh in = octahedron();
+    in.scalars.erase(in.scalars.begin() + 1);  // no field named quality of its own
+    const auto path = out_dir() / "viewers.ply";
+    write_ply(in, path, {.quality_scalar = "damage", .cloudcompare_names = true});
+    const LoadedMesh loaded = load_mesh(path, kAsStored);
+    ASSERT_NE(loaded.mesh.find_scalar("quality"), nullptr);
+    ASSERT_NE(loaded.mesh.find_scalar("scalar_damage"), nullptr);
+    EXPECT_EQ(loaded.mesh.find_scalar("quality")->values, in.find_scalar("damage")->values);
+    EXPECT_EQ(loaded.mesh.find_scalar("scalar_damage")->values, in.find_scalar("damage")->values);
+    EXPECT_EQ(loaded.mesh.find_scalar("damage")->values, in.find_scalar("damage")->values);
+    EXPECT_THROW(write_ply(in, out_dir() / "bad_quality.ply", {.quality_scalar = "nope"}), InputError);
+}
+
+// Decodes the n-th inline binary DataArray of a .vtp as floats (after its UInt32 byte count).
+std::vector<float> vtp_floats(const std::string& xml, const std::string& name) {
+    const auto open = xml.find("Name=\"" + name + "\"");
+    const auto begin = xml.find('>', open) + 1;
+    const std::string b64 = xml.substr(begin, xml.find('<', begin) - begin);
+    std::string bytes;
+    int bits = 0, buffer = 0;
+    for (char c : b64) {
+        const auto at = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(c);
+        if (at == std::string::npos) break;
+        buffer = (buffer << 6) | static_cast<int>(at);
+        bits += 6;
+        if (bits >= 8) {
+            bits -= 8;
+            bytes.push_back(static_cast<char>((buffer >> bits) & 0xFF));
+        }
+    }
+    std::uint32_t size = 0;
+    std::memcpy(&size, bytes.data(), 4);
+    std::vector<float> out(size / 4);
+    std::memcpy(out.data(), bytes.data() + 4, size);
+    return out;
+}
+
+TEST(WriteVtp, ArraysAreExactIncludingNaN) {
+    Mesh in = octahedron();
+    in.scalars[0].values[2] = std::numeric_limits<float>::quiet_NaN();
+    const auto path = out_dir() / "octahedron.vtp";
+    write_vtp(in, path);
+    const std::string xml = read_text(path);
+    EXPECT_NE(xml.find("NumberOfPoints=\"6\""), std::string::npos);
+    EXPECT_NE(xml.find("NumberOfPolys=\"8\""), std::string::npos);
+    const auto damage = vtp_floats(xml, "damage");
+    ASSERT_EQ(damage.size(), 6u);
+    EXPECT_TRUE(std::isnan(damage[2]));
+    EXPECT_EQ(damage[5], 1e6f);
+    const auto points = vtp_floats(xml, "Points");
+    ASSERT_EQ(points.size(), 18u);
+    EXPECT_EQ(points[3], -1.0f);  // vertex 1 = (-1, 0, 0)
 }
 
 TEST(WriteMesh, ChoosesTheFormatByExtension) {
@@ -94,7 +182,7 @@ TEST(WriteMesh, ChoosesTheFormatByExtension) {
     write_mesh(in, out_dir() / "by_ext.PLY");
     write_mesh(in, out_dir() / "by_ext.vtk");
     EXPECT_EQ(load_mesh(out_dir() / "by_ext.PLY").report.format, "ply-binary-le");
-    EXPECT_EQ(load_mesh(out_dir() / "by_ext.vtk").report.format, "vtk-binary");
+    EXPECT_EQ(load_mesh(out_dir() / "by_ext.vtk").report.format, "vtk-ascii");
     EXPECT_THROW(write_mesh(in, out_dir() / "by_ext.stl"), InputError);
 }
 

@@ -42,7 +42,7 @@ TEST(OutputFolder, InterruptedRunLeavesNothingAndKeepsThePreviousResults) {
         first.commit();
     }
     try {
-        OutputFolder second(dir / "atlas");
+        OutputFolder second(dir / "atlas", /*replace_existing=*/true);
         write_file_atomically(second.file("report.json"), "new, half done");
         throw IoError("simulated interruption");
     } catch (const IoError&) {
@@ -54,10 +54,27 @@ TEST(OutputFolder, InterruptedRunLeavesNothingAndKeepsThePreviousResults) {
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }
 
+TEST(OutputFolder, RefusesAnExistingFolderUnlessAllowedToReplaceIt) {
+    const fs::path dir = base("refuse");
+    {
+        OutputFolder first(dir / "atlas");
+        write_file_atomically(first.file("report.json"), "one");
+        first.commit();
+    }
+    try {
+        OutputFolder second(dir / "atlas");
+        FAIL() << "an existing output folder was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("exists; give --force"), std::string::npos) << e.what();
+    }
+    // Nothing was staged beside it.
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
 TEST(OutputFolder, ReplacesAnEarlierRunOnCommit) {
     const fs::path dir = base("replace");
     for (const char* content : {"one", "two"}) {
-        OutputFolder out(dir / "atlas");
+        OutputFolder out(dir / "atlas", /*replace_existing=*/true);
         write_file_atomically(out.file("report.json"), content);
         out.commit();
     }

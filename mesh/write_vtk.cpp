@@ -1,0 +1,193 @@
+// VTK writers (mesh/write.h): legacy ASCII for every viewer, XML PolyData for exact values.
+//
+// note: the legacy layout is shaped by two readers. CloudCompare 2.11's (qCC_io VTKFilter)
+// refuses BINARY files, and every NORMALS / COLOR_SCALARS / SCALARS block consumes the size
+// set by the POINT_DATA line before it: without a POINT_DATA line of its own, each array
+// after the first is refused as "malformed". VTK's (ParaView, 3D Slicer) refuses a second
+// POINT_DATA line inside point data ("Unsupported point attribute type") but follows a switch
+// to CELL_DATA and back. So arrays after the first are introduced by "CELL_DATA 0" (an empty
+// cell section: VTK reads nothing, CloudCompare skips 0 lines) and "POINT_DATA n"; both
+// programs were checked to read every array (tests/tools/viewers_test.sh). VTK's legacy
+// ASCII reader parses numbers with operator>>, which fails on "nan": NaN becomes a finite
+// number there (WriteOptions::vtk_legacy_nan).
+#include "mesh/write.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/detail/write_common.h"
+
+#include <bit>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+using detail::check_sizes;
+using detail::safe_name;
+
+namespace {
+
+// Shortest text that reads back as the same float (std::to_chars round-trips).
+void append_number(std::string& out, float v) {
+    char buf[32];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+}
+
+void append_number(std::string& out, std::int64_t v) {
+    char buf[24];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v);
+    out.append(buf, r.ptr);
+}
+
+// Values, `per_line` to a line.
+void append_floats(std::string& out, const float* values, std::size_t count, std::size_t per_line, float nan_as) {
+    for (std::size_t i = 0; i < count; ++i) {
+        append_number(out, std::isnan(values[i]) ? nan_as : values[i]);
+        out.push_back((i + 1) % per_line == 0 || i + 1 == count ? '\n' : ' ');
+    }
+}
+
+}  // namespace
+
+void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
+    check_sizes(mesh, path);
+    const std::size_t n = mesh.positions.size();
+    const bool normals = options.write_normals && mesh.has_normals();
+    const bool colors = options.write_colors && mesh.colors.size() == n && n > 0;
+    const bool labels = options.write_labels && mesh.labels.size() == n && n > 0;
+    const bool scalars = options.write_scalars && !mesh.scalars.empty();
+    const float nan_as = options.vtk_legacy_nan;
+    // The first array opens point data; every later one re-opens it (see the note above).
+    std::string point_data = "POINT_DATA " + std::to_string(n) + "\n";
+    auto open_array = [&](std::string& text) {
+        text += point_data;
+        point_data = "CELL_DATA 0\nPOINT_DATA " + std::to_string(n) + "\n";
+    };
+
+    std::string out;
+    out.reserve(n * (40 + (scalars ? 10 * mesh.scalars.size() : 0)) + 16 * mesh.triangles.size());
+    out += "# vtk DataFile Version 3.0\nglint mesh" + (mesh.unit.empty() ? std::string() : " unit " + mesh.unit) +
+           "\nASCII\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " float\n";
+    append_floats(out, mesh.positions.empty() ? nullptr : mesh.positions[0].data(), 3 * n, 3, nan_as);
+    out += "POLYGONS " + std::to_string(mesh.triangles.size()) + " " + std::to_string(4 * mesh.triangles.size()) + "\n";
+    for (const auto& t : mesh.triangles) {
+        out += "3";
+        for (auto i : t) {
+            out.push_back(' ');
+            append_number(out, static_cast<std::int64_t>(i));
+        }
+        out.push_back('\n');
+    }
+    if (normals) {
+        open_array(out);
+        out += "NORMALS Normals float\n";
+        append_floats(out, mesh.normals[0].data(), 3 * n, 3, 0.0f);
+    }
+    if (colors) {
+        open_array(out);
+        out += "COLOR_SCALARS rgb 3\n";  // ASCII colour scalars are floats in [0, 1]
+        std::vector<float> c(3 * n);
+        for (std::size_t v = 0; v < n; ++v)
+            for (int k = 0; k < 3; ++k) c[3 * v + static_cast<std::size_t>(k)] = mesh.colors[v][static_cast<std::size_t>(k)] / 255.0f;
+        append_floats(out, c.data(), c.size(), 3, 0.0f);
+    }
+    if (scalars)
+        for (const auto& f : mesh.scalars) {
+            open_array(out);
+            out += "SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n";
+            append_floats(out, f.values.data(), n, 9, nan_as);
+        }
+    if (labels) {
+        open_array(out);
+        out += "SCALARS label int 1\nLOOKUP_TABLE default\n";
+        for (std::size_t v = 0; v < n; ++v) {
+            append_number(out, static_cast<std::int64_t>(mesh.labels[v]));
+            out.push_back((v + 1) % 9 == 0 || v + 1 == n ? '\n' : ' ');
+        }
+    }
+    write_atomically(path, [&](std::ostream& s) { s.write(out.data(), static_cast<std::streamsize>(out.size())); });
+}
+
+namespace {
+
+// RFC 4648 base64 (VTK XML "binary" arrays).
+void append_base64(std::string& out, const std::string& bytes) {
+    static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const auto a = static_cast<std::uint8_t>(bytes[i]), b = static_cast<std::uint8_t>(bytes[i + 1]),
+                   c = static_cast<std::uint8_t>(bytes[i + 2]);
+        out += {kAlphabet[a >> 2], kAlphabet[((a & 3) << 4) | (b >> 4)], kAlphabet[((b & 15) << 2) | (c >> 6)],
+                kAlphabet[c & 63]};
+    }
+    if (i + 1 == bytes.size()) {
+        const auto a = static_cast<std::uint8_t>(bytes[i]);
+        out += {kAlphabet[a >> 2], kAlphabet[(a & 3) << 4], '=', '='};
+    } else if (i + 2 == bytes.size()) {
+        const auto a = static_cast<std::uint8_t>(bytes[i]), b = static_cast<std::uint8_t>(bytes[i + 1]);
+        out += {kAlphabet[a >> 2], kAlphabet[((a & 3) << 4) | (b >> 4)], kAlphabet[(b & 15) << 2], '='};
+    }
+}
+
+// One inline binary DataArray: base64 of a UInt32 byte count followed by the raw values
+// (little endian: the machines glint runs on, checked below).
+template <class T>
+void append_array(std::string& out, const char* type, const std::string& name, int components, const T* values,
+                  std::size_t count) {
+    static_assert(std::endian::native == std::endian::little, "VTP arrays are written as LittleEndian");
+    const auto bytes = static_cast<std::uint32_t>(count * sizeof(T));
+    std::string raw(sizeof bytes + bytes, '\0');
+    std::memcpy(raw.data(), &bytes, sizeof bytes);
+    if (count > 0) std::memcpy(raw.data() + sizeof bytes, values, bytes);
+    out += std::string("        <DataArray type=\"") + type + "\"" + (name.empty() ? "" : " Name=\"" + name + "\"") +
+           " NumberOfComponents=\"" + std::to_string(components) + "\" format=\"binary\">";
+    append_base64(out, raw);
+    out += "</DataArray>\n";
+}
+
+}  // namespace
+
+void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
+    check_sizes(mesh, path);
+    const std::size_t n = mesh.positions.size();
+    const std::size_t t = mesh.triangles.size();
+    const bool normals = options.write_normals && mesh.has_normals();
+    const bool colors = options.write_colors && mesh.colors.size() == n && n > 0;
+    const bool labels = options.write_labels && mesh.labels.size() == n && n > 0;
+    const bool scalars = options.write_scalars && !mesh.scalars.empty();
+
+    std::string out = "<?xml version=\"1.0\"?>\n";
+    if (!mesh.unit.empty()) out += "<!-- unit " + mesh.unit + " -->\n";
+    out += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
+           "  <PolyData>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
+           "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" + std::to_string(t) + "\">\n";
+    out += "      <PointData";
+    if (scalars) out += " Scalars=\"" + safe_name(mesh.scalars.front().name) + "\"";
+    if (normals) out += " Normals=\"Normals\"";
+    out += ">\n";
+    if (normals) append_array(out, "Float32", "Normals", 3, mesh.normals[0].data(), 3 * n);
+    if (colors) append_array(out, "UInt8", "rgb", 3, mesh.colors[0].data(), 3 * n);
+    if (scalars)
+        for (const auto& f : mesh.scalars) append_array(out, "Float32", safe_name(f.name), 1, f.values.data(), n);
+    if (labels) append_array(out, "Int32", "label", 1, mesh.labels.data(), n);
+    out += "      </PointData>\n      <Points>\n";
+    append_array(out, "Float32", "Points", 3, n > 0 ? mesh.positions[0].data() : nullptr, 3 * n);
+    out += "      </Points>\n      <Polys>\n";
+    std::vector<std::int32_t> connectivity(3 * t), offsets(t);
+    for (std::size_t i = 0; i < t; ++i) {
+        for (std::size_t k = 0; k < 3; ++k) connectivity[3 * i + k] = static_cast<std::int32_t>(mesh.triangles[i][k]);
+        offsets[i] = static_cast<std::int32_t>(3 * (i + 1));
+    }
+    append_array(out, "Int32", "connectivity", 1, connectivity.data(), connectivity.size());
+    append_array(out, "Int32", "offsets", 1, offsets.data(), offsets.size());
+    out += "      </Polys>\n    </Piece>\n  </PolyData>\n</VTKFile>\n";
+    write_atomically(path, [&](std::ostream& s) { s.write(out.data(), static_cast<std::streamsize>(out.size())); });
+}
+
+}  // namespace glint
