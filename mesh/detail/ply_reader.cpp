@@ -102,8 +102,8 @@ std::int64_t load_int(const char* p, Type t) {
         case Type::UInt16: return load<std::uint16_t, Swap>(p);
         case Type::Int32: return load<std::int32_t, Swap>(p);
         case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return static_cast<std::int64_t>(load<float, Swap>(p));
-        case Type::Float64: return static_cast<std::int64_t>(load<double, Swap>(p));
+        case Type::Float32: return clamp_to<std::int64_t>(load<float, Swap>(p));
+        case Type::Float64: return clamp_to<std::int64_t>(load<double, Swap>(p));
     }
     return 0;
 }
@@ -129,7 +129,7 @@ struct Builder {
             case Target::Red: mesh.colors[v][0] = color_byte(p.type, value); break;
             case Target::Green: mesh.colors[v][1] = color_byte(p.type, value); break;
             case Target::Blue: mesh.colors[v][2] = color_byte(p.type, value); break;
-            case Target::Label: mesh.labels[v] = static_cast<std::int32_t>(value); break;
+            case Target::Label: mesh.labels[v] = clamp_to<std::int32_t>(value); break;
             case Target::Scalar:
                 mesh.scalars[p.scalar_index].values[v] = static_cast<float>(value);
                 break;
@@ -557,7 +557,7 @@ private:
                         if (idx != std::floor(idx))
                             fail_line(line_, "PLY face " + std::to_string(item) + ": index " +
                                                  std::to_string(idx) + " is not an integer");
-                        corners.push_back(static_cast<std::int64_t>(idx));
+                        corners.push_back(clamp_to<std::int64_t>(idx));
                     }
                 }
                 if (keep)

@@ -9,6 +9,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -37,6 +38,19 @@ T load_bytes(const char* p) {
         }
         return std::bit_cast<T>(u);
     }
+}
+
+/// `v` converted to an integer type, clamped to its range (NaN gives 0): a file's value
+/// outside the range must not be undefined behaviour; the reader reports it as an index or
+/// label that is out of range instead.
+template <class Int>
+Int clamp_to(double v) {
+    constexpr double lo = static_cast<double>(std::numeric_limits<Int>::min());
+    constexpr double hi = static_cast<double>(std::numeric_limits<Int>::max());
+    if (!(v == v)) return 0;
+    if (v <= lo) return std::numeric_limits<Int>::min();
+    if (v >= hi) return std::numeric_limits<Int>::max();
+    return static_cast<Int>(v);
 }
 
 /// The line of `data` starting at `pos` (without '\n' and a trailing '\r'); advances `pos`

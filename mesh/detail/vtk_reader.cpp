@@ -326,7 +326,7 @@ private:
         guard_count(count, t, what);
         std::vector<std::int64_t> out(static_cast<std::size_t>(count));
         read_values(count, t, what, [&](std::size_t i, double v) {
-            out[i] = static_cast<std::int64_t>(v);
+            out[i] = clamp_to<std::int64_t>(v);
         });
         return out;
     }
@@ -539,7 +539,7 @@ private:
         if (name == "label" && is_integer(t)) {
             mesh_.labels.assign(static_cast<std::size_t>(tuples), 0);
             read_values(tuples, t, what, [&](std::size_t i, double v) {
-                mesh_.labels[i] = static_cast<std::int32_t>(v);
+                mesh_.labels[i] = clamp_to<std::int32_t>(v);
             });
             return;
         }
