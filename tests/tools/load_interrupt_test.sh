@@ -18,8 +18,16 @@ truncate -s +64G "$slow"
 
 "$glint" --quiet sweep "$slow" "$work/ref.ply" --size 32 -o "$work/atlas" 2>"$work/stderr.txt" &
 pid=$!
-sleep 1
+# Signal once the load has begun: the file is mapped (glint's handlers are installed before
+# any command runs). Start-up alone can take a second on a loaded machine.
+for _ in $(seq 1 300); do
+  grep -q "slow.ply" "/proc/$pid/maps" 2>/dev/null && break
+  kill -0 "$pid" 2>/dev/null || break
+  sleep 0.1
+done
+sleep 0.2
 kill -0 "$pid" 2>/dev/null || { cat "$work/stderr.txt"; echo "FAIL: glint ended before the signal (the load was not slow)"; exit 1; }
+grep -q "slow.ply" "/proc/$pid/maps" || { kill -KILL "$pid"; echo "FAIL: glint did not start loading within 30 s"; exit 1; }
 start=$(date +%s%N)
 kill -TERM "$pid"
 set +e
