@@ -183,3 +183,17 @@ TEST(HostileInput, LoadingStopsWhenCancelled) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Found by fuzz/fuzz_off (libFuzzer timeout: assimp read "2222222222222222" glued to "OFF"
+// as the vertex count and ran for minutes).
+TEST(HostileInput, RefusesOffCountGluedToTheKeyword) {
+    const std::string bytes("OFF2222222222222222\n3 1\x0c\x0c\x0c 0\n0-  1 0 p 0 25z#502 \xff\xff\xffz q", 55);
+    const auto path = test::write_bytes(test::output_dir("hostile_input_test"), "glued.off", bytes);
+    EXPECT_CONTAINS(load_error<InputError>(path), "OFF vertex list declares 2222222222222222 items");
+}
+
+}  // namespace
+}  // namespace glint
