@@ -15,6 +15,13 @@ if(GLINT_SANITIZE)
                                                  -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
   target_link_options(glint_options INTERFACE -fsanitize=address,undefined)
 endif()
+if(GLINT_FUZZ)
+  # note: coverage instrumentation for libFuzzer on every library; the harnesses in fuzz/
+  # add -fsanitize=fuzzer at link time (libFuzzer's main).
+  target_compile_options(glint_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined
+                                                 -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  target_link_options(glint_options INTERFACE -fsanitize=address,undefined)
+endif()
 
 # glint_module(NAME sources...): a library target glint_NAME with the repo root as include root.
 function(glint_module name)

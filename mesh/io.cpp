@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/detail/assimp_reader.h"
 #include "mesh/detail/ply_reader.h"
+#include "mesh/detail/scene_check.h"
 #include "mesh/detail/stl_reader.h"
 #include "mesh/detail/vtk_reader.h"
 #include "mesh/error.h"
@@ -12,6 +13,7 @@
 #include "mesh/weld.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cerrno>
@@ -32,6 +34,8 @@ namespace glint {
 namespace fs = std::filesystem;
 
 namespace {
+
+std::atomic<std::uint64_t> g_default_max_triangles{kDefaultMaxTriangles};
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
@@ -189,10 +193,12 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
 // note: assimp 5.2 loops forever on a PLY without "end_header", crashes in Triangulate on a
 // PLY whose header overstates its counts, and silently accepts truncated bodies. Before a PLY
 // or STL goes to assimp, our own reader checks it and throws the precise error.
-void validate_with_own_reader(Mesh (*reader)(std::span<const char>, const std::string&, LoadReport&),
-                              std::span<const char> bytes, const std::string& source) {
+void validate_with_own_reader(Mesh (*reader)(std::span<const char>, const std::string&, LoadReport&,
+                                             const LoadOptions&),
+                              std::span<const char> bytes, const std::string& source,
+                              const LoadOptions& options) {
     LoadReport scratch;
-    (void)reader(bytes, source, scratch);
+    (void)reader(bytes, source, scratch, options);
 }
 
 LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fast) {
@@ -211,25 +217,25 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
                 throw InputError(quoted(source) + ": does not start with \"ply\", not a PLY file");
             if (allow_fast) {
                 loaded.report.reader = MeshReader::FastPly;
-                loaded.mesh = detail::read_ply(bytes, source, loaded.report);
+                loaded.mesh = detail::read_ply(bytes, source, loaded.report, options);
             } else {
-                validate_with_own_reader(detail::read_ply, bytes, source);
-                loaded.mesh = detail::read_assimp(path, source, loaded.report);
+                validate_with_own_reader(detail::read_ply, bytes, source, options);
+                loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             }
             break;
         case Format::Stl:
             if (allow_fast) {
                 loaded.report.reader = MeshReader::FastStl;
-                loaded.mesh = detail::read_stl(bytes, source, loaded.report);
+                loaded.mesh = detail::read_stl(bytes, source, loaded.report, options);
             } else {
-                validate_with_own_reader(detail::read_stl, bytes, source);
-                loaded.mesh = detail::read_assimp(path, source, loaded.report);
+                validate_with_own_reader(detail::read_stl, bytes, source, options);
+                loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             }
             break;
         case Format::Vtk:
             // note: assimp has no VTK reader, so load_mesh_assimp uses ours too.
             loaded.report.reader = MeshReader::Vtk;
-            loaded.mesh = detail::read_vtk(bytes, source, loaded.report);
+            loaded.mesh = detail::read_vtk(bytes, source, loaded.report, options);
             break;
         case Format::AssimpText: {
             const std::size_t bad = first_binary_byte(data);
@@ -240,11 +246,13 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
                                  ", binary content in a " + ext.substr(1) +
                                  " file, which is a text format");
             }
-            loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            detail::check_before_assimp(data, ext, source, options.max_triangles);
+            loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             break;
         }
         case Format::AssimpBinary:
-            loaded.mesh = detail::read_assimp(path, source, loaded.report);
+            detail::check_before_assimp(data, ext, source, options.max_triangles);
+            loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             break;
         case Format::Unknown:
             throw InputError(quoted(source) + ": unknown mesh format (no extension and no known "
@@ -259,6 +267,12 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
 }
 
 }  // namespace
+
+std::uint64_t default_max_triangles() noexcept { return g_default_max_triangles.load(); }
+
+void set_default_max_triangles(std::uint64_t max_triangles) noexcept {
+    g_default_max_triangles.store(max_triangles);
+}
 
 LoadedMesh load_mesh(const fs::path& path, const LoadOptions& options) {
     return load(path, options, options.allow_fast_path);

@@ -8,6 +8,7 @@
 
 #include "mesh/mesh.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,6 +36,14 @@ struct LoadReport {
     std::vector<std::string> warnings;     ///< anything else the reader noticed
 };
 
+/// The triangle budget a LoadOptions starts with: 50 million triangles (about 2.4 GB once
+/// loaded with normals and welding tables), unless changed by set_default_max_triangles()
+/// (the CLI's --max-triangles).
+inline constexpr std::uint64_t kDefaultMaxTriangles = 50'000'000;
+[[nodiscard]] std::uint64_t default_max_triangles() noexcept;
+/// Sets the budget later LoadOptions start with (process-wide; the CLI sets it once).
+void set_default_max_triangles(std::uint64_t max_triangles) noexcept;
+
 struct LoadOptions {
     bool weld = true;                   ///< merge vertices with identical positions
     bool drop_degenerate = true;        ///< drop triangles with a repeated vertex / zero area
@@ -43,6 +52,9 @@ struct LoadOptions {
     bool compute_normals = true;        ///< angle-weighted vertex normals
     bool allow_fast_path = true;        ///< our own binary PLY / STL readers
     bool allow_points_only = false;     ///< accept a file without triangles (point cloud)
+    /// Refuse a file with more triangles than this (as stored, after fan-splitting polygons
+    /// and expanding scene instances), before reading its bulk where the format states counts.
+    std::uint64_t max_triangles = default_max_triangles();
 };
 
 struct LoadedMesh {
@@ -55,7 +67,10 @@ struct LoadedMesh {
 /// \throw InputError missing file or a folder (bad input, like malformed content)
 /// \throw IoError unreadable file
 /// \throw InputError malformed or inconsistent content (message names file and line/element),
-///        non-finite coordinates, index out of range, no triangles (unless allow_points_only)
+///        non-finite coordinates, index out of range, no triangles (unless allow_points_only),
+///        a count the file's size cannot hold, more than options.max_triangles triangles, a
+///        glTF node graph nested deeper than 64 or expanding to too many instances
+/// \throw Cancelled SIGINT / SIGTERM arrived while reading (mesh/cancel.h)
 [[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path, const LoadOptions& options = {});
 
 /// Loads with assimp only (no fast path); used to cross-check the fast readers.

@@ -81,7 +81,14 @@ Rigid read_fit(const std::string& path) {
     for (int r = 0; r < 4; ++r) {
         if (!m[static_cast<std::size_t>(r)].is_array() || m[static_cast<std::size_t>(r)].size() != 4)
             throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) + " of reference_from_examined is not 4 numbers");
-        for (int c = 0; c < 4; ++c) t(r, c) = m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].get<double>();
+        for (int c = 0; c < 4; ++c) {
+            // note: a non-number here threw nlohmann's type_error (exit 4); found by fuzz/fuzz_fit.
+            const auto& v = m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
+            if (!v.is_number())
+                throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) + " of reference_from_examined: entry " +
+                                 std::to_string(c + 1) + " is " + v.type_name() + ", expected a number");
+            t(r, c) = v.get<double>();
+        }
     }
     const Eigen::Matrix3d rot = t.linear();
     // note: 1e-6 tolerates the rounding of a matrix printed with ~10 digits.

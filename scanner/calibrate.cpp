@@ -85,13 +85,20 @@ Calibration read_calibration(const std::filesystem::path& path) {
     if (!j.contains("glint_calibration"))
         throw InputError("calibration \"" + path.string() + "\": not a glint calibration (written by glint calibrate)");
     Calibration c;
-    c.found = j.value("found", false);
-    if (!c.found || !j["footprint"].is_number())
-        throw InputError("calibration \"" + path.string() +
-                         "\": found no footprint that hides the referential deformation; widen the ladder");
-    c.footprint = j["footprint"].get<double>();
-    c.threshold_deg = j.at("threshold_deg").get<double>();
-    c.referential = j.value("referential", "");
+    // note: a value of the wrong type or a missing key is bad input, not an internal error
+    // (found by fuzz/fuzz_calibration).
+    try {
+        c.found = j.value("found", false);
+        if (!c.found || !j["footprint"].is_number())
+            throw InputError("calibration \"" + path.string() +
+                             "\": found no footprint that hides the referential deformation; widen the ladder");
+        c.footprint = j["footprint"].get<double>();
+        c.threshold_deg = j.at("threshold_deg").get<double>();
+        c.referential = j.value("referential", "");
+    } catch (const nlohmann::json::exception& e) {
+        throw InputError("calibration \"" + path.string() + "\": " + e.what() +
+                         ", expected found (bool), footprint and threshold_deg (numbers), referential (text)");
+    }
     return c;
 }
 

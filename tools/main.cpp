@@ -1,6 +1,7 @@
 // glint: damage detection on 3D surfaces by light-reflection analysis.
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/io.h"
 #include "tools/command.h"
 
 #include <CLI/CLI.hpp>
@@ -8,6 +9,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <cstdint>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -113,6 +115,13 @@ int main(int argc, char** argv) {
     auto& flags = global_flags();
     app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
     app.add_flag("--json", flags.json, "Machine-readable JSON on stdout (errors too: {\"error\": …})");
+    // note: a global option (fallthrough lets it follow any subcommand); it sets the budget
+    // of every mesh load, scenarios' included, before any command runs.
+    app.add_option_function<std::uint64_t>(
+           "--max-triangles", [](const std::uint64_t& n) { glint::set_default_max_triangles(n); },
+           "Refuse meshes with more triangles than this (default " +
+               std::to_string(glint::kDefaultMaxTriangles) + ")")
+        ->check(CLI::PositiveNumber);
     add_registered_commands(app);
     install_interrupt_handlers();
     for (int i = 0; i < argc; ++i) {

@@ -1,5 +1,6 @@
 #include "mesh/detail/assimp_reader.h"
 
+#include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
 #include <assimp/Importer.hpp>
@@ -32,16 +33,32 @@ struct Collector {
     bool colors_seen = false;
     bool normals_missing = false;
 
-    void add_node(const aiNode* node, const aiMatrix4x4& parent) {
-        const aiMatrix4x4 world = parent * node->mTransformation;
-        aiMatrix3x3 normal_matrix(world);
-        normal_matrix.Inverse().Transpose();
-        for (unsigned m = 0; m < node->mNumMeshes; ++m)
-            add_mesh(scene->mMeshes[node->mMeshes[m]], world, normal_matrix);
-        for (unsigned c = 0; c < node->mNumChildren; ++c) add_node(node->mChildren[c], world);
+    std::string source;
+    std::uint64_t max_triangles = 0;
+
+    // Walks the node tree with an explicit stack (a deep tree must not overflow ours).
+    void add_nodes(const aiNode* root) {
+        std::vector<std::pair<const aiNode*, aiMatrix4x4>> stack{{root, aiMatrix4x4()}};
+        std::uint64_t visited = 0;
+        while (!stack.empty()) {
+            poll_cancel(++visited);
+            const auto [node, parent] = stack.back();
+            stack.pop_back();
+            const aiMatrix4x4 world = parent * node->mTransformation;
+            aiMatrix3x3 normal_matrix(world);
+            normal_matrix.Inverse().Transpose();
+            for (unsigned m = 0; m < node->mNumMeshes; ++m)
+                if (node->mMeshes[m] < scene->mNumMeshes)
+                    add_mesh(scene->mMeshes[node->mMeshes[m]], world, normal_matrix);
+            for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
+        }
     }
 
     void add_mesh(const aiMesh* in, const aiMatrix4x4& world, const aiMatrix3x3& normal_matrix) {
+        std::uint64_t faces = in->mNumFaces;
+        check_triangle_budget(mesh.triangles.size() + faces, max_triangles, source,
+                              "the scene's meshes add up to at least");
+        throw_if_cancelled();
         const auto base = static_cast<std::uint32_t>(mesh.positions.size());
         const bool has_normals = in->HasNormals();
         for (unsigned v = 0; v < in->mNumVertices; ++v) {
@@ -73,6 +90,9 @@ struct Collector {
             }
             // note: aiProcess_Triangulate leaves only triangles among faces with >= 3 corners;
             // fan-split anyway so a file assimp did not triangulate cannot lose faces.
+            if (face.mNumIndices > 3)
+                check_triangle_budget(mesh.triangles.size() + face.mNumIndices - 2, max_triangles, source,
+                                      "the scene's polygons split into at least");
             for (unsigned k = 2; k < face.mNumIndices; ++k)
                 mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[k - 1],
                                           base + face.mIndices[k]});
@@ -102,7 +122,8 @@ void note_missing_mtl(const std::filesystem::path& path, LoadReport& report) {
 
 }  // namespace
 
-Mesh read_assimp(const std::filesystem::path& path, const std::string& source, LoadReport& report) {
+Mesh read_assimp(const std::filesystem::path& path, const std::string& source, LoadReport& report,
+                 const LoadOptions& options) {
     Assimp::Importer importer;
     // note: ValidateDataStructure runs before Triangulate and rejects out-of-range indices;
     // without it assimp 5.2 crashes inside Triangulate on a PLY whose header lies about counts.
@@ -118,7 +139,9 @@ Mesh read_assimp(const std::filesystem::path& path, const std::string& source, L
 
     Collector c;
     c.scene = scene;
-    c.add_node(scene->mRootNode, aiMatrix4x4());
+    c.source = source;
+    c.max_triangles = options.max_triangles;
+    c.add_nodes(scene->mRootNode);
     if (c.normals_missing || c.mesh.normals.size() != c.mesh.positions.size()) c.mesh.normals.clear();
     if (c.colors_seen) c.mesh.colors.resize(c.mesh.positions.size(), Rgb8{0, 0, 0});
     if (c.skipped_primitives > 0)

@@ -16,7 +16,9 @@ namespace glint::detail {
 /// Reads `path` with assimp. `source` names the file in messages.
 /// Fills report.format (the lower-case extension), file_vertices, file_triangles, warnings.
 /// \throw InputError assimp's own message when it cannot read the file
+/// Triangles beyond options.max_triangles are refused; cancellation is polled between meshes
+/// (not inside assimp's own import: callers check the file first, see scene_check.h).
 [[nodiscard]] Mesh read_assimp(const std::filesystem::path& path, const std::string& source,
-                               LoadReport& report);
+                               LoadReport& report, const LoadOptions& options = {});
 
 }  // namespace glint::detail

@@ -1,5 +1,6 @@
 #include "mesh/detail/ply_reader.h"
 
+#include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -71,28 +72,9 @@ enum class Encoding { Ascii, BinaryLe, BinaryBe };
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
-template <class U>
-U byteswap_uint(U v) {
-    if constexpr (sizeof(U) == 2) return static_cast<U>(__builtin_bswap16(v));
-    if constexpr (sizeof(U) == 4) return __builtin_bswap32(v);
-    if constexpr (sizeof(U) == 8) return __builtin_bswap64(v);
-    return v;
-}
-
 template <class T, bool Swap>
 T load(const char* p) {
-    if constexpr (sizeof(T) == 1) {
-        T v;
-        std::memcpy(&v, p, 1);
-        return v;
-    } else {
-        using U = std::conditional_t<sizeof(T) == 2, std::uint16_t,
-                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
-        U u;
-        std::memcpy(&u, p, sizeof(U));
-        if constexpr (Swap) u = byteswap_uint(u);
-        return std::bit_cast<T>(u);
-    }
+    return load_bytes<T, Swap>(p);
 }
 
 template <bool Swap>
@@ -120,8 +102,8 @@ std::int64_t load_int(const char* p, Type t) {
         case Type::UInt16: return load<std::uint16_t, Swap>(p);
         case Type::Int32: return load<std::int32_t, Swap>(p);
         case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return static_cast<std::int64_t>(load<float, Swap>(p));
-        case Type::Float64: return static_cast<std::int64_t>(load<double, Swap>(p));
+        case Type::Float32: return clamp_to<std::int64_t>(load<float, Swap>(p));
+        case Type::Float64: return clamp_to<std::int64_t>(load<double, Swap>(p));
     }
     return 0;
 }
@@ -147,7 +129,7 @@ struct Builder {
             case Target::Red: mesh.colors[v][0] = color_byte(p.type, value); break;
             case Target::Green: mesh.colors[v][1] = color_byte(p.type, value); break;
             case Target::Blue: mesh.colors[v][2] = color_byte(p.type, value); break;
-            case Target::Label: mesh.labels[v] = static_cast<std::int32_t>(value); break;
+            case Target::Label: mesh.labels[v] = clamp_to<std::int32_t>(value); break;
             case Target::Scalar:
                 mesh.scalars[p.scalar_index].values[v] = static_cast<float>(value);
                 break;
@@ -165,14 +147,16 @@ struct Builder {
 
 class PlyParser {
 public:
-    PlyParser(std::span<const char> data, const std::string& source, LoadReport& report)
-        : data_(data), source_(source), report_(report) {}
+    PlyParser(std::span<const char> data, const std::string& source, LoadReport& report,
+              std::uint64_t max_triangles)
+        : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
 
     Mesh parse() {
         parse_header();
         setup_targets();
         for (std::size_t e = 0; e < elements_.size(); ++e) {
             const Element& el = elements_[e];
+            check_element_fits(el);
             const bool is_vertex = static_cast<std::ptrdiff_t>(e) == vertex_element_;
             const bool is_face = static_cast<std::ptrdiff_t>(e) == face_element_;
             switch (encoding_) {
@@ -193,29 +177,40 @@ private:
         throw InputError(quoted(source_) + ": line " + std::to_string(line) + ": " + what);
     }
 
+    // The fewest bytes one item of `el` can take: its fixed-size properties plus each list's
+    // count in binary; in ASCII a value and a separator ("0 ") per property.
+    [[nodiscard]] std::uint64_t min_item_bytes(const Element& el) const {
+        if (encoding_ == Encoding::Ascii) return 2 * el.properties.size();
+        std::uint64_t bytes = 0;
+        for (const auto& p : el.properties) bytes += p.is_list ? size_of(p.count_type) : size_of(p.type);
+        return bytes;
+    }
+
+    // A count the rest of the file cannot hold is refused before any allocation or loop
+    // (an item without properties counts one byte: 2^63 empty items are refused, not looped).
+    // note: the last ASCII value of the file may lack its separator, hence one byte of slack.
+    void check_element_fits(const Element& el) const {
+        const std::uint64_t left = data_.size() - std::min(body_, data_.size());
+        check_count_fits(el.count, min_item_bytes(el), left + (encoding_ == Encoding::Ascii ? 1 : 0),
+                         source_, "PLY element \"" + el.name + "\"");
+    }
+
     // ---- header -------------------------------------------------------------------------
 
     void parse_header() {
         std::size_t pos = 0;
         std::size_t line_no = 0;
         bool has_format = false;
-        auto next_line = [&](std::string_view& line) {
-            if (pos >= data_.size()) return false;
-            const char* begin = data_.data() + pos;
-            const void* nl = std::memchr(begin, '\n', data_.size() - pos);
-            const std::size_t len = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin)
-                                       : data_.size() - pos;
-            line = std::string_view(begin, len);
-            if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-            pos += len + (nl ? 1 : 0);
+        auto next_header_line = [&](std::string_view& line) {
+            if (!next_line(data_, pos, line)) return false;
             ++line_no;
             return true;
         };
         std::string_view line;
-        if (!next_line(line) || line != "ply") fail("does not start with \"ply\", not a PLY file");
+        if (!next_header_line(line) || line != "ply") fail("does not start with \"ply\", not a PLY file");
         while (true) {
-            if (!next_line(line)) fail("PLY header has no end_header line");
-            const auto words = split(line);
+            if (!next_header_line(line)) fail("PLY header has no end_header line");
+            const auto words = split_words(line);
             if (words.empty()) continue;
             const std::string_view key = words[0];
             if (key == "end_header") break;
@@ -280,18 +275,6 @@ private:
                                                            : "ply-binary-be";
     }
 
-    static std::vector<std::string_view> split(std::string_view line) {
-        std::vector<std::string_view> words;
-        std::size_t i = 0;
-        while (i < line.size()) {
-            while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-            const std::size_t start = i;
-            while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-            if (i > start) words.push_back(line.substr(start, i - start));
-        }
-        return words;
-    }
-
     void setup_targets() {
         for (std::size_t e = 0; e < elements_.size(); ++e) {
             if (elements_[e].name == "vertex" && vertex_element_ < 0)
@@ -307,10 +290,7 @@ private:
         const std::size_t left = data_.size() - body_;
         if (encoding_ != Encoding::Ascii && v.is_fixed_size && v.stride > 0 && n > left / v.stride)
             fail_truncated(v, left / v.stride);
-        const std::size_t min_bytes = std::max<std::size_t>(v.properties.size(), 1);
-        if (n > left / min_bytes + 1)
-            fail("PLY element \"vertex\" declares " + std::to_string(n) + " items but the body has only " +
-                 std::to_string(left) + " bytes: the file is truncated");
+        check_element_fits(v);
         b_.vertex_count = n;
         int xyz = 0, normal = 0, rgb = 0;
         for (auto& p : v.properties) {
@@ -395,6 +375,9 @@ private:
             return;
         }
         if (n > 3) ++b_.split_polygons;
+        if (b_.mesh.triangles.size() + static_cast<std::uint64_t>(n - 2) > max_triangles_)
+            check_triangle_budget(b_.mesh.triangles.size() + static_cast<std::uint64_t>(n - 2), max_triangles_,
+                                  source_, "PLY face " + std::to_string(face_id) + " brings the mesh to");
         const auto nv = static_cast<std::int64_t>(b_.vertex_count);
         auto checked = [&](std::int64_t k) {
             const std::int64_t i = index(k);
@@ -452,6 +435,7 @@ private:
                 }
                 Vec3f* out = b_.mesh.positions.data();
                 for (std::size_t v = 0; v < el.count; ++v, base += el.stride) {
+                    poll_cancel(v);
                     if (float_xyz_found == 3)
                         out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]), load<float, Swap>(base + float_xyz[1]),
                                        load<float, Swap>(base + float_xyz[2]));
@@ -463,6 +447,7 @@ private:
         }
         std::size_t pos = body_;
         for (std::uint64_t item = 0; item < el.count; ++item) {
+            poll_cancel(item);
             for (const auto& p : el.properties) {
                 if (!p.is_list) {
                     const std::size_t s = size_of(p.type);
@@ -487,7 +472,8 @@ private:
                         const std::int64_t b = load<std::int32_t, Swap>(at + 4);
                         const std::int64_t c = load<std::int32_t, Swap>(at + 8);
                         const auto nv = static_cast<std::int64_t>(b_.vertex_count);
-                        if (a >= 0 && a < nv && b >= 0 && b < nv && c >= 0 && c < nv) {
+                        if (a >= 0 && a < nv && b >= 0 && b < nv && c >= 0 && c < nv &&
+                            b_.mesh.triangles.size() < max_triangles_) {
                             b_.mesh.triangles.push_back({static_cast<std::uint32_t>(a),
                                                          static_cast<std::uint32_t>(b),
                                                          static_cast<std::uint32_t>(c)});
@@ -549,6 +535,7 @@ private:
     void read_ascii(const Element& el, bool is_vertex, bool is_face) {
         std::vector<std::int64_t> corners;
         for (std::uint64_t item = 0; item < el.count; ++item) {
+            poll_cancel(item);
             for (const auto& p : el.properties) {
                 if (!p.is_list) {
                     const double v = ascii_number(el, item, "property \"" + p.name + "\"");
@@ -570,7 +557,7 @@ private:
                         if (idx != std::floor(idx))
                             fail_line(line_, "PLY face " + std::to_string(item) + ": index " +
                                                  std::to_string(idx) + " is not an integer");
-                        corners.push_back(static_cast<std::int64_t>(idx));
+                        corners.push_back(clamp_to<std::int64_t>(idx));
                     }
                 }
                 if (keep)
@@ -592,6 +579,7 @@ private:
     std::span<const char> data_;
     const std::string& source_;
     LoadReport& report_;
+    std::uint64_t max_triangles_;
     Encoding encoding_ = Encoding::Ascii;
     std::vector<Element> elements_;
     std::ptrdiff_t vertex_element_ = -1;
@@ -603,8 +591,9 @@ private:
 
 }  // namespace
 
-Mesh read_ply(std::span<const char> data, const std::string& source, LoadReport& report) {
-    return PlyParser(data, source, report).parse();
+Mesh read_ply(std::span<const char> data, const std::string& source, LoadReport& report,
+              const LoadOptions& options) {
+    return PlyParser(data, source, report, options.max_triangles).parse();
 }
 
 }  // namespace glint::detail

@@ -17,9 +17,11 @@ namespace glint::detail {
 
 /// Parses the PLY file `data` (its whole content). `source` names the file in messages.
 /// Fills report.format, file_vertices, file_triangles, split_polygons and warnings.
+/// Counts are checked against the bytes left and the triangles against
+/// options.max_triangles before work; the loops poll cancellation (throw Cancelled).
 /// \throw InputError malformed header, truncated body (element and index named), a face index
 ///        past the end of the vertex list (face id named), unparsable ASCII (line named)
 [[nodiscard]] Mesh read_ply(std::span<const char> data, const std::string& source,
-                            LoadReport& report);
+                            LoadReport& report, const LoadOptions& options = {});
 
 }  // namespace glint::detail

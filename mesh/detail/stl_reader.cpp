@@ -1,5 +1,6 @@
 #include "mesh/detail/stl_reader.h"
 
+#include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -48,14 +49,8 @@ std::uint32_t facet_count(std::span<const char> data) {
     return n;
 }
 
-bool iequals(std::string_view a, std::string_view b) {
-    return a.size() == b.size() &&
-           std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return (x | 0x20) == (y | 0x20);
-           });
-}
-
-Mesh read_binary(std::span<const char> data, const std::string& source, LoadReport& report) {
+Mesh read_binary(std::span<const char> data, const std::string& source, LoadReport& report,
+                 std::uint64_t max_triangles) {
     if (data.size() < kHeaderBytes)
         throw InputError(quoted(source) + ": binary STL needs at least " +
                          std::to_string(kHeaderBytes) + " bytes (header and facet count), the file has " +
@@ -66,12 +61,14 @@ Mesh read_binary(std::span<const char> data, const std::string& source, LoadRepo
         throw InputError(quoted(source) + ": binary STL declares " + std::to_string(n) +
                          " facets (" + std::to_string(expected) + " bytes) but the file has " +
                          std::to_string(data.size()) + " bytes");
+    check_triangle_budget(n, max_triangles, source, "binary STL declares");
     report.format = "stl-binary";
     Mesh mesh;
     mesh.positions.resize(3 * n);
     mesh.triangles.resize(n);
     const char* p = data.data() + kHeaderBytes;
     for (std::size_t f = 0; f < n; ++f, p += kFacetBytes) {
+        poll_cancel(f);
         float c[9];
         std::memcpy(c, p + 12, sizeof c);  // skip the stored facet normal
         for (std::size_t k = 0; k < 3; ++k) {
@@ -93,8 +90,9 @@ Mesh read_binary(std::span<const char> data, const std::string& source, LoadRepo
 
 class AsciiStl {
 public:
-    AsciiStl(std::span<const char> data, const std::string& source, LoadReport& report)
-        : data_(data), source_(source), report_(report) {}
+    AsciiStl(std::span<const char> data, const std::string& source, LoadReport& report,
+             std::uint64_t max_triangles)
+        : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
 
     Mesh parse() {
         report_.format = "stl-ascii";
@@ -104,8 +102,9 @@ public:
         std::size_t facet = 0;
         std::size_t facet_line = 0;
         std::string_view line;
-        while (next_line(line)) {
-            const auto w = words(line);
+        while (next_line(data_, pos_, line)) {
+            poll_cancel(++line_no_);
+            const auto w = split_words(line);
             if (w.empty()) continue;
             const std::string_view key = w[0];
             if (iequals(key, "solid") && state == State::Outside) {
@@ -160,35 +159,8 @@ public:
     }
 
 private:
-    bool next_line(std::string_view& line) {
-        if (pos_ >= data_.size()) return false;
-        const char* begin = data_.data() + pos_;
-        const void* nl = std::memchr(begin, '\n', data_.size() - pos_);
-        const std::size_t len =
-            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin) : data_.size() - pos_;
-        line = std::string_view(begin, len);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        pos_ += len + (nl ? 1 : 0);
-        ++line_no_;
-        return true;
-    }
-
-    static std::vector<std::string_view> words(std::string_view line) {
-        std::vector<std::string_view> w;
-        std::size_t i = 0;
-        while (i < line.size()) {
-            while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-            const std::size_t start = i;
-            while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-            if (i > start) w.push_back(line.substr(start, i - start));
-        }
-        return w;
-    }
-
     [[noreturn]] void fail(std::string_view line, const std::string& expected) const {
-        std::string text(line.substr(0, 80));
-        for (char& c : text)
-            if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
+        const std::string text = printable(line, 80);
         throw InputError(quoted(source_) + ": line " + std::to_string(line_no_) + ": expected " +
                          expected + ", found \"" + text + "\"");
     }
@@ -199,6 +171,8 @@ private:
                              std::to_string(facet_line) + ") has " + std::to_string(corners.size()) +
                              " vertices, expected 3");
         if (corners.size() > 3) ++report_.split_polygons;
+        check_triangle_budget(mesh_.triangles.size() + corners.size() - 2, max_triangles_, source_,
+                              "ASCII STL facet " + std::to_string(facet) + " brings the mesh to");
         const auto base = static_cast<std::uint32_t>(mesh_.positions.size());
         mesh_.positions.insert(mesh_.positions.end(), corners.begin(), corners.end());
         for (std::uint32_t k = 2; k < corners.size(); ++k)
@@ -208,6 +182,7 @@ private:
     std::span<const char> data_;
     const std::string& source_;
     LoadReport& report_;
+    std::uint64_t max_triangles_;
     std::size_t pos_ = 0;
     std::size_t line_no_ = 0;
     Mesh mesh_;
@@ -222,12 +197,14 @@ bool is_binary_stl(std::span<const char> data) {
     return !(starts_with_solid(data) && looks_ascii(data));
 }
 
-Mesh read_stl(std::span<const char> data, const std::string& source, LoadReport& report) {
-    if (is_binary_stl(data)) return read_binary(data, source, report);
+Mesh read_stl(std::span<const char> data, const std::string& source, LoadReport& report,
+              const LoadOptions& options) {
+    const std::uint64_t max_triangles = options.max_triangles;
+    if (is_binary_stl(data)) return read_binary(data, source, report, max_triangles);
     const std::string_view head(data.data(), std::min<std::size_t>(data.size(), 1024));
     if (starts_with_solid(data) && head.find('\0') == std::string_view::npos)
-        return AsciiStl(data, source, report).parse();
-    return read_binary(data, source, report);  // throws with the size mismatch
+        return AsciiStl(data, source, report, max_triangles).parse();
+    return read_binary(data, source, report, max_triangles);  // throws with the size mismatch
 }
 
 }  // namespace glint::detail

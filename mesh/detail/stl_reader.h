@@ -18,10 +18,12 @@ namespace glint::detail {
 
 /// Parses an STL file (binary or ASCII, chosen by is_binary_stl) into triangle soup.
 /// Fills report.format, file_vertices (3 per facet), file_triangles, split_polygons, warnings.
+/// Counts are checked against the bytes left and the triangles against
+/// options.max_triangles before work; the loops poll cancellation (throw Cancelled).
 /// \throw InputError size that does not match the facet count (both numbers named), ASCII
 ///        syntax error (line, expected token and the line's text), non-finite coordinate
 ///        (facet and corner named)
 [[nodiscard]] Mesh read_stl(std::span<const char> data, const std::string& source,
-                            LoadReport& report);
+                            LoadReport& report, const LoadOptions& options = {});
 
 }  // namespace glint::detail

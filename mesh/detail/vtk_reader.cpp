@@ -1,5 +1,6 @@
 #include "mesh/detail/vtk_reader.h"
 
+#include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -56,25 +57,17 @@ std::size_t size_of(Type t) {
     return 0;
 }
 
+// a·b, saturating instead of wrapping (counts come from the file).
+std::uint64_t mul(std::uint64_t a, std::uint64_t b) {
+    return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b;
+}
+
 bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64 && t != Type::String; }
 
 // Big-endian load (VTK legacy binary is always big endian).
 template <class T>
 T load_be(const char* p) {
-    if constexpr (sizeof(T) == 1) {
-        T v;
-        std::memcpy(&v, p, 1);
-        return v;
-    } else {
-        using U = std::conditional_t<sizeof(T) == 2, std::uint16_t,
-                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
-        U u;
-        std::memcpy(&u, p, sizeof(U));
-        if constexpr (sizeof(U) == 2) u = static_cast<U>(__builtin_bswap16(u));
-        if constexpr (sizeof(U) == 4) u = __builtin_bswap32(u);
-        if constexpr (sizeof(U) == 8) u = __builtin_bswap64(u);
-        return std::bit_cast<T>(u);
-    }
+    return load_bytes<T, true>(p);
 }
 
 double load_value(const char* p, Type t) {
@@ -97,28 +90,13 @@ double load_value(const char* p, Type t) {
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
-std::vector<std::string_view> split(std::string_view line) {
-    std::vector<std::string_view> w;
-    std::size_t i = 0;
-    while (i < line.size()) {
-        while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
-        const std::size_t start = i;
-        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-        if (i > start) w.push_back(line.substr(start, i - start));
-    }
-    return w;
-}
-
-bool iequals(std::string_view a, std::string_view b) {
-    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
-               return (x | 0x20) == (y | 0x20);
-           });
-}
+std::vector<std::string_view> split(std::string_view line) { return split_words(line); }
 
 class VtkParser {
 public:
-    VtkParser(std::span<const char> data, const std::string& source, LoadReport& report)
-        : data_(data), source_(source), report_(report) {}
+    VtkParser(std::span<const char> data, const std::string& source, LoadReport& report,
+              std::uint64_t max_triangles)
+        : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
 
     Mesh parse() {
         parse_preamble();
@@ -166,27 +144,14 @@ private:
     [[noreturn]] void fail(const std::string& what) const {
         throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what);
     }
-    static std::string printable(std::string_view s) {
-        std::string t(s.substr(0, 40));
-        for (char& c : t)
-            if (static_cast<unsigned char>(c) < 32 || static_cast<unsigned char>(c) > 126) c = '?';
-        return t;
-    }
-
     // ---- low-level reading ----------------------------------------------------------------
 
     // Reads the next line (without its '\n'); false at end of file.
     bool next_line(std::string_view& line) {
         if (pos_ >= data_.size()) return false;
         line_start_ = pos_;
-        const char* begin = data_.data() + pos_;
-        const void* nl = std::memchr(begin, '\n', data_.size() - pos_);
-        const std::size_t len =
-            nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - begin) : data_.size() - pos_;
-        line = std::string_view(begin, len);
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-        pos_ += len + (nl ? 1 : 0);
-        return true;
+        poll_cancel(++lines_read_);
+        return detail::next_line(data_, pos_, line);
     }
 
     // Next non-blank line's words without consuming it (empty at end of file).
@@ -235,13 +200,14 @@ private:
             if (!binary_) {  // ASCII: one string per line
                 std::string_view line;
                 for (std::uint64_t i = 0; i < count; ++i)
-                    if (!next_line(line)) truncated(what, i, count);
+                    if (!next_line(line)) truncated(what, i, count);  // polls cancellation
                 return;
             }
             // BINARY: each string is prefixed by its length, whose first two bits say how
             // many bytes the length takes: 11 -> 6 bits in 1 byte, 10 -> 14 bits in 2,
             // 01 -> 30 bits in 4, 00 -> 62 bits in 8 (vtkDataWriter's string encoding).
             for (std::uint64_t i = 0; i < count; ++i) {
+                poll_cancel(i);
                 if (pos_ >= data_.size()) truncated(what, i, count);
                 const auto tag = static_cast<unsigned char>(data_[pos_]) >> 6;
                 const std::size_t bytes = tag == 3 ? 1 : tag == 2 ? 2 : tag == 1 ? 4 : 8;
@@ -258,6 +224,7 @@ private:
         }
         if (!binary_) {
             for (std::uint64_t i = 0; i < count; ++i) {
+                poll_cancel(i);
                 const std::string_view t = token();
                 if (t.empty()) truncated(what, i, count);
                 double v = 0.0;
@@ -275,16 +242,21 @@ private:
         if (type == Type::Bit) {
             const std::uint64_t bytes = (count + 7) / 8;
             if (bytes > data_.size() - pos_) truncated(what, (data_.size() - pos_) * 8, count);
-            for (std::uint64_t i = 0; i < count; ++i)
+            for (std::uint64_t i = 0; i < count; ++i) {
+                poll_cancel(i);
                 sink(static_cast<std::size_t>(i),
                      (static_cast<unsigned char>(data_[pos_ + i / 8]) >> (7 - i % 8)) & 1u);
+            }
             pos_ += bytes;
             return;
         }
         const std::size_t s = size_of(type);
         if (count > (data_.size() - pos_) / s) truncated(what, (data_.size() - pos_) / s, count);
         const char* p = data_.data() + pos_;
-        for (std::uint64_t i = 0; i < count; ++i, p += s) sink(static_cast<std::size_t>(i), load_value(p, type));
+        for (std::uint64_t i = 0; i < count; ++i, p += s) {
+            poll_cancel(i);
+            sink(static_cast<std::size_t>(i), load_value(p, type));
+        }
         pos_ += static_cast<std::size_t>(count) * s;
     }
 
@@ -339,12 +311,12 @@ private:
         const std::uint64_t n = count_word(1, "point count");
         const Type t = type_word(2);
         if (t == Type::String || t == Type::Bit) fail("POINTS must be numeric");
-        guard_count(3 * n, t, "POINTS");
+        guard_count(mul(3, n), t, "POINTS");
         mesh_.positions.resize(static_cast<std::size_t>(n));
         float* out = mesh_.positions.empty() ? nullptr : mesh_.positions[0].data();
         // note: Vec3f is three packed floats (Eigen fixed-size, no padding) so index 3v+k works.
         static_assert(sizeof(Vec3f) == 3 * sizeof(float));
-        read_values(3 * n, t, "POINTS", [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+        read_values(mul(3, n), t, "POINTS", [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
         has_points_ = true;
         point_count_ = static_cast<std::size_t>(n);
     }
@@ -354,7 +326,7 @@ private:
         guard_count(count, t, what);
         std::vector<std::int64_t> out(static_cast<std::size_t>(count));
         read_values(count, t, what, [&](std::size_t i, double v) {
-            out[i] = static_cast<std::int64_t>(v);
+            out[i] = clamp_to<std::int64_t>(v);
         });
         return out;
     }
@@ -388,11 +360,15 @@ private:
             if (offsets.empty()) return;
         } else {
             const auto flat = read_ints(size, Type::Int32, what);
+            if (n > flat.size())
+                fail(what + " declares " + std::to_string(n) + " cells in only " + std::to_string(size) +
+                     " numbers");
             offsets.reserve(static_cast<std::size_t>(n) + 1);
             conn.reserve(flat.size());
             offsets.push_back(0);
             std::size_t i = 0;
             for (std::uint64_t c = 0; c < n; ++c) {
+                poll_cancel(c);
                 if (i >= flat.size())
                     fail(what + " declares " + std::to_string(n) + " cells in " + std::to_string(size) +
                          " numbers, but the numbers end at cell " + std::to_string(c));
@@ -422,10 +398,14 @@ private:
             return static_cast<std::uint32_t>(i);
         };
         for (std::size_t c = 0; c < cells; ++c) {
+            poll_cancel(c);
             const auto b = static_cast<std::size_t>(offsets[c]);
             const auto e = static_cast<std::size_t>(offsets[c + 1]);
             if (e < b || e > conn.size()) fail(what + " OFFSETS are not increasing at cell " + std::to_string(c));
             const std::size_t k = e - b;
+            if (k >= 3 && mesh_.triangles.size() + k - 2 > max_triangles_)
+                check_triangle_budget(mesh_.triangles.size() + k - 2, max_triangles_, source_,
+                                      what + " cell " + std::to_string(c) + " brings the mesh to");
             if (k < 3) {
                 ++short_cells_;
                 continue;
@@ -489,7 +469,7 @@ private:
         if (upper == "LOOKUP_TABLE") {
             // A standalone colour table: size RGBA entries (floats in ASCII, bytes in BINARY).
             const std::uint64_t size = count_word(2, "table size");
-            skip_values(4 * size, binary_ ? Type::UInt8 : Type::Float32, "LOOKUP_TABLE");
+            skip_values(mul(4, size), binary_ ? Type::UInt8 : Type::Float32, "LOOKUP_TABLE");
             return;
         }
         if (section_ == Section::None) fail(key + " outside POINT_DATA / CELL_DATA");
@@ -510,8 +490,9 @@ private:
             const std::uint64_t comps = count_word(2, "component count");
             const Type t = binary_ ? Type::UInt8 : Type::Float32;
             if (keep && comps >= 3) {
+                guard_count(mul(comps, n), t, what);
                 mesh_.colors.assign(n, Rgb8{0, 0, 0});
-                read_values(comps * n, t, what, [&](std::size_t i, double v) {
+                read_values(mul(comps, n), t, what, [&](std::size_t i, double v) {
                     const std::size_t c = i % comps;
                     if (c >= 3) return;
                     const double scaled = binary_ ? v : v * 255.0;  // ASCII colours are in [0, 1]
@@ -519,25 +500,26 @@ private:
                         static_cast<std::uint8_t>(std::clamp(std::lround(scaled), 0L, 255L));
                 });
             } else {
-                skip_values(comps * n, t, what);
+                skip_values(mul(comps, n), t, what);
             }
         } else if (upper == "NORMALS") {
             const Type t = type_word(2);
             if (keep) {
+                guard_count(mul(3, n), t, what);
                 mesh_.normals.assign(n, Vec3f::Zero());
                 float* out = n ? mesh_.normals[0].data() : nullptr;
-                read_values(3 * n, t, what, [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+                read_values(mul(3, n), t, what, [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
             } else {
-                skip_values(3 * n, t, what);
+                skip_values(mul(3, n), t, what);
             }
         } else if (upper == "VECTORS") {
-            skip_values(3 * n, type_word(2), what);
+            skip_values(mul(3, n), type_word(2), what);
             if (keep) report_.warnings.push_back("VTK point " + what + " skipped");
         } else if (upper == "TEXTURE_COORDINATES") {
             const std::uint64_t dim = count_word(2, "dimension");
-            skip_values(dim * n, type_word(3), what);
+            skip_values(mul(dim, n), type_word(3), what);
         } else if (upper == "TENSORS") {
-            skip_values(9 * n, type_word(2), what);
+            skip_values(mul(9, n), type_word(2), what);
         } else {  // GLOBAL_IDS, PEDIGREE_IDS
             skip_values(n, type_word(2), what);
         }
@@ -551,13 +533,13 @@ private:
             if (keep && t != Type::String)
                 report_.warnings.push_back("VTK point array \"" + name + "\" with " + std::to_string(comps) +
                                            " components skipped (only 1-component arrays are kept)");
-            skip_values(comps * tuples, t, what);
+            skip_values(mul(comps, tuples), t, what);
             return;
         }
         if (name == "label" && is_integer(t)) {
             mesh_.labels.assign(static_cast<std::size_t>(tuples), 0);
             read_values(tuples, t, what, [&](std::size_t i, double v) {
-                mesh_.labels[i] = static_cast<std::int32_t>(v);
+                mesh_.labels[i] = clamp_to<std::int32_t>(v);
             });
             return;
         }
@@ -609,10 +591,12 @@ private:
     std::span<const char> data_;
     const std::string& source_;
     LoadReport& report_;
+    std::uint64_t max_triangles_;
     Mesh mesh_;
     bool binary_ = false;
     std::size_t pos_ = 0;
     std::size_t line_start_ = 0;  ///< start of the current header line (for messages)
+    std::uint64_t lines_read_ = 0;  ///< for polling cancellation
     std::vector<std::string_view> words_;
     bool has_points_ = false;
     std::size_t point_count_ = 0;
@@ -627,8 +611,9 @@ private:
 
 }  // namespace
 
-Mesh read_vtk(std::span<const char> data, const std::string& source, LoadReport& report) {
-    return VtkParser(data, source, report).parse();
+Mesh read_vtk(std::span<const char> data, const std::string& source, LoadReport& report,
+              const LoadOptions& options) {
+    return VtkParser(data, source, report, options.max_triangles).parse();
 }
 
 }  // namespace glint::detail

@@ -20,9 +20,11 @@ namespace glint::detail {
 /// Parses a VTK legacy file held in memory. `source` names the file in messages.
 /// Fills report.format ("vtk-ascii" / "vtk-binary"), file_vertices, file_triangles,
 /// split_polygons and warnings.
+/// Counts are checked against the bytes left and the triangles against
+/// options.max_triangles before work; the loops poll cancellation (throw Cancelled).
 /// \throw InputError not POLYDATA, unknown keyword or type, truncated data (section named,
 ///        line for ASCII, byte offset for BINARY), cell index past the point count (cell named)
 [[nodiscard]] Mesh read_vtk(std::span<const char> data, const std::string& source,
-                            LoadReport& report);
+                            LoadReport& report, const LoadOptions& options = {});
 
 }  // namespace glint::detail

@@ -457,3 +457,22 @@ TEST(RegistrationOptions, RejectsBadValuesNamingTheField) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Regression (issue 16): a non-number in the matrix threw nlohmann's type_error (exit 4).
+TEST(ReadFit, TurnsANonNumberEntryIntoAnInputErrorNamingRowAndEntry) {
+    const std::string path = write_text("fit_string_entry.json",
+                                        R"({"reference_from_examined": [[1, 0, 0, 0], [0, 1, "x", 0], [0, 0, 1, 0], [0, 0, 0, 1]]})");
+    try {
+        (void)read_fit(path);
+        ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("row 2 of reference_from_examined: entry 3 is string"), std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,9 @@
+// libFuzzer harness: scenario TOML (scanner/scenario.h load_scenario: sections, keys, options).
+#include "fuzz/fuzz_common.h"
+#include "scanner/scenario.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    return glint::fuzz::read_file(".toml", "", data, size, [](const std::filesystem::path& path) {
+        (void)glint::load_scenario(path, path.parent_path());
+    });
+}

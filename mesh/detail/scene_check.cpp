@@ -1,0 +1,304 @@
+#include "mesh/detail/scene_check.h"
+
+#include "mesh/detail/scan.h"
+#include "mesh/error.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <cstring>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace glint::detail {
+
+namespace {
+
+using nlohmann::json;
+
+std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
+
+std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+
+// Deepest object/array nesting, outside strings; stops counting past the limit.
+void check_json_depth(std::span<const char> text, const std::string& source) {
+    int depth = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '{' || c == '[') {
+            if (++depth > kMaxJsonDepth)
+                throw InputError(quoted(source) + ": glTF JSON nests objects/arrays deeper than " +
+                                 std::to_string(kMaxJsonDepth) + " levels (at byte " + std::to_string(i) +
+                                 "), more than the limit");
+        } else if (c == '}' || c == ']') {
+            --depth;
+        }
+    }
+}
+
+// A glTF id: an array index (2.0) or an object key (1.0) turned into an index.
+struct Ids {
+    std::unordered_map<std::string, std::size_t> by_key;
+    std::size_t size = 0;
+
+    explicit Ids(const json& collection) {
+        if (collection.is_array()) size = collection.size();
+        if (!collection.is_object()) return;
+        for (const auto& [key, value] : collection.items()) by_key.emplace(key, size++);
+    }
+    // Index of `ref` (a number or a key), or npos when it names nothing.
+    [[nodiscard]] std::size_t index(const json& ref) const {
+        if (ref.is_number_unsigned() && ref.get<std::uint64_t>() < size)
+            return static_cast<std::size_t>(ref.get<std::uint64_t>());
+        if (ref.is_string()) {
+            const auto it = by_key.find(ref.get<std::string>());
+            if (it != by_key.end()) return it->second;
+        }
+        return std::string::npos;
+    }
+};
+
+// Elements of a glTF collection in index order (array items or object values).
+std::vector<const json*> elements(const json& collection) {
+    std::vector<const json*> out;
+    if (collection.is_array() || collection.is_object())
+        for (const auto& item : collection) out.push_back(&item);
+    return out;
+}
+
+const json& member(const json& object, const char* key) {
+    static const json kNull;
+    if (!object.is_object()) return kNull;
+    const auto it = object.find(key);
+    return it == object.end() ? kNull : *it;
+}
+
+// Triangles one instance of each mesh draws, from its primitives' accessor counts.
+std::vector<std::uint64_t> mesh_triangles(const json& doc) {
+    const json& accessors = member(doc, "accessors");
+    const Ids accessor_ids(accessors);
+    const auto accessor_list = elements(accessors);
+    auto count_of = [&](const json& ref) -> std::uint64_t {
+        const std::size_t a = accessor_ids.index(ref);
+        if (a == std::string::npos) return 0;
+        const json& count = member(*accessor_list[a], "count");
+        return count.is_number_unsigned() ? count.get<std::uint64_t>() : 0;
+    };
+    std::vector<std::uint64_t> out;
+    for (const json* mesh : elements(member(doc, "meshes"))) {
+        std::uint64_t triangles = 0;
+        for (const json* prim : elements(member(*mesh, "primitives"))) {
+            const json& mode_json = member(*prim, "mode");
+            const std::uint64_t mode = mode_json.is_number_unsigned() ? mode_json.get<std::uint64_t>() : 4;
+            const json& indices = member(*prim, "indices");
+            const std::uint64_t n = indices.is_null() ? count_of(member(member(*prim, "attributes"), "POSITION"))
+                                                      : count_of(indices);
+            if (mode == 4) triangles = add_sat(triangles, n / 3);
+            else if ((mode == 5 || mode == 6) && n > 2) triangles = add_sat(triangles, n - 2);
+        }
+        out.push_back(triangles);
+    }
+    return out;
+}
+
+struct Node {
+    std::vector<std::size_t> children;
+    std::uint64_t own_triangles = 0;
+    // Filled by the walk: levels below and including this node, node instances and
+    // triangles of the expanded subtree.
+    int height = 0;
+    std::uint64_t instances = 0;
+    std::uint64_t triangles = 0;
+    int state = 0;  // 0 unvisited, 1 on the walk's stack, 2 done
+    bool has_parent = false;
+};
+
+std::vector<Node> read_nodes(const json& doc) {
+    const json& nodes_json = member(doc, "nodes");
+    const Ids node_ids(nodes_json);
+    const Ids mesh_ids(member(doc, "meshes"));
+    const std::vector<std::uint64_t> tris = mesh_triangles(doc);
+    std::vector<Node> nodes(node_ids.size);
+    std::size_t k = 0;
+    for (const json* n : elements(nodes_json)) {
+        Node& node = nodes[k++];
+        for (const json* c : elements(member(*n, "children"))) {
+            const std::size_t child = node_ids.index(*c);
+            if (child != std::string::npos) node.children.push_back(child);
+        }
+        auto add_mesh = [&](const json& ref) {
+            const std::size_t m = mesh_ids.index(ref);
+            if (m != std::string::npos) node.own_triangles = add_sat(node.own_triangles, tris[m]);
+        };
+        add_mesh(member(*n, "mesh"));                                    // glTF 2.0
+        for (const json* m : elements(member(*n, "meshes"))) add_mesh(*m);  // glTF 1.0
+    }
+    for (const Node& node : nodes)
+        for (std::size_t c : node.children) nodes[c].has_parent = true;
+    return nodes;
+}
+
+// Post-order walk from `root` with an explicit stack: heights, instance and triangle counts
+// (saturating), memoised so a shared subtree is walked once.
+void walk(std::vector<Node>& nodes, std::size_t root, const std::string& source) {
+    std::vector<std::pair<std::size_t, std::size_t>> stack;  // node, next child
+    if (nodes[root].state == 2) return;
+    stack.emplace_back(root, 0);
+    nodes[root].state = 1;
+    while (!stack.empty()) {
+        auto& [id, next] = stack.back();
+        Node& node = nodes[id];
+        if (next < node.children.size()) {
+            const std::size_t c = node.children[next++];
+            if (nodes[c].state == 1)
+                throw InputError(quoted(source) + ": glTF node " + std::to_string(c) +
+                                 " is its own ancestor (the node graph has a cycle), expected a tree");
+            if (nodes[c].state == 0) {
+                nodes[c].state = 1;
+                stack.emplace_back(c, 0);
+            }
+            continue;
+        }
+        node.height = 1;
+        node.instances = 1;
+        node.triangles = node.own_triangles;
+        for (std::size_t c : node.children) {
+            node.height = std::max(node.height, nodes[c].height + 1);
+            node.instances = add_sat(node.instances, nodes[c].instances);
+            node.triangles = add_sat(node.triangles, nodes[c].triangles);
+        }
+        node.state = 2;
+        stack.pop_back();
+    }
+}
+
+std::vector<std::size_t> scene_roots(const json& doc, const std::vector<Node>& nodes) {
+    const Ids node_ids(member(doc, "nodes"));
+    std::vector<std::size_t> roots;
+    for (const json* scene : elements(member(doc, "scenes")))
+        for (const json* r : elements(member(*scene, "nodes"))) {
+            const std::size_t id = node_ids.index(*r);
+            if (id != std::string::npos) roots.push_back(id);
+        }
+    if (roots.empty())
+        for (std::size_t i = 0; i < nodes.size(); ++i)
+            if (!nodes[i].has_parent) roots.push_back(i);
+    return roots;
+}
+
+}  // namespace
+
+void check_gltf_json(std::span<const char> text, const std::string& source, std::uint64_t max_triangles) {
+    check_json_depth(text, source);
+    json doc;
+    try {
+        doc = json::parse(text.begin(), text.end());
+    } catch (const json::exception& e) {
+        throw InputError(quoted(source) + ": glTF JSON does not parse: " + e.what());
+    }
+    if (!doc.is_object()) throw InputError(quoted(source) + ": glTF JSON is not an object");
+    std::vector<Node> nodes = read_nodes(doc);
+    std::uint64_t instances = 0, triangles = 0;
+    for (std::size_t root : scene_roots(doc, nodes)) {
+        throw_if_cancelled();
+        walk(nodes, root, source);
+        const Node& r = nodes[root];
+        if (r.height > kMaxGltfNodeDepth)
+            throw InputError(quoted(source) + ": glTF nodes nest " + std::to_string(r.height) +
+                             " levels deep below root node " + std::to_string(root) +
+                             ", more than the limit " + std::to_string(kMaxGltfNodeDepth));
+        instances = add_sat(instances, r.instances);
+        triangles = add_sat(triangles, r.triangles);
+    }
+    if (instances > kMaxGltfInstances)
+        throw InputError(quoted(source) + ": glTF node graph expands to " +
+                         (instances == UINT64_MAX ? std::string("over 2^64") : std::to_string(instances)) +
+                         " node instances (a node shared by several parents is copied for each), "
+                         "more than the limit " + std::to_string(kMaxGltfInstances));
+    check_triangle_budget(triangles, max_triangles, source, "glTF scene instances add up to");
+}
+
+namespace {
+
+std::uint32_t le32(std::span<const char> data, std::size_t at) { return load_bytes<std::uint32_t, false>(data.data() + at); }
+
+// The JSON of a GLB: version 2 has a 12-byte header then chunks (length, type "JSON", data),
+// version 1 a 20-byte header with the content length at 12; both put the JSON at byte 20.
+void check_glb(std::span<const char> data, const std::string& source, std::uint64_t max_triangles) {
+    if (data.size() < 20) throw InputError(quoted(source) + ": GLB is " + std::to_string(data.size()) +
+                                           " bytes, shorter than its 20-byte header");
+    const std::uint32_t version = le32(data, 4);
+    const std::size_t start = 20;
+    const std::uint64_t length = le32(data, 12);  // both versions: JSON length at 12, data at 20
+    if (version == 2 && le32(data, 16) != 0x4E4F534Au)
+        throw InputError(quoted(source) + ": GLB's first chunk is not JSON");
+    if (length > data.size() - start)
+        throw InputError(quoted(source) + ": GLB JSON chunk declares " + std::to_string(length) +
+                         " bytes, only " + std::to_string(data.size() - start) + " follow");
+    check_gltf_json(data.subspan(start, static_cast<std::size_t>(length)), source, max_triangles);
+}
+
+// OFF header: an optional "[ST][C][N][4][n]OFF" keyword, then vertex, face and edge counts.
+// note: assimp reads the counts right after the letters "OFF", even inside the same word
+// ("OFF2222…"), and from the first numbers when there is no keyword; so does this check
+// (found by fuzz/fuzz_off: a count glued to "OFF" made assimp run for minutes).
+void check_off(std::span<const char> data, const std::string& source) {
+    std::size_t pos = 0;
+    std::string_view line;
+    std::vector<std::string_view> words;
+    while (words.size() < 3 && next_line(data, pos, line)) {
+        if (line.starts_with('#')) continue;
+        for (auto w : split_words(line)) {
+            if (words.empty() && w.find("OFF") != std::string_view::npos) {
+                w.remove_prefix(w.find("OFF") + 3);
+                if (w.empty()) continue;
+            }
+            words.push_back(w);
+        }
+    }
+    if (words.size() < 2) return;  // assimp reports it
+    std::uint64_t counts[2] = {0, 0};
+    for (std::size_t k = 0; k < 2; ++k) {
+        const auto w = words[k];
+        const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[k]);
+        if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+            throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") + " count is \"" +
+                             printable(w) + "\", expected a non-negative integer");
+    }
+    const std::uint64_t left = data.size() - std::min(pos, data.size()) + 1;
+    check_count_fits(counts[0], 6, left, source, "OFF vertex list");  // "0 0 0\n"
+    check_count_fits(counts[1], 2, left, source, "OFF face list");    // "0\n"
+}
+
+// Every OBJ face line gives at least one triangle.
+void check_obj(std::span<const char> data, const std::string& source, std::uint64_t max_triangles) {
+    std::uint64_t faces = 0, lines = 0;
+    std::size_t pos = 0;
+    std::string_view line;
+    while (next_line(data, pos, line)) {
+        poll_cancel(++lines);
+        while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+        if (line.size() > 1 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) ++faces;
+    }
+    check_triangle_budget(faces, max_triangles, source, "OBJ has face lines for at least");
+}
+
+}  // namespace
+
+void check_before_assimp(std::span<const char> data, const std::string& ext, const std::string& source,
+                         std::uint64_t max_triangles) {
+    if (data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0) check_glb(data, source, max_triangles);
+    else if (ext == ".gltf") check_gltf_json(data, source, max_triangles);
+    else if (ext == ".off") check_off(data, source);
+    else if (ext == ".obj") check_obj(data, source, max_triangles);
+}
+
+}  // namespace glint::detail
