@@ -11,7 +11,7 @@
 // serialised inside the context); one renderer is still used by one thread at a time.
 #pragma once
 
-#include "render/view.h"
+#include "render/frame.h"
 
 #include <cstddef>
 #include <memory>
