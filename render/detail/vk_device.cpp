@@ -140,6 +140,7 @@ Instance::Instance(bool validation, MessageLog* log) {
                           "): no Vulkan driver found; check the ICD (VK_ICD_FILENAMES, "
                           "mesa-vulkan-drivers for lavapipe) or use --backend embree");
     }
+    ++creation_counters().vulkan_instances;
     keep_drivers_loaded(app);
     if (validation) {
         auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
