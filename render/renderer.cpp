@@ -94,8 +94,10 @@ Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count
 
 namespace {
 
-std::shared_ptr<RenderContext> own_context(const RenderOptions& options) {
+/// A context for one renderer; bad input is refused before a device is made.
+std::shared_ptr<RenderContext> own_context(const RenderOptions& options, const Mesh& mesh) {
     options.validate();
+    if (mesh.triangles.empty()) throw InputError("renderer: mesh has no triangles");
     return std::make_shared<RenderContext>(options.context_options());
 }
 
@@ -114,7 +116,7 @@ RenderOptions combined(const ContextOptions& c, const FrameOptions& f) {
 }  // namespace
 
 Renderer::Renderer(const Mesh& mesh, const RenderOptions& options)
-    : Renderer(own_context(options), mesh, options.frame_options()) {}
+    : Renderer(own_context(options, mesh), mesh, options.frame_options()) {}
 
 Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, const FrameOptions& options)
     : context_(std::move(context)) {
