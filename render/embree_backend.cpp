@@ -11,7 +11,6 @@
 // Scene flag ROBUST: watertight traversal, so rays through shared edges do not leak.
 #include "mesh/error.h"
 #include "render/detail/backend.h"
-#include "render/renderer.h"
 
 #include <embree3/rtcore.h>
 
@@ -20,7 +19,9 @@
 #include <numeric>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 
 namespace glint::detail {
@@ -53,44 +54,23 @@ void cull_back_faces(const RTCFilterFunctionNArguments* args) {
     }
 }
 
-class EmbreeBackend final : public RenderBackend {
+/// The Embree device of a context; scenes (one per mesh) are built on it.
+class EmbreeDevice {
 public:
-    EmbreeBackend(const Mesh& mesh, const RenderOptions& options, RendererInfo& info)
-        : options_(options), threads_(worker_count(options.threads)), normals_(mesh.normals), triangles_(mesh.triangles) {
-        const std::string config = options.threads > 0 ? "threads=" + std::to_string(options.threads) : "";
+    explicit EmbreeDevice(int threads) {
+        const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
         device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
         if (device_ == nullptr) {
             throw DeviceError("cannot create an Embree device (error " +
                               std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
         }
+        ++creation_counters().embree_devices;
         rtcSetDeviceErrorFunction(device_, embree_error, &errors_);
-        try {
-            build(mesh);
-        } catch (...) {
-            release();
-            throw;
-        }
-        info.device_name = std::string("embree ") + RTC_VERSION_STRING + " (CPU, " + std::to_string(threads_) +
-                           " threads)";
-        info.device_type = "cpu";
     }
-
-    ~EmbreeBackend() override { release(); }
-
-    void render_views(std::span<const View> views, const MutableFrameConsumer& consumer) override {
-        for (std::size_t i = 0; i < views.size(); ++i) {
-            render_one(views[i]);
-            consumer(i, frame_);
-        }
-    }
-
-private:
-    void release() noexcept {
-        if (scene_ != nullptr) rtcReleaseScene(scene_);
-        if (device_ != nullptr) rtcReleaseDevice(device_);
-        scene_ = nullptr;
-        device_ = nullptr;
-    }
+    ~EmbreeDevice() { rtcReleaseDevice(device_); }
+    EmbreeDevice(const EmbreeDevice&) = delete;
+    EmbreeDevice& operator=(const EmbreeDevice&) = delete;
+    [[nodiscard]] RTCDevice get() const { return device_; }
 
     void check(const char* what) {
         if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) {
@@ -99,10 +79,53 @@ private:
         }
     }
 
+private:
+    ErrorLog errors_;
+    RTCDevice device_ = nullptr;
+};
+
+class EmbreeBackend final : public RenderBackend {
+public:
+    EmbreeBackend(std::shared_ptr<EmbreeDevice> device, const Mesh& mesh, const FrameOptions& options, int threads)
+        : options_(options), threads_(threads), normals_(mesh.normals), triangles_(mesh.triangles),
+          device_(std::move(device)) {
+        try {
+            build(mesh);
+        } catch (...) {
+            release();
+            throw;
+        }
+    }
+
+    ~EmbreeBackend() override { release(); }
+
+    // note: the rays are cast in finish(), so one view is in flight at a time; submit only
+    // remembers the view.
+    [[nodiscard]] std::size_t max_in_flight() const override { return 1; }
+    void submit(const View& view) override { pending_ = view; }
+    Frame& finish() override {
+        GLINT_ASSERT(pending_.has_value(), "finish without a submitted view");
+        const View view = *std::move(pending_);
+        pending_.reset();
+        render_one(view);
+        return frame_;
+    }
+    void abandon() noexcept override { pending_.reset(); }
+    [[nodiscard]] bool works_in_finish() const override { return true; }
+
+private:
+    void release() noexcept {
+        if (scene_ != nullptr) rtcReleaseScene(scene_);
+        scene_ = nullptr;
+    }
+
+    void check(const char* what) { device_->check(what); }
+
     void build(const Mesh& mesh) {
-        scene_ = rtcNewScene(device_);
+        RTCDevice device = device_->get();
+        scene_ = rtcNewScene(device);
         rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-        RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+        RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         // note: Embree reads vertices with 16-byte loads; rtcSetNewGeometryBuffer pads the
         // buffer it allocates, so copying into it is safe for the last vertex.
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -287,23 +310,41 @@ private:
         }
     }
 
-    RenderOptions options_;
+    FrameOptions options_;
     int threads_ = 1;
     std::vector<Vec3f> normals_;
     std::vector<Triangle> triangles_;
     std::vector<Vec3f> face_normals_;
-    ErrorLog errors_;
-    RTCDevice device_ = nullptr;
+    std::shared_ptr<EmbreeDevice> device_;
     RTCScene scene_ = nullptr;
+    std::optional<View> pending_;
     std::vector<Scratch> scratch_;  // one per worker thread, reused across views
     Frame frame_;
 };
 
+class EmbreeContext final : public ContextImpl {
+public:
+    explicit EmbreeContext(int threads)
+        : threads_(worker_count(threads)), device_(std::make_shared<EmbreeDevice>(threads)) {}
+    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) override {
+        return std::make_unique<EmbreeBackend>(device_, mesh, options, threads_);
+    }
+    [[nodiscard]] int threads() const { return threads_; }
+
+private:
+    int threads_ = 1;
+    std::shared_ptr<EmbreeDevice> device_;
+};
+
 }  // namespace
 
-std::unique_ptr<RenderBackend> make_embree_backend(const Mesh& mesh, const RenderOptions& options,
-                                                   RendererInfo& info) {
-    return std::make_unique<EmbreeBackend>(mesh, options, info);
+std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options, std::string& device_name,
+                                                 std::string& device_type) {
+    auto context = std::make_unique<EmbreeContext>(options.threads);
+    device_name = std::string("embree ") + RTC_VERSION_STRING + " (CPU, " + std::to_string(context->threads()) +
+                  " threads)";
+    device_type = "cpu";
+    return context;
 }
 
 }  // namespace glint::detail

@@ -5,48 +5,35 @@
 #include "mesh/validate.h"
 #include "render/detail/backend.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
-#include <cctype>
+#include <array>
 #include <cmath>
 #include <cstdlib>
+#include <deque>
 #include <sstream>
 #include <utility>
 
 namespace glint {
 
-Backend parse_backend(const std::string& text) {
-    if (text == "auto") return Backend::Auto;
-    if (text == "vulkan") return Backend::Vulkan;
-    if (text == "embree") return Backend::Embree;
-    throw InputError("backend \"" + text + "\": expected auto, vulkan or embree");
-}
-
-std::string to_string(Backend backend) {
-    switch (backend) {
-    case Backend::Auto: return "auto";
-    case Backend::Vulkan: return "vulkan";
-    case Backend::Embree: return "embree";
-    }
-    return "?";
-}
-
 void RenderOptions::validate() const {
-    // note: 8×8 = 64 sub-samples per pixel is far beyond any useful footprint averaging and
-    // keeps the s× target within device limits for the image sizes glint uses.
-    if (supersample < 1 || supersample > 8) throw OptionError("supersample", supersample, "expected 1..8");
-    if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) throw OptionError("min_coverage", min_coverage, "expected 0..1");
-    if (!device.empty() && backend == Backend::Embree)
-        throw OptionError("device", "\"" + device + "\"",
-                          "names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
-    if (threads < 0) throw OptionError("threads", threads, "expected ≥ 0 (0 = all cores)");
+    frame_options().validate();
+    context_options().validate();
+}
+
+ContextOptions RenderOptions::context_options() const {
+    return ContextOptions{.backend = backend, .device = device, .validation = validation, .threads = threads};
+}
+
+FrameOptions RenderOptions::frame_options() const {
+    return FrameOptions{.normal_space = normal_space,
+                        .supersample = supersample,
+                        .min_coverage = min_coverage,
+                        .cull_back_faces = cull_back_faces};
 }
 
 namespace {
-
-bool env_flag(const char* name) {
-    const char* v = std::getenv(name);
-    return v != nullptr && *v != '\0' && std::string(v) != "0";
-}
 
 void check_view(const View& view, int supersample) {
     const Camera& c = view.camera;
@@ -99,20 +86,50 @@ Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count
     }
     // note: on CPU-only machines Embree's ray casting beats lavapipe's single-threaded
     // triangle setup at every mesh size we measured (bench/render_bench.cpp).
-    say("auto: no GPU, " + std::to_string(triangle_count) +
-        " triangles on the CPU: Embree is faster than lavapipe");
+    say(triangle_count > 0 ? "auto: no GPU, " + std::to_string(triangle_count) +
+                                 " triangles on the CPU: Embree is faster than lavapipe"
+                           : std::string("auto: no GPU: on the CPU Embree is faster than lavapipe"));
     return Backend::Embree;
 }
 
-Renderer::Renderer(const Mesh& mesh, const RenderOptions& options) : options_(options) {
-    options_.validate();
-    if (env_flag("GLINT_VK_VALIDATION")) options_.validation = true;
+namespace {
+
+/// A context for one renderer; bad input is refused before a device is made.
+std::shared_ptr<RenderContext> own_context(const RenderOptions& options, const Mesh& mesh) {
+    options.validate();
+    if (mesh.triangles.empty()) throw InputError("renderer: mesh has no triangles");
+    return std::make_shared<RenderContext>(options.context_options());
+}
+
+/// The context's options with a renderer's frame options.
+RenderOptions combined(const ContextOptions& c, const FrameOptions& f) {
+    return RenderOptions{.backend = c.backend,
+                         .device = c.device,
+                         .normal_space = f.normal_space,
+                         .supersample = f.supersample,
+                         .min_coverage = f.min_coverage,
+                         .cull_back_faces = f.cull_back_faces,
+                         .validation = c.validation,
+                         .threads = c.threads};
+}
+
+}  // namespace
+
+Renderer::Renderer(const Mesh& mesh, const RenderOptions& options)
+    : Renderer(own_context(options, mesh), mesh, options.frame_options()) {}
+
+Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, const FrameOptions& options)
+    : context_(std::move(context)) {
+    if (context_ == nullptr) throw InputError("renderer: no render context (null)");
+    options.validate();
+    options_ = combined(context_->options(), options);
     if (mesh.triangles.empty()) throw InputError("renderer: mesh has no triangles");
     info_.triangle_count = mesh.triangle_count();
     info_.vertex_count = mesh.vertex_count();
-    std::string reason;
-    info_.backend = resolve_backend(options_, mesh.triangle_count(), &reason);
-    if (options_.backend == Backend::Auto) info_.warnings.push_back(reason);
+    info_.backend = context_->backend();
+    info_.device_name = context_->device_name();
+    info_.device_type = context_->device_type();
+    info_.warnings = context_->warnings();
     if (options_.cull_back_faces) {
         // Culling is only correct for a closed surface: an open one would lose its back side
         // (seen through a hole or from behind). It is turned off, and the warnings say so.
@@ -136,11 +153,7 @@ Renderer::Renderer(const Mesh& mesh, const RenderOptions& options) : options_(op
         info_.warnings.push_back("mesh had no vertex normals: angle-weighted normals computed");
         source = &with_normals;
     }
-    if (info_.backend == Backend::Vulkan) {
-        backend_ = detail::make_vulkan_backend(*source, options_, info_);
-    } else {
-        backend_ = detail::make_embree_backend(*source, options_, info_);
-    }
+    backend_ = context_->impl().make_backend(*source, options_.frame_options());
 }
 
 Renderer::~Renderer() = default;
@@ -149,9 +162,10 @@ Renderer& Renderer::operator=(Renderer&&) noexcept = default;
 
 const RendererInfo& Renderer::info() const { return info_; }
 const RenderOptions& Renderer::options() const { return options_; }
+const std::shared_ptr<RenderContext>& Renderer::context() const { return context_; }
 
 std::vector<std::string> Renderer::validation_messages() const {
-    return backend_ ? backend_->validation_messages() : std::vector<std::string>{};
+    return context_ ? context_->validation_messages() : std::vector<std::string>{};
 }
 
 namespace {
@@ -185,12 +199,58 @@ void finish_frame(Frame& frame, const View& view, const RenderOptions& options) 
 
 }  // namespace
 
+namespace {
+
+/// Streams views through one or two backends in lockstep: every backend gets view i before
+/// any waits, up to the smallest max_in_flight views ahead; consume(i, frames) runs in view
+/// order. On an exception every backend drops its views in flight and it propagates.
+void stream_views(std::span<detail::RenderBackend* const> backends, std::span<const View> views,
+                  const std::function<void(std::size_t, std::span<Frame* const>)>& consume) {
+    std::size_t depth = backends.front()->max_in_flight();
+    bool tasks = backends.size() > 1;
+    for (auto* b : backends) {
+        depth = std::min(depth, b->max_in_flight());
+        tasks = tasks && b->works_in_finish();
+    }
+    std::array<Frame*, 2> frames{};
+    std::deque<std::size_t> pending;
+    const auto finish_oldest = [&] {
+        const std::size_t i = pending.front();
+        pending.pop_front();
+        if (tasks) {
+            // Two CPU renders as two tasks; the second on a TBB worker while this thread
+            // does the first.
+            tbb::task_group group;
+            group.run([&] { frames[1] = &backends[1]->finish(); });
+            frames[0] = &backends[0]->finish();
+            group.wait();
+        } else {
+            for (std::size_t k = 0; k < backends.size(); ++k) frames[k] = &backends[k]->finish();
+        }
+        consume(i, std::span<Frame* const>(frames.data(), backends.size()));
+    };
+    try {
+        for (std::size_t i = 0; i < views.size(); ++i) {
+            if (pending.size() == depth) finish_oldest();
+            for (auto* b : backends) b->submit(views[i]);
+            pending.push_back(i);
+        }
+        while (!pending.empty()) finish_oldest();
+    } catch (...) {
+        for (auto* b : backends) b->abandon();
+        throw;
+    }
+}
+
+}  // namespace
+
 void Renderer::render_views(std::span<const View> views, const FrameConsumer& consumer) {
     GLINT_ASSERT(backend_ != nullptr, "render_views on a moved-from Renderer");
     for (const View& v : views) check_view(v, options_.supersample);
-    backend_->render_views(views, [&](std::size_t i, Frame& frame) {
-        finish_frame(frame, views[i], options_);
-        consumer(i, frame);
+    detail::RenderBackend* const backends[] = {backend_.get()};
+    stream_views(backends, views, [&](std::size_t i, std::span<Frame* const> frames) {
+        finish_frame(*frames[0], views[i], options_);
+        consumer(i, *frames[0]);
     });
 }
 
@@ -198,11 +258,28 @@ Frame Renderer::render(const View& view) {
     GLINT_ASSERT(backend_ != nullptr, "render on a moved-from Renderer");
     check_view(view, options_.supersample);
     Frame result;
-    backend_->render_views(std::span<const View>(&view, 1), [&](std::size_t, Frame& frame) {
-        finish_frame(frame, view, options_);
-        result = std::move(frame);
+    detail::RenderBackend* const backends[] = {backend_.get()};
+    stream_views(backends, std::span<const View>(&view, 1), [&](std::size_t, std::span<Frame* const> frames) {
+        finish_frame(*frames[0], view, options_);
+        result = std::move(*frames[0]);
     });
     return result;
+}
+
+void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> views,
+                       const PairConsumer& consumer) {
+    GLINT_ASSERT(first.backend_ != nullptr && second.backend_ != nullptr, "render_view_pairs on a moved-from Renderer");
+    if (&first == &second) throw InputError("render_view_pairs: the two renderers must be distinct");
+    for (const View& v : views) {
+        check_view(v, first.options_.supersample);
+        check_view(v, second.options_.supersample);
+    }
+    detail::RenderBackend* const backends[] = {first.backend_.get(), second.backend_.get()};
+    stream_views(backends, views, [&](std::size_t i, std::span<Frame* const> frames) {
+        finish_frame(*frames[0], views[i], first.options_);
+        finish_frame(*frames[1], views[i], second.options_);
+        consumer(i, *frames[0], *frames[1]);
+    });
 }
 
 }  // namespace glint

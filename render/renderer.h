@@ -14,9 +14,15 @@
 //   Renderer renderer(mesh, RenderOptions{.supersample = 2});
 //   Frame f = renderer.render(view);
 //   renderer.render_views(views, [&](std::size_t i, const Frame& frame) { ... });
+//
+// Many meshes on one device (render/context.h):
+//   auto context = shared_render_context(options.context_options());
+//   Renderer a(context, mesh_a, options.frame_options()), b(context, mesh_b, ...);
+//   render_view_pairs(a, b, views, [&](std::size_t i, const Frame& fa, const Frame& fb) { ... });
 #pragma once
 
 #include "mesh/mesh.h"
+#include "render/context.h"
 #include "render/frame.h"
 #include "render/view.h"
 
@@ -30,12 +36,8 @@
 
 namespace glint {
 
-enum class Backend { Auto, Vulkan, Embree };
-
-/// "auto" / "vulkan" / "embree". \throw InputError.
-[[nodiscard]] Backend parse_backend(const std::string& text);
-[[nodiscard]] std::string to_string(Backend backend);
-
+/// Context and frame options in one (the convenience constructor's): see ContextOptions and
+/// FrameOptions (render/context.h) for the fields.
 struct RenderOptions {
     Backend backend = Backend::Auto;
     /// Vulkan device: case-insensitive substring of the device name ("llvmpipe", "NVIDIA").
@@ -62,6 +64,9 @@ struct RenderOptions {
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
+
+    [[nodiscard]] ContextOptions context_options() const;
+    [[nodiscard]] FrameOptions frame_options() const;
 };
 
 /// What a renderer runs on, and anything it noticed on the way (STYLE.md: nothing is lost).
@@ -82,14 +87,19 @@ namespace detail {
 class RenderBackend;
 }
 
-/// A mesh uploaded to a backend. Move-only; one device (and Vulkan instance) per renderer.
-/// Not thread-safe: use one renderer per thread.
+/// Receives both frames of view `view_index` (valid only during the call).
+using PairConsumer = std::function<void(std::size_t view_index, const Frame& first, const Frame& second)>;
+
+/// A mesh uploaded to a device. Move-only. Not thread-safe: use one renderer per thread
+/// (renderers of one context may run on different threads).
 class Renderer {
 public:
-    /// Uploads the mesh (normals computed when absent).
-    /// \throw InputError invalid options, empty mesh.
-    /// \throw DeviceError no usable device (the message lists every device and why it was
-    ///        rejected), a failed device call.
+    /// Uploads the mesh (normals computed when absent) to the context's device.
+    /// \throw InputError invalid options, empty mesh, null context.
+    /// \throw DeviceError a failed device call.
+    Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, const FrameOptions& options = {});
+    /// Convenience: a context of its own (one device per renderer), created from `options`.
+    /// \throw as RenderContext's constructor and the constructor above.
     explicit Renderer(const Mesh& mesh, const RenderOptions& options = {});
     ~Renderer();
     Renderer(Renderer&&) noexcept;
@@ -108,17 +118,31 @@ public:
     void render_views(std::span<const View> views, const FrameConsumer& consumer);
 
     [[nodiscard]] const RendererInfo& info() const;
+    /// The context's options and this renderer's frame options (culling as applied).
     [[nodiscard]] const RenderOptions& options() const;
+    [[nodiscard]] const std::shared_ptr<RenderContext>& context() const;
 
-    /// Vulkan validation-layer messages (warnings and errors) collected so far; empty for
-    /// Embree or when validation is off.
+    /// Vulkan validation-layer messages (warnings and errors) collected so far on this
+    /// renderer's context; empty for Embree or when validation is off.
     [[nodiscard]] std::vector<std::string> validation_messages() const;
 
 private:
+    friend void render_view_pairs(Renderer&, Renderer&, std::span<const View>, const PairConsumer&);
+    std::shared_ptr<RenderContext> context_;
     std::unique_ptr<detail::RenderBackend> backend_;
     RenderOptions options_;
     RendererInfo info_;
 };
+
+/// Renders every view with both renderers, the two frames of a view in flight together
+/// (Vulkan: both submitted before either is waited for, and the next view's pair submitted
+/// while the consumer handles this one; Embree: the two frames as two tasks), and hands
+/// the consumer each pair in view order. The frames are bitwise those that render_views of
+/// each renderer gives. The renderers must be distinct; they may have different contexts.
+/// Exceptions (the consumer's or a device's) stop the run and propagate; both renderers
+/// stay usable.
+void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> views,
+                       const PairConsumer& consumer);
 
 /// One Vulkan physical device as glint sees it.
 struct DeviceInfo {

@@ -53,8 +53,10 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     result.plan = plan;
     result.options = options;
 
-    Renderer ref_renderer(reference, options.render);
-    Renderer exa_renderer(examined, options.render);
+    // One device for the process (render/context.h), both meshes on it.
+    const auto context = shared_render_context(options.render.context_options());
+    Renderer ref_renderer(context, reference, options.render.frame_options());
+    Renderer exa_renderer(context, examined, options.render.frame_options());
     result.renderer = ref_renderer.info();
 
     std::vector<AtlasAccumulator> atlases;
@@ -69,10 +71,12 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     for (const auto& p : plan.views) views.push_back(p.view);
 
     auto t_view = Clock::now();
-    ref_renderer.render_views(views, [&](std::size_t i, const Frame& ref_frame) {
+    // Both frames of a view in flight together; the next view's pair renders while this
+    // one is compared.
+    render_view_pairs(ref_renderer, exa_renderer, views, [&](std::size_t i, const Frame& ref_frame,
+                                                             const Frame& exa_frame) {
         throw_if_cancelled();
         const PlannedView& pv = plan.views[i];
-        const Frame exa_frame = exa_renderer.render(views[i]);
         result.render_seconds += seconds_since(t_view);
         const auto t_compare = Clock::now();
         const DeviationMap dev = compare_frames(frame_view(ref_frame), frame_view(exa_frame), options.compare, options.metric);

@@ -1,11 +1,13 @@
-// Internal interface every render backend implements (not part of the public API).
+// Internal interfaces of the render module (not part of the public API): a context's
+// device-specific half (ContextImpl) and a mesh bound to it (RenderBackend).
 #pragma once
 
 #include "mesh/mesh.h"
+#include "render/context.h"
 #include "render/frame.h"
-#include "render/renderer.h"
 #include "render/view.h"
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -15,25 +17,51 @@
 
 namespace glint::detail {
 
-/// Receives resolved frames (world-space normals, unmasked); may modify them in place.
-using MutableFrameConsumer = std::function<void(std::size_t view_index, Frame& frame)>;
-
+/// A mesh on a device. Views are submitted, then finished in submission order:
+///   submit(v0) submit(v1) finish()→frame 0 submit(v2) finish()→frame 1 …
+/// with at most max_in_flight() views submitted and not finished.
 class RenderBackend {
 public:
     virtual ~RenderBackend() = default;
-    /// Renders views in order, resolving s×s sub-samples, and hands each frame over.
-    virtual void render_views(std::span<const View> views, const MutableFrameConsumer& consumer) = 0;
-    virtual std::vector<std::string> validation_messages() const { return {}; }
+    [[nodiscard]] virtual std::size_t max_in_flight() const = 0;
+    /// Starts rendering a view (size already checked against the options).
+    virtual void submit(const View& view) = 0;
+    /// Waits for the oldest submitted view and resolves its s×s sub-samples (world-space
+    /// normals, unmasked). The frame stays valid (and may be modified) until the next submit.
+    virtual Frame& finish() = 0;
+    /// Drops every view in flight (after an exception); the backend stays usable.
+    virtual void abandon() noexcept = 0;
+    /// True when the work happens in finish() (CPU ray casting): a pair then runs its two
+    /// finishes as two tasks. False when finish() only waits and resolves (Vulkan).
+    [[nodiscard]] virtual bool works_in_finish() const { return false; }
 };
 
-/// Creates the Vulkan backend; fills info.device_name / device_type.
-std::unique_ptr<RenderBackend> make_vulkan_backend(const Mesh& mesh, const RenderOptions& options,
-                                                   RendererInfo& info);
-/// Creates the Embree backend; fills info.device_name / device_type.
-std::unique_ptr<RenderBackend> make_embree_backend(const Mesh& mesh, const RenderOptions& options,
-                                                   RendererInfo& info);
+/// The device half of a RenderContext.
+class ContextImpl {
+public:
+    virtual ~ContextImpl() = default;
+    /// Uploads a mesh (with normals) for frames rendered with `options` (culling final).
+    virtual std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) = 0;
+    [[nodiscard]] virtual std::vector<std::string> validation_messages() const { return {}; }
+};
 
-/// Threads to use for CPU work given RenderOptions::threads (0 = hardware concurrency).
+/// Creates the Vulkan device of a context; fills device_name / device_type.
+std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options, std::string& device_name,
+                                                 std::string& device_type);
+/// Creates the Embree device of a context; fills device_name / device_type.
+std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options, std::string& device_name,
+                                                 std::string& device_type);
+
+/// Process-wide creation counts (render_context_stats()).
+struct CreationCounters {
+    std::atomic<std::size_t> contexts{0};
+    std::atomic<std::size_t> vulkan_instances{0};
+    std::atomic<std::size_t> vulkan_devices{0};
+    std::atomic<std::size_t> embree_devices{0};
+};
+CreationCounters& creation_counters();
+
+/// Threads to use for CPU work given ContextOptions::threads (0 = hardware concurrency).
 int worker_count(int requested);
 
 /// Runs body(begin, end) over [0, count) split into `threads` contiguous chunks.

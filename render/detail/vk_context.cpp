@@ -1,0 +1,117 @@
+#include "render/detail/vk_context.h"
+
+#include "mesh/error.h"
+#include "render/detail/vk_check.h"
+#include "render/detail/vk_pipeline.h"
+
+#include <algorithm>
+
+namespace glint::detail {
+
+VulkanDevice::VulkanDevice(const ContextOptions& options) : threads_(worker_count(options.threads)) {
+    instance_ = std::make_unique<Instance>(options.validation, &log_);
+    auto cands = enumerate(instance_->get());
+    std::string why;
+    const int chosen = choose(cands, options.device, why);
+    if (chosen < 0) throw DeviceError(why);
+    const Candidate& c = cands[static_cast<std::size_t>(chosen)];
+    physical_ = c.physical;
+    queue_family_ = c.queue_family;
+    info_ = c.info;
+    VkPhysicalDeviceProperties props{};
+    vkGetPhysicalDeviceProperties(physical_, &props);
+    max_dimension_ = std::min(props.limits.maxImageDimension2D,
+                              std::min(props.limits.maxFramebufferWidth, props.limits.maxFramebufferHeight));
+    try {
+        create_device();
+        render_pass_ = make_render_pass(device_);
+        layout_ = make_pipeline_layout(device_);
+    } catch (...) {
+        release();  // the destructor does not run for a half-built object
+        throw;
+    }
+}
+
+VulkanDevice::~VulkanDevice() { release(); }
+
+void VulkanDevice::release() noexcept {
+    if (device_ == VK_NULL_HANDLE) return;
+    // Every renderer on the device is gone (they hold it): nothing is in flight.
+    vkDeviceWaitIdle(device_);
+    for (VkPipeline p : pipelines_) {
+        if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
+    }
+    if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+}
+
+void VulkanDevice::create_device() {
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo q{};
+    q.sType = VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO;
+    q.queueFamilyIndex = queue_family_;
+    q.queueCount = 1;
+    q.pQueuePriorities = &priority;
+    VkPhysicalDeviceFeatures features{};
+    features.geometryShader = VK_TRUE;  // gl_PrimitiveID in the fragment shader
+    VkDeviceCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    info.queueCreateInfoCount = 1;
+    info.pQueueCreateInfos = &q;
+    info.pEnabledFeatures = &features;
+    GLINT_VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
+    ++creation_counters().vulkan_devices;
+    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+}
+
+VkPipeline VulkanDevice::pipeline(bool cull_back_faces) {
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    VkPipeline& p = pipelines_[cull_back_faces ? 1 : 0];
+    if (p == VK_NULL_HANDLE) p = make_pipeline(device_, layout_, render_pass_, cull_back_faces);
+    return p;
+}
+
+void VulkanDevice::submit(VkCommandBuffer cmd, VkFence fence) {
+    VkSubmitInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_SUBMIT_INFO;
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &cmd;
+    std::lock_guard<std::mutex> lock(queue_mutex_);
+    GLINT_VK_CHECK(vkQueueSubmit(queue_, 1, &info, fence));
+}
+
+std::vector<std::string> VulkanDevice::validation_messages() const {
+    std::lock_guard<std::mutex> lock(log_.mutex);
+    return log_.messages;
+}
+
+namespace {
+
+class VulkanContext final : public ContextImpl {
+public:
+    explicit VulkanContext(const ContextOptions& options) : device_(std::make_shared<VulkanDevice>(options)) {}
+    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) override {
+        return make_vulkan_backend(device_, mesh, options);
+    }
+    [[nodiscard]] std::vector<std::string> validation_messages() const override {
+        return device_->validation_messages();
+    }
+    [[nodiscard]] const DeviceInfo& info() const { return device_->info(); }
+
+private:
+    std::shared_ptr<VulkanDevice> device_;
+};
+
+}  // namespace
+
+std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options, std::string& device_name,
+                                                 std::string& device_type) {
+    auto context = std::make_unique<VulkanContext>(options);
+    device_name = context->info().name;
+    device_type = context->info().type;
+    return context;
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,69 @@
+// The Vulkan half of a RenderContext (internal): one instance, one logical device with one
+// graphics queue, the render pass, the pipeline layout and the pipelines, shared by every
+// mesh (render/vulkan_backend.cpp) on the context. Backends hold a shared_ptr to it, so it
+// lives as long as the last of the context and its renderers.
+#pragma once
+
+#include "render/context.h"
+#include "render/detail/backend.h"
+#include "render/detail/vk_device.h"
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace glint::detail {
+
+class VulkanDevice {
+public:
+    /// \throw DeviceError no driver, no usable device (listing them), a failed call.
+    explicit VulkanDevice(const ContextOptions& options);
+    ~VulkanDevice();
+    VulkanDevice(const VulkanDevice&) = delete;
+    VulkanDevice& operator=(const VulkanDevice&) = delete;
+
+    [[nodiscard]] VkDevice device() const { return device_; }
+    [[nodiscard]] VkPhysicalDevice physical() const { return physical_; }
+    [[nodiscard]] std::uint32_t queue_family() const { return queue_family_; }
+    [[nodiscard]] std::uint32_t max_dimension() const { return max_dimension_; }
+    [[nodiscard]] VkRenderPass render_pass() const { return render_pass_; }
+    [[nodiscard]] VkPipelineLayout layout() const { return layout_; }
+    [[nodiscard]] const DeviceInfo& info() const { return info_; }
+    [[nodiscard]] int threads() const { return threads_; }
+    /// The graphics pipeline for a cull mode, created at its first use.
+    [[nodiscard]] VkPipeline pipeline(bool cull_back_faces);
+    /// vkQueueSubmit of one command buffer signalling `fence`; the queue is shared by every
+    /// renderer on the device, so submissions are serialised here.
+    void submit(VkCommandBuffer cmd, VkFence fence);
+    [[nodiscard]] std::vector<std::string> validation_messages() const;
+
+private:
+    void create_device();
+    void release() noexcept;
+
+    int threads_ = 1;
+    mutable MessageLog log_;
+    std::unique_ptr<Instance> instance_;
+    DeviceInfo info_;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    std::uint32_t queue_family_ = 0;
+    std::uint32_t max_dimension_ = 4096;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    std::mutex queue_mutex_;
+    VkRenderPass render_pass_ = VK_NULL_HANDLE;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    std::mutex pipeline_mutex_;
+    std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
+};
+
+/// A mesh on a shared device (render/vulkan_backend.cpp).
+std::unique_ptr<RenderBackend> make_vulkan_backend(std::shared_ptr<VulkanDevice> device, const Mesh& mesh,
+                                                   const FrameOptions& options);
+
+}  // namespace glint::detail
