@@ -170,6 +170,27 @@ LocalShape local_shape(const Mesh& m) {
     return out;
 }
 
+// How far the examined surface bulges out of its flat triangle at the closest point, along the
+// triangle's outward normal: Phong tessellation (each corner's tangent plane, blended by the
+// barycentric weights, shape factor 3/4) stands in for the smooth surface the triangle is a
+// chord of. The examined vertices lie on the surface, its flat interiors do not: on a convex
+// part a reference vertex lies outside the chord by about its sagitta.
+double curved_offset(const Mesh& exa, const Triangle& t, const ClosestPoint& c) {
+    constexpr double kShape = 0.75;
+    const Vec3d& p = c.point;
+    Vec3d blended{0, 0, 0};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3d corner = exa.positions[t[k]].cast<double>();
+        const Vec3d n = exa.normals[t[k]].cast<double>();
+        blended += c.barycentric[static_cast<Eigen::Index>(k)] * (p - (p - corner).dot(n) * n);
+    }
+    const Vec3d a = exa.positions[t[0]].cast<double>(), b = exa.positions[t[1]].cast<double>(),
+                d = exa.positions[t[2]].cast<double>();
+    const Vec3d face = (b - a).cross(d - a);
+    if (face.squaredNorm() == 0.0) return 0.0;
+    return kShape * (blended - p).dot(face.normalized());
+}
+
 }  // namespace
 
 ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
@@ -190,8 +211,8 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
         const ClosestPoint& c = closest[v];
         // A reference vertex outside the examined surface (positive) means the examined
         // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
-        e.distance[v] = static_cast<float>(-c.signed_distance);
         const auto& t = exa.triangles[c.triangle];
+        e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
         // The examined triangle's size decides how far it can cut a corner of the reference
         // (its vertices lie on the surface, its interior does not); the sharper of the two
         // surfaces there decides how much it turns.

@@ -28,8 +28,10 @@ std::vector<std::uint8_t> missing_mask(const DecisionEvidence& e, const std::vec
     return m;
 }
 
-// note: 1/2 of the tolerance (kTessellationTolerance·h·θ) — on the jaw remeshed at 1.2× a
-// chord's offset on the convex condyle reached 0.06–0.09 mm where h·θ was ~0.44 mm.
+// note: half the tolerance (kTessellationTolerance·h·θ, smoothed over the 1-ring). On the jaw
+// remeshed at 1.2× with its condyle flattened, the coarse examined mesh cuts the flat top's
+// crease and lies 0.07–0.1 mm off the untouched surface below it, where ½·h·θ is ~0.22 mm;
+// a quarter of the tolerance let that band into the region (precision 0.81 instead of 0.96).
 constexpr double kGrowToleranceShare = 0.5;
 
 struct Group {
@@ -62,52 +64,135 @@ Adjacency adjacency(const Mesh& mesh) {
     return a;
 }
 
+// One extent grown through the distance field (step 3).
+struct Extent {
+    double reach = 0.0;                  // the signed distance a vertex must reach to join
+    float max_normal = 0.0f;             // largest normal evidence inside
+    std::vector<std::uint32_t> vertices;
+};
+
+class Grower {
+public:
+    Grower(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
+           const std::vector<float>& signed_distance)
+        : adj_(adjacency(mesh)), e_(e), missing_(missing), distance_(signed_distance),
+          owner_(signed_distance.size(), -1), stamp_(signed_distance.size(), -1) {
+        if (e.tolerance && e.tolerance->size() == signed_distance.size()) smooth_tolerance(*e.tolerance);
+    }
+
+    // Grows from `seeds` with `reach`. Returns the extent it touched that was grown before
+    // (a stronger one, the caller merges), or -1 with the vertices in `out`.
+    std::int32_t grow(const std::vector<std::uint32_t>& seeds, double reach, std::int32_t id, Extent& out) {
+        ++pass_;
+        std::vector<std::uint32_t> stack;
+        for (const auto s : seeds) {
+            if (distance_[s] < reach || stamp_[s] == pass_ || owner_[s] == id) continue;
+            if (owner_[s] >= 0) return owner_[s];
+            stamp_[s] = pass_;
+            stack.push_back(s);
+        }
+        out.vertices.clear();
+        while (!stack.empty()) {
+            const std::uint32_t u = stack.back();
+            stack.pop_back();
+            out.vertices.push_back(u);
+            for (std::uint32_t i = adj_.offset[u]; i < adj_.offset[u + 1]; ++i) {
+                const std::uint32_t w = adj_.index[i];
+                if (stamp_[w] == pass_ || owner_[w] == id || !e_.coverage->seen[w] || missing_[w] ||
+                    distance_[w] < gate(w, reach))
+                    continue;
+                if (owner_[w] >= 0) return owner_[w];
+                stamp_[w] = pass_;
+                stack.push_back(w);
+            }
+        }
+        return -1;
+    }
+
+    void claim(const Extent& x, std::int32_t id) {
+        for (const auto u : x.vertices) owner_[u] = id;
+    }
+
+private:
+    // A share of the local tessellation tolerance: where a coarse tessellation lies
+    // systematically off a curved surface (a chord across a crease), the offset is not a change
+    // of shape and must not carry a region along.
+    double gate(std::uint32_t w, double reach) const {
+        return std::max(reach, tolerance_.empty() ? 0.0 : kGrowToleranceShare * tolerance_[w]);
+    }
+
+    // The median over each vertex's closed 1-ring: the tolerance's sharpness term flickers
+    // from vertex to vertex on an irregular tessellation; a crease keeps it high all along.
+    void smooth_tolerance(const std::vector<float>& t) {
+        tolerance_.resize(t.size());
+        std::vector<float> ring;
+        for (std::size_t v = 0; v < t.size(); ++v) {
+            ring.assign(1, t[v]);
+            for (std::uint32_t i = adj_.offset[v]; i < adj_.offset[v + 1]; ++i) ring.push_back(t[adj_.index[i]]);
+            const auto mid = ring.begin() + static_cast<std::ptrdiff_t>(ring.size() / 2);
+            std::nth_element(ring.begin(), mid, ring.end());
+            tolerance_[v] = *mid;
+        }
+    }
+
+    Adjacency adj_;
+    const DecisionEvidence& e_;
+    const std::vector<std::uint8_t>& missing_;
+    const std::vector<float>& distance_;
+    std::vector<float> tolerance_;     // smoothed tessellation tolerance (empty: none measured)
+    std::vector<std::int32_t> owner_;  // extent a vertex belongs to
+    std::vector<std::int32_t> stamp_;  // pass that visited a vertex
+    std::int32_t pass_ = 0;
+};
+
 // Steps 3–4: from the strong vertices of each group whose peak excess reaches the shape floor,
 // grow through connected vertices whose signed distance reaches grow_fraction of the group's
 // peak distance (and the lower floor, and a share of the local tessellation tolerance): the
 // region's extent is where the surface moved, not only where it moved beyond the tolerance.
-// The grown extent is kept when its normal evidence reaches the normal floor's lower level:
-// the normal field turns most on a damage's flanks, which the extent holds and the strong core
-// of a smooth dent does not.
+// Groups grow strongest first; a weaker group that runs into a stronger extent is a fragment of
+// the same change (a rough floor splits one damage into several groups) and joins it under the
+// stronger reach, so its shallow fringe does not ride in on its own small peak.
+// An extent is kept when its normal evidence reaches the normal floor's lower level: the
+// normal field turns most on a damage's flanks, which the extent holds and the strong core of
+// a smooth dent does not.
 void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
           const std::vector<std::int32_t>& group, const std::vector<Group>& groups,
           const std::vector<float>& signed_distance, const std::vector<float>& signed_excess, const Floor& normal,
           const Floor& shape, double grow_fraction, std::vector<std::uint8_t>& damaged) {
-    const std::size_t n = group.size();
-    const Adjacency adj = adjacency(mesh);
-    const bool have_tolerance = e.tolerance && e.tolerance->size() == n;
-    std::vector<std::int32_t> visited(n, -1);
-    std::vector<std::vector<std::uint32_t>> extent(groups.size());
-    std::vector<float> extent_normal(groups.size(), 0.0f);
-    std::vector<std::uint32_t> stack;
-    for (std::size_t v = 0; v < n; ++v) {
-        const auto g = group[v];
-        if (g < 0 || signed_excess[v] < shape.value || visited[v] == g) continue;
-        const auto gi = static_cast<std::size_t>(g);
-        if (groups[gi].peak_excess < shape.value) continue;
-        const double reach = std::max(grow_fraction * groups[gi].peak_distance, shape.low);
-        stack.assign(1, static_cast<std::uint32_t>(v));
-        visited[v] = g;
-        while (!stack.empty()) {
-            const std::uint32_t u = stack.back();
-            stack.pop_back();
-            extent[gi].push_back(u);
-            extent_normal[gi] = std::max(extent_normal[gi], e.atlas->value_mean[u]);
-            for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
-                const std::uint32_t w = adj.index[i];
-                // A share of the local tessellation tolerance: where a coarse tessellation lies
-                // systematically off a curved surface (a chord inside a convex part), the
-                // offset is not a change of shape and must not carry a region along.
-                const double tol = have_tolerance ? kGrowToleranceShare * (*e.tolerance)[w] : 0.0;
-                if (visited[w] == g || !e.coverage->seen[w] || missing[w] || signed_distance[w] < std::max(reach, tol)) continue;
-                visited[w] = g;
-                stack.push_back(w);
-            }
-        }
-    }
+    std::vector<std::vector<std::uint32_t>> seeds(groups.size());
+    for (std::size_t v = 0; v < group.size(); ++v)
+        if (group[v] >= 0 && signed_excess[v] >= shape.value)
+            seeds[static_cast<std::size_t>(group[v])].push_back(static_cast<std::uint32_t>(v));
+    std::vector<std::size_t> order;
     for (std::size_t g = 0; g < groups.size(); ++g)
-        if (extent_normal[g] >= normal.low)
-            for (const auto u : extent[g]) damaged[u] = 1;
+        if (groups[g].peak_excess >= shape.value && !seeds[g].empty()) order.push_back(g);
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return groups[a].peak_distance > groups[b].peak_distance; });
+    Grower grower(mesh, e, missing, signed_distance);
+    std::vector<Extent> extents;
+    Extent x;
+    for (const auto g : order) {
+        const auto id = static_cast<std::int32_t>(extents.size());
+        const double reach = std::max(grow_fraction * groups[g].peak_distance, shape.low);
+        std::int32_t into = grower.grow(seeds[g], reach, id, x);
+        if (into >= 0) {
+            // note: grown again under the stronger extent's reach; what it reaches is added.
+            const auto target = static_cast<std::size_t>(into);
+            grower.grow(seeds[g], extents[target].reach, into, x);
+            grower.claim(x, into);
+            for (const auto u : x.vertices) extents[target].vertices.push_back(u);
+            continue;
+        }
+        x.reach = reach;
+        grower.claim(x, id);
+        extents.push_back(std::move(x));
+        x = Extent{};
+    }
+    for (auto& ex : extents) {
+        for (const auto u : ex.vertices) ex.max_normal = std::max(ex.max_normal, e.atlas->value_mean[u]);
+        if (ex.max_normal >= normal.low)
+            for (const auto u : ex.vertices) damaged[u] = 1;
+    }
 }
 
 // Steps 2–4 for one sign of the shape change (+1 gain, −1 loss).

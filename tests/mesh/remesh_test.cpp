@@ -25,8 +25,9 @@ TEST(Remesh, KeepsTheSurfaceAndReachesTheTargetEdge) {
     EXPECT_NEAR(after.median, target, 0.2 * target);
     EXPECT_GT(out.vertex_count(), 3 * input.vertex_count());
     // Vertices are projected onto the input: on its triangles, so inside the sphere by at most
-    // the input's sagitta, never outside it.
-    const double sagitta = 10.0 - 10.0 * std::cos(std::asin(before.max / 20.0)) + 1e-4;
+    // the depth of a triangle's circumcentre (circumradius ≈ edge/√3 on the near-equilateral
+    // icosphere), never outside it.
+    const double sagitta = 10.0 - 10.0 * std::cos(std::asin(before.max / std::sqrt(3.0) / 10.0)) + 1e-4;
     for (const auto& p : out.positions) {
         const double r = p.cast<double>().norm();
         EXPECT_LE(r, 10.0 + 1e-4);

@@ -156,8 +156,8 @@ TEST(LoadSurface, SurfaceOptionsOnAMeshFileAreAnError) {
     EXPECT_EQ(load_surface(fs::path(GLINT_TEST_DATA_DIR) / "cube.obj", {}).mesh.triangle_count(), 12u);
 }
 
-TEST(ReadVolume, MissingFileIsAnIoError) {
-    EXPECT_THROW((void)read_volume(fs::path(GLINT_TEST_OUTPUT_DIR) / "none.nii.gz"), IoError);
+TEST(ReadVolume, MissingFileIsBadInput) {
+    EXPECT_THROW((void)read_volume(fs::path(GLINT_TEST_OUTPUT_DIR) / "none.nii.gz"), InputError);
 }
 
 }  // namespace
