@@ -104,7 +104,7 @@ void check_spec(const DamageSpec& d, std::size_t index) {
     positive(d.depth, "depth");
     if (d.kind == DamageKind::Groove && d.path.size() < 2)
         throw InputError(describe(d, index) + ": path has " + std::to_string(d.path.size()) + " point(s), expected at least 2");
-    if (d.kind == DamageKind::Flatten && !(d.plane_normal.norm() > 0))
+    if (d.kind == DamageKind::Flatten && d.plane_normal && !(d.plane_normal->norm() > 0))
         throw InputError(describe(d, index) + ": normal must not be zero");
 }
 
@@ -176,7 +176,12 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
                 throw InputError(describe(d, k) + ": centre lies " + std::to_string(dist) +
                                  " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
         }
-        const Vec3d plane_n = d.plane_normal.normalized();
+        Vec3d plane_n = Vec3d::UnitZ();
+        if (d.kind == DamageKind::Flatten) {
+            double unused = 0.0;
+            plane_n = d.plane_normal ? d.plane_normal->normalized()
+                                     : mesh.normals[nearest_vertex(mesh, center, unused)].cast<double>().normalized();
+        }
         for (std::size_t v = 0; v < n; ++v) {
             const Vec3d p = mesh.positions[v].cast<double>();
             const double dist = d.kind == DamageKind::Groove ? distance_to_path(p, d.path) : (p - center).norm();

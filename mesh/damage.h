@@ -11,6 +11,7 @@
 #include "mesh/mesh.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,8 +34,10 @@ struct DamageSpec {
     double radius = 1.0;       ///< footprint radius on the surface (mesh units)
     double depth = 0.1;        ///< magnitude of displacement (mesh units, > 0)
     std::vector<Vec3d> path;   ///< Groove: polyline (center unused); ≥ 2 points
-    Vec3d plane_normal{0, 0, 1};  ///< Flatten: outward normal of the cutting plane; the plane
-                                  ///< passes at `depth` below the surface point nearest center
+    /// Flatten: outward normal of the cutting plane, which passes `depth` below the surface
+    /// point nearest `center`; unset: the surface's normal there (a flattening of the surface
+    /// as it faces, whatever its orientation in space).
+    std::optional<Vec3d> plane_normal;
     double sigma = 0.01;       ///< Noise: standard deviation (mesh units)
     std::uint32_t seed = 1;    ///< Erosion / Noise
 };

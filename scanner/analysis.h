@@ -23,6 +23,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -50,6 +51,10 @@ struct ExportOptions {
     std::string command_line;
     std::vector<InputRecord> inputs;
     std::vector<std::string> warnings;  ///< e.g. repairs done while loading
+    /// Per-vertex scalars added to the atlas files as they are (e.g. a scenario's ground
+    /// truth, "truth_damage" and "truth_distance", to be seen beside glint's own fields in a
+    /// viewer); each holds one value per reference vertex.
+    std::vector<std::pair<std::string, std::vector<float>>> extra_scalars;
 
     /// \throw OptionError; InputError when the output folder exists and may not be replaced.
     void validate() const;

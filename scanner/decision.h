@@ -23,8 +23,9 @@
 //           3. growth: from the vertices of each group whose excess reaches the shape floor
 //              (so tessellation-only normal differences do not count), the extent grows
 //              through connected vertices whose signed distance reaches a tenth
-//              (grow_fraction) of the group's peak, the lower shape floor and half the local
-//              tessellation tolerance — where the shape changed, not only its steep rim;
+//              (grow_fraction) of the group's peak and the lower shape floor, and, below
+//              1.5 times that reach, half the local tessellation tolerance — where the shape
+//              changed, not only its steep rim;
 //           4. the grown extent is a region only when its normal deviation reaches the
 //              normal floor's lower level (so isolated distance speckle from noise does not
 //              count; a smooth dent turns the normals most on its flanks, not at its core);

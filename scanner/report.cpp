@@ -297,7 +297,11 @@ std::string regions_csv(const AnalysisResult& result) {
 
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
                    const AnalysisOptions& options) {
-    const Mesh atlas = make_atlas_mesh(reference, result);
+    Mesh atlas = make_atlas_mesh(reference, result);
+    for (const auto& [name, values] : options.exports.extra_scalars) {
+        GLINT_ASSERT(values.size() == reference.vertex_count(), "extra atlas scalar '" + name + "' has the wrong length");
+        atlas.set_scalar(name, values);
+    }
     WriteOptions viewers;
     viewers.cloudcompare_names = true;
     if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);

@@ -118,6 +118,22 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions, S
     }
 }
 
+// The ground truth beside glint's own fields in the atlas files, so a viewer shows both:
+// "truth_damage" (the 1-based damage a vertex belongs to, 0 = undamaged) and
+// "truth_distance" (to the examined surface placed back with the true pose, before noise).
+void add_truth_scalars(const ScenarioMeshes& meshes, ExportOptions& e) {
+    const std::size_t n = meshes.reference.vertex_count();
+    if (meshes.truth.size() == n) {
+        std::vector<float> id(n);
+        for (std::size_t v = 0; v < n; ++v)
+            id[v] = !meshes.truth[v] ? 0.0f
+                    : meshes.truth_damage.size() == n ? static_cast<float>(meshes.truth_damage[v])
+                                                      : 1.0f;
+        e.extra_scalars.emplace_back("truth_damage", std::move(id));
+    }
+    if (meshes.true_distance.size() == n) e.extra_scalars.emplace_back("truth_distance", meshes.true_distance);
+}
+
 }  // namespace
 
 ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) {
@@ -159,6 +175,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
         e.inputs.push_back({"examined", sc.examined_derived ? fs::path() : sc.examined.mesh,
                             sc.examined_derived ? "derived from the reference" : describe_source(sc.examined),
                             meshes.examined.vertex_count(), meshes.examined.triangle_count()});
+        add_truth_scalars(meshes, e);
     }
     AnalysisObserver observer;
     observer.views = run.progress;

@@ -87,10 +87,25 @@ TEST(ApplyDamage, GrooveFollowsItsPath) {
 TEST(ApplyDamage, FlattenCutsAPlaneAtTheDepth) {
     Mesh m = sphere(6);
     apply_damage(m, {DamageSpec{.kind = DamageKind::Flatten, .center = {0, 0, 10}, .radius = 4, .depth = 0.5,
-                                .plane_normal = {0, 0, 1}}});
+                                .plane_normal = Vec3d{0, 0, 1}}});
     float top = -1e9f;
     for (const auto& p : m.positions) top = std::max(top, p.z());
     EXPECT_NEAR(top, 9.5f, 1e-4f);
+}
+
+TEST(ApplyDamage, FlattenWithoutANormalCutsAcrossTheSurfaceAsItFaces) {
+    // The tip of a sphere at +x: the plane faces +x, 0.5 below the tip, and no vertex moves
+    // by more than the depth (a plane of another direction would fold the surface over).
+    Mesh m = sphere(6);
+    const Mesh before = m;
+    apply_damage(m, {DamageSpec{.kind = DamageKind::Flatten, .center = {10, 0, 0}, .radius = 4, .depth = 0.5}});
+    float tip = -1e9f, moved = 0.0f;
+    for (std::size_t v = 0; v < m.vertex_count(); ++v) {
+        tip = std::max(tip, m.positions[v].x());
+        moved = std::max(moved, (m.positions[v] - before.positions[v]).norm());
+    }
+    EXPECT_NEAR(tip, 9.5f, 1e-4f);
+    EXPECT_LE(moved, 0.5f + 1e-4f);
 }
 
 TEST(ApplyDamage, ErosionIsRoughDeterministicAndALoss) {

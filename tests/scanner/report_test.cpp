@@ -5,6 +5,7 @@
 #include "scanner/report.h"
 
 #include "mesh/damage.h"
+#include "mesh/io.h"
 #include "mesh/phantom.h"
 #include "mesh/write.h"
 
@@ -41,11 +42,20 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     options.exports.output = dir / "atlas";
     options.exports.command_line = "glint sweep ref.ply exa.ply -o atlas";
     options.exports.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
+    // A scenario's ground truth rides along into the atlas files, beside glint's own fields.
+    std::vector<float> truth(ref.vertex_count());
+    for (std::size_t v = 0; v < truth.size(); ++v) truth[v] = static_cast<float>(exa.labels[v]);
+    options.exports.extra_scalars.emplace_back("truth_damage", truth);
     const AnalysisResult result = analyse(ref, exa, options);
     EXPECT_EQ(result.output, dir / "atlas");
     for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "mosaic_z0.png",
                           "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
         EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
+
+    const Mesh atlas = load_mesh(dir / "atlas" / "atlas.ply").mesh;
+    const auto* truth_read = atlas.find_scalar("truth_damage");
+    ASSERT_NE(truth_read, nullptr);
+    EXPECT_EQ(truth_read->values, truth);
 
     std::ifstream in(dir / "atlas" / "report.json");
     const nlohmann::json r = nlohmann::json::parse(in);
