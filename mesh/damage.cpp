@@ -135,6 +135,79 @@ std::string to_string(DamageKind kind) {
     return "?";
 }
 
+namespace {
+
+// The damage's centre on the surface: the closest point on any triangle, not the nearest vertex,
+// so the same damage lands on the same spot of two tessellations of one surface. A damage off
+// the surface (or a groove path point) is an input error.
+Vec3d place_on_surface(const Mesh& mesh, const DamageSpec& d, std::size_t k) {
+    if (d.kind == DamageKind::Groove) {
+        for (std::size_t p = 0; p < d.path.size(); ++p) {
+            double dist = 0.0;
+            nearest_vertex(mesh, d.path[p], dist);
+            if (dist > d.radius)
+                throw InputError(describe(d, k) + ": path point " + std::to_string(p + 1) + " lies " + std::to_string(dist) +
+                                 " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
+        }
+        return d.center;
+    }
+    const Vec3d center = closest_point_on_mesh(mesh, d.center);
+    const double dist = (center - d.center).norm();
+    if (dist > d.radius)
+        throw InputError(describe(d, k) + ": centre lies " + std::to_string(dist) +
+                         " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
+    return center;
+}
+
+// One damage's move of every vertex (`offset`, mesh units) and its displacement along the
+// vertex normal (`disp`, the ground truth).
+void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center, std::vector<Vec3d>& offset,
+              std::vector<double>& disp) {
+    Vec3d plane_n = Vec3d::UnitZ();
+    if (d.kind == DamageKind::Flatten) {
+        double unused = 0.0;
+        plane_n = d.plane_normal ? d.plane_normal->normalized()
+                                 : mesh.normals[nearest_vertex(mesh, center, unused)].cast<double>().normalized();
+    }
+    for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
+        const Vec3d p = mesh.positions[v].cast<double>();
+        const Vec3d normal = mesh.normals[v].cast<double>();
+        const double dist = d.kind == DamageKind::Groove ? distance_to_path(p, d.path) : (p - center).norm();
+        const double s = dist / d.radius;
+        if (s >= 1.0) continue;
+        double amount = 0.0;
+        switch (d.kind) {
+            case DamageKind::Dent: amount = -d.depth * bump_profile(s); break;
+            case DamageKind::Bump: amount = d.depth * bump_profile(s); break;
+            case DamageKind::Pit: amount = -d.depth * pit_profile(s); break;
+            case DamageKind::Groove: amount = -d.depth * bump_profile(s); break;
+            case DamageKind::Erosion: {
+                // note: noise at ~3 cells per radius gives a rough floor with a few
+                // lumps; 0.3 + 0.7·noise keeps every eroded vertex below the surface.
+                const double rough = 0.3 + 0.7 * value_noise(p * (3.0 / d.radius), d.seed);
+                amount = -d.depth * bump_profile(s) * rough;
+                break;
+            }
+            case DamageKind::Flatten: {
+                // Plane `depth` below the centre along its normal; vertices above it are
+                // pushed onto it (along the plane normal), fading out over the outer 20%.
+                const double above = (p - (center - d.depth * plane_n)).dot(plane_n);
+                if (above <= 0) continue;
+                const double fade = smoothstep((1.0 - s) / 0.2);
+                const Vec3d move = -fade * above * plane_n;
+                offset[v] += move;
+                disp[v] = move.dot(normal);
+                continue;
+            }
+            case DamageKind::Noise: break;
+        }
+        disp[v] = amount;
+        offset[v] += amount * normal;
+    }
+}
+
+}  // namespace
+
 void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
     const std::size_t n = mesh.vertex_count();
     if (!mesh.has_normals()) compute_vertex_normals(mesh);
@@ -149,73 +222,14 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
 
     for (std::size_t k = 0; k < damages.size(); ++k) {
         const DamageSpec& d = damages[k];
-        std::vector<double> disp(n, 0.0);
         if (d.kind == DamageKind::Noise) {
             std::mt19937 rng(d.seed);
             std::normal_distribution<double> gauss(0.0, d.sigma);
             for (std::size_t v = 0; v < n; ++v) offset[v] += gauss(rng) * mesh.normals[v].cast<double>();
             continue;
         }
-        // Centre(s) on the surface: a damage off the surface is an input error.
-        Vec3d center = d.center;
-        if (d.kind == DamageKind::Groove) {
-            for (std::size_t p = 0; p < d.path.size(); ++p) {
-                double dist = 0.0;
-                nearest_vertex(mesh, d.path[p], dist);
-                if (dist > d.radius)
-                    throw InputError(describe(d, k) + ": path point " + std::to_string(p + 1) + " lies " + std::to_string(dist) +
-                                     " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
-            }
-        } else {
-            // The centre is projected onto the surface (the closest point on any triangle, not
-            // the nearest vertex), so the same damage lands on the same spot of two
-            // tessellations of one surface.
-            center = closest_point_on_mesh(mesh, d.center);
-            const double dist = (center - d.center).norm();
-            if (dist > d.radius)
-                throw InputError(describe(d, k) + ": centre lies " + std::to_string(dist) +
-                                 " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
-        }
-        Vec3d plane_n = Vec3d::UnitZ();
-        if (d.kind == DamageKind::Flatten) {
-            double unused = 0.0;
-            plane_n = d.plane_normal ? d.plane_normal->normalized()
-                                     : mesh.normals[nearest_vertex(mesh, center, unused)].cast<double>().normalized();
-        }
-        for (std::size_t v = 0; v < n; ++v) {
-            const Vec3d p = mesh.positions[v].cast<double>();
-            const double dist = d.kind == DamageKind::Groove ? distance_to_path(p, d.path) : (p - center).norm();
-            const double s = dist / d.radius;
-            if (s >= 1.0) continue;
-            double amount = 0.0;
-            switch (d.kind) {
-                case DamageKind::Dent: amount = -d.depth * bump_profile(s); break;
-                case DamageKind::Bump: amount = d.depth * bump_profile(s); break;
-                case DamageKind::Pit: amount = -d.depth * pit_profile(s); break;
-                case DamageKind::Groove: amount = -d.depth * bump_profile(s); break;
-                case DamageKind::Erosion: {
-                    // note: noise at ~3 cells per radius gives a rough floor with a few
-                    // lumps; 0.3 + 0.7·noise keeps every eroded vertex below the surface.
-                    const double rough = 0.3 + 0.7 * value_noise(p * (3.0 / d.radius), d.seed);
-                    amount = -d.depth * bump_profile(s) * rough;
-                    break;
-                }
-                case DamageKind::Flatten: {
-                    // Plane `depth` below the centre along its normal; vertices above it are
-                    // pushed onto it (along the plane normal), fading out over the outer 20%.
-                    const double above = (p - (center - d.depth * plane_n)).dot(plane_n);
-                    if (above <= 0) continue;
-                    const double fade = smoothstep((1.0 - s) / 0.2);
-                    const Vec3d move = -fade * above * plane_n;
-                    offset[v] += move;
-                    disp[v] = move.dot(mesh.normals[v].cast<double>());
-                    continue;
-                }
-                case DamageKind::Noise: break;
-            }
-            disp[v] = amount;
-            offset[v] += amount * mesh.normals[v].cast<double>();
-        }
+        std::vector<double> disp(n, 0.0);
+        displace(mesh, d, place_on_surface(mesh, d, k), offset, disp);
         const double label_at = kDamageLabelThreshold * d.depth;
         for (std::size_t v = 0; v < n; ++v) {
             total[v] += disp[v];
