@@ -56,6 +56,9 @@ glint_require(CGAL_FOUND libcgal-dev)
 # modules glint uses, so configuring pulls in none of VTK's rendering or Qt parts.
 # note: ITK's package configuration looks for HDF5 with a C test program, so C is enabled.
 enable_language(C)
+# zlib reads a NIfTI header (.nii or .nii.gz) before ITK does (volume/detail/itk_io.cpp).
+find_package(ZLIB QUIET)
+glint_require(ZLIB_FOUND zlib1g-dev)
 find_package(ITK 5 QUIET COMPONENTS ITKCommon ITKIOImageBase ITKIOMeta ITKIONIFTI ITKIONRRD ITKIOGDCM)
 glint_require(ITK_FOUND libinsighttoolkit5-dev)
 # GDCM itself (ITK's DICOM IO uses Debian's GDCM): only to silence its warning trace.

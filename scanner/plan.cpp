@@ -35,8 +35,9 @@ void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {
     if (text.rfind("sphere:", 0) == 0) {
         options.kind = SweepPlanOptions::Kind::Sphere;
         const auto v = parse_number_list(text.substr(7), "plan '" + text + "'");
-        if (v.size() != 1 || v[0] < 1 || v[0] != std::floor(v[0]))
-            throw InputError("plan '" + text + "': expected sphere:N with N a positive integer");
+        // note: 100000 views bound a plan well beyond any sweep (and keep the cast defined).
+        if (v.size() != 1 || !(v[0] >= 1 && v[0] <= 100000) || v[0] != std::floor(v[0]))
+            throw InputError("plan '" + text + "': expected sphere:N with N an integer from 1 to 100000");
         options.sphere_views = static_cast<int>(v[0]);
         return;
     }

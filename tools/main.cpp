@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 namespace glint::cli {
 
 GlobalFlags& global_flags() {
@@ -24,9 +26,19 @@ GlobalFlags& global_flags() {
 }
 
 namespace {
+// note: 3 s for the cooperative stop (the next view or the next thousand file lines, then the
+// staged outputs removed) before the watchdog ends the process with the same exit code: a call
+// into a library (ITK, VTK, a driver) cannot poll the flag, and one given a hostile input may
+// never return. A single SIGTERM from `timeout` or a batch system must still end glint.
+constexpr unsigned kCancelGraceSeconds = 3;
+
+extern "C" void on_watchdog(int) { _exit(130); }
+
 extern "C" void on_signal(int signal) {
     glint::request_cancel(signal);
     std::signal(signal, SIG_DFL);  // a second one ends the process at once
+    std::signal(SIGALRM, on_watchdog);
+    alarm(kCancelGraceSeconds);
 }
 
 std::vector<std::pair<int, CommandSetup>>& registry() {

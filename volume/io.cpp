@@ -54,10 +54,10 @@ bool is_volume_path(const fs::path& path) {
     return fs::is_directory(path, ec) || !detail::volume_format(path).empty();
 }
 
-Volume read_volume(const fs::path& path) {
+Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(quoted(path) + ": no such file or folder");
-    detail::RawVolume raw = detail::itk_read(path);
+    detail::RawVolume raw = detail::itk_read(path, max_voxels);
     Volume v;
     v.path = path;
     v.format = std::move(raw.format);

@@ -54,12 +54,18 @@ struct Volume {
 /// (.mhd .mha .nii .nii.gz .nrrd .nhdr .dcm) or a directory.
 [[nodiscard]] bool is_volume_path(const std::filesystem::path& path);
 
+/// The voxel budget of read_volume: 2·10⁹ voxels (8 GB as float, the 1000³-voxel scans of
+/// today's CBCT twice over).
+inline constexpr std::size_t kDefaultMaxVoxels = 2'000'000'000;
+
 /// Reads a 3D scalar volume (MetaImage, NIfTI, NRRD, or a folder holding one DICOM series).
 /// A 4D image with one time point is read as 3D.
 /// \throw IoError missing file or folder. \throw InputError unknown format, truncated or
 /// inconsistent data, a 2D or 4D image, a vector image, a folder with no DICOM series,
 /// non-finite voxels; every message is one line naming the file.
-[[nodiscard]] Volume read_volume(const std::filesystem::path& path);
+/// A header declaring more than `max_voxels` voxels, or more voxel bytes than its file can
+/// hold (compressed: at zlib's best ratio), is refused before anything is allocated.
+[[nodiscard]] Volume read_volume(const std::filesystem::path& path, std::size_t max_voxels = kDefaultMaxVoxels);
 
 /// Writes a volume; the format follows the extension (.mha, .mhd (+ .raw beside it), .nii,
 /// .nii.gz, .nrrd, .nhdr (+ .raw.gz beside it)). Single-file formats are written atomically.

@@ -142,5 +142,31 @@ TEST(ReadNpyMask, ReadsBooleanVectorAndRejectsOtherFiles) {
     EXPECT_THROW((void)read_npy_mask(dir / "text.npy"), InputError);
 }
 
+TEST(ReadNpyMask, RefusesLyingLengthsBeforeAllocating) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
+    fs::create_directories(dir);
+    auto expect_refused = [&](const std::string& name, const std::string& bytes, const std::string& says) {
+        write_file_atomically(dir / name, bytes);
+        try {
+            (void)read_npy_mask(dir / name);
+            ADD_FAILURE() << name << " was read";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+        }
+    };
+    // A v2.0 header claiming 4 GiB, in a file of 20 bytes.
+    expect_refused("huge_header.npy", std::string("\x93NUMPY\x02\x00\xff\xff\xff\xff", 12) + "{'descr'", "exceeds the file");
+    // A shape of 10^18 values (and one that does not parse) in a file of 128 bytes.
+    for (const std::string shape : {"1000000000000000000", "x"}) {
+        std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (" + shape + ",), }";
+        header.append(128 - 10 - header.size() - 1, ' ');
+        header += '\n';
+        std::string file = std::string("\x93NUMPY\x01\x00", 8);
+        file += static_cast<char>(header.size() & 0xFF);
+        file += static_cast<char>(header.size() >> 8);
+        expect_refused("huge_shape.npy", file + header + "\x01", "the file holds 1");
+    }
+}
+
 }  // namespace
 }  // namespace glint

@@ -8,7 +8,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
+#include <iterator>
+#include <limits>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -115,6 +119,105 @@ TEST(ReadVolume, RejectsAMissingSliceFile) {
     write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
                               "ElementDataFile = s.%d 1 3 1\n");
     expect_input_error(dir / "v.mhd", "s.2\" is missing");
+}
+
+TEST(ReadVolume, RefusesASlicePatternThatIsNotOneIntegerConversion) {
+    // The pattern comes from the file and goes to snprintf: %s or %n there would read or write
+    // memory, so anything but one %d is bad input.
+    const fs::path dir = fresh_dir("slice_format");
+    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
+                              "ElementDataFile = s.%s%n 1 3 1\n");
+    expect_input_error(dir / "v.mhd", "expected a name with one %d");
+    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
+                              "ElementDataFile = s.%d 1 9223372036854775806 1\n");
+    expect_input_error(dir / "v.mhd", "expected 0 to 1000000");
+}
+
+// A NIfTI whose stored orientation is not finite, not normal or not 3D: ITK's matrix code
+// would abort the process on it (fuzz_nii findings: an sform with NaN ended glint info in
+// SIGABRT, one with a subnormal entry in an endless SVD).
+TEST(ReadVolume, RefusesANiftiOrientationThatIsNotFiniteOrSingular) {
+    const fs::path dir = fresh_dir("nifti_orientation");
+    write_volume(small_volume(), dir / "v.nii");
+    std::string bytes;
+    {
+        std::ifstream in(dir / "v.nii", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    ASSERT_GT(bytes.size(), 348u);
+    auto with_floats = [&](std::size_t at, std::vector<float> values) {
+        std::string b = bytes;
+        b[254] = 1;  // sform_code: the sform is used
+        b[255] = 0;
+        for (std::size_t k = 0; k < values.size(); ++k) std::memcpy(&b[at + 4 * k], &values[k], 4);
+        return b;
+    };
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    write_text(dir / "nan.nii", with_floats(280, {-1, 0, nan, nan}));
+    expect_input_error(dir / "nan.nii", "srow_x[2] = nan");
+    // A subnormal entry: ITK's float SVD of it never returned (a fuzz_nii timeout).
+    write_text(dir / "subnormal.nii", with_floats(280, {-1, 0, 1.4349296e-42f, 0}));
+    expect_input_error(dir / "subnormal.nii", "srow_x[2] = 1.43493e-42");
+    // srow_x = srow_y: two axes the same, the grid is flat.
+    write_text(dir / "flat.nii", with_floats(280, {1, 0, 0, 0, 1, 0, 0, 0}));
+    expect_input_error(dir / "flat.nii", "expected finite axes that span 3D");
+}
+
+// niftilib writes its own "** ERROR" lines to stderr for these before ITK throws: glint refuses
+// them first, so the user reads one line.
+TEST(ReadVolume, RefusesANiftiDatatypeOrDimensionNiftilibWouldPrintAbout) {
+    const fs::path dir = fresh_dir("nifti_datatype");
+    write_volume(small_volume(), dir / "v.nii");
+    std::string bytes;
+    {
+        std::ifstream in(dir / "v.nii", std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    std::string bad = bytes;
+    bad[70] = static_cast<char>(0x0f);  // datatype 9999 = 0x270f
+    bad[71] = static_cast<char>(0x27);
+    write_text(dir / "datatype.nii", bad);
+    expect_input_error(dir / "datatype.nii", "NIfTI datatype 9999, expected one of NIfTI's codes");
+    bad = bytes;
+    bad[40] = 9;  // dim[0]
+    write_text(dir / "dims.nii", bad);
+    expect_input_error(dir / "dims.nii", "expected 1 to 7 dimensions");  // read as swapped: 9 fits neither order
+}
+
+TEST(ReadVolume, RefusesAZeroSpacingOrASingularDirection) {
+    const fs::path dir = fresh_dir("bad_geometry");
+    write_text(dir / "v.raw", std::string(8 * 8 * 8 * 2, '\0'));
+    const std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n";
+    write_text(dir / "zero.mhd", header + "ElementSpacing = 0 1 1\nElementDataFile = v.raw\n");
+    expect_input_error(dir / "zero.mhd", "a spacing other than 0");
+    write_text(dir / "flat.mhd", header + "TransformMatrix = 1 0 0 1 0 0 0 0 1\nElementDataFile = v.raw\n");
+    expect_input_error(dir / "flat.mhd", "expected finite axes that span 3D");
+}
+
+// A header may declare terabytes of voxels in a file of a few hundred bytes (fuzz_mha and
+// fuzz_nii findings: ITK tried to allocate 600 GB); refused before anything is allocated.
+TEST(ReadVolume, RefusesMoreVoxelsThanTheFileOrTheBudgetHolds) {
+    const fs::path dir = fresh_dir("budget");
+    write_text(dir / "big.mha", "ObjectType = Image\nNDims = 3\nDimSize = 1000 1000 1000\nElementType = MET_SHORT\n"
+                                "ElementDataFile = LOCAL\n" + std::string(64, '\0'));
+    expect_input_error(dir / "big.mha", "-byte file \"big.mha\" can hold");
+    write_volume(small_volume(), dir / "v.nii.gz");
+    EXPECT_NO_THROW((void)read_volume(dir / "v.nii.gz"));
+    try {
+        (void)read_volume(dir / "v.nii.gz", 100);
+        ADD_FAILURE() << "read past the voxel budget";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("more than the limit 100"), std::string::npos) << e.what();
+    }
+}
+
+// MetaIO reads "NDims = = -3" as billions of array entries from a failed stream (a fuzz_mha
+// timeout): NDims is refused first.
+TEST(ReadVolume, RefusesAMetaImageNDimsThatIsNotASmallInteger) {
+    const fs::path dir = fresh_dir("ndims");
+    write_text(dir / "v.mha", "ObjectType = Image\nNDims = = -3\nDimSize = 6 6 4\nElementType = MET_SHORT\n"
+                              "ElementDataFile = LOCAL\n" + std::string(288, '\0'));
+    expect_input_error(dir / "v.mha", "NDims = \"= -3\", expected an integer from 1 to 4");
 }
 
 TEST(ReadVolume, RejectsA2DImage) {

@@ -14,11 +14,23 @@
 #include <itkNiftiImageIO.h>
 #include <itkNrrdImageIO.h>
 #include <gdcmTrace.h>
+#include <nifti1_io.h>
+#include <zlib.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cctype>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <optional>
+#include <regex>
 #include <sstream>
 
 namespace glint::detail {
@@ -65,6 +77,169 @@ std::string size_text(const itk::ImageIOBase& io) {
     return s.str();
 }
 
+// A direction matrix (m[row][column], columns the axes) must be finite with columns of
+// non-zero length that span 3D. (Plain arrays: this file sees ITK's bundled Eigen, not ours.)
+// note: 1e-6 on the determinant of the column-normalised matrix: axes closer than ~0.06° to
+// lying in one plane are not a scanner's grid.
+using Matrix3 = std::array<std::array<double, 3>, 3>;
+
+void check_direction(const Matrix3& m, const fs::path& path) {
+    Matrix3 u = m;
+    bool ok = true;
+    for (std::size_t c = 0; c < 3 && ok; ++c) {
+        double n = 0.0;
+        for (std::size_t r = 0; r < 3; ++r) n += m[r][c] * m[r][c];
+        n = std::sqrt(n);
+        ok = std::isfinite(n) && n > 0.0;
+        for (std::size_t r = 0; r < 3 && ok; ++r) u[r][c] = m[r][c] / n;
+    }
+    const double det = ok ? u[0][0] * (u[1][1] * u[2][2] - u[1][2] * u[2][1]) -
+                                u[0][1] * (u[1][0] * u[2][2] - u[1][2] * u[2][0]) +
+                                u[0][2] * (u[1][0] * u[2][1] - u[1][1] * u[2][0])
+                          : 0.0;
+    if (!(std::abs(det) > 1e-6)) {
+        std::ostringstream text;
+        text << quoted(path) << ": direction matrix [";
+        for (std::size_t r = 0; r < 3; ++r) text << (r ? "; " : "") << m[r][0] << " " << m[r][1] << " " << m[r][2];
+        text << "], expected finite axes that span 3D";
+        throw InputError(text.str());
+    }
+}
+
+// A number a scanner's geometry can hold: finite, at most `limit` in magnitude, and either
+// zero or a normal float. note: subnormal entries (|x| < 1.2e-38) send ITK's float SVD of a
+// NIfTI orientation into an endless loop (a fuzz_nii finding); 1e-30 keeps well clear of them
+// while a rounded rotation's "zeros" (~1e-8) stay.
+bool plausible(double x, double limit) { return std::isfinite(x) && std::abs(x) <= limit && (x == 0.0 || std::abs(x) >= 1e-30); }
+
+// note: 1e6 mm for a voxel axis (a kilometre) and 1e9 mm for a position bound what any scan
+// holds; far beyond them ITK's matrix code overflows.
+constexpr double kMaxAxisMm = 1e6;
+constexpr double kMaxPositionMm = 1e9;
+
+// The fields of a NIfTI-1 (348-byte) or NIfTI-2 (540-byte) header glint checks, either byte
+// order; nullopt when the file cannot be opened or is shorter than a header (ITK then says so).
+struct NiftiHeader {
+    std::int64_t dim0 = 0, dim1 = 0;
+    std::int32_t datatype = 0, qform_code = 0, sform_code = 0;
+    std::array<double, 3> pixdim{};
+    std::array<double, 6> quatern{};  // b, c, d, qoffset x, y, z
+    std::array<double, 12> srow{};    // srow_x, srow_y, srow_z
+};
+
+std::optional<NiftiHeader> read_nifti_header(const fs::path& path) {
+    gzFile file = gzopen(path.c_str(), "rb");  // zlib reads .nii and .nii.gz alike
+    if (file == nullptr) return std::nullopt;
+    std::array<unsigned char, 540> h{};
+    const int got = gzread(file, h.data(), static_cast<unsigned>(h.size()));
+    gzclose(file);
+    if (got < 348) return std::nullopt;
+    bool swap = false;
+    auto integer = [&](std::size_t at, std::size_t bytes) {
+        std::uint64_t v = 0;
+        for (std::size_t k = 0; k < bytes; ++k) v |= static_cast<std::uint64_t>(h[at + (swap ? bytes - 1 - k : k)]) << (8 * k);
+        if (bytes == 8) return static_cast<std::int64_t>(v);
+        const std::uint64_t sign = std::uint64_t{1} << (8 * bytes - 1);
+        return v & sign ? static_cast<std::int64_t>(v) - static_cast<std::int64_t>(sign << 1) : static_cast<std::int64_t>(v);
+    };
+    // note: as niftilib does: 540 in either byte order is NIfTI-2; anything else is read as
+    // NIfTI-1 (niftilib goes on past a wrong sizeof_hdr), its byte order told by dim[0].
+    bool v2 = integer(0, 4) == 540;
+    if (!v2) {
+        swap = true;
+        v2 = integer(0, 4) == 540 && got >= 540;
+        if (!v2) {
+            swap = false;
+            const auto dim0 = integer(40, 2);
+            swap = dim0 < 1 || dim0 > 7;
+        }
+    }
+    auto real = [&](std::size_t at) {
+        const std::int64_t bits = integer(at, v2 ? 8 : 4);
+        if (v2) return std::bit_cast<double>(bits);
+        return static_cast<double>(std::bit_cast<float>(static_cast<std::int32_t>(bits)));
+    };
+    const std::size_t step = v2 ? 8 : 4;
+    NiftiHeader n;
+    n.dim0 = v2 ? integer(16, 8) : integer(40, 2);
+    n.dim1 = v2 ? integer(24, 8) : integer(42, 2);
+    n.datatype = static_cast<std::int32_t>(integer(v2 ? 12 : 70, 2));
+    n.qform_code = static_cast<std::int32_t>(v2 ? integer(344, 4) : integer(252, 2));
+    n.sform_code = static_cast<std::int32_t>(v2 ? integer(348, 4) : integer(254, 2));
+    for (std::size_t k = 0; k < 3; ++k) n.pixdim[k] = real((v2 ? 104 : 76) + (k + 1) * step);
+    for (std::size_t k = 0; k < 6; ++k) n.quatern[k] = real((v2 ? 352 : 256) + k * step);
+    for (std::size_t k = 0; k < 12; ++k) n.srow[k] = real((v2 ? 400 : 280) + k * step);
+    return n;
+}
+
+// What ITK would otherwise trip over in a NIfTI header, before it reads it: niftilib prints its
+// own "** ERROR" lines for a bad dim[0], dim[1] or datatype, and ITK's matrix code aborts the
+// process on a non-finite or singular orientation (a fuzz_nii finding: an sform with NaN) or
+// loops forever on one with subnormal entries.
+void check_nifti_header(const fs::path& path) {
+    const std::optional<NiftiHeader> n = read_nifti_header(path);
+    if (!n) return;
+    static constexpr std::array<std::int32_t, 16> kDatatypes{2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024, 1280, 1536, 1792, 2048, 2304};
+    if (n->dim0 < 1 || n->dim0 > 7 || n->dim1 < 1)
+        throw InputError(quoted(path) + ": NIfTI dim[0] = " + std::to_string(n->dim0) + ", dim[1] = " + std::to_string(n->dim1) +
+                         ", expected 1 to 7 dimensions of at least one voxel");
+    if (std::find(kDatatypes.begin(), kDatatypes.end(), n->datatype) == kDatatypes.end())
+        throw InputError(quoted(path) + ": NIfTI datatype " + std::to_string(n->datatype) + ", expected one of NIfTI's codes");
+    auto refuse = [&](const std::string& field, double value, const std::string& expected) {
+        std::ostringstream text;
+        text << quoted(path) << ": NIfTI " << field << " = " << value << ", expected " << expected;
+        throw InputError(text.str());
+    };
+    for (std::size_t k = 0; k < 3; ++k)
+        if (!plausible(n->pixdim[k], kMaxAxisMm) || (n->qform_code > 0 && n->pixdim[k] == 0.0))
+            refuse("pixdim[" + std::to_string(k + 1) + "]", n->pixdim[k], "a spacing other than 0, at most 1e6 mm");
+    for (std::size_t k = 0; k < 6 && n->qform_code > 0; ++k)
+        if (!(k < 3 ? std::isfinite(n->quatern[k]) && std::abs(n->quatern[k]) <= 1.0 + 1e-5 : plausible(n->quatern[k], kMaxPositionMm)))
+            refuse("qform parameter " + std::to_string(k), n->quatern[k], k < 3 ? "a quaternion component in [-1, 1]" : "a position within 1e9 mm");
+    if (n->sform_code <= 0) return;
+    Matrix3 m{};
+    for (std::size_t r = 0; r < 3; ++r) {
+        for (std::size_t c = 0; c < 4; ++c) {
+            const double x = n->srow[4 * r + c];
+            if (!plausible(x, c < 3 ? kMaxAxisMm : kMaxPositionMm))
+                refuse(std::string("srow_") + "xyz"[r] + "[" + std::to_string(c) + "]", x, "a finite, normal number of plausible size");
+            if (c < 3) m[r][c] = x;
+        }
+    }
+    check_direction(m, path);
+}
+
+// Bytes of a hostile header shown in a message: anything but printable ASCII becomes '?'.
+std::string printable(std::string text) {
+    for (char& c : text)
+        if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+    return text;
+}
+
+// MetaIO reads every array field of a MetaImage header with NDims entries, and on a value it
+// cannot parse ("NDims = = -3") it goes on reading with a failed stream through billions of
+// entries (a fuzz_mha timeout). So NDims is read here first: one plain integer from 1 to 4.
+void check_metaimage_header(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (int n = 0; n < 256 && std::getline(in, line); ++n) {
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) continue;
+        auto trim = [](std::string t) {
+            t.erase(0, t.find_first_not_of(" \t\r"));
+            t.erase(t.find_last_not_of(" \t\r") + 1);
+            return t;
+        };
+        const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+        if (key == "ElementDataFile") return;
+        if (key != "NDims") continue;
+        int dims = 0;
+        const auto r = std::from_chars(value.data(), value.data() + value.size(), dims);
+        if (r.ec != std::errc() || r.ptr != value.data() + value.size() || dims < 1 || dims > 4)
+            throw InputError(quoted(path) + ": NDims = \"" + printable(value.substr(0, 40)) + "\", expected an integer from 1 to 4");
+    }
+}
+
 // Rejects what is not one scalar 3D volume, before any voxel is read.
 void check_header(const itk::ImageIOBase& io, const fs::path& path) {
     const unsigned dims = io.GetNumberOfDimensions();
@@ -78,6 +253,24 @@ void check_header(const itk::ImageIOBase& io, const fs::path& path) {
     for (unsigned d = 0; d < 3; ++d)
         if (io.GetDimensions(d) < 2)
             throw InputError(quoted(path) + ": size " + size_text(io) + ", expected at least 2 voxels along every axis");
+    // The geometry ITK would hand to the image: a non-finite or singular one makes its matrix
+    // code abort the process (vnl), so it is refused here, before the voxels are read.
+    Matrix3 direction{};
+    for (unsigned d = 0; d < 3; ++d) {
+        const double spacing = io.GetSpacing(d), origin = io.GetOrigin(d);
+        if (!plausible(spacing, kMaxAxisMm) || spacing == 0.0 || !plausible(origin, kMaxPositionMm)) {
+            std::ostringstream text;
+            text << quoted(path) << ": spacing " << spacing << " and origin " << origin << " along axis " << d
+                 << ", expected a spacing other than 0 up to 1e6 mm and an origin within 1e9 mm";
+            throw InputError(text.str());
+        }
+        const auto column = io.GetDirection(d);
+        for (unsigned r = 0; r < 3; ++r) {
+            direction[r][d] = r < column.size() ? column[r] : 0.0;
+            if (!plausible(direction[r][d], kMaxAxisMm)) direction[r][d] = std::numeric_limits<double>::quiet_NaN();
+        }
+    }
+    check_direction(direction, path);
 }
 
 // A file pattern "CThead.%d 1 113 1" (printf pattern, first, last, step): one file per slice,
@@ -88,10 +281,18 @@ void require_slice_files(const itk::ImageIOBase& io, const fs::path& header, con
     long first = 0, last = 0, step = 1;
     in >> format >> first >> last >> step;
     if (!in || step <= 0 || last < first) return;  // not a pattern MetaIO reads either: let it say so
-    const auto slice_bytes = static_cast<std::uintmax_t>(io.GetImageSizeInBytes() / io.GetDimensions(2));
+    // note: the pattern comes from the file: only one integer conversion (%d, %03d, …) may
+    // reach snprintf, anything else (%s, %n, two conversions) is refused as bad input.
+    if (!std::regex_match(format, std::regex("[^%]*%0?[0-9]{0,3}d[^%]*")))
+        throw InputError(quoted(header) + ": file pattern \"" + format + "\", expected a name with one %d");
+    if (io.GetDimensions(2) == 0) return;
+    const auto slice_bytes = static_cast<std::uintmax_t>(io.GetImageSizeInBytes()) / io.GetDimensions(2);
+    if (first < 0 || last > 1'000'000)
+        throw InputError(quoted(header) + ": file pattern \"" + pattern + "\" numbers slices " + std::to_string(first) +
+                         " to " + std::to_string(last) + ", expected 0 to 1000000");
     for (long n = first; n <= last; n += step) {
         char name[1024];
-        std::snprintf(name, sizeof name, format.c_str(), n);
+        std::snprintf(name, sizeof name, format.c_str(), static_cast<int>(n));
         const fs::path slice = header.parent_path() / name;
         std::error_code ec;
         if (!fs::exists(slice, ec))
@@ -145,13 +346,77 @@ RawVolume from_itk(const FloatImage& image, std::string format, std::string stor
     return v;
 }
 
-RawVolume read_file(const fs::path& path) {
+// zlib's deflate cannot compress better than about 1032:1, so compressed voxels need at least
+// 1/1032 of their size in the file (bzip2 is bounded similarly, far above this).
+constexpr double kMaxCompressionRatio = 1032.0;
+
+// NRRD header fields glint needs for the size check: "encoding:" and "data file:".
+std::string nrrd_field(const fs::path& path, const std::string& key) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    for (int n = 0; n < 256 && std::getline(in, line) && !line.empty() && line != "\r"; ++n)
+        if (line.rfind(key, 0) == 0) {
+            std::string v = line.substr(key.size());
+            v.erase(0, v.find_first_not_of(" \t"));
+            while (!v.empty() && (v.back() == '\r' || v.back() == ' ')) v.pop_back();
+            return v;
+        }
+    return "";
+}
+
+std::string count_text(long double n) {
+    std::ostringstream text;
+    text << std::setprecision(n < 1e19L ? 0 : 3) << (n < 1e19L ? std::fixed : std::scientific) << n;
+    return text.str();
+}
+
+// The voxels a header declares must fit the budget and the bytes that hold them (the file, or
+// its detached data file), before ITK allocates the image: a header may declare a volume of
+// terabytes in a file of a few hundred bytes.
+void require_data_fits(const itk::ImageIOBase& io, const fs::path& path, const std::string& format,
+                       std::size_t max_voxels) {
+    long double voxels = 1.0L;
+    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d) voxels *= static_cast<long double>(io.GetDimensions(d));
+    voxels *= static_cast<long double>(io.GetNumberOfComponents());
+    if (voxels > static_cast<long double>(max_voxels))
+        throw InputError(quoted(path) + ": size " + size_text(io) + " is " + count_text(voxels) + " voxels, more than the limit " + std::to_string(max_voxels));
+    fs::path holder = path;
+    bool compressed = false;
+    if (format == "nifti") {
+        compressed = path.extension() == ".gz";
+    } else if (format == "nrrd") {
+        const std::string encoding = nrrd_field(path, "encoding:");
+        compressed = encoding != "raw" && encoding != "";
+        const std::string data = nrrd_field(path, "data file:");
+        if (!data.empty() && data.find(' ') == std::string::npos && data != "LIST") holder = path.parent_path() / data;
+        else if (!data.empty()) return;  // a list or pattern of files: ITK reads it slice by slice
+    } else if (auto* meta = dynamic_cast<itk::MetaImageIO*>(const_cast<itk::ImageIOBase*>(&io))) {
+        MetaImage* m = meta->GetMetaImagePointer();
+        compressed = m->CompressedData();
+        const std::string data = m->ElementDataFileName();
+        if (data == "LIST" || data.find(' ') != std::string::npos) return;  // slice files, checked apart
+        if (data != "LOCAL") holder = path.parent_path() / data;
+    }
+    std::error_code ec;
+    const auto available = fs::file_size(holder, ec);
+    if (ec) return;  // ITK says the data file is missing
+    const long double needed = voxels * static_cast<long double>(io.GetComponentSize());
+    const long double room = static_cast<long double>(available) * (compressed ? kMaxCompressionRatio : 1.0);
+    if (needed > room)
+        throw InputError(quoted(path) + ": size " + size_text(io) + " needs " + count_text(needed) + " bytes of voxels, " + (compressed ? "more than a compressed " : "more than the ") +
+                         std::to_string(available) + "-byte file \"" + holder.filename().string() + "\" can hold");
+}
+
+RawVolume read_file(const fs::path& path, std::size_t max_voxels) {
     itk::ImageIOBase::Pointer io = image_io_for(path);
     const std::string format = volume_format(path);
     io->SetFileName(path.string());
     if (!io->CanReadFile(path.string().c_str())) throw InputError(quoted(path) + ": not a readable " + format + " file");
+    if (format == "nifti") check_nifti_header(path);
+    if (format == "metaimage") check_metaimage_header(path);
     io->ReadImageInformation();
     check_header(*io, path);
+    require_data_fits(*io, path, format, max_voxels);
     require_data_size(*io, path);
     const std::string stored = itk::ImageIOBase::GetComponentTypeAsString(io->GetComponentType());
     auto reader = itk::ImageFileReader<FloatImage>::New();
@@ -161,7 +426,7 @@ RawVolume read_file(const fs::path& path) {
     return from_itk(*reader->GetOutput(), format, stored);
 }
 
-RawVolume read_dicom_folder(const fs::path& folder) {
+RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
     auto names = itk::GDCMSeriesFileNames::New();
     names->SetUseSeriesDetails(true);
     names->SetDirectory(folder.string());
@@ -177,6 +442,13 @@ RawVolume read_dicom_folder(const fs::path& folder) {
         throw InputError(quoted(folder) + ": the DICOM series has " + std::to_string(files.size()) +
                          " slice, expected a 3D volume (2 or more slices)");
     auto io = itk::GDCMImageIO::New();
+    io->SetFileName(files.front());
+    io->ReadImageInformation();
+    const long double voxels = static_cast<long double>(io->GetDimensions(0)) * io->GetDimensions(1) * files.size();
+    if (voxels > static_cast<long double>(max_voxels))
+        throw InputError(quoted(folder) + ": " + std::to_string(files.size()) + " slices of " +
+                         std::to_string(io->GetDimensions(0)) + " x " + std::to_string(io->GetDimensions(1)) +
+                         " voxels, more than the limit " + std::to_string(max_voxels));
     auto reader = itk::ImageSeriesReader<FloatImage>::New();
     reader->SetImageIO(io);
     reader->SetFileNames(files);
@@ -216,13 +488,14 @@ std::string volume_format(const fs::path& path) {
     return "";
 }
 
-RawVolume itk_read(const fs::path& path) {
+RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
     itk::Object::GlobalWarningDisplayOff();  // library code never prints
     gdcm::Trace::WarningOff();
+    nifti_set_debug_level(0);  // niftilib writes "** ERROR: …" to stderr; ITK's exception says it
     try {
         std::error_code ec;
-        if (fs::is_directory(path, ec)) return read_dicom_folder(path);
-        return read_file(path);
+        if (fs::is_directory(path, ec)) return read_dicom_folder(path, max_voxels);
+        return read_file(path, max_voxels);
     } catch (const itk::ExceptionObject& e) {
         throw InputError(quoted(path) + ": " + one_line(e));
     }

@@ -23,8 +23,9 @@ struct RawVolume {
     std::string stored_type;  ///< as stored ("short", "float", …)
 };
 
-/// Reads a volume file or a DICOM folder. \throw InputError (one line naming the file).
-[[nodiscard]] RawVolume itk_read(const std::filesystem::path& path);
+/// Reads a volume file or a DICOM folder of at most `max_voxels` voxels.
+/// \throw InputError (one line naming the file).
+[[nodiscard]] RawVolume itk_read(const std::filesystem::path& path, std::size_t max_voxels);
 
 /// The format name for a file's extension, or "" when it is none of glint's volume formats.
 [[nodiscard]] std::string volume_format(const std::filesystem::path& path);
