@@ -152,7 +152,7 @@ def pair_row(pair_id, pair, report):
         "area": sum(r["area"] for r in regions),
         "volume_lost": -sum(v for v in volumes if v < 0),
         "volume_gained": sum(v for v in volumes if v > 0),
-        "max_depth": -min([d for d in depths if d < 0], default=0.0),
+        "max_depth": max((-d for d in depths if d < 0), default=0.0),
         "max_height": max([d for d in depths if d > 0], default=0.0),
         "coverage": report["zooms"][0]["coverage"],
         "fit_converged": fit.get("converged"), "fit_rms": fit.get("rms"),
