@@ -5,6 +5,7 @@
 #   share/doc/glint/README.md                  how to use it
 #   share/glint/scenarios/                     the shipped scenarios (tools/demo runs one)
 #   share/glint/workflows/cohort/              the Snakemake cohort workflow
+#   share/glint/slicer/execution-model.xsd     the schema glint --xml is tested against
 #   lib/glint/slicer/glint                     link to bin/glint: the folder to add to 3D Slicer's
 #                                              module paths (Slicer runs every program there)
 #   ${GLINT_PYTHON_INSTALL_DIR}/glint….so      the Python module (component python)
@@ -17,6 +18,8 @@ include(GNUInstallDirs)
 install(TARGETS glint RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT glint)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT glint)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/scenarios
+        COMPONENT glint)
+install(FILES ${PROJECT_SOURCE_DIR}/tools/slicer/execution-model.xsd DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/slicer
         COMPONENT glint)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/workflows/ DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/workflows
         COMPONENT glint PATTERN ".snakemake" EXCLUDE PATTERN "__pycache__" EXCLUDE)
@@ -50,8 +53,9 @@ if(GLINT_BUILD_PYTHON)
   set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-glint)
   set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
   # The module is built for one interpreter version (its file name says which).
+  math(EXPR glint_python_next "${Python3_VERSION_MINOR} + 1")
   set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
-      "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), python3 (<< ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}.99), python3-numpy")
+      "python3 (>= ${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}), python3 (<< ${Python3_VERSION_MAJOR}.${glint_python_next}), python3-numpy")
   set(CPACK_COMPONENT_PYTHON_DESCRIPTION "glint as a Python module: import glint")
 endif()
 set(CPACK_COMPONENT_GLINT_DESCRIPTION "the glint command line, its scenarios, the cohort workflow and the 3D Slicer module")
