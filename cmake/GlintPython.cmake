@@ -12,7 +12,16 @@ find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
 if(Python3_FOUND)
   find_package(pybind11 2.6 CONFIG QUIET)
 endif()
-if(Python3_FOUND AND pybind11_FOUND)
+# The module hands out numpy arrays: numpy must import in that interpreter.
+set(glint_numpy_found FALSE)
+if(Python3_FOUND)
+  execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy" RESULT_VARIABLE numpy_missing
+                  OUTPUT_QUIET ERROR_QUIET)
+  if(numpy_missing EQUAL 0)
+    set(glint_numpy_found TRUE)
+  endif()
+endif()
+if(Python3_FOUND AND pybind11_FOUND AND glint_numpy_found)
   set(glint_python_default ON)
 else()
   set(glint_python_default OFF)
@@ -21,6 +30,7 @@ option(GLINT_BUILD_PYTHON "Build the glint Python module (python/)" ${glint_pyth
 if(GLINT_BUILD_PYTHON)
   glint_require(Python3_FOUND python3-dev)
   glint_require(pybind11_FOUND pybind11-dev)
+  glint_require(glint_numpy_found python3-numpy)
   # The module links the static glint libraries into a shared object.
   set(CMAKE_POSITION_INDEPENDENT_CODE ON)
   # Where `cmake --install` puts the module, relative to the prefix: Debian's convention for
@@ -32,6 +42,6 @@ if(GLINT_BUILD_PYTHON)
 elseif(glint_python_default)
   message(STATUS "glint: Python module off (GLINT_BUILD_PYTHON=OFF)")
 else()
-  message(STATUS "glint: Python module off: pybind11 or Python's headers not found "
+  message(STATUS "glint: Python module off: pybind11, Python's headers or numpy not found "
                  "(install the Debian packages pybind11-dev python3-dev python3-numpy)")
 endif()

@@ -126,8 +126,8 @@ SlicerGroup decision_group(const AnalysisOptions& d) {
               .default_value = std::to_string(d.decision.min_region_vertices),
               .constraints = std::array<double, 3>{1, 10000, 1}},
              {.tag = "string-enumeration", .name = "unit", .longflag = "unit", .label = "Length unit",
-              .description = "The unit both models are in; auto: what the files state (Slicer works in mm).",
-              .default_value = "auto", .elements = units}}};
+              .description = "The unit both models are in (Slicer's models are in mm); auto: what the files state.",
+              .default_value = "mm", .elements = units}}};
 }
 
 SlicerGroup results_group() {
