@@ -80,8 +80,10 @@ FitHandle register_pair(py::handle reference, py::handle examined, const std::op
 
 InputRecord input_record(const char* role, const MeshHandle& h) {
     InputRecord r{role, {}, "", h.mesh.vertex_count(), h.mesh.triangle_count()};
-    if (h.report) r.path = h.report->path;
-    else r.description = h.source;
+    if (h.report)
+        r.path = h.report->path;
+    else
+        r.description = h.source;
     return r;
 }
 
@@ -118,45 +120,69 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
 
 void bind_fit(py::module_& m) {
     py::class_<FitHandle>(m, "Fit", "A rigid fit of the examined mesh onto the reference, with its evidence.")
-        .def_property_readonly("matrix", [](const FitHandle& f) { return Eigen::Matrix4d(f.outcome.reference_from_examined.matrix()); },
-                               "4×4 float64 reference_from_examined (maps examined points into the reference frame)")
-        .def_property_readonly("rotation", [](const FitHandle& f) { return Eigen::Matrix3d(f.outcome.reference_from_examined.linear()); },
-                               "3×3 rotation of reference_from_examined")
-        .def_property_readonly("translation", [](const FitHandle& f) { return Eigen::Vector3d(f.outcome.reference_from_examined.translation()); },
-                               "translation of reference_from_examined (mesh units)")
-        .def_property_readonly("rotation_deg", [](const FitHandle& f) { return rotation_angle_deg(f.outcome.reference_from_examined); })
-        .def_property_readonly("mode", [](const FitHandle& f) { return to_string(f.outcome.mode); },
-                               "register, file, identity or truth")
+        .def_property_readonly(
+            "matrix", [](const FitHandle& f) { return Eigen::Matrix4d(f.outcome.reference_from_examined.matrix()); },
+            "4×4 float64 reference_from_examined (maps examined points into the reference frame)")
+        .def_property_readonly(
+            "rotation", [](const FitHandle& f) { return Eigen::Matrix3d(f.outcome.reference_from_examined.linear()); },
+            "3×3 rotation of reference_from_examined")
+        .def_property_readonly(
+            "translation",
+            [](const FitHandle& f) { return Eigen::Vector3d(f.outcome.reference_from_examined.translation()); },
+            "translation of reference_from_examined (mesh units)")
+        .def_property_readonly("rotation_deg",
+                               [](const FitHandle& f) { return rotation_angle_deg(f.outcome.reference_from_examined); })
+        .def_property_readonly(
+            "mode", [](const FitHandle& f) { return to_string(f.outcome.mode); }, "register, file, identity or truth")
         .def_property_readonly("converged", [](const FitHandle& f) { return f.outcome.converged; })
-        .def_property_readonly("rms", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.rms; }); },
-                               "point-to-plane RMS of the inliers (mesh units); None without a registration")
-        .def_property_readonly("inlier_fraction", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.inlier_fraction; }); })
-        .def_property_readonly("overlap", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.overlap; }); })
-        .def_property_readonly("iterations", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.iterations; }); })
-        .def_property_readonly("termination", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.termination; }); })
-        .def_property_readonly("termination_detail", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.termination_detail; }); })
+        .def_property_readonly(
+            "rms", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.rms; }); },
+            "point-to-plane RMS of the inliers (mesh units); None without a registration")
+        .def_property_readonly("inlier_fraction",
+                               [](const FitHandle& f) {
+                                   return evidence(f, [](const RegistrationResult& r) { return r.inlier_fraction; });
+                               })
+        .def_property_readonly(
+            "overlap",
+            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.overlap; }); })
+        .def_property_readonly(
+            "iterations",
+            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.iterations; }); })
+        .def_property_readonly(
+            "termination",
+            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.termination; }); })
+        .def_property_readonly("termination_detail",
+                               [](const FitHandle& f) {
+                                   return evidence(f, [](const RegistrationResult& r) { return r.termination_detail; });
+                               })
         .def_property_readonly("unit", [](const FitHandle& f) { return optional_string(f.unit); })
         .def_property_readonly("warnings", [](const FitHandle& f) { return f.outcome.warnings; })
-        .def("to_dict", [](const FitHandle& f) { return json_loads(f.outcome.json); },
-             "the fit as fit.json holds it (evidence, per-iteration log, options)")
-        .def("save", [](const FitHandle& f, const std::filesystem::path& path) { write_file_atomically(path, f.outcome.json); },
-             py::arg("path"), "Writes fit.json (glint sweep --fit and glint.analyse(fit=…) read it).")
+        .def(
+            "to_dict", [](const FitHandle& f) { return json_loads(f.outcome.json); },
+            "the fit as fit.json holds it (evidence, per-iteration log, options)")
+        .def(
+            "save",
+            [](const FitHandle& f, const std::filesystem::path& path) { write_file_atomically(path, f.outcome.json); },
+            py::arg("path"), "Writes fit.json (glint sweep --fit and glint.analyse(fit=…) read it).")
         .def("__repr__", [](const FitHandle& f) {
-            return "<glint.Fit " + to_string(f.outcome.mode) + (f.outcome.converged ? ", converged" : ", NOT converged") +
-                   ", rotation " + std::to_string(rotation_angle_deg(f.outcome.reference_from_examined)) + " deg>";
+            return "<glint.Fit " + to_string(f.outcome.mode) +
+                   (f.outcome.converged ? ", converged" : ", NOT converged") + ", rotation " +
+                   std::to_string(rotation_angle_deg(f.outcome.reference_from_examined)) + " deg>";
         });
 }
 
 void bind_analysis_class(py::module_& m) {
     py::class_<AnalysisHandle>(m, "Analysis", "The results of glint.analyse().")
-        .def_property_readonly("atlas", [](const AnalysisHandle& a) { return a.atlas; },
-                               "the reference surface (glint.Mesh) coloured by damage, with every atlas field in "
-                               "atlas.scalars (the scalars of atlas.ply)")
-        .def_property_readonly("fields", [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
-                               "per-vertex numpy arrays by name: angle_max_z0, angle_mean_z0, depth_z0, missing_z0, "
-                               "count_z0, seen_z0, region_z0 (…_z<k> per zoom), distance, distance_tolerance")
-        .def_property_readonly("report", [](const AnalysisHandle& a) { return json_loads(a.report); },
-                               "report.json as a dict")
+        .def_property_readonly(
+            "atlas", [](const AnalysisHandle& a) { return a.atlas; },
+            "the reference surface (glint.Mesh) coloured by damage, with every atlas field in "
+            "atlas.scalars (the scalars of atlas.ply)")
+        .def_property_readonly(
+            "fields", [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
+            "per-vertex numpy arrays by name: angle_max_z0, angle_mean_z0, depth_z0, missing_z0, "
+            "count_z0, seen_z0, region_z0 (…_z<k> per zoom), distance, distance_tolerance")
+        .def_property_readonly(
+            "report", [](const AnalysisHandle& a) { return json_loads(a.report); }, "report.json as a dict")
         .def_property_readonly(
             "regions",
             [](const AnalysisHandle& a) {
@@ -171,19 +197,23 @@ void bind_analysis_class(py::module_& m) {
                 return regions;
             },
             "every region of every zoom as a dict (report.json's, with its zoom)")
-        .def_property_readonly("regions_csv", [](const AnalysisHandle& a) { return a.regions_csv; }, "regions.csv's text")
+        .def_property_readonly(
+            "regions_csv", [](const AnalysisHandle& a) { return a.regions_csv; }, "regions.csv's text")
         .def_property_readonly("fit", [](const AnalysisHandle& a) { return a.fit; })
         .def_property_readonly("unit", [](const AnalysisHandle& a) { return optional_string(a.result.unit); })
         .def_property_readonly("warnings", [](const AnalysisHandle& a) { return a.result.warnings; })
-        .def_property_readonly("output", [](const AnalysisHandle& a) -> py::object {
-            if (a.result.output.empty()) return py::none();
-            return py::cast(a.result.output);
-        }, "the folder written, or None")
+        .def_property_readonly(
+            "output",
+            [](const AnalysisHandle& a) -> py::object {
+                if (a.result.output.empty()) return py::none();
+                return py::cast(a.result.output);
+            },
+            "the folder written, or None")
         .def("__repr__", [](const AnalysisHandle& a) {
             std::size_t regions = 0;
             for (const auto& d : a.result.decisions) regions += d.regions.regions.size();
-            return "<glint.Analysis " + std::to_string(a.result.decisions.size()) + " zoom(s), " + std::to_string(regions) +
-                   " region(s)>";
+            return "<glint.Analysis " + std::to_string(a.result.decisions.size()) + " zoom(s), " +
+                   std::to_string(regions) + " region(s)>";
         });
 }
 

@@ -68,9 +68,10 @@ std::shared_ptr<MeshHandle> load(const std::filesystem::path& path, const Surfac
 
 // glint.Mesh(positions, triangles, unit=None): copies of the arrays, checked as a loaded
 // mesh is, with vertex normals.
-std::shared_ptr<MeshHandle> from_arrays(const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
-                                        const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& triangles,
-                                        const std::optional<std::string>& unit) {
+std::shared_ptr<MeshHandle> from_arrays(
+    const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
+    const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& triangles,
+    const std::optional<std::string>& unit) {
     if (positions.ndim() != 2 || positions.shape(1) != 3)
         throw InputError("glint.Mesh: positions must be an N×3 array, found shape " +
                          py::cast<std::string>(py::repr(positions.attr("shape"))));
@@ -81,7 +82,8 @@ std::shared_ptr<MeshHandle> from_arrays(const py::array_t<float, py::array::c_st
     Mesh& mesh = handle->mesh;
     const auto p = positions.unchecked<2>();
     mesh.positions.resize(static_cast<std::size_t>(p.shape(0)));
-    for (py::ssize_t i = 0; i < p.shape(0); ++i) mesh.positions[static_cast<std::size_t>(i)] = Vec3f(p(i, 0), p(i, 1), p(i, 2));
+    for (py::ssize_t i = 0; i < p.shape(0); ++i)
+        mesh.positions[static_cast<std::size_t>(i)] = Vec3f(p(i, 0), p(i, 1), p(i, 2));
     const auto t = triangles.unchecked<2>();
     mesh.triangles.resize(static_cast<std::size_t>(t.shape(0)));
     for (py::ssize_t i = 0; i < t.shape(0); ++i)
@@ -127,14 +129,16 @@ them (numpy.array(mesh.positions)) to change them.)");
             "positions",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
-                return readonly_view(x.positions.empty() ? nullptr : x.positions.front().data(), x.positions.size(), 3, self);
+                return readonly_view(x.positions.empty() ? nullptr : x.positions.front().data(), x.positions.size(), 3,
+                                     self);
             },
             "N×3 float32 vertex positions (mesh units)")
         .def_property_readonly(
             "triangles",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
-                return readonly_view(x.triangles.empty() ? nullptr : x.triangles.front().data(), x.triangles.size(), 3, self);
+                return readonly_view(x.triangles.empty() ? nullptr : x.triangles.front().data(), x.triangles.size(), 3,
+                                     self);
             },
             "M×3 uint32 vertex ids, counter-clockwise seen from outside")
         .def_property_readonly(
@@ -169,9 +173,11 @@ them (numpy.array(mesh.positions)) to change them.)");
                 return d;
             },
             "named per-vertex float32 fields (a dict of numpy views)")
-        .def_property_readonly("unit", [](const MeshHandle& h) { return optional_string(h.mesh.unit); },
-                               "length unit the file states (\"mm\", …), or None")
-        .def_property_readonly("source", [](const MeshHandle& h) { return h.source; }, "the file, or what made the mesh")
+        .def_property_readonly(
+            "unit", [](const MeshHandle& h) { return optional_string(h.mesh.unit); },
+            "length unit the file states (\"mm\", …), or None")
+        .def_property_readonly(
+            "source", [](const MeshHandle& h) { return h.source; }, "the file, or what made the mesh")
         .def_property_readonly(
             "report",
             [](const MeshHandle& h) -> py::object {

@@ -44,22 +44,46 @@ SlicerGroup surfaces_group() {
     return {"Surfaces",
             "The surface before (reference) and the surface examined; the atlas is the reference coloured by damage.",
             false,
-            {{.tag = "geometry", .name = "reference", .index = 0, .channel = "input", .label = "Reference model",
-              .description = "The surface before (the reference): the atlas is drawn on it.", .type = "model",
+            {{.tag = "geometry",
+              .name = "reference",
+              .index = 0,
+              .channel = "input",
+              .label = "Reference model",
+              .description = "The surface before (the reference): the atlas is drawn on it.",
+              .type = "model",
               .file_extensions = ".vtk,.ply,.stl,.obj"},
-             {.tag = "geometry", .name = "examined", .index = 1, .channel = "input", .label = "Examined model",
-              .description = "The surface examined, fitted onto the reference.", .type = "model",
+             {.tag = "geometry",
+              .name = "examined",
+              .index = 1,
+              .channel = "input",
+              .label = "Examined model",
+              .description = "The surface examined, fitted onto the reference.",
+              .type = "model",
               .file_extensions = ".vtk,.ply,.stl,.obj"},
-             {.tag = "geometry", .name = "atlas", .index = 2, .channel = "output", .label = "Damage atlas",
+             {.tag = "geometry",
+              .name = "atlas",
+              .index = 2,
+              .channel = "output",
+              .label = "Damage atlas",
               .description = "The reference with the atlas scalars (angle_mean_z0: per-vertex normal deviation in "
                              "degrees, distance: signed distance to the examined surface, negative = loss, region_z0: "
                              "region id, seen_z0, count_z0, …).",
-              .type = "model", .file_extensions = ".vtp"},
-             {.tag = "table", .name = "regions", .longflag = "regions", .channel = "output", .label = "Regions table",
+              .type = "model",
+              .file_extensions = ".vtp"},
+             {.tag = "table",
+              .name = "regions",
+              .longflag = "regions",
+              .channel = "output",
+              .label = "Regions table",
               .description = "One row per region (regions.csv): kind, area, depths, volume, centroid, best view.",
               .file_extensions = ".csv"},
-             {.tag = "image", .name = "mosaic", .longflag = "mosaic", .channel = "output", .label = "View mosaic",
-              .description = "Every view's heat map, azimuth across, elevation down (mosaic_z0.png).", .type = "vector",
+             {.tag = "image",
+              .name = "mosaic",
+              .longflag = "mosaic",
+              .channel = "output",
+              .label = "View mosaic",
+              .description = "Every view's heat map, azimuth across, elevation down (mosaic_z0.png).",
+              .type = "vector",
               .file_extensions = ".png"}}};
 }
 
@@ -67,13 +91,23 @@ SlicerGroup fit_group(const AnalysisOptions& d) {
     return {"Fit",
             "How the examined surface is brought into the reference's frame.",
             false,
-            {{.tag = "boolean", .name = "register", .longflag = "register", .label = "Register",
+            {{.tag = "boolean",
+              .name = "register",
+              .longflag = "register",
+              .label = "Register",
               .description = "Fit the examined surface onto the reference (robust ICP); off: they are already aligned.",
               .default_value = "true"},
-             {.tag = "string-enumeration", .name = "loss", .longflag = "loss", .label = "Robust loss",
+             {.tag = "string-enumeration",
+              .name = "loss",
+              .longflag = "loss",
+              .label = "Robust loss",
               .description = "Registration loss (damage must not pull the fit).",
-              .default_value = to_string(d.fit.registration.loss), .elements = {"cauchy", "huber", "tukey", "none"}},
-             {.tag = "string", .name = "fitRoi", .longflag = "fitRoi", .label = "Fit region",
+              .default_value = to_string(d.fit.registration.loss),
+              .elements = {"cauchy", "huber", "tukey", "none"}},
+             {.tag = "string",
+              .name = "fitRoi",
+              .longflag = "fitRoi",
+              .label = "Fit region",
               .description = "Fit only on this stable region: sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1 (empty: all)."}}};
 }
 
@@ -84,26 +118,52 @@ SlicerGroup sweep_group(const AnalysisOptions& d) {
     return {"Sweep",
             "The virtual rotary scanner: views, image size, metric.",
             false,
-            {{.tag = "integer", .name = "size", .longflag = "size", .label = "Image size",
-              .description = "Pixels across a frame of the whole surface.", .default_value = std::to_string(p.size),
+            {{.tag = "integer",
+              .name = "size",
+              .longflag = "size",
+              .label = "Image size",
+              .description = "Pixels across a frame of the whole surface.",
+              .default_value = std::to_string(p.size),
               .constraints = std::array<double, 3>{32, 4096, 32}},
-             {.tag = "double", .name = "azimuthStep", .longflag = "azimuthStep", .label = "Azimuth step (deg)",
-              .description = "Angle between two views around the surface.", .default_value = number(p.azimuth_step_deg),
+             {.tag = "double",
+              .name = "azimuthStep",
+              .longflag = "azimuthStep",
+              .label = "Azimuth step (deg)",
+              .description = "Angle between two views around the surface.",
+              .default_value = number(p.azimuth_step_deg),
               .constraints = std::array<double, 3>{1, 360, 1}},
-             {.tag = "double-vector", .name = "elevations", .longflag = "elevations", .label = "Elevations (deg)",
+             {.tag = "double-vector",
+              .name = "elevations",
+              .longflag = "elevations",
+              .label = "Elevations (deg)",
               .description = "Elevation rings, comma-separated, each in [-90, 90].",
               .default_value = joined(p.elevations_deg)},
-             {.tag = "integer", .name = "supersample", .longflag = "supersample", .label = "Supersampling",
+             {.tag = "integer",
+              .name = "supersample",
+              .longflag = "supersample",
+              .label = "Supersampling",
               .description = "s x s sub-samples per pixel (footprint averaging).",
-              .default_value = std::to_string(d.sweep.render.supersample), .constraints = std::array<double, 3>{1, 8, 1}},
-             {.tag = "string", .name = "roi", .longflag = "roi", .label = "Analysed region",
+              .default_value = std::to_string(d.sweep.render.supersample),
+              .constraints = std::array<double, 3>{1, 8, 1}},
+             {.tag = "string",
+              .name = "roi",
+              .longflag = "roi",
+              .label = "Analysed region",
               .description = "Analyse only part of the surface: sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1 (empty: all)."},
-             {.tag = "string-enumeration", .name = "metric", .longflag = "metric", .label = "Metric",
+             {.tag = "string-enumeration",
+              .name = "metric",
+              .longflag = "metric",
+              .label = "Metric",
               .description = "angle: degrees between normals; rgb: the paper's 8-bit colour difference.",
-              .default_value = to_string(d.sweep.metric), .elements = metric_names},
-             {.tag = "string-enumeration", .name = "backend", .longflag = "backend", .label = "Renderer",
+              .default_value = to_string(d.sweep.metric),
+              .elements = metric_names},
+             {.tag = "string-enumeration",
+              .name = "backend",
+              .longflag = "backend",
+              .label = "Renderer",
               .description = "auto: Vulkan on a GPU, else Embree on the CPU.",
-              .default_value = to_string(d.sweep.render.backend), .elements = backends}}};
+              .default_value = to_string(d.sweep.render.backend),
+              .elements = backends}}};
 }
 
 SlicerGroup decision_group(const AnalysisOptions& d) {
@@ -112,27 +172,47 @@ SlicerGroup decision_group(const AnalysisOptions& d) {
     return {"Decision",
             "What counts as damage; 0 for a threshold means the floor measured from the run itself.",
             true,
-            {{.tag = "string-enumeration", .name = "rule", .longflag = "rule", .label = "Rule",
+            {{.tag = "string-enumeration",
+              .name = "rule",
+              .longflag = "rule",
+              .label = "Rule",
               .description = "fused: normal and shape evidence; normal: the paper's angle-only rule.",
-              .default_value = to_string(d.decision.rule), .elements = {"fused", "normal"}},
-             {.tag = "double", .name = "thresholdDeg", .longflag = "thresholdDeg", .label = "Normal threshold",
-              .description = "In the metric's unit; 0: the run's noise floor.", .default_value = "0",
+              .default_value = to_string(d.decision.rule),
+              .elements = {"fused", "normal"}},
+             {.tag = "double",
+              .name = "thresholdDeg",
+              .longflag = "thresholdDeg",
+              .label = "Normal threshold",
+              .description = "In the metric's unit; 0: the run's noise floor.",
+              .default_value = "0",
               .constraints = std::array<double, 3>{0, 90, 0.5}},
-             {.tag = "double", .name = "shapeThreshold", .longflag = "shapeThreshold", .label = "Shape threshold",
-              .description = "In mesh units; 0: the run's floor.", .default_value = "0",
+             {.tag = "double",
+              .name = "shapeThreshold",
+              .longflag = "shapeThreshold",
+              .label = "Shape threshold",
+              .description = "In mesh units; 0: the run's floor.",
+              .default_value = "0",
               .constraints = std::array<double, 3>{0, 1000, 0.01}},
-             {.tag = "integer", .name = "minRegionVertices", .longflag = "minRegionVertices",
-              .label = "Smallest region (vertices)", .description = "Smaller groups are dropped.",
+             {.tag = "integer",
+              .name = "minRegionVertices",
+              .longflag = "minRegionVertices",
+              .label = "Smallest region (vertices)",
+              .description = "Smaller groups are dropped.",
               .default_value = std::to_string(d.decision.min_region_vertices),
               .constraints = std::array<double, 3>{1, 10000, 1}},
-             {.tag = "string-enumeration", .name = "unit", .longflag = "unit", .label = "Length unit",
+             {.tag = "string-enumeration",
+              .name = "unit",
+              .longflag = "unit",
+              .label = "Length unit",
               .description = "The unit both models are in (Slicer's models are in mm); auto: what the files state.",
-              .default_value = "mm", .elements = units}}};
+              .default_value = "mm",
+              .elements = units}}};
 }
 
 SlicerGroup results_group() {
     auto value = [](const char* tag, const char* name, const char* label, const char* description) {
-        return SlicerParameter{.tag = tag, .name = name, .channel = "output", .label = label, .description = description};
+        return SlicerParameter{
+            .tag = tag, .name = name, .channel = "output", .label = label, .description = description};
     };
     return {"Results",
             "What the run found (zoom 0), filled in when it completes.",
@@ -152,11 +232,20 @@ std::string escaped(const std::string& text) {
     std::string out;
     for (char c : text) {
         switch (c) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -204,7 +293,8 @@ std::string slicer_xml() {
       << "  <version>" << kVersion << "</version>\n"
       << "  <license>see the glint repository</license>\n"
       << "  <contributor>glint developers</contributor>\n"
-      << "  <acknowledgements>Method: light-reflection analysis for surface damage identification.</acknowledgements>\n";
+      << "  <acknowledgements>Method: light-reflection analysis for surface damage "
+         "identification.</acknowledgements>\n";
     for (const SlicerGroup& g : slicer_groups()) {
         x << "  <parameters" << (g.advanced ? " advanced=\"true\"" : "") << ">\n"
           << "    <label>" << escaped(g.label) << "</label>\n    <description>" << escaped(g.description)

@@ -39,7 +39,7 @@ struct SlicerCall {
     std::map<std::string, bool> booleans;       ///< boolean parameters, by name (absent: false)
     std::vector<std::string> positional;        ///< index parameters, in index order
     std::string return_file;
-    std::string process_address;                ///< accepted, unused (see slicer_module.h)
+    std::string process_address;  ///< accepted, unused (see slicer_module.h)
     bool xml = false;
 };
 
@@ -50,7 +50,8 @@ SlicerCall parse(int argc, char** argv) {
     CLI::App app{"glint as a 3D Slicer module (glint --xml prints its description)", "glint"};
     app.add_flag("--xml", call.xml, "Print the Slicer Execution Model description");
     app.add_option("--returnparameterfile", call.return_file, "Write the return parameters (name = value) here");
-    app.add_option("--processinformationaddress", call.process_address, "Slicer's shared-library modules only; ignored");
+    app.add_option("--processinformationaddress", call.process_address,
+                   "Slicer's shared-library modules only; ignored");
     bool echo = false;
     app.add_flag("--echo", echo, "Accepted for Slicer's conventions; ignored");
     int positional_count = 0;
@@ -58,8 +59,10 @@ SlicerCall parse(int argc, char** argv) {
         for (const SlicerParameter& p : g.parameters) {
             if (p.index >= 0) ++positional_count;
             if (p.longflag.empty()) continue;
-            if (p.tag == "boolean") app.add_flag("--" + p.longflag, call.booleans[p.name], p.description);
-            else app.add_option("--" + p.longflag, call.values[p.name], p.description);
+            if (p.tag == "boolean")
+                app.add_flag("--" + p.longflag, call.booleans[p.name], p.description);
+            else
+                app.add_option("--" + p.longflag, call.values[p.name], p.description);
         }
     app.add_option("ARGS", call.positional, "reference, examined, atlas (the index parameters)")
         ->expected(0, positional_count);
@@ -73,7 +76,8 @@ SlicerCall parse(int argc, char** argv) {
         it = app.get_option("--" + it->first)->count() == 0 ? call.values.erase(it) : std::next(it);
     if (!call.xml && static_cast<int>(call.positional.size()) != positional_count)
         throw InputError("Slicer module: expected " + std::to_string(positional_count) +
-                         " index arguments (reference, examined, atlas), found " + std::to_string(call.positional.size()));
+                         " index arguments (reference, examined, atlas), found " +
+                         std::to_string(call.positional.size()));
     return call;
 }
 
@@ -126,7 +130,8 @@ AnalysisOptions options_from(const SlicerCall& c) {
     if (has("thresholdDeg") && number_of(c, "thresholdDeg") != 0.0) o.decision.threshold = number_of(c, "thresholdDeg");
     if (has("shapeThreshold") && number_of(c, "shapeThreshold") != 0.0)
         o.decision.shape_threshold = number_of(c, "shapeThreshold");
-    if (has("minRegionVertices")) o.decision.min_region_vertices = static_cast<std::size_t>(integer_of(c, "minRegionVertices"));
+    if (has("minRegionVertices"))
+        o.decision.min_region_vertices = static_cast<std::size_t>(integer_of(c, "minRegionVertices"));
     if (has("unit") && c.values.at("unit") != "auto") o.units.unit = c.values.at("unit");
     o.exports.write_views = false;
     o.exports.write_exr = false;
@@ -137,14 +142,15 @@ AnalysisOptions options_from(const SlicerCall& c) {
 class SlicerProgress {
 public:
     SlicerProgress() : start_(std::chrono::steady_clock::now()) {
-        std::printf("<filter-start><filter-name>glint sweep</filter-name><filter-comment>loading</filter-comment>"
-                    "</filter-start>\n");
+        std::printf(
+            "<filter-start><filter-name>glint sweep</filter-name><filter-comment>loading</filter-comment>"
+            "</filter-start>\n");
         std::fflush(stdout);
     }
     void stage(std::string_view name) {
         // note: the stages' shares of the whole are rough (the sweep is most of a run).
-        static const std::map<std::string_view, double> at{{"fit", 0.05}, {"distance", 0.2}, {"sweep", 0.3},
-                                                             {"decide", 0.9}, {"export", 0.95}};
+        static const std::map<std::string_view, double> at{
+            {"fit", 0.05}, {"distance", 0.2}, {"sweep", 0.3}, {"decide", 0.9}, {"export", 0.95}};
         const auto it = at.find(name);
         if (it != at.end()) progress(it->second, name);
     }
@@ -154,7 +160,8 @@ public:
     void finish() {
         progress(1.0, "done");
         const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        std::printf("<filter-end><filter-name>glint sweep</filter-name><filter-time>%.2f</filter-time></filter-end>\n", s);
+        std::printf("<filter-end><filter-name>glint sweep</filter-name><filter-time>%.2f</filter-time></filter-end>\n",
+                    s);
         std::fflush(stdout);
     }
 
@@ -218,8 +225,8 @@ void run_slicer_module(int argc, char** argv) {
     }
     AnalysisOptions options = options_from(call);
     const fs::path atlas = call.positional[2];
-    ScratchFolder scratch{atlas.parent_path() / (".glint-slicer-" + std::to_string(::getpid()) + "-" +
-                                                 atlas.filename().string())};
+    ScratchFolder scratch{atlas.parent_path() /
+                          (".glint-slicer-" + std::to_string(::getpid()) + "-" + atlas.filename().string())};
     options.exports.output = scratch.path;
     options.exports.command_line = global_flags().command_line;
     options.validate();
