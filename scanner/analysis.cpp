@@ -64,7 +64,7 @@ std::string swap_hint(const Mesh& reference, const Mesh& examined, const Analysi
 const Mesh& in_analysis_unit(const Mesh& examined, const UnitResolution& units, std::optional<Mesh>& storage) {
     if (units.examined_scale == 1.0) return examined;
     storage = examined;
-    for (auto& p : storage->positions) p *= static_cast<float>(units.examined_scale);
+    scale_to_analysis_unit(*storage, units);
     return *storage;
 }
 

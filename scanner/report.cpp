@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/units.h"
+#include "mesh/version.h"
 #include "mesh/write.h"
 #include "scanner/coverage.h"
 #include "scanner/images.h"
@@ -240,7 +241,7 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result, con
     json zooms = json::array();
     for (std::size_t z = 0; z < s.zooms.size(); ++z) zooms.push_back(zoom_json(reference, result, z));
     json report = {
-        {"glint_version", "0.1.0"},
+        {"glint_version", kVersion},
         {"command_line", options.exports.command_line},
         {"inputs", inputs_json(options.exports.inputs)},
         {"device", {{"backend", to_string(s.renderer.backend)}, {"name", s.renderer.device_name},

@@ -71,4 +71,9 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined, const 
     return r;
 }
 
+void scale_to_analysis_unit(Mesh& examined, const UnitResolution& units) {
+    if (units.examined_scale == 1.0) return;
+    for (auto& p : examined.positions) p *= static_cast<float>(units.examined_scale);
+}
+
 }  // namespace glint

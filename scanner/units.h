@@ -45,4 +45,8 @@ struct UnitResolution {
 /// allow it (the message names both sizes and the likely cause).
 [[nodiscard]] UnitResolution resolve_units(const Mesh& reference, const Mesh& examined, const UnitOptions& options);
 
+/// Brings the examined mesh into the analysis unit: positions × units.examined_scale (nothing
+/// to do at 1).
+void scale_to_analysis_unit(Mesh& examined, const UnitResolution& units);
+
 }  // namespace glint

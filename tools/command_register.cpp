@@ -51,8 +51,7 @@ void run(RegisterArgs& a) {
     LoadedSurface exa = load_surface(a.examined, a.surface);
     // Sizes checked before the fit; files in two stated units are fitted in the reference's.
     const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.units);
-    if (units.examined_scale != 1.0)
-        for (auto& p : exa.mesh.positions) p *= static_cast<float>(units.examined_scale);
+    scale_to_analysis_unit(exa.mesh, units);
     if (!global_flags().quiet)
         for (const auto& w : units.warnings) std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);

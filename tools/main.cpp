@@ -2,7 +2,9 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/version.h"
 #include "tools/command.h"
+#include "tools/slicer_module.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include <csignal>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -116,34 +119,10 @@ int parse_failure(CLI::App& app, const CLI::ParseError& e) {
     return fail(kExitBadInput, "error", name + ": " + e.what() + " (glint " + name + " --help)");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    using namespace glint::cli;
-    CLI::App app{"glint: finds damage on 3D surfaces by light-reflection analysis"};
-    app.set_version_flag("--version", "glint 0.1.0");
-    app.require_subcommand(1);
-    app.fallthrough();
-    auto& flags = global_flags();
-    app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
-    app.add_flag("--json", flags.json, "Machine-readable JSON on stdout (errors too: {\"error\": …})");
-    // note: a global option (fallthrough lets it follow any subcommand); it sets the budget
-    // of every mesh load, scenarios' included, before any command runs.
-    app.add_option_function<std::uint64_t>(
-           "--max-triangles", [](const std::uint64_t& n) { glint::set_default_max_triangles(n); },
-           "Refuse meshes with more triangles than this (default " +
-               std::to_string(glint::kDefaultMaxTriangles) + ")")
-        ->check(CLI::PositiveNumber);
-    add_registered_commands(app);
-    install_interrupt_handlers();
-    for (int i = 0; i < argc; ++i) {
-        if (i > 0) global_flags().command_line += ' ';
-        global_flags().command_line += argv[i];
-    }
-    if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty())
-        return fail(kExitBadInput, "error", unknown);
+// Runs the command; every glint error becomes its one line and exit code.
+int guarded(CLI::App& app, const std::function<void()>& body) {
     try {
-        app.parse(argc, argv);
+        body();
     } catch (const CLI::ParseError& e) {
         return parse_failure(app, e);
     } catch (const glint::Cancelled& e) {
@@ -162,4 +141,36 @@ int main(int argc, char** argv) {
         return fail(kExitInternal, "internal error", e.what());
     }
     return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    using namespace glint::cli;
+    CLI::App app{"glint: finds damage on 3D surfaces by light-reflection analysis"};
+    app.set_version_flag("--version", std::string("glint ") + glint::kVersion);
+    app.require_subcommand(1);
+    app.fallthrough();
+    auto& flags = global_flags();
+    app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
+    app.add_flag("--json", flags.json, "Machine-readable JSON on stdout (errors too: {\"error\": …})");
+    // note: a global option (fallthrough lets it follow any subcommand); it sets the budget
+    // of every mesh load, scenarios' included, before any command runs.
+    app.add_option_function<std::uint64_t>(
+           "--max-triangles", [](const std::uint64_t& n) { glint::set_default_max_triangles(n); },
+           "Refuse meshes with more triangles than this (default " +
+               std::to_string(glint::kDefaultMaxTriangles) + ")")
+        ->check(CLI::PositiveNumber);
+    add_registered_commands(app);
+    install_interrupt_handlers();
+    for (int i = 0; i < argc; ++i) {
+        if (i > 0) global_flags().command_line += ' ';
+        global_flags().command_line += argv[i];
+    }
+    // A call shaped like 3D Slicer's (glint --xml, then flags and index arguments: see
+    // tools/slicer_module.h) runs the sweep as a Slicer module.
+    if (is_slicer_call(argc, argv)) return guarded(app, [&] { run_slicer_module(argc, argv); });
+    if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty())
+        return fail(kExitBadInput, "error", unknown);
+    return guarded(app, [&] { app.parse(argc, argv); });
 }

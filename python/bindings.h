@@ -1,0 +1,50 @@
+// What the binding files share: the Python-side mesh object and the array views.
+#pragma once
+
+#include "mesh/io.h"
+#include "mesh/mesh.h"
+#include "volume/surface.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint::python {
+
+/// glint.Mesh: a mesh and where it came from. Python holds it through a shared_ptr; the
+/// numpy arrays it hands out are views into `mesh` that keep this object alive.
+struct MeshHandle {
+    Mesh mesh;
+    std::string source;                    ///< the file, or a description ("arrays", "atlas")
+    std::optional<LoadReport> report;      ///< when loaded from a file
+    std::optional<SurfaceReport> surface;  ///< when extracted from a volume
+};
+
+/// A read-only numpy view (rows × cols) of `rows` contiguous records of `cols` T each,
+/// owned by `owner` (no copy). Empty data gives a (0, cols) array.
+template <class T>
+pybind11::array readonly_view(const T* data, std::size_t rows, std::size_t cols, pybind11::handle owner) {
+    std::vector<pybind11::ssize_t> shape{static_cast<pybind11::ssize_t>(rows)};
+    std::vector<pybind11::ssize_t> strides{static_cast<pybind11::ssize_t>(cols * sizeof(T))};
+    if (cols > 1) {
+        shape.push_back(static_cast<pybind11::ssize_t>(cols));
+        strides.push_back(sizeof(T));
+    }
+    pybind11::array_t<T> view(shape, strides, rows == 0 ? nullptr : data, owner);
+    view.attr("setflags")(pybind11::arg("write") = false);
+    return view;
+}
+
+/// A mesh argument: a glint.Mesh as it is, or a path (str, os.PathLike) loaded as glint.load
+/// does (a volume with surface.iso). Loads with the GIL released.
+[[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(pybind11::handle value, const SurfaceOptions& surface,
+                                                        const char* role);
+
+void bind_mesh(pybind11::module_& m);
+void bind_analysis(pybind11::module_& m);
+
+}  // namespace glint::python

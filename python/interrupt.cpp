@@ -1,0 +1,106 @@
+#include "python/interrupt.h"
+
+#include "mesh/cancel.h"
+#include "mesh/error.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <csignal>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace py = pybind11;
+
+namespace glint::python {
+
+namespace {
+
+// The exception classes, created once when the module is imported (never freed: they live
+// as long as the interpreter).
+PyObject* g_error = nullptr;
+PyObject* g_input_error = nullptr;
+PyObject* g_io_error = nullptr;
+PyObject* g_device_error = nullptr;
+
+PyObject* new_exception(py::module_& m, const char* name, py::tuple bases, const char* doc) {
+    const std::string qualified = std::string("glint.") + name;
+    PyObject* type = PyErr_NewExceptionWithDoc(qualified.c_str(), doc, bases.ptr(), nullptr);
+    if (type == nullptr) throw py::error_already_set();
+    m.add_object(name, py::handle(type));  // the module holds one reference, g_* another
+    Py_INCREF(type);
+    return type;
+}
+
+}  // namespace
+
+void register_exceptions(py::module_& m) {
+    const py::handle exception(PyExc_Exception);
+    g_error = new_exception(m, "Error", py::make_tuple(exception),
+                            "Base of glint's errors; the message is glint's one line (what, where, found, expected).");
+    const py::handle error(g_error);
+    g_input_error = new_exception(m, "InputError", py::make_tuple(error, py::handle(PyExc_ValueError)),
+                                  "Bad input: a malformed file, an invalid option (glint exit code 2).");
+    g_io_error = new_exception(m, "IoError", py::make_tuple(error, py::handle(PyExc_OSError)),
+                               "A read or write failed (glint exit code 3).");
+    g_device_error = new_exception(m, "DeviceError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
+                                   "No usable render device, or a device call failed (glint exit code 3).");
+    // note: Cancelled derives from glint::Error, so it is caught first; it becomes Python's
+    // own KeyboardInterrupt, as a Ctrl-C anywhere else in Python does.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Cancelled& e) {
+            PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+        } catch (const InputError& e) {
+            PyErr_SetString(g_input_error, e.what());
+        } catch (const IoError& e) {
+            PyErr_SetString(g_io_error, e.what());
+        } catch (const DeviceError& e) {
+            PyErr_SetString(g_device_error, e.what());
+        } catch (const Error& e) {
+            PyErr_SetString(g_error, e.what());
+        }
+    });
+}
+
+void run_interruptible(const std::function<void()>& work) {
+    reset_cancel();
+    std::mutex mutex;
+    std::condition_variable finished;
+    bool done = false;
+    std::exception_ptr failure;
+    std::thread worker([&] {
+        try {
+            work();
+        } catch (...) {
+            failure = std::current_exception();
+        }
+        const std::lock_guard lock(mutex);
+        done = true;
+        finished.notify_one();
+    });
+    bool signalled = false;  // a Python signal handler raised; its exception is pending
+    {
+        const py::gil_scoped_release release;
+        std::unique_lock lock(mutex);
+        while (!finished.wait_for(lock, kPollInterval, [&] { return done; })) {
+            if (signalled) continue;  // cancelling: wait for the worker to unwind
+            lock.unlock();
+            {
+                const py::gil_scoped_acquire acquire;
+                if (PyErr_CheckSignals() != 0) {
+                    signalled = true;
+                    request_cancel(SIGINT);
+                }
+            }
+            lock.lock();
+        }
+    }
+    worker.join();
+    reset_cancel();
+    if (signalled) throw py::error_already_set();  // the handler's exception, set by PyErr_CheckSignals
+    if (failure) std::rethrow_exception(failure);
+}
+
+}  // namespace glint::python

@@ -1,0 +1,23 @@
+// import glint: the Python face of the glint library (python/README in the repository's
+// README, section "Python").
+#include "mesh/cancel.h"
+#include "mesh/version.h"
+#include "python/bindings.h"
+#include "python/interrupt.h"
+
+#include <pybind11/pybind11.h>
+
+#include <csignal>
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(glint, m) {
+    m.doc() = "glint: damage on 3D surfaces by light-reflection analysis (load, register, analyse)";
+    m.attr("__version__") = glint::kVersion;
+    glint::python::register_exceptions(m);
+    glint::python::bind_mesh(m);
+    glint::python::bind_analysis(m);
+    m.def(
+        "cancel", [] { glint::request_cancel(SIGINT); },
+        "Asks the glint calls in progress (any thread) to stop; each then raises KeyboardInterrupt.");
+}

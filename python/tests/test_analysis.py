@@ -1,0 +1,160 @@
+"""glint.register and glint.analyse: the fit and its evidence, the atlas as arrays, regions and
+the report as Python objects, the same numbers as the files glint writes."""
+import json
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import glint
+from conftest import DENT_CENTER, SMALL_SWEEP, world_from_phantom
+
+
+def rotation_error_deg(a, b):
+    """Angle of the rotation between two 3×3 rotations."""
+    c = (np.trace(a.T @ b) - 1.0) / 2.0
+    return np.degrees(np.arccos(np.clip(c, -1.0, 1.0)))
+
+
+def test_register_recovers_the_known_pose(dent_pair, tmp_path):
+    ref, exa, truth = dent_pair
+    fit = glint.register(ref, exa, output=tmp_path / "fit.json")
+    # The examined phantom was moved by world_from_phantom; the fit maps it back.
+    expected = np.linalg.inv(world_from_phantom(truth))
+    assert fit.converged and fit.mode == "register"
+    assert fit.matrix.shape == (4, 4)
+    # note: 0.05° and 0.01 mm: the dent covers a few % of the sphere and the robust loss keeps
+    # it out of the fit (the CLI's registration tests hold the same bounds).
+    assert rotation_error_deg(fit.rotation, expected[:3, :3]) < 0.05
+    np.testing.assert_allclose(fit.translation, expected[:3, 3], atol=0.01)
+    assert 0 < fit.rms < 0.05 and fit.inlier_fraction > 0.8 and fit.overlap > 0.9
+    assert isinstance(fit.iterations, int) and fit.iterations > 0
+    assert fit.termination in ("parameter change", "cost change")
+    saved = json.loads((tmp_path / "fit.json").read_text())
+    assert saved == fit.to_dict()
+    np.testing.assert_allclose(np.array(saved["reference_from_examined"]), fit.matrix, atol=1e-9)
+
+
+def test_register_takes_mesh_objects(dent_pair):
+    ref, exa, _ = dent_pair
+    by_path = glint.register(ref, exa)
+    by_mesh = glint.register(glint.load(ref), glint.load(exa))
+    np.testing.assert_allclose(by_mesh.matrix, by_path.matrix, atol=1e-9)
+
+
+@pytest.fixture(scope="module")
+def analysis(dent_pair, tmp_path_factory):
+    ref, exa, _ = dent_pair
+    out = tmp_path_factory.mktemp("analysis") / "atlas"
+    return glint.analyse(ref, exa, output=out, **SMALL_SWEEP), out
+
+
+def test_analyse_finds_the_dent(analysis):
+    result, _ = analysis
+    regions = [r for r in result.regions if r["zoom"] == 0]
+    assert len(regions) == 1
+    dent = regions[0]
+    assert dent["kind"] == "dent" and dent["peak_depth"] < 0
+    # The dent lies where it was made on the reference (the pose was fitted away); 1 mm: a
+    # third of its radius (the centroid of a dent on a curved top sits below its centre).
+    assert np.linalg.norm(np.array(dent["centroid"]) - DENT_CENTER) < 1.0
+    assert result.fit.converged
+
+
+def test_atlas_fields_are_per_vertex_arrays(analysis, dent_pair):
+    result, _ = analysis
+    reference = glint.load(dent_pair[0])
+    fields = result.fields
+    for name in ("angle_max_z0", "angle_mean_z0", "depth_z0", "missing_z0", "count_z0", "seen_z0", "region_z0",
+                 "distance", "distance_tolerance"):
+        assert fields[name].shape == (reference.vertex_count,) and fields[name].dtype == np.float32, name
+    np.testing.assert_array_equal(result.atlas.positions, reference.positions)
+    region = fields["region_z0"]
+    assert int((region > 0).sum()) == sum(r["vertices"] for r in result.regions if r["zoom"] == 0)
+    # Inside the region the surface moved inward; far from it, it did not.
+    assert np.nanmin(fields["distance"][region > 0]) < -0.3
+    far = np.linalg.norm(reference.positions - DENT_CENTER, axis=1) > 6
+    assert np.nanmax(np.abs(fields["distance"][far])) < 0.05
+    assert fields["seen_z0"].max() == 1.0
+
+
+def test_report_is_report_json(analysis):
+    result, out = analysis
+    written = json.loads((out / "report.json").read_text())
+    report = result.report
+    # note: the report is made again after the run, so only the total time may differ.
+    written.pop("timings_s"), report.pop("timings_s")
+    assert report == written
+    assert result.regions_csv == (out / "regions.csv").read_text()
+    assert result.output == out
+
+
+def test_report_regions_match_the_atlas(analysis):
+    result, _ = analysis
+    zoom = result.report["zooms"][0]
+    assert zoom["regions"] == [{k: v for k, v in r.items() if k != "zoom"} for r in result.regions if r["zoom"] == 0]
+    assert 0.9 < zoom["coverage"] <= 1.0
+
+
+def test_analyse_without_register_on_aligned_copies(dent_pair):
+    ref = dent_pair[0]
+    result = glint.analyse(ref, ref, register=False, **SMALL_SWEEP)
+    assert result.regions == [] and result.fit.mode == "identity"
+    assert result.output is None
+    assert np.nanmax(np.abs(result.fields["distance"])) < 1e-4
+
+
+def test_analyse_from_a_fit_file(dent_pair, tmp_path):
+    ref, exa, _ = dent_pair
+    glint.register(ref, exa, output=tmp_path / "fit.json")
+    result = glint.analyse(ref, exa, fit=tmp_path / "fit.json", **SMALL_SWEEP)
+    assert result.fit.mode == "file" and result.fit.rms is None
+    assert [r["kind"] for r in result.regions] == ["dent"]
+
+
+def test_existing_output_is_refused_then_replaced_with_force(dent_pair, tmp_path):
+    ref = dent_pair[0]
+    (tmp_path / "atlas").mkdir()
+    with pytest.raises(glint.InputError, match="exists; give --force"):
+        glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", **SMALL_SWEEP)
+    glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", force=True, **SMALL_SWEEP)
+    assert (tmp_path / "atlas" / "report.json").is_file()
+
+
+def test_invalid_option_names_its_key(dent_pair):
+    ref = dent_pair[0]
+    with pytest.raises(glint.InputError, match="size = 0"):
+        glint.analyse(ref, ref, size=0)
+    with pytest.raises(glint.InputError, match="metric"):
+        glint.analyse(ref, ref, metric="hsv")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'sise'"):
+        glint.analyse(ref, ref, sise=64)
+
+
+def test_analyse_releases_the_gil(dent_pair):
+    ref, exa, _ = dent_pair
+    done = {}
+    worker = threading.Thread(target=lambda: done.setdefault("result", glint.analyse(ref, exa, **SMALL_SWEEP)))
+    worker.start()
+    ticks = 0
+    while worker.is_alive():
+        ticks += 1
+        time.sleep(0.001)
+    worker.join()
+    assert "result" in done
+    # note: a call holding the GIL would let this thread tick only at its start and end.
+    assert ticks > 20
+
+
+def test_cancel_from_another_thread_raises_keyboard_interrupt(dent_pair):
+    ref, exa, _ = dent_pair
+    timer = threading.Timer(0.3, glint.cancel)
+    timer.start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt, match="SIGINT received: stopped"):
+        glint.analyse(ref, exa, size=256, azimuth_step=10.0, elevations=[-60, -30, 0, 30, 60], views=False, exr=False)
+    timer.join()
+    assert time.monotonic() - started < 30
+    # The flag is cleared: the next call runs.
+    assert glint.analyse(ref, ref, register=False, **SMALL_SWEEP).regions == []

@@ -1,0 +1,161 @@
+"""The Snakemake cohort workflow (workflows/cohort) on a small generated cohort: three subjects
+of condyle phantoms at two or three time points with known damage between consecutive scans.
+The cohort table's numbers are checked against each pair's report.json and against the damage
+that was made. Run by CTest (workflow.cohort) with GLINT_EXE and GLINT_SOURCE_DIR set."""
+import csv
+import json
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+SOURCE = pathlib.Path(os.environ.get("GLINT_SOURCE_DIR", "."))
+GLINT = os.environ.get("GLINT_EXE", "")
+WORKFLOW = SOURCE / "workflows" / "cohort"
+sys.path.insert(0, str(WORKFLOW))
+import cohort  # noqa: E402
+
+DENT = "dent:center=2,-1,8.8 radius=3 depth=0.6"    # on the condyle's top
+BUMP = "bump:center=-5,0,7 radius=2.5 depth=0.5"    # on its side, 7 mm from the dent
+# Small sweeps keep each pair near a second on two cores.
+SMALL = ["size=64", "azimuth_step=60", "elevations=[-45,0,45]"]
+
+
+def phantom(path, *args):
+    subprocess.run([GLINT, "--quiet", "phantom", "condyle", *args, "-o", str(path)], check=True)
+
+
+@pytest.fixture(scope="module")
+def cohort_run(tmp_path_factory):
+    assert GLINT, "GLINT_EXE must be set (ctest sets it)"
+    data = tmp_path_factory.mktemp("scans")
+    # Subject A: clean, then a dent, then the same dent and a new bump (re-tessellated, moved).
+    phantom(data / "a0.ply", "--scheme", "ico", "--resolution", "4")
+    phantom(data / "a1.ply", "--scheme", "uv", "--resolution", "48", "--damage", DENT, "--pose", "4,-3,5,0.3,-0.2,0.1")
+    phantom(data / "a2.ply", "--scheme", "ico", "--resolution", "5", "--damage", DENT, "--damage", BUMP,
+            "--pose", "-3,2,-4,-0.2,0.1,0.3")
+    # Subject B: two scans of an unchanged surface (time points as text: T0 < T1).
+    phantom(data / "b0.ply", "--scheme", "ico", "--resolution", "4")
+    phantom(data / "b1.ply", "--scheme", "uv", "--resolution", "40", "--pose", "2,3,-2,0.1,0.2,-0.1")
+    # Subject C: a dent and a bump appear, but the ROI analyses only the dent's neighbourhood.
+    phantom(data / "c0.ply", "--scheme", "ico", "--resolution", "4")
+    phantom(data / "c1.ply", "--scheme", "uv", "--resolution", "48", "--damage", DENT, "--damage", BUMP,
+            "--pose", "-2,4,3,0.2,0.3,0.1")
+    manifest = data / "manifest.csv"
+    manifest.write_text("subject,timepoint,path,iso,roi,landmarks\n"
+                        "A,1,a1.ply,,,\nA,0,a0.ply,,,\nA,2,a2.ply,,,\n"
+                        "B,T1,b1.ply,,,\nB,T0,b0.ply,,,\n"
+                        "C,0,c0.ply,,,\nC,1,c1.ply,,\"sphere:2,-1,8.8,5\",\n")
+    work = tmp_path_factory.mktemp("results")
+    command = ["snakemake", "-s", str(WORKFLOW / "Snakefile"), "-d", str(work), "-j2", "--quiet",
+               "--config", f"manifest={manifest}", f"glint={GLINT}", *SMALL]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout, done.stderr)
+    again = subprocess.run([*command, "--dry-run"], capture_output=True, text=True, timeout=120)
+    return work, manifest, command, again
+
+
+def table(work):
+    with (work / "cohort.csv").open(newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_one_row_per_pair_of_consecutive_time_points(cohort_run):
+    rows = table(cohort_run[0])
+    assert [(r["subject"], r["before"], r["after"]) for r in rows] == [
+        ("A", "0", "1"), ("A", "1", "2"), ("B", "T0", "T1"), ("C", "0", "1")]
+
+
+def test_table_numbers_are_the_reports(cohort_run):
+    work = cohort_run[0]
+    for row in table(work):
+        report = json.loads((work / row["report"]).read_text())
+        regions = report["zooms"][0]["regions"]
+        assert int(row["regions"]) == len(regions)
+        assert int(row["dents"]) == sum(r["kind"] == "dent" for r in regions)
+        assert int(row["bumps"]) == sum(r["kind"] == "bump" for r in regions)
+        assert float(row["area"]) == pytest.approx(sum(r["area"] for r in regions))
+        assert float(row["volume_lost"]) == pytest.approx(-sum(min(r["volume"], 0) for r in regions))
+        assert float(row["volume_gained"]) == pytest.approx(sum(max(r["volume"], 0) for r in regions))
+        assert float(row["max_depth"]) == pytest.approx(-min([r["peak_depth"] for r in regions] + [0]))
+        assert float(row["coverage"]) == pytest.approx(report["zooms"][0]["coverage"])
+        assert float(row["fit_rms"]) == pytest.approx(report["fit"]["rms"])
+        assert row["fit_converged"] == "True" and row["unit"] == "mm"
+
+
+def test_table_finds_the_damage_that_was_made(cohort_run):
+    a01, a12, b, c = table(cohort_run[0])
+    # A 0→1: the 0.6 mm dent appeared.
+    assert (a01["regions"], a01["dents"]) == ("1", "1")
+    assert 0.4 < float(a01["max_depth"]) < 0.7 and float(a01["volume_lost"]) > 0
+    # A 1→2: the dent was already there; only the 0.5 mm bump is new.
+    assert (a12["regions"], a12["bumps"], a12["dents"]) == ("1", "1", "0")
+    assert 0.3 < float(a12["max_height"]) < 0.6 and float(a12["volume_gained"]) > 0
+    # B: nothing changed.
+    assert b["regions"] == "0" and float(b["volume_lost"]) == 0 and float(b["volume_gained"]) == 0
+    # C: the bump lies outside the analysed region.
+    assert (c["regions"], c["dents"], c["bumps"]) == ("1", "1", "0")
+    for row in (a01, a12, b, c):
+        assert float(row["fit_rms"]) < 0.05 and float(row["coverage"]) > 0.9
+
+
+def test_summary_files(cohort_run):
+    work = cohort_run[0]
+    png = (work / "cohort.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 10_000
+    page = (work / "cohort.html").read_text()
+    assert 'src="cohort.png"' in page
+    for row in table(work):
+        assert f'href="{pathlib.PurePosixPath(row["report"])}"' in page
+    assert json.loads((work / "cohort.json").read_text())[0]["subject"] == "A"
+
+
+def test_a_second_run_has_nothing_to_do(cohort_run):
+    again = cohort_run[3]
+    assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
+
+
+def test_manifest_problems_name_row_and_column(tmp_path):
+    (tmp_path / "scan.ply").write_text("")
+    bad = tmp_path / "m.csv"
+    bad.write_text("subject,time,path\nA,0,scan.ply\n")
+    with pytest.raises(cohort.ManifestError, match="lacks timepoint"):
+        cohort.read_manifest(bad)
+    bad.write_text("subject,timepoint,path\nA,0,scan.ply\nA,0,scan.ply\n")
+    with pytest.raises(cohort.ManifestError, match="row 3: subject A time point 0 already on row 2"):
+        cohort.read_manifest(bad)
+    bad.write_text("subject,timepoint,path\nA,0,missing.ply\n")
+    with pytest.raises(cohort.ManifestError, match="row 2: path .*missing.ply: not found"):
+        cohort.read_manifest(bad)
+    bad.write_text("subject,timepoint,path,iso\nA,0,scan.ply,bone\n")
+    with pytest.raises(cohort.ManifestError, match="row 2: iso \"bone\": expected a number"):
+        cohort.read_manifest(bad)
+    bad.write_text("subject,timepoint,path,iso\nA,0,scan.ply,300\nA,1,scan.ply,250\n")
+    with pytest.raises(cohort.ManifestError, match="different iso values"):
+        cohort.pairs(cohort.read_manifest(bad))
+
+
+def test_volumes_get_their_iso_value(tmp_path, cohort_run):
+    (tmp_path / "ct0.nii.gz").write_text("")
+    (tmp_path / "ct1.nii.gz").write_text("")
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("subject,timepoint,path,iso\nP,0,ct0.nii.gz,300\nP,1,ct1.nii.gz,300\n")
+    command = cohort_run[2]
+    at = command.index("--config")
+    dry = [*(a for a in command[:at] if a != "--quiet"), "--dry-run", "--printshellcmds", "-d",
+           str(tmp_path / "out"), "--config", f"manifest={manifest}", *command[at + 2:]]
+    done = subprocess.run(dry, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "--iso 300" in done.stdout and "ct0.nii.gz" in done.stdout
+
+
+def test_snakemake_reports_a_bad_manifest(tmp_path, cohort_run):
+    manifest = tmp_path / "m.csv"
+    manifest.write_text("subject,timepoint\nA,0\n")
+    command = cohort_run[2]
+    at = command.index("--config")
+    done = subprocess.run([*command[:at], "-d", str(tmp_path / "out"), "--config", f"manifest={manifest}",
+                           *command[at + 2:]], capture_output=True, text=True, timeout=120)
+    assert done.returncode != 0 and "lacks path" in done.stdout + done.stderr

@@ -1,0 +1,187 @@
+"""The cohort workflow's logic (the Snakefile only wires it): the manifest, the pairs of
+consecutive time points, the cohort table read from each pair's report.json, the summary.
+
+Manifest (CSV, header required, one row per scan):
+    subject,timepoint,path[,iso][,roi][,landmarks]
+  subject    an identifier (letters, digits, '-', '_', '.')
+  timepoint  ordered numerically when every time point of the cohort is a number, else as
+             text (ISO dates, T0 < T1 …); same characters as subject
+  path       a mesh file or a volume (file or DICOM folder); relative to the manifest's folder
+  iso        the iso value when path is a volume (both scans of a pair must agree)
+  roi        analyse only this part of the surface (glint's sphere:x,y,z,r / box:…) for the pair
+             that ends at this row
+  landmarks  landmark pairs (JSON, glint register --landmarks) starting the fit of the pair that
+             ends at this row
+Each subject's consecutive time points make one pair; `glint sweep --register` runs once per
+pair (one process per pair), the earlier scan as the reference.
+"""
+import csv
+import json
+import pathlib
+import re
+
+COLUMNS = ("subject", "timepoint", "path", "iso", "roi", "landmarks")
+REQUIRED = ("subject", "timepoint", "path")
+_IDENT = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
+
+
+class ManifestError(ValueError):
+    """A manifest problem, one line naming the file, the row and the column."""
+
+
+def _number(text):
+    try:
+        return float(text)
+    except ValueError:
+        return None
+
+
+def read_manifest(path):
+    """The manifest's rows as dicts (paths made absolute), sorted by subject and time point.
+    Raises ManifestError naming the file, row and column of the first problem."""
+    path = pathlib.Path(path)
+    if not path.is_file():
+        raise ManifestError(f"manifest {path}: file not found")
+    base = path.resolve().parent
+    with path.open(newline="") as f:
+        reader = csv.DictReader(f)
+        header = [h.strip() for h in (reader.fieldnames or [])]
+        missing = [c for c in REQUIRED if c not in header]
+        if missing:
+            raise ManifestError(f"manifest {path}: header {','.join(header) or '(empty)'} lacks "
+                                f"{', '.join(missing)}; expected {','.join(COLUMNS)} (iso, roi, landmarks optional)")
+        unknown = [c for c in header if c not in COLUMNS]
+        if unknown:
+            raise ManifestError(f"manifest {path}: unknown column {unknown[0]}; expected {','.join(COLUMNS)}")
+        rows = []
+        for line, raw in enumerate(reader, start=2):
+            row = {k.strip(): (v or "").strip() for k, v in raw.items() if k is not None}
+            rows.append(_check_row(path, base, line, row))
+    if not rows:
+        raise ManifestError(f"manifest {path}: no rows")
+    seen = {}
+    for r in rows:
+        key = (r["subject"], r["timepoint"])
+        if key in seen:
+            raise ManifestError(f"manifest {path}: row {r['line']}: subject {key[0]} time point {key[1]} "
+                                f"already on row {seen[key]}")
+        seen[key] = r["line"]
+    numeric = all(_number(r["timepoint"]) is not None for r in rows)
+    return sorted(rows, key=lambda r: (r["subject"], _number(r["timepoint"]) if numeric else r["timepoint"]))
+
+
+def _check_row(path, base, line, row):
+    where = f"manifest {path}: row {line}"
+    for column in ("subject", "timepoint"):
+        if not _IDENT.match(row.get(column, "")):
+            raise ManifestError(f"{where}: {column} \"{row.get(column, '')}\": expected letters, digits, '.', '-', '_'")
+    if not row.get("path"):
+        raise ManifestError(f"{where}: path is empty")
+    scan = pathlib.Path(row["path"])
+    scan = scan if scan.is_absolute() else base / scan
+    if not scan.exists():
+        raise ManifestError(f"{where}: path {scan}: not found")
+    iso = row.get("iso", "")
+    if iso and _number(iso) is None:
+        raise ManifestError(f"{where}: iso \"{iso}\": expected a number")
+    landmarks = row.get("landmarks", "")
+    if landmarks:
+        lm = pathlib.Path(landmarks)
+        lm = lm if lm.is_absolute() else base / lm
+        if not lm.is_file():
+            raise ManifestError(f"{where}: landmarks {lm}: not found")
+        landmarks = str(lm)
+    return {"subject": row["subject"], "timepoint": row["timepoint"], "path": str(scan), "iso": iso,
+            "roi": row.get("roi", ""), "landmarks": landmarks, "line": line}
+
+
+def pairs(rows):
+    """Consecutive time points per subject: {pair id: {subject, before, after}} in order.
+    A pair id is "<subject>/<t0>_to_<t1>" (the folder of its results)."""
+    out = {}
+    by_subject = {}
+    for r in rows:
+        by_subject.setdefault(r["subject"], []).append(r)
+    for subject, scans in by_subject.items():
+        for before, after in zip(scans, scans[1:]):
+            if before["iso"] != after["iso"]:
+                raise ManifestError(f"manifest: subject {subject}: time points {before['timepoint']} and "
+                                    f"{after['timepoint']} have different iso values ({before['iso'] or 'none'}, "
+                                    f"{after['iso'] or 'none'}); one pair is swept at one iso value")
+            out[f"{subject}/{before['timepoint']}_to_{after['timepoint']}"] = {
+                "subject": subject, "before": before, "after": after}
+    return out
+
+
+def sweep_arguments(pair, config):
+    """The `glint sweep` arguments of a pair (after REF EXA), from its rows and the config."""
+    args = ["--register", "--size", str(config["size"]), "--azimuth-step", str(config["azimuth_step"]),
+            "--elevations", ",".join(str(e) for e in config["elevations"]), "--no-exr"]
+    if not config.get("views", False):
+        args.append("--no-views")
+    if config.get("unit"):
+        args += ["--unit", str(config["unit"])]
+    after = pair["after"]
+    if after["iso"]:
+        args += ["--iso", after["iso"]]
+    if after["roi"]:
+        args += ["--roi", after["roi"]]
+    if after["landmarks"]:
+        args += ["--landmarks", after["landmarks"]]
+    args += [str(a) for a in config.get("extra_args", [])]
+    return args
+
+
+TABLE_COLUMNS = ("subject", "before", "after", "regions", "dents", "bumps", "missing_surface", "area",
+                 "volume_lost", "volume_gained", "max_depth", "max_height", "coverage", "fit_converged", "fit_rms",
+                 "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report")
+
+
+def pair_row(pair_id, pair, report):
+    """One cohort table row from a pair's report.json (zoom 0): lengths in its unit."""
+    regions = report["zooms"][0]["regions"]
+    depths = [r["peak_depth"] for r in regions if r["peak_depth"] is not None]
+    volumes = [r["volume"] for r in regions if r["volume"] is not None]
+    fit = report.get("fit") or {}
+    return {
+        "subject": pair["subject"], "before": pair["before"]["timepoint"], "after": pair["after"]["timepoint"],
+        "regions": len(regions),
+        "dents": sum(r["kind"] == "dent" for r in regions),
+        "bumps": sum(r["kind"] == "bump" for r in regions),
+        "missing_surface": sum(r["kind"] == "missing surface" for r in regions),
+        "area": sum(r["area"] for r in regions),
+        "volume_lost": -sum(v for v in volumes if v < 0),
+        "volume_gained": sum(v for v in volumes if v > 0),
+        "max_depth": max((-d for d in depths if d < 0), default=0.0),
+        "max_height": max([d for d in depths if d > 0], default=0.0),
+        "coverage": report["zooms"][0]["coverage"],
+        "fit_converged": fit.get("converged"), "fit_rms": fit.get("rms"),
+        "fit_inlier_fraction": fit.get("inlier_fraction"), "fit_overlap": fit.get("overlap"),
+        "fit_rotation_deg": fit.get("rotation_deg"), "fit_termination": fit.get("termination"),
+        "unit": report.get("unit") or "",
+        "report": f"pairs/{pair_id}/report.json",
+    }
+
+
+def write_table(rows, csv_path, json_path):
+    """cohort.csv and cohort.json (written to temporary names, then renamed)."""
+    csv_path, json_path = pathlib.Path(csv_path), pathlib.Path(json_path)
+    tmp = csv_path.with_name(csv_path.name + ".tmp")
+    with tmp.open("w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=TABLE_COLUMNS)
+        writer.writeheader()
+        writer.writerows(rows)
+    tmp.replace(csv_path)
+    tmp = json_path.with_name(json_path.name + ".tmp")
+    tmp.write_text(json.dumps(rows, indent=2) + "\n")
+    tmp.replace(json_path)
+
+
+def cohort_table(pair_ids, all_pairs, out_dir, csv_path, json_path):
+    """Reads every pair's report.json and writes the cohort table."""
+    rows = []
+    for pair_id in pair_ids:
+        report_path = pathlib.Path(out_dir) / "pairs" / pair_id / "report.json"
+        rows.append(pair_row(pair_id, all_pairs[pair_id], json.loads(report_path.read_text())))
+    write_table(rows, csv_path, json_path)
+    return rows
