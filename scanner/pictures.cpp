@@ -57,10 +57,6 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z, co
     std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value, std::string(m.unit).c_str(),
                   to_string(d.rule).c_str());
     c.lines.emplace_back(b);
-    if (d.rule == DecisionRule::Fused) {
-        std::snprintf(b, sizeof b, "shape floor %s %s", detail::format_number(d.shape.value).c_str(), u.c_str());
-        c.lines.emplace_back(b);
-    }
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
                   100.0 * result.sweep.zooms[z].coverage.fraction);
@@ -199,7 +195,7 @@ std::string PictureWriter::mosaic(std::size_t z) {
         const auto painted = detail::paint_surface(reference_, frame, shown[k], zooms_[z].fields,
                                                    {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
         IBA::paste(sheet, x, y, 0, 0, painted.image);
-        detail::draw_region_numbers(sheet, x, y, frame.width, painted.anchors, 10, 16);
+        detail::draw_region_numbers(sheet, x, y, frame.width, painted.anchors, 10, 4);
         if (!rotary) {
             char label[48];
             std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg, pv.view.elevation_deg);

@@ -89,8 +89,9 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     std::vector<std::string> lines = c.lines;
     lines.insert(lines.begin(), "range +/-" + format_number(c.limit) + " " + c.unit +
                                     (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
-    if (c.shape_floor > 0 && c.shape_floor < c.limit)
-        lines.insert(lines.begin() + 1, "on the bar: shape floor +/-" + format_number(c.shape_floor) + " " + c.unit);
+    if (c.shape_floor > 0)
+        lines.insert(lines.begin() + 1, "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
+                                            (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
     for (const auto& l : lines) {
         draw_text(dst, x0, cy, l, kFont - 1, kDimText);
         cy += kLine - 2;

@@ -23,7 +23,7 @@ struct LegendContent {
 inline constexpr int kTitleHeight = 30;
 
 /// Width of the legend panel, pixels.
-inline constexpr int kLegendWidth = 262;
+inline constexpr int kLegendWidth = 290;
 
 /// Smallest height that shows the bar, swatches and lines (regions are cut to what fits).
 [[nodiscard]] int legend_min_height(const LegendContent& content);

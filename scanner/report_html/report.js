@@ -242,13 +242,23 @@
 
   // ---- regions -------------------------------------------------------------------------------
   function regionsOf(z) { return (REPORT.zooms[z] && REPORT.zooms[z].regions) || []; }
+  // The direction a region faces: the mean of its vertices' normals; when they cancel out, its
+  // best view's direction (the sweep's view that saw its strongest deviation).
+  function regionFacing(r) {
+    const ids = byName["region_z" + state.zoom], normal = geometry.attributes.normal.array;
+    const sum = new THREE.Vector3();
+    let count = 0;
+    if (ids)
+      for (let v = 0; v < ids.data.length; ++v)
+        if (ids.data[v] === r.id) { sum.x += normal[3 * v]; sum.y += normal[3 * v + 1]; sum.z += normal[3 * v + 2]; ++count; }
+    if (count && sum.length() > 0.2 * count) return sum.normalize();
+    if (r.best_view_azimuth_deg !== undefined) return dirFromAzEl(r.best_view_azimuth_deg, r.best_view_elevation_deg);
+    return camera.position.clone().sub(controls.target).normalize();
+  }
   function flyToRegion(r) {
     const target = new THREE.Vector3().fromArray(r.centroid);
-    const dir = r.best_view_azimuth_deg !== undefined
-      ? dirFromAzEl(r.best_view_azimuth_deg, r.best_view_elevation_deg)
-      : camera.position.clone().sub(controls.target).normalize();
     const extent = Math.max(Math.sqrt(Math.max(r.area, 0)) * 1.5, radius * 0.12);
-    const position = target.clone().addScaledVector(dir, fitDistance(extent));
+    const position = target.clone().addScaledVector(regionFacing(r), fitDistance(extent));
     showBestView(r);
     return flyTo(target, position, 700);
   }
@@ -414,71 +424,88 @@
       const tri = new THREE.Triangle(...s.v.map((x) => new THREE.Vector3().fromArray(positions, 3 * x)));
       const bw = tri.getBarycoord(hit.point, new THREE.Vector3()).toArray();
       const expected = [0, 1, 2].map((ch) => Math.round(255 * (bw[0] * s.cols[0][ch] + bw[1] * s.cols[1][ch] + bw[2] * s.cols[2][ch])));
-      const corner = bw.indexOf(Math.max(...bw));
+      // the corner nearest the surface point, as picking chooses it
+      const dist = s.v.map((x) => new THREE.Vector3().fromArray(positions, 3 * x).distanceTo(hit.point));
+      const corner = dist.indexOf(Math.min(...dist));
       let spread = 0;
       for (let ch = 0; ch < 3; ++ch) spread = Math.max(spread, Math.max(...s.cols.map((q) => q[ch])) - Math.min(...s.cols.map((q) => q[ch])));
       return { xi: xi, yi: yi, expected: expected, vertex: s.v[corner], spread: spread };
     }
     return null;
   }
+  // The unlit mesh's pixels (a pixel's colour is then the interpolated vertex colour).
+  function readCanvas() {
+    mesh.material = flatMaterial;
+    renderNow();
+    const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    mesh.material = litMaterial;
+    renderNow();
+    return { w: w, h: h, px: px };
+  }
+  function checkCanvas(c) {
+    const bg = new THREE.Color(BACKGROUND);
+    let drawn = 0;
+    for (let i = 0; i < c.w * c.h; ++i)
+      if (Math.max(Math.abs(c.px[4 * i] - 255 * bg.r), Math.abs(c.px[4 * i + 1] - 255 * bg.g),
+                   Math.abs(c.px[4 * i + 2] - 255 * bg.b)) > 8) ++drawn;
+    return { width: c.w, height: c.h, drawn_fraction: drawn / (c.w * c.h), ok: drawn / (c.w * c.h) > 0.02 };
+  }
+  async function checkRegionClick() {
+    const row = document.querySelector("#regions tbody tr[data-region]");
+    if (!row) return { ok: true, skipped: "no region" };
+    const region = regionsOf(state.zoom).find((x) => String(x.id) === row.getAttribute("data-region"));
+    const centroid = new THREE.Vector3().fromArray(region.centroid);
+    const before = camera.position.clone();
+    row.click();
+    await state.lastFlight;
+    const forward = new THREE.Vector3();
+    camera.getWorldDirection(forward);
+    const towards = centroid.clone().sub(camera.position).normalize();
+    const img = $("best-view-img");
+    const shown = img.style.display === "block" && img.src.startsWith("data:image/png");
+    const moved = before.distanceTo(camera.position), targetError = controls.target.distanceTo(centroid);
+    return { region: region.id, moved: moved, distance_before: before.distanceTo(centroid),
+             distance_after: camera.position.distanceTo(centroid), target_error: targetError,
+             looking_at_centroid: forward.dot(towards), best_view_shown: shown,
+             ok: moved > radius * 1e-3 && targetError < radius * 1e-6 + 1e-9 && forward.dot(towards) > 0.9999 &&
+                 (shown || !DATA.images.best_views[String(region.best_view)]) };
+  }
+  function checkColourAndPick(c, verdict) {
+    const k = knownPixel(c.w, c.h);
+    if (!k) { verdict.checks.colour = { ok: false, why: "no large visible triangle" }; return; }
+    const o = 4 * ((c.h - 1 - k.yi) * c.w + k.xi);
+    const got = [c.px[o], c.px[o + 1], c.px[o + 2]];
+    // note: 6 of 255 for rounding and blending; the rest for the colour change across the
+    // pixel (a triangle of at least 24 px² spans its corners' spread over ≥ 6 px).
+    const tolerance = 6 + 255 * 0.15 * k.spread;
+    const diff = Math.max(...got.map((g, i) => Math.abs(g - k.expected[i])));
+    const f = state.field;
+    verdict.checks.colour = { field: f.name, vertex: k.vertex, value: f.data[k.vertex],
+                              vertex_colour: colourOf(f, k.vertex, state.low, state.high).map((x) => Math.round(255 * x)),
+                              low: state.low, high: state.high, pixel: [k.xi, k.yi], expected: k.expected, got: got,
+                              tolerance: tolerance, ok: diff <= tolerance };
+    const r = canvas.getBoundingClientRect(), dpr = c.w / r.width;
+    const picked = vertexAt(r.left + (k.xi + 0.5) / dpr, r.top + (k.yi + 0.5) / dpr);
+    verdict.checks.pick = { vertex: picked, expected: k.vertex, ok: picked === k.vertex };
+  }
+  // The self-test: the canvas is drawn; a click on region row 1 flies there and shows its best
+  // view; there (triangles large, colours strong) a pixel shows the colour its surface point
+  // must have, and picking it gives its vertex; no error happened on the page.
   window.glintSelftest = async function () {
     const verdict = { ok: false, checks: {}, errors: [] };
     try {
       await nextFrame();
       selectField(byName.distance ? "distance" : fields[0].name);
-      mesh.material = flatMaterial;  // unlit: a pixel's colour is the interpolated vertex colour
-      renderNow();
-      const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
-      const px = new Uint8Array(w * h * 4);
-      gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
-      const bg = new THREE.Color(BACKGROUND);
-      let drawn = 0;
-      for (let i = 0; i < w * h; ++i)
-        if (Math.abs(px[4 * i] - 255 * bg.r) > 8 || Math.abs(px[4 * i + 1] - 255 * bg.g) > 8 || Math.abs(px[4 * i + 2] - 255 * bg.b) > 8) ++drawn;
-      verdict.checks.canvas = { width: w, height: h, drawn_fraction: drawn / (w * h), ok: drawn / (w * h) > 0.02 };
-      const k = knownPixel(w, h);
-      if (!k) verdict.checks.colour = { ok: false, why: "no large visible triangle" };
-      else {
-        const o = 4 * ((h - 1 - k.yi) * w + k.xi);
-        const got = [px[o], px[o + 1], px[o + 2]];
-        // note: 6 of 255 for rounding and blending; the rest for the colour change across the
-        // pixel (a triangle of at least 24 px² spans its corner spread over ≥ 6 px).
-        const tolerance = 6 + 255 * 0.15 * k.spread;
-        const diff = Math.max(...got.map((g, i) => Math.abs(g - k.expected[i])));
-        verdict.checks.colour = { field: state.field.name, vertex: k.vertex, value: state.field.data[k.vertex],
-                                  vertex_colour: colourOf(state.field, k.vertex, state.low, state.high).map((c) => Math.round(255 * c)),
-                                  low: state.low, high: state.high, pixel: [k.xi, k.yi], expected: k.expected, got: got,
-                                  tolerance: tolerance, ok: diff <= tolerance };
-        const r = canvas.getBoundingClientRect(), dpr = w / r.width;
-        const picked = vertexAt(r.left + (k.xi + 0.5) / dpr, r.top + (k.yi + 0.5) / dpr);
-        verdict.checks.pick = { vertex: picked, expected: k.vertex, ok: picked === k.vertex };
-      }
-      mesh.material = litMaterial;
-      const row = document.querySelector("#regions tbody tr[data-region]");
-      if (!row) verdict.checks.region_click = { ok: true, skipped: "no region" };
-      else {
-        const region = regionsOf(state.zoom).find((x) => String(x.id) === row.getAttribute("data-region"));
-        const centroid = new THREE.Vector3().fromArray(region.centroid);
-        const before = camera.position.clone(), distBefore = before.distanceTo(centroid);
-        row.click();
-        await state.lastFlight;
-        const forward = new THREE.Vector3();
-        camera.getWorldDirection(forward);
-        const towards = centroid.clone().sub(camera.position).normalize();
-        const img = $("best-view-img");
-        verdict.checks.region_click = {
-          region: region.id, moved: before.distanceTo(camera.position), distance_before: distBefore,
-          distance_after: camera.position.distanceTo(centroid), target_error: controls.target.distanceTo(centroid),
-          looking_at_centroid: forward.dot(towards), best_view_shown: img.style.display === "block" && img.src.startsWith("data:image/png"),
-          ok: before.distanceTo(camera.position) > radius * 1e-3 && controls.target.distanceTo(centroid) < radius * 1e-6 + 1e-9 &&
-              forward.dot(towards) > 0.9999 && (img.style.display === "block" || !DATA.images.best_views[String(region.best_view)]),
-        };
-      }
+      verdict.checks.canvas = checkCanvas(readCanvas());
+      verdict.checks.region_click = await checkRegionClick();
+      checkColourAndPick(readCanvas(), verdict);
     } catch (e) {
       window.glintErrors.push("selftest: " + (e && e.stack ? e.stack : e));
     }
     verdict.errors = window.glintErrors.slice();
-    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 3 &&
+    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 4 &&
                  Object.values(verdict.checks).every((c) => c.ok);
     $("selftest-verdict").textContent = JSON.stringify(verdict);
     return verdict;
