@@ -14,7 +14,7 @@
 // (cmake/GlintEmbed.cmake; sources in scanner/report_html/). The mesh goes in as base64
 // little-endian typed arrays (float32 positions, uint32 indices, float32 per-vertex fields),
 // pictures as base64 PNG data URIs: only the regions' best views and the mosaics, so the size
-// stays bounded (about 1.6 MB of libraries + 56 bytes per vertex + 32 per triangle for one
+// stays bounded (about 0.9 MB of libraries + 48 bytes per vertex + 16 per triangle for one
 // zoom, plus the pictures). With `#selftest` appended to its URL the page checks itself and
 // writes a JSON verdict into the element #selftest-verdict (tests/tools/report_html_test.py).
 #pragma once

@@ -54,7 +54,7 @@ void draw_swatches(ImageBuf& dst, int x, int y) {
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
             const float* g = ((i + j) % 7 < 2) ? kUnseenStripe.data() : kUnseen.data();
-            dst.setpixel(x + i, y + j, g, 3);
+            if (x + i < dst.spec().width && y + j < dst.spec().height) dst.setpixel(x + i, y + j, g, 3);
         }
     draw_text(dst, x + s + 8, y + s - 2, "unseen (no view saw it)", kFont);
     const int y2 = y + kLine + 6;
