@@ -8,7 +8,6 @@
 #include "scanner/detail/legend.h"
 #include "scanner/detail/surface_paint.h"
 #include "scanner/metric.h"
-#include "scanner/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -52,7 +51,8 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z, co
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string u = unit_or_units(result);
     detail::LegendContent c{.limit = scale.limit, .limit_source = scale.source,
-                            .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0, .unit = u};
+                            .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0, .unit = u,
+                            .roi = result.sweep.plan.options.roi.has_value()};
     char b[160];
     std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value, std::string(m.unit).c_str(),
                   to_string(d.rule).c_str());
@@ -94,7 +94,7 @@ public:
             const auto& region = result.decisions[z].regions.region_of_vertex;
             zooms_.push_back({{distance_, region, seen}, legend_for(result, z, scale_)});
         }
-        // The regions' best views, strongest regions first (regions are sorted by area).
+        // The regions' best views, largest regions first (regions are sorted by area).
         for (std::size_t k = 0; best_.size() < kMaxBestViews; ++k) {
             bool any = false;
             for (const auto& d : result.decisions)

@@ -46,7 +46,7 @@ struct PictureOutput {
     std::vector<std::string> mosaics;       ///< PNG bytes of mosaic_z<k>.png, per zoom
 };
 
-/// Best views kept for the report page, at most (the strongest regions' first).
+/// Best views kept for the report page, at most (the largest regions' first).
 inline constexpr std::size_t kMaxBestViews = 24;
 
 /// Writes the pictures above into the folder. \throw IoError, DeviceError (rendering).

@@ -8,8 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cmath>
-#include <cstring>
+#include <bit>
+#include <cctype>
+#include <filesystem>
 #include <limits>
 
 namespace glint {

@@ -48,7 +48,7 @@ void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c)
     }
 }
 
-void draw_swatches(ImageBuf& dst, int x, int y) {
+void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
     // Unseen: the hatching the pictures use.
     const int s = kLine - 4;
     for (int j = 0; j < s; ++j)
@@ -56,7 +56,7 @@ void draw_swatches(ImageBuf& dst, int x, int y) {
             const float* g = ((i + j) % 7 < 2) ? kUnseenStripe.data() : kUnseen.data();
             if (x + i < dst.spec().width && y + j < dst.spec().height) dst.setpixel(x + i, y + j, g, 3);
         }
-    draw_text(dst, x + s + 8, y + s - 2, "unseen (no view saw it)", kFont);
+    draw_text(dst, x + s + 8, y + s - 2, roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
     const int y2 = y + kLine + 6;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
@@ -68,7 +68,8 @@ void draw_swatches(ImageBuf& dst, int x, int y) {
 }  // namespace
 
 int legend_min_height(const LegendContent& c) {
-    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches + static_cast<int>(c.lines.size() + 2) * kLine + 10;
+    // (two lines each for the range and the shape floor when they wrap)
+    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches + static_cast<int>(c.lines.size() + 4) * kLine + 10;
 }
 
 void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
@@ -84,7 +85,7 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     cy += bar + kLine;
     draw_text(dst, x0, cy, "loss (dent)", kFont, {0.55f, 0.72f, 0.95f});
     cy += 12;
-    draw_swatches(dst, x0, cy);
+    draw_swatches(dst, x0, cy, c.roi);
     cy += kSwatches + kLine;
     std::vector<std::string> lines = c.lines;
     lines.insert(lines.begin(), "range +/-" + format_number(c.limit) + " " + c.unit +
@@ -93,7 +94,13 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
         lines.insert(lines.begin() + 1, "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
                                             (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
     for (const auto& l : lines) {
-        draw_text(dst, x0, cy, l, kFont - 1, kDimText);
+        // A line too wide for the panel goes on two, its parenthesis on the second.
+        const auto cut = l.rfind(" (");
+        const bool wrap = text_width(l, kFont - 1) > kLegendWidth - 20 && cut != std::string::npos;
+        draw_text(dst, x0, cy, wrap ? l.substr(0, cut) : l, kFont - 1, kDimText);
+        cy += kLine - 2;
+        if (!wrap) continue;
+        draw_text(dst, x0 + 10, cy, l.substr(cut + 1), kFont - 1, kDimText);
         cy += kLine - 2;
     }
     if (c.regions.empty()) {
