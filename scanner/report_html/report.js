@@ -172,7 +172,8 @@
     const h = bar.height;
     const put = (y, text) => { const s = el("span", {}, text); s.style.top = y + "px"; ticks.appendChild(s); };
     if (f.kind === "category" || f.kind === "binary") {
-      const n = f.kind === "binary" ? 2 : Math.max(1, Math.round(f.range[1]) + 1);
+      // (at most 12 rows: "no region" and the first regions; the rest keep their colours)
+      const n = f.kind === "binary" ? 2 : Math.min(12, Math.max(1, Math.round(f.range[1]) + 1));
       for (let i = 0; i < n; ++i) {
         const c = f.kind === "binary" ? (i === 0 ? [0.42, 0.74, 0.45] : GREY) : categoryColour(i);
         ctx.fillStyle = "rgb(" + c.map((x) => Math.round(255 * x)).join(",") + ")";
@@ -299,6 +300,7 @@
       });
       body.appendChild(row);
     });
+    if (regions.length) showBestView(regions[0]);
   }
 
   // ---- evidence ------------------------------------------------------------------------------
@@ -340,13 +342,13 @@
       Object.keys(REPORT.fit).forEach((k) => {
         const v = REPORT.fit[k];
         if (v === null || typeof v !== "object") pairs.push([k, typeof v === "number" ? fmt(v, 5) : String(v)]);
-        else if (!Array.isArray(v)) Object.keys(v).forEach((k2) => {
+        else if (!Array.isArray(v) && k !== "options") Object.keys(v).forEach((k2) => {
           const x = v[k2];
           if (x === null || typeof x !== "object") pairs.push([k + "." + k2, typeof x === "number" ? fmt(x, 5) : String(x)]);
         });
       });
       fit.appendChild(kvTable(pairs));
-      fit.appendChild(jsonDetails("the fit as report.json holds it", REPORT.fit));
+      fit.appendChild(jsonDetails("the fit as report.json holds it (with the options that reproduce it)", REPORT.fit));
     }
     const run = $("run");
     run.appendChild(kvTable([
@@ -458,12 +460,14 @@
     const region = regionsOf(state.zoom).find((x) => String(x.id) === row.getAttribute("data-region"));
     const centroid = new THREE.Vector3().fromArray(region.centroid);
     const before = camera.position.clone();
+    const img = $("best-view-img");
+    img.style.display = "none";  // the click must show it again
+    img.removeAttribute("src");
     row.click();
     await state.lastFlight;
     const forward = new THREE.Vector3();
     camera.getWorldDirection(forward);
     const towards = centroid.clone().sub(camera.position).normalize();
-    const img = $("best-view-img");
     const shown = img.style.display === "block" && img.src.startsWith("data:image/png");
     const moved = before.distanceTo(camera.position), targetError = controls.target.distanceTo(centroid);
     return { region: region.id, moved: moved, distance_before: before.distanceTo(centroid),
