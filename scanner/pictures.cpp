@@ -1,6 +1,7 @@
 #include "scanner/pictures.h"
 
 #include "mesh/atomic_file.h"
+#include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "render/renderer.h"
 #include "scanner/detail/canvas.h"
@@ -160,6 +161,7 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
         shown.push_back(resized(pv.view, std::clamp(plan.sizes[static_cast<std::size_t>(pv.view.zoom_index)], kViewMin, kViewMax)));
     }
     renderer_.render_views(shown, [&](std::size_t k, const Frame& frame) {
+        throw_if_cancelled();  // Ctrl-C stops at the next picture, as the sweep at the next view
         const auto& pv = plan.views[static_cast<std::size_t>(wanted[k])];
         const std::string png = detail::encode_png(view_picture(pv, shown[k], frame));
         if (options_.write_views)
@@ -187,6 +189,7 @@ std::string PictureWriter::mosaic(std::size_t z) {
                   result_.decisions[z].regions.regions.size());
     ImageBuf sheet = detail::framed_sheet(grid_w, grid_h, title, zooms_[z].legend);
     renderer_.render_views(shown, [&](std::size_t k, const Frame& frame) {
+        throw_if_cancelled();
         const PlannedView& pv = *members[k];
         const int col = rotary ? pv.step : pv.step % plan.columns;
         const int row = rotary ? pv.ring : pv.step / plan.columns;
