@@ -111,7 +111,7 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     announce(observer, "sweep");
     const SweepPlan plan = make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
     std::optional<ViewExporter> exporter;
-    if (folder) exporter.emplace(*folder, plan, options.sweep.metric, options.exports);
+    if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
     std::size_t done = 0;
     result.sweep = run_sweep(reference, fitted, plan, options.sweep,
                              [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
@@ -140,7 +140,6 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     if (folder) {
         announce(observer, "export");
         t = Clock::now();
-        exporter->finish();
         result.total_seconds = seconds_since(t_start);
         write_outputs(*folder, reference, result, options);
         folder->commit();

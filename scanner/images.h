@@ -1,4 +1,5 @@
-// Pictures people look at: heat maps with a colour bar, mosaics of views, vertex colours.
+// Heat maps with a colour bar (glint compare), EXR channels, vertex colours. The pictures of a
+// sweep (views, mosaics, atlas.png) are scanner/pictures.h's.
 // All colour mapping goes through OpenImageIO's ImageBufAlgo::color_map; files are written
 // atomically (temporary name, then rename).
 #pragma once
@@ -6,7 +7,6 @@
 #include "mesh/mesh.h"
 
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -20,7 +20,8 @@ struct ScalarImage {
 };
 
 /// How values map to colour: [low, high] onto an OIIO colour map ("inferno", "viridis",
-/// "turbo", "blue-red" for signed data); NaN pixels are drawn in `no_data_grey`.
+/// "turbo"; "diverging": the pictures' map of signed shape change, blue → white → red);
+/// NaN pixels are drawn in `no_data_grey`.
 struct ColorScale {
     double low = 0.0;
     double high = 1.0;
@@ -43,26 +44,5 @@ void write_exr_channels(const std::filesystem::path& path, int width, int height
                         const std::vector<std::string>& names,
                         const std::vector<const std::vector<float>*>& channels,
                         const std::vector<std::pair<std::string, std::string>>& metadata);
-
-/// A sheet of thumbnails in a grid (columns × rows), each labelled, built tile by tile so a
-/// sweep never holds its full-size frames. Thumbnails are resized with OIIO.
-class Mosaic {
-public:
-    Mosaic(int columns, int rows, int tile_size, std::string title);
-    ~Mosaic();
-    Mosaic(Mosaic&&) noexcept;
-    Mosaic& operator=(Mosaic&&) noexcept;
-    /// Colours `image` with `scale`, shrinks it to the tile size and places it at (column, row).
-    void place(int column, int row, const ScalarImage& image, const ColorScale& scale,
-               const std::string& label);
-    /// Adds row/column headings and a colour bar, then writes a PNG atomically.
-    void write(const std::filesystem::path& path, const ColorScale& scale,
-               const std::vector<std::string>& column_labels,
-               const std::vector<std::string>& row_labels) const;
-
-private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
-};
 
 }  // namespace glint

@@ -7,6 +7,8 @@
 #include "mesh/write.h"
 #include "scanner/coverage.h"
 #include "scanner/images.h"
+#include "scanner/pictures.h"
+#include "scanner/report_html.h"
 
 #include <nlohmann/json.hpp>
 #include <openssl/evp.h>
@@ -227,10 +229,15 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     }
     if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
     if (result.tolerance.size() == n) atlas.set_scalar("distance_tolerance", result.tolerance);
-    if (!result.sweep.zooms.empty()) {
-        ColorScale scale;
-        scale.high = std::max(2.0 * result.decisions[0].normal.value, 1.0);
-        atlas.colors = colorize(atlas.find_scalar(atlas_quality_scalar(result))->values, scale);
+    if (!result.sweep.zooms.empty() && result.distance.size() == n) {
+        // The pictures' colours (scanner/pictures.h): signed shape change, blue loss, red gain,
+        // symmetric range; grey where zoom 0 saw nothing.
+        const ShapeScale shape = shape_scale(result);
+        std::vector<float> shown(result.distance);
+        for (std::size_t v = 0; v < n; ++v)
+            if (!result.sweep.zooms[0].coverage.seen[v]) shown[v] = kNaN;
+        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit, .high = shape.limit, .map = "diverging",
+                                                  .no_data_grey = 0.6f});
     }
     return atlas;
 }
@@ -310,7 +317,10 @@ void write_outputs(const OutputFolder& folder, const Mesh& reference, const Anal
     write_vtk(atlas, folder.file("atlas.vtk"), viewers);
     write_vtp(atlas, folder.file("atlas.vtp"), viewers);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
-    write_file_atomically(folder.file("report.json"), report_json(reference, result, options));
+    const std::string json_text = report_json(reference, result, options);
+    write_file_atomically(folder.file("report.json"), json_text);
+    const PictureOutput pictures = write_pictures(folder, reference, result, options.exports);
+    write_file_atomically(folder.file("report.html"), report_html(reference, result, json_text, pictures));
 }
 
 }  // namespace glint

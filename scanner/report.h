@@ -4,7 +4,9 @@
 //   regions.csv            one row per region and zoom
 //   report.json            inputs with SHA-256, device, backend, options, fit, floors and
 //                          rule, coverage, unseen patches, regions, histograms, views, timings
-// (views/ and mosaic_z<k>.png are written while the sweep runs: scanner/view_exports.h.)
+//   atlas.png, mosaic_z<k>.png, views/*.png   the pictures (scanner/pictures.h)
+//   report.html            the page to open in a browser (scanner/report_html.h)
+// (views/*.exr are written while the sweep runs: scanner/view_exports.h.)
 #pragma once
 
 #include "mesh/mesh.h"
@@ -21,11 +23,12 @@ namespace glint {
 
 /// The reference with the atlas scalars: per zoom k "<metric>_max_z<k>", "<metric>_mean_z<k>",
 /// "depth_z<k>", "missing_z<k>", "count_z<k>", "seen_z<k>", "region_z<k>", and "distance";
-/// colours from zoom 0's normal evidence (inferno, 0…2×floor, unseen grey).
+/// colours: the signed distance on the pictures' diverging map and range (shape_scale in
+/// scanner/pictures.h), grey where zoom 0 saw nothing.
 [[nodiscard]] Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result);
 
 /// The atlas scalar MeshLab shows as `quality`: the metric's per-vertex mean at zoom 0 (the
-/// normal evidence the decision and the atlas colours use), e.g. "angle_mean_z0".
+/// normal evidence the decision uses), e.g. "angle_mean_z0".
 [[nodiscard]] std::string atlas_quality_scalar(const AnalysisResult& result);
 
 /// The report as JSON text (what report.json holds).
@@ -35,7 +38,8 @@ namespace glint {
 /// regions.csv as text.
 [[nodiscard]] std::string regions_csv(const AnalysisResult& result);
 
-/// Writes atlas.ply, atlas.vtk, atlas.vtp, regions.csv and report.json into the folder.
+/// Writes atlas.ply, atlas.vtk, atlas.vtp, regions.csv, report.json, the pictures and
+/// report.html into the folder.
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
                    const AnalysisOptions& options);
 

@@ -1,7 +1,7 @@
-// Per-view pictures written while a sweep runs: a heat map PNG with a colour bar and an EXR
-// with the raw numbers per view (views/z<k>_az<A>_el<E>.png|.exr), and one mosaic per zoom
-// (mosaic_z<k>.png), built tile by tile so no full-size frame is kept. Titles, units and
-// colour scales follow the sweep's metric (scanner/metric.h).
+// Per-view numbers written while a sweep runs: an EXR per view with the raw comparison
+// (views/z<k>_az<A>_el<E>.exr: angle, signed depth, silhouette, the metric). The pictures
+// (per-view PNGs, mosaics, atlas.png) show regions, so they are drawn after the decision:
+// scanner/pictures.h.
 #pragma once
 
 #include "render/frame.h"
@@ -11,24 +11,20 @@
 #include "scanner/output_folder.h"
 #include "scanner/plan.h"
 
-#include <memory>
-
 namespace glint {
 
 class ViewExporter {
 public:
-    ViewExporter(const OutputFolder& folder, const SweepPlan& plan, Metric metric, const ExportOptions& options);
-    ~ViewExporter();
+    ViewExporter(const OutputFolder& folder, Metric metric, const ExportOptions& options);
     ViewExporter(const ViewExporter&) = delete;
     ViewExporter& operator=(const ViewExporter&) = delete;
-    /// Writes the view's files and places its tile (a ViewObserver's work). \throw IoError.
+    /// Writes the view's EXR when ExportOptions::write_exr (a ViewObserver's work). \throw IoError.
     void add(const PlannedView& view, const Frame& reference, const Frame& examined, const DeviationMap& deviation);
-    /// Writes the mosaics (after the sweep). \throw IoError.
-    void finish();
 
 private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    const OutputFolder* folder_;
+    const MetricDescriptor* metric_;
+    ExportOptions options_;
 };
 
 }  // namespace glint

@@ -58,9 +58,10 @@ void print_summary(const AnalysisResult& r) {
     }
     for (const auto& w : r.units.warnings) std::printf("note: %s\n", w.c_str());
     if (!r.swap_hint.empty()) std::printf("warning: %s\n", r.swap_hint.c_str());
-    std::printf("%zu views in %.1f s (%s on %s); atlas, views, mosaics and report in %s\n", r.sweep.views.size(),
-                r.total_seconds, to_string(r.sweep.renderer.backend).c_str(), r.sweep.renderer.device_name.c_str(),
-                r.output.string().c_str());
+    std::printf("%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
+                r.sweep.views.size(), r.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
+                r.sweep.renderer.device_name.c_str(), r.output.string().c_str(),
+                (r.output / "report.html").string().c_str());
 }
 
 void run(SweepArgs& a) {

@@ -48,7 +48,7 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     options.exports.extra_scalars.emplace_back("truth_damage", truth);
     const AnalysisResult result = analyse(ref, exa, options);
     EXPECT_EQ(result.output, dir / "atlas");
-    for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "mosaic_z0.png",
+    for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "report.html", "atlas.png", "mosaic_z0.png",
                           "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
         EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
 

@@ -1,0 +1,40 @@
+// report.html: one self-contained page per run, opened from disk without a server and
+// without network access.
+//
+//   atlas in 3D   three.js (Debian's libjs-three, r111) and its OrbitControls, inlined: rotate,
+//                 zoom, click a vertex to read every field there; the field and its colour
+//                 range are selectable among the atlas scalars (signed distance, normal
+//                 deviation per zoom, regions, seen / observations);
+//   regions       the table of report.json; a click on a row flies the camera to the region
+//                 and shows its best view (the per-view picture, scanner/pictures.h);
+//   evidence      thresholds and floors with their rules, coverage, the fit and its evidence,
+//                 units, inputs, warnings; the mosaics.
+//
+// The page's template, script and the libraries are embedded in the binary at build time
+// (cmake/GlintEmbed.cmake; sources in scanner/report_html/). The mesh goes in as base64
+// little-endian typed arrays (float32 positions, uint32 indices, float32 per-vertex fields),
+// pictures as base64 PNG data URIs: only the regions' best views and the mosaics, so the size
+// stays bounded (about 0.9 MB of libraries + 48 bytes per vertex + 16 per triangle for one
+// zoom, plus the pictures). With `#selftest` appended to its URL the page checks itself and
+// writes a JSON verdict into the element #selftest-verdict (tests/tools/report_html_test.py).
+#pragma once
+
+#include "mesh/mesh.h"
+#include "scanner/analysis.h"
+#include "scanner/pictures.h"
+
+#include <string>
+
+namespace glint {
+
+/// The page for a finished analysis. `report_json` is report.json's text (embedded whole).
+/// \pre result from analyse() on `reference`.
+[[nodiscard]] std::string report_html(const Mesh& reference, const AnalysisResult& result,
+                                      const std::string& report_json, const PictureOutput& pictures);
+
+/// Replaces every @NAME@ (capitals, digits, _) of `page_template` by values[NAME], in one pass:
+/// inserted text is never scanned again. \throw std::logic_error for a name without a value.
+[[nodiscard]] std::string fill_template(std::string_view page_template,
+                                        const std::vector<std::pair<std::string, std::string>>& values);
+
+}  // namespace glint
