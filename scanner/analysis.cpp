@@ -113,7 +113,11 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     std::optional<ViewExporter> exporter;
     if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
     std::size_t done = 0;
-    result.sweep = run_sweep(reference, fitted, plan, options.sweep,
+    // Per-view EXRs hold every pixel's comparison: those sweeps read their frames back.
+    SweepOptions sweep_options = options.sweep;
+    if (exporter && options.exports.write_exr && sweep_options.accumulate == Accumulation::Auto)
+        sweep_options.accumulate = Accumulation::Host;
+    result.sweep = run_sweep(reference, fitted, plan, sweep_options,
                              [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
                                  if (exporter) exporter->add(v, rf, ef, d);
                                  if (observer.views) observer.views(++done, plan.views.size());
