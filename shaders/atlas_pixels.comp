@@ -186,9 +186,13 @@ void scatter(uint pixel, ivec2 xy, uint triangle, bool valid, bool missing, floa
     const int nearest = w[1] > w[0] ? (w[2] > w[1] ? 2 : 1) : (w[2] > w[0] ? 2 : 0);
     for (int k = 0; k < 3; ++k) {
         const uint v = indices[3 * triangle + uint(k)];
-        if (w[k] >= 1e-3) observe(v, w[k], k == nearest, valid, missing, value, signed_depth, cos_f, pixel);
-        // Scattered in this view (1: below every positive float's bits): no gather for v.
-        atomicMax(scratch_cos[v], 1u);
+        if (w[k] >= 1e-3) {
+            observe(v, w[k], k == nearest, valid, missing, value, signed_depth, cos_f, pixel);
+        } else {
+            // Scattered in this view but not observed (1: below every positive float's bits;
+            // observe() leaves the incidence's bits): no gather for v in this view.
+            atomicMax(scratch_cos[v], 1u);
+        }
     }
 }
 
