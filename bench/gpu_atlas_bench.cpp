@@ -10,7 +10,9 @@
 // one shared context. A ring of 16 views, orthographic, framed to fit, s = 1 (the render
 // benchmark's setting), at 512² and 1024². BM_GpuVsReadBack times both paths alternately inside
 // each iteration, so they share the machine's state; its counters: readback_views_per_s,
-// gpu_views_per_s and speedup = gpu / read-back (tools/bench prints the medians). Renderer and
+// gpu_views_per_s, speedup = gpu / read-back, and the GPU path's device time per view by stage
+// from timestamps: dev_render_ms (both normal passes), dev_pixels_ms (resolve, compare,
+// scatter), dev_vertices_ms (gather, fold) (tools/bench prints the medians). Renderer and
 // atlas creation (mesh upload, buffers, pipelines) is not timed; the GPU path's per-sweep
 // read-back of the per-vertex totals is, once per 16 views (a real sweep has 60 or more).
 #include "mesh/damage.h"
@@ -158,6 +160,14 @@ void BM_GpuVsReadBack(benchmark::State& state) {
     state.counters["readback_views_per_s"] = read_back_s > 0.0 ? views_run / read_back_s : 0.0;
     state.counters["gpu_views_per_s"] = gpu_s > 0.0 ? views_run / gpu_s : 0.0;
     state.counters["speedup"] = gpu_s > 0.0 ? read_back_s / gpu_s : 0.0;
+    // Where the device spends a view of the GPU path (timestamps; the last iteration's run).
+    const GpuAtlasTimings& t = s.atlas->timings();
+    if (t.measured && t.views > 0) {
+        const double per_view_ms = 1e3 / static_cast<double>(t.views);
+        state.counters["dev_render_ms"] = t.render_s * per_view_ms;
+        state.counters["dev_pixels_ms"] = t.pixels_s * per_view_ms;
+        state.counters["dev_vertices_ms"] = t.vertices_s * per_view_ms;
+    }
     state.SetLabel(std::to_string(s.reference.triangle_count()) + " tri " + std::to_string(size) + "² s=1 | " +
                    s.reference_renderer->info().device_name);
 }

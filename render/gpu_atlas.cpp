@@ -75,6 +75,11 @@ void GpuAtlas::run(std::span<const View> views, const GpuViewConsumer& consumer)
     impl_->run(views, consumer);
 }
 
+const GpuAtlasTimings& GpuAtlas::timings() const {
+    GLINT_ASSERT(impl_ != nullptr, "timings of a moved-from GpuAtlas");
+    return impl_->timings();
+}
+
 std::vector<GpuAtlasTotals> GpuAtlas::read_totals() {
     GLINT_ASSERT(impl_ != nullptr, "read_totals on a moved-from GpuAtlas");
     return impl_->read_totals();

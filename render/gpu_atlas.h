@@ -100,6 +100,17 @@ struct GpuAtlasTotals {
     double depth_resolution = 0.0;        ///< of depth_sum
 };
 
+/// Device time of the last run() by stage, from timestamps written between them (each stage
+/// from the end of the one before, so waits on the previous view are not counted). Zero and
+/// measured = false when the queue writes no timestamps.
+struct GpuAtlasTimings {
+    bool measured = false;
+    std::size_t views = 0;
+    double render_s = 0.0;    ///< both normal passes
+    double pixels_s = 0.0;    ///< atlas_pixels.comp: resolve, compare, scatter
+    double vertices_s = 0.0;  ///< atlas_vertices.comp: gather, fold
+};
+
 /// Called in view order after the device finished a view: its index in the span given to
 /// run() and its numbers. May throw to stop the run (the device is drained first).
 using GpuViewConsumer = std::function<void(std::size_t view_index, const GpuViewSummary& summary)>;
@@ -138,6 +149,9 @@ public:
 
     /// Reads the totals of every zoom level back (once per sweep). \throw DeviceError.
     [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
+
+    /// Where the device spent the last run()'s time (benchmarks; see GpuAtlasTimings).
+    [[nodiscard]] const GpuAtlasTimings& timings() const;
 
 private:
     /// The renderer's device buffers; null for a non-Vulkan (or moved-from) renderer.

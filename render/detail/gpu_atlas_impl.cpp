@@ -86,6 +86,13 @@ void GpuAtlasImpl::create_slot(Slot& slot) {
     slot.summary = make_buffer(dev, phys, sizeof(ViewTotals), kStorage, kDeviceMemory, 0);
     slot.summary_host = make_buffer(dev, phys, sizeof(ViewTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT, kHostMemory,
                                     VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    if (device_->timestamp_bits() > 0) {
+        VkQueryPoolCreateInfo q{};
+        q.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
+        q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        q.queryCount = 4;
+        GLINT_VK_CHECK(vkCreateQueryPool(dev, &q, nullptr, &slot.timestamps));
+    }
     VkDescriptorSetAllocateInfo set{};
     set.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
     set.descriptorPool = descriptor_pool_;
@@ -124,7 +131,9 @@ void GpuAtlasImpl::release() noexcept {
         destroy_buffer(dev, slot.summary);
         destroy_buffer(dev, slot.summary_host);
         if (slot.fence != VK_NULL_HANDLE) vkDestroyFence(dev, slot.fence, nullptr);
+        if (slot.timestamps != VK_NULL_HANDLE) vkDestroyQueryPool(dev, slot.timestamps, nullptr);
         slot.fence = VK_NULL_HANDLE;
+        slot.timestamps = VK_NULL_HANDLE;
     }
     for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_}) destroy_buffer(dev, *b);
     // Destroying the pools frees their command buffers and descriptor sets.

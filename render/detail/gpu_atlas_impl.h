@@ -54,6 +54,7 @@ public:
 
     void run(std::span<const View> views, const GpuViewConsumer& consumer);
     [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
+    [[nodiscard]] const GpuAtlasTimings& timings() const { return timings_; }
 
 private:
     struct Target {
@@ -71,6 +72,7 @@ private:
         bool set_current = false;  // the set names this slot's targets and the pixel buffer
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         VkFence fence = VK_NULL_HANDLE;
+        VkQueryPool timestamps = VK_NULL_HANDLE;  // 4: start, rendered, pixels, vertices
         bool busy = false;
         std::size_t view = 0;      // index into run()'s span
         double angle_scale = 1.0;  // of the view in flight
@@ -93,7 +95,9 @@ private:
     void write_params(Slot& slot, const View& view, const Scales& scales);
     void record(Slot& slot, const View& view, bool clear_first);
     void record_clear(VkCommandBuffer cmd);
+    void wait(Slot& slot);
     [[nodiscard]] GpuViewSummary finish(Slot& slot);
+    void add_timings(const Slot& slot);
     [[nodiscard]] std::vector<GpuAtlasTotals> totals_from(const std::int64_t* sums, const std::uint32_t* words) const;
     void wait_all() noexcept;
 
@@ -106,6 +110,7 @@ private:
     float mask_threshold_ = 0.0f;  // the frame options' coverage mask (render/renderer.cpp)
     std::vector<Scales> scales_;   // of the last run, per zoom
     bool has_run_ = false;
+    GpuAtlasTimings timings_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     Buffer sums_, words_, scratch_key_, scratch_cos_, pixels_;

@@ -143,6 +143,13 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     // Barrier: the zeroed summary before the pixel pass's atomics on it.
     barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    // Timestamps, each written once every command before it has completed.
+    const auto stamp = [&](std::uint32_t query) {
+        if (slot.timestamps != VK_NULL_HANDLE)
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, query);
+    };
+    if (slot.timestamps != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 4);
+    stamp(0);
     // The frames: the render pass's dependencies order the colour writes before the passes'
     // imageLoad, and the previous view's reads of these targets before the clear.
     const VkPipelineLayout graphics_layout = device_->layout();
@@ -152,17 +159,20 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     record_normal_pass(cmd, pipelines_->render_pass, slot.examined.framebuffer, slot.width, slot.height,
                        pipelines_->graphics[examined_.cull_back_faces ? 1 : 0], graphics_layout, examined_.buffers,
                        view);
+    stamp(1);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout, 0, 1, &slot.set, 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->pixels);
     const auto w = static_cast<std::uint32_t>(view.camera.width);
     const auto h = static_cast<std::uint32_t>(view.camera.height);
     vkCmdDispatch(cmd, groups(w, GLINT_ATLAS_TILE), groups(h, GLINT_ATLAS_TILE), 1);
+    stamp(2);
     // Barrier: the pixel pass's atomics (atlas, scratch) and pixel buffer before the vertex
     // pass reads and folds them.
     barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->vertices);
     vkCmdDispatch(cmd, groups(reference_.buffers.vertex_count, GLINT_ATLAS_VERTEX_GROUP), 1, 1);
+    stamp(3);
     // Barrier: the summary's atomics (pixel pass) before its copy to the host-visible buffer.
     barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
             VK_ACCESS_TRANSFER_READ_BIT);
@@ -175,11 +185,31 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     device_->submit(cmd, slot.fence);
 }
 
-GpuViewSummary GpuAtlasImpl::finish(Slot& slot) {
+void GpuAtlasImpl::add_timings(const Slot& slot) {
+    std::array<std::uint64_t, 4> ticks{};
+    GLINT_VK_CHECK(vkGetQueryPoolResults(device_->device(), slot.timestamps, 0, 4, sizeof(ticks), ticks.data(),
+                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT));
+    const std::uint32_t bits = device_->timestamp_bits();
+    const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
+    const double seconds_per_tick = 1e-9 * device_->limits().timestampPeriod;
+    const auto span = [&](int a, int b) { return seconds_per_tick * static_cast<double>((ticks[b] - ticks[a]) & mask); };
+    timings_.measured = true;
+    ++timings_.views;
+    timings_.render_s += span(0, 1);
+    timings_.pixels_s += span(1, 2);
+    timings_.vertices_s += span(2, 3);
+}
+
+void GpuAtlasImpl::wait(Slot& slot) {
     const VkDevice dev = device_->device();
     GLINT_VK_CHECK(vkWaitForFences(dev, 1, &slot.fence, VK_TRUE, UINT64_MAX));
     GLINT_VK_CHECK(vkResetFences(dev, 1, &slot.fence));
     slot.busy = false;
+}
+
+GpuViewSummary GpuAtlasImpl::finish(Slot& slot) {
+    wait(slot);
+    if (slot.timestamps != VK_NULL_HANDLE) add_timings(slot);
     ViewTotals t{};
     std::memcpy(&t, slot.summary_host.mapped, sizeof(t));
     GpuViewSummary s;
@@ -199,6 +229,7 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
         largest = std::max(largest, static_cast<std::size_t>(v.camera.width) * static_cast<std::size_t>(v.camera.height));
     }
     scales_ = scales_for(views);
+    timings_ = GpuAtlasTimings{};
     try {
         ensure_pixels(largest);
         if (views.empty()) {  // nothing to render: the accumulators are cleared all the same
@@ -260,7 +291,7 @@ std::vector<GpuAtlasTotals> GpuAtlasImpl::read_totals() {
         GLINT_VK_CHECK(vkEndCommandBuffer(slot.cmd));
         device_->submit(slot.cmd, slot.fence);
         slot.busy = true;
-        static_cast<void>(finish(slot));  // waits for the copies; no view summary here
+        wait(slot);
         out = totals_from(static_cast<const std::int64_t*>(staging.mapped),
                           reinterpret_cast<const std::uint32_t*>(static_cast<const unsigned char*>(staging.mapped) +
                                                                  sums_.size));

@@ -5,6 +5,7 @@
 #include "render/detail/vk_pipeline.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace glint::detail {
 
@@ -21,6 +22,11 @@ VulkanDevice::VulkanDevice(const ContextOptions& options) : threads_(worker_coun
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(physical_, &props);
     limits_ = props.limits;
+    std::uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> family_props(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, family_props.data());
+    timestamp_bits_ = queue_family_ < families ? family_props[queue_family_].timestampValidBits : 0;
     max_dimension_ = std::min(props.limits.maxImageDimension2D,
                               std::min(props.limits.maxFramebufferWidth, props.limits.maxFramebufferHeight));
     try {

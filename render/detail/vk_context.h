@@ -38,6 +38,8 @@ public:
     [[nodiscard]] const DeviceInfo& info() const { return info_; }
     [[nodiscard]] int threads() const { return threads_; }
     [[nodiscard]] const VkPhysicalDeviceLimits& limits() const { return limits_; }
+    /// Valid bits of the queue's timestamps (0: the queue writes none).
+    [[nodiscard]] std::uint32_t timestamp_bits() const { return timestamp_bits_; }
     /// Whether the GPU atlas's features were found and enabled (render/gpu_atlas.h);
     /// info().gpu_atlas_reason says why not.
     [[nodiscard]] bool has_gpu_atlas() const { return info_.supports_gpu_atlas; }
@@ -69,6 +71,7 @@ private:
     std::mutex pipeline_mutex_;
     std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
     VkPhysicalDeviceLimits limits_{};
+    std::uint32_t timestamp_bits_ = 0;
     AtlasPipelines atlas_{};                 // created by atlas_pipelines() (pipeline_mutex_)
 };
 

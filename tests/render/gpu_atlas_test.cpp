@@ -59,6 +59,14 @@ TEST(GpuAtlas, FindsNoDeviationBetweenASurfaceAndItself) {
         EXPECT_LT(s.max_angle_deg, 1e-4);
     });
     EXPECT_EQ(calls, views.size());
+    // Device time by stage, when the queue writes timestamps (lavapipe does).
+    const GpuAtlasTimings& timings = atlas.timings();
+    if (timings.measured) {
+        EXPECT_EQ(timings.views, views.size());
+        EXPECT_GT(timings.render_s, 0.0);
+        EXPECT_GT(timings.pixels_s, 0.0);
+        EXPECT_GE(timings.vertices_s, 0.0);
+    }
     const std::vector<GpuAtlasTotals> totals = atlas.read_totals();
     ASSERT_EQ(totals.size(), 1u);
     const GpuAtlasTotals& t = totals[0];
