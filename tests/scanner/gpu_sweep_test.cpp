@@ -25,7 +25,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 
@@ -60,7 +62,8 @@ SweepOptions vulkan_options(Accumulation accumulate) {
     o.plan.elevations_deg = {-30, 30};
     o.plan.size = 96;
     o.render.backend = Backend::Vulkan;
-    o.render.device = "llvmpipe";
+    // lavapipe, or the device GLINT_DEVICE names (a GPU machine checks its own arithmetic).
+    if (std::getenv("GLINT_DEVICE") == nullptr) o.render.device = "llvmpipe";
     o.render.supersample = 2;
     o.accumulate = accumulate;
     return o;
@@ -243,6 +246,28 @@ TEST(GpuSweep, DecidesTheSameRegions) {
     EXPECT_EQ(dg.normal.value, dh.normal.value);
     EXPECT_EQ(dg.regions.regions[0].kind, dh.regions.regions[0].kind);
     EXPECT_NEAR(dg.regions.regions[0].max_value, dh.regions.regions[0].max_value, 1e-4);
+}
+
+TEST(GpuSweep, ReadsFramesBackOnlyWhenPerViewExrsAreWritten) {
+    const Pair& p = pair();
+    const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "gpu_sweep";
+    std::filesystem::create_directories(dir);
+    AnalysisOptions o;
+    o.fit.mode = FitMode::Identity;
+    o.sweep = vulkan_options(Accumulation::Auto);
+    o.sweep.plan.size = 48;
+    o.exports.write_views = false;
+    o.exports.replace_existing = true;
+    o.exports.output = dir / "with_exr";
+    const AnalysisResult with_exr = analyse(p.reference, p.examined, o);
+    EXPECT_FALSE(with_exr.sweep.on_gpu);
+    EXPECT_NE(with_exr.sweep.accumulation_note.find("EXR"), std::string::npos);
+    EXPECT_TRUE(std::filesystem::exists(dir / "with_exr" / "views" / "z0_az000.0_el-30.0.exr"));
+    o.exports.write_exr = false;
+    o.exports.output = dir / "without_exr";
+    const AnalysisResult without = analyse(p.reference, p.examined, o);
+    EXPECT_TRUE(without.sweep.on_gpu) << without.sweep.accumulation_note;
+    EXPECT_EQ(without.decisions[0].regions.region_of_vertex, with_exr.decisions[0].regions.region_of_vertex);
 }
 
 TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {
