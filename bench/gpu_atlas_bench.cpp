@@ -116,7 +116,8 @@ std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
     render_view_pairs(*s.reference_renderer, *s.examined_renderer, views,
                       [&](std::size_t i, const Frame& reference, const Frame& examined) {
                           const DeviationMap d =
-                              compare_frames(frame_view(reference), frame_view(examined), CompareOptions{}, Metric::AngleDeg);
+                              compare_frames(frame_view(reference), frame_view(examined), CompareOptions{},
+                                             Metric::AngleDeg);
                           backproject_view(s.reference, views[i], reference, d, bp, atlas, scratch);
                           compared += d.compared;
                       });

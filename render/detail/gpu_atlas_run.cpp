@@ -16,7 +16,8 @@
 namespace glint::detail {
 namespace {
 
-constexpr VkMemoryPropertyFlags kHostMemory = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+constexpr VkMemoryPropertyFlags kHostMemory =
+    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
 
 /// One global memory barrier (the call sites say what it protects).
 void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
@@ -96,7 +97,8 @@ void GpuAtlasImpl::write_params(Slot& slot, const View& view, const Scales& scal
     p.size[1] = static_cast<std::uint32_t>(cam.height);
     p.size[2] = static_cast<std::uint32_t>(supersample_);
     p.size[3] = vertices;
-    p.mode[0] = (ortho ? 0u : GLINT_ATLAS_PERSPECTIVE) | (options_.metric == GpuMetric::RgbAbs ? GLINT_ATLAS_METRIC_RGB : 0u);
+    p.mode[0] = (ortho ? 0u : GLINT_ATLAS_PERSPECTIVE) |
+                (options_.metric == GpuMetric::RgbAbs ? GLINT_ATLAS_METRIC_RGB : 0u);
     p.mode[1] = zoom * GLINT_SUM_FIELDS * vertices;
     p.mode[2] = zoom * GLINT_WORD_FIELDS * vertices;
     p.view[0] = view.index;
@@ -192,7 +194,9 @@ void GpuAtlasImpl::add_timings(const Slot& slot) {
     const std::uint32_t bits = device_->timestamp_bits();
     const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
     const double seconds_per_tick = 1e-9 * device_->limits().timestampPeriod;
-    const auto span = [&](int a, int b) { return seconds_per_tick * static_cast<double>((ticks[b] - ticks[a]) & mask); };
+    const auto span = [&](int a, int b) {
+        return seconds_per_tick * static_cast<double>((ticks[b] - ticks[a]) & mask);
+    };
     timings_.measured = true;
     ++timings_.views;
     timings_.render_s += span(0, 1);
@@ -226,7 +230,8 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
     std::size_t largest = 1;
     for (const View& v : views) {
         check_view(v, supersample_, device_->max_dimension(), options_.zoom_count);
-        largest = std::max(largest, static_cast<std::size_t>(v.camera.width) * static_cast<std::size_t>(v.camera.height));
+        largest = std::max(largest,
+                           static_cast<std::size_t>(v.camera.width) * static_cast<std::size_t>(v.camera.height));
     }
     scales_ = scales_for(views);
     timings_ = GpuAtlasTimings{};

@@ -27,7 +27,8 @@ std::shared_ptr<RenderContext> validated_context() {
 std::vector<View> ring(const Mesh& mesh, int size, int count, int zoom = 0) {
     std::vector<View> views;
     for (int i = 0; i < count; ++i) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count, .elevation_deg = i % 2 ? 25.0 : -25.0,
+        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count,
+                                                 .elevation_deg = i % 2 ? 25.0 : -25.0,
                                                  .width = size, .height = size, .zoom_index = zoom, .index = i}));
     }
     return views;
