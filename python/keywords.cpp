@@ -104,6 +104,8 @@ const std::vector<Keyword>& keywords() {
          [](Keywords& k, py::handle v) { k.analysis.sweep.render.backend = parse_backend(as<std::string>(v)); }},
         {"device", kSweepKeywords, "a string",
          [](Keywords& k, py::handle v) { k.analysis.sweep.render.device = as<std::string>(v); }},
+        {"accumulate", kSweepKeywords, "a string (auto, gpu, host)",
+         [](Keywords& k, py::handle v) { k.analysis.sweep.accumulate = parse_accumulation(as<std::string>(v)); }},
         {"max_incidence", kSweepKeywords, "a number (degrees)",
          [](Keywords& k, py::handle v) { k.analysis.sweep.max_incidence_deg = as<double>(v); }},
         // The decision (scanner/decision.h).

@@ -128,6 +128,7 @@ public:
 
 private:
     friend void render_view_pairs(Renderer&, Renderer&, std::span<const View>, const PairConsumer&);
+    friend class GpuAtlas;  // draws with the backends' device buffers (render/gpu_atlas.h)
     std::shared_ptr<RenderContext> context_;
     std::unique_ptr<detail::RenderBackend> backend_;
     RenderOptions options_;
@@ -154,6 +155,10 @@ struct DeviceInfo {
     bool is_usable = false;
     std::string reason;        ///< why it is not usable (missing feature, …); empty if usable
     bool is_preferred = false; ///< the device a default Vulkan renderer would pick
+    /// Whether compare and back-projection can run on it (render/gpu_atlas.h: 64-bit floats,
+    /// integers and buffer atomics, compute on the graphics queue, storage images).
+    bool supports_gpu_atlas = false;
+    std::string gpu_atlas_reason;  ///< what it lacks for that; empty if it supports it
 };
 
 /// Enumerates the Vulkan devices and checks each for what glint needs (graphics queue,

@@ -51,6 +51,7 @@ public:
             create_slots();
             upload(mesh);
             pipeline_ = device_->pipeline(options_.cull_back_faces);
+            vulkan_mesh_ = VulkanMesh{.device = device_, .buffers = mesh_, .cull_back_faces = options_.cull_back_faces};
         } catch (...) {
             release();  // the destructor does not run for a half-built object
             throw;
@@ -62,6 +63,8 @@ public:
     VulkanBackend& operator=(const VulkanBackend&) = delete;
 
     [[nodiscard]] std::size_t max_in_flight() const override { return kSlots; }
+
+    [[nodiscard]] const VulkanMesh* vulkan_mesh() const override { return &vulkan_mesh_; }
 
     void submit(const View& view) override {
         // Round robin: the next slot is free (the caller finished its view before).
@@ -184,18 +187,26 @@ private:
         const VkDeviceSize pos_bytes = mesh.positions.size() * sizeof(Vec3f);
         const VkDeviceSize nrm_bytes = mesh.normals.size() * sizeof(Vec3f);
         const VkDeviceSize idx_bytes = mesh.triangles.size() * sizeof(Triangle);
-        index_count_ = static_cast<std::uint32_t>(mesh.triangles.size() * 3);
+        mesh_.index_count = static_cast<std::uint32_t>(mesh.triangles.size() * 3);
+        mesh_.vertex_count = static_cast<std::uint32_t>(mesh.positions.size());
         const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
         Buffer staging = make_buffer(dev, phys, pos_bytes + nrm_bytes + idx_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, host, 0);
         auto* dst = static_cast<unsigned char*>(staging.mapped);
         std::memcpy(dst, mesh.positions.data(), pos_bytes);
         std::memcpy(dst + pos_bytes, mesh.normals.data(), nrm_bytes);
         std::memcpy(dst + pos_bytes + nrm_bytes, mesh.triangles.data(), idx_bytes);
-        const VkBufferUsageFlags vtx = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+        // Storage too: the GPU atlas's compute passes read the reference mesh (render/gpu_atlas.h).
+        const VkBufferUsageFlags vtx = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
         mesh_buffers_[0] = make_buffer(dev, phys, pos_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
         mesh_buffers_[1] = make_buffer(dev, phys, nrm_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
-        mesh_buffers_[2] = make_buffer(dev, phys, idx_bytes, VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+        mesh_buffers_[2] = make_buffer(dev, phys, idx_bytes,
+                                       VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        mesh_.positions = mesh_buffers_[0].buffer;
+        mesh_.normals = mesh_buffers_[1].buffer;
+        mesh_.indices = mesh_buffers_[2].buffer;
         VkCommandBuffer cmd = slots_[0].cmd;
         VkCommandBufferBeginInfo begin{};
         begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
@@ -261,45 +272,14 @@ private:
     }
 
     void record_and_submit(Slot& slot, const View& view) {
-        const Camera& cam = view.camera;
-        PushConstants pc{};
-        const Eigen::Matrix4f clip = cam.clip_from_world().cast<float>();
-        std::memcpy(pc.clip_from_world, clip.data(), sizeof(pc.clip_from_world));
-        // depth = −z_camera = −(row 2 of camera_from_world) · (p, 1)
-        const Eigen::Matrix4d camera_from_world = cam.world_from_camera.inverse().matrix();
-        for (int k = 0; k < 4; ++k) pc.depth_row[k] = static_cast<float>(-camera_from_world(2, k));
-
         VkCommandBuffer cmd = slot.cmd;
         GLINT_VK_CHECK(vkResetCommandBuffer(cmd, 0));
         VkCommandBufferBeginInfo begin{};
         begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         GLINT_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-        std::array<VkClearValue, 3> clears{};
-        clears[0].color.float32[0] = clears[0].color.float32[1] = clears[0].color.float32[2] = 0.0f;
-        clears[0].color.float32[3] = 0.0f;
-        clears[1].color.uint32[0] = GLINT_NO_PRIMITIVE;
-        clears[2].depthStencil = {1.0f, 0};
-        VkRenderPassBeginInfo rp{};
-        rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
-        rp.renderPass = device_->render_pass();
-        rp.framebuffer = slot.framebuffer;
-        rp.renderArea = {{0, 0}, {static_cast<std::uint32_t>(slot.width), static_cast<std::uint32_t>(slot.height)}};
-        rp.clearValueCount = static_cast<std::uint32_t>(clears.size());
-        rp.pClearValues = clears.data();
-        vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-        VkViewport viewport{0.0f, 0.0f, static_cast<float>(slot.width), static_cast<float>(slot.height), 0.0f, 1.0f};
-        vkCmdSetViewport(cmd, 0, 1, &viewport);
-        vkCmdSetScissor(cmd, 0, 1, &rp.renderArea);
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_);
-        vkCmdPushConstants(cmd, device_->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
-        std::array<VkBuffer, 2> vbs{mesh_buffers_[0].buffer, mesh_buffers_[1].buffer};
-        std::array<VkDeviceSize, 2> offsets{0, 0};
-        vkCmdBindVertexBuffers(cmd, 0, 2, vbs.data(), offsets.data());
-        vkCmdBindIndexBuffer(cmd, mesh_buffers_[2].buffer, 0, VK_INDEX_TYPE_UINT32);
-        // One draw of every triangle from index 0, so gl_PrimitiveID is the triangle index.
-        vkCmdDrawIndexed(cmd, index_count_, 1, 0, 0, 0);
-        vkCmdEndRenderPass(cmd);
+        record_normal_pass(cmd, device_->render_pass(), slot.framebuffer, slot.width, slot.height, pipeline_,
+                           device_->layout(), mesh_, view);
 
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
@@ -323,8 +303,9 @@ private:
     std::shared_ptr<VulkanDevice> device_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     std::array<Buffer, 3> mesh_buffers_{};  // positions, normals, indices
-    std::uint32_t index_count_ = 0;
+    MeshBuffers mesh_{};                     // their handles and counts
     VkPipeline pipeline_ = VK_NULL_HANDLE;  // the device's, for this cull mode
+    VulkanMesh vulkan_mesh_;                 // what the GPU atlas draws and reads
     std::array<Slot, kSlots> slots_{};
     std::deque<std::size_t> pending_;  // slots in submission order
     std::size_t next_slot_ = 0;

@@ -53,6 +53,7 @@ json sweep_json(const SweepOptions& s) {
             {"roi", p.roi ? json(to_string(*p.roi)) : json(nullptr)},
             {"metric", to_string(s.metric)},
             {"backend", to_string(s.render.backend)},
+            {"accumulate", to_string(s.accumulate)},
             {"device", s.render.device},
             {"supersample", s.render.supersample},
             {"max_incidence", s.max_incidence_deg},

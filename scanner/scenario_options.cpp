@@ -49,6 +49,7 @@ void read_sweep(TableReader& r, const fs::path& dir, SweepOptions& s) {
     parse_key(r, "plan", "a string (rotary or sphere:N)", [&](const std::string& v) { parse_plan_kind(v, s.plan); });
     parse_key(r, "backend", "a string (auto, vulkan, embree)", [&](const std::string& v) { s.render.backend = parse_backend(v); });
     parse_key(r, "metric", "a string (angle or rgb)", [&](const std::string& v) { s.metric = parse_metric(v); });
+    parse_key(r, "accumulate", "a string (auto, gpu, host)", [&](const std::string& v) { s.accumulate = parse_accumulation(v); });
     parse_key(r, "roi", "a string (sphere:x,y,z,r, box:… or mask:FILE)", [&](const std::string& v) {
         Roi roi = parse_roi(v);
         if (roi.shape == Roi::Shape::VertexMask) roi.mask_file = local_path(dir, roi.mask_file.string());

@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "scanner/backproject.h"
+#include "scanner/gpu_sweep.h"
 
 #include <chrono>
 #include <cmath>
@@ -58,6 +59,12 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     Renderer ref_renderer(context, reference, options.render.frame_options());
     Renderer exa_renderer(context, examined, options.render.frame_options());
     result.renderer = ref_renderer.info();
+    // Compare and back-project on the GPU when the options and the device allow it
+    // (scanner/gpu_sweep.h); the read-back path below is the reference it is tested against.
+    if (run_sweep_on_gpu(reference, ref_renderer, exa_renderer, plan, options, observer, result)) {
+        result.total_seconds = seconds_since(t_start);
+        return result;
+    }
 
     std::vector<AtlasAccumulator> atlases;
     for (double f : plan.footprints) atlases.emplace_back(reference, f);

@@ -19,9 +19,21 @@
 #include "scanner/plan.h"
 
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace glint {
+
+/// Where a sweep compares frames and folds them onto the reference (scanner/gpu_sweep.h).
+enum class Accumulation {
+    Auto,  ///< on the GPU when the backend is Vulkan and the device can, else Host
+    Gpu,   ///< on the GPU: frames never leave the device; a DeviceError when it cannot
+    Host,  ///< frames read back and folded on the CPU (the reference the GPU path is tested against)
+};
+
+/// "auto" / "gpu" / "host". \throw InputError.
+[[nodiscard]] Accumulation parse_accumulation(const std::string& text);
+[[nodiscard]] std::string to_string(Accumulation accumulation);
 
 struct SweepOptions {
     SweepPlanOptions plan;
@@ -31,6 +43,9 @@ struct SweepOptions {
     RenderOptions render{.supersample = 2};
     CompareOptions compare;
     double max_incidence_deg = 75.0;     ///< coverage rule (scanner/backproject.h)
+    /// Compare and back-projection on the GPU (Auto, with Vulkan) or the CPU. The GPU path
+    /// gives the same atlas within render/gpu_atlas.h's tolerances; its observer sees no frames.
+    Accumulation accumulate = Accumulation::Auto;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -59,13 +74,19 @@ struct SweepResult {
     std::vector<SweepZoom> zooms;
     std::vector<ViewSummary> views;
     RendererInfo renderer;
-    double render_seconds = 0.0;
-    double compare_seconds = 0.0;  ///< compare + back-projection + observer
+    /// Whether compare and back-projection ran on the GPU; when not, accumulation_note says
+    /// why (empty when the read-back path was asked for).
+    bool on_gpu = false;
+    std::string accumulation_note;
+    double render_seconds = 0.0;   ///< GPU path: render, compare and back-projection on the device
+    double compare_seconds = 0.0;  ///< compare + back-projection + observer; GPU path: reading the totals back
     double total_seconds = 0.0;
 };
 
 /// Called after each view with both frames and their deviation map (valid during the call):
-/// per-view exports, progress. May throw (Cancelled, IoError) to stop the sweep.
+/// per-view exports, progress. May throw (Cancelled, IoError) to stop the sweep. On the GPU
+/// path (SweepResult::on_gpu) nothing per pixel reaches the host: both frames and the map are
+/// empty (0 × 0); ask for Accumulation::Host when an observer needs them.
 using ViewObserver = std::function<void(const PlannedView& view, const Frame& reference,
                                         const Frame& examined, const DeviationMap& deviation)>;
 

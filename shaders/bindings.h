@@ -18,4 +18,53 @@
 // Clear value of the primitive attachment: no triangle (render/frame.h kNoPrimitive).
 #define GLINT_NO_PRIMITIVE 0xFFFFFFFFu
 
+// ---- The GPU atlas (render/gpu_atlas.h): compare and back-project on the device. ----------
+// Descriptor set 0 of both compute passes (atlas_pixels.comp, atlas_vertices.comp).
+#define GLINT_ATLAS_BINDING_PARAMS 0             // uniform: the view (AtlasParams)
+#define GLINT_ATLAS_BINDING_REF_NORMAL_DEPTH 1   // storage image rgba32f: reference sub-samples
+#define GLINT_ATLAS_BINDING_REF_PRIMITIVE 2      // storage image r32ui
+#define GLINT_ATLAS_BINDING_EXA_NORMAL_DEPTH 3   // storage image rgba32f: examined sub-samples
+#define GLINT_ATLAS_BINDING_EXA_PRIMITIVE 4      // storage image r32ui
+#define GLINT_ATLAS_BINDING_POSITIONS 5          // float[3·V]: the reference renderer's vertex buffer
+#define GLINT_ATLAS_BINDING_NORMALS 6            // float[3·V]
+#define GLINT_ATLAS_BINDING_INDICES 7            // uint[3·T]: its index buffer
+#define GLINT_ATLAS_BINDING_SUMS 8               // int64 [zoom][GLINT_SUM_*][vertex], fixed point
+#define GLINT_ATLAS_BINDING_WORDS 9              // uint [zoom][GLINT_WORD_*][vertex]
+#define GLINT_ATLAS_BINDING_SCRATCH_KEY 10       // uint64 [vertex]: this view's maximum (value, pixel)
+#define GLINT_ATLAS_BINDING_SCRATCH_COS 11       // uint [vertex]: this view's best incidence
+#define GLINT_ATLAS_BINDING_PIXELS 12            // PixelDeviation [pixel]: this view's comparison
+#define GLINT_ATLAS_BINDING_SUMMARY 13           // ViewTotals: this view's numbers
+#define GLINT_ATLAS_BINDING_COUNT 14
+
+// Workgroups: the pixel pass runs GLINT_ATLAS_TILE² invocations, the vertex pass
+// GLINT_ATLAS_VERTEX_GROUP.
+#define GLINT_ATLAS_TILE 16
+#define GLINT_ATLAS_VERTEX_GROUP 256
+
+// Per-vertex fixed-point sums (int64, scaled by AtlasParams.scales) and 32-bit fields.
+#define GLINT_SUM_WEIGHT 0
+#define GLINT_SUM_VALUE 1
+#define GLINT_SUM_MISSING 2
+#define GLINT_SUM_DEPTH 3
+#define GLINT_SUM_FIELDS 4
+#define GLINT_WORD_COUNT 0         // observations (uint)
+#define GLINT_WORD_MAX 1           // float bits of the maximum value
+#define GLINT_WORD_DEPTH_AT_MAX 2  // float bits of the signed depth at the maximum (NaN: none)
+#define GLINT_WORD_MAX_VIEW 3      // int: view of the maximum (-1: none)
+#define GLINT_WORD_BEST_COS 4      // float bits of the most frontal incidence (-2: none)
+#define GLINT_WORD_BEST_VIEW 5     // int: its view (-1: none)
+#define GLINT_WORD_FIELDS 6
+
+// PixelDeviation.flags: the silhouette code (0 same, 1 reference only, 2 examined only, as
+// scanner/compare.h), whether the reference pixel is covered, whether both were compared.
+#define GLINT_PIXEL_SILHOUETTE_MASK 3u
+#define GLINT_PIXEL_REFERENCE_ONLY 1u
+#define GLINT_PIXEL_EXAMINED_ONLY 2u
+#define GLINT_PIXEL_REFERENCE_COVERED 4u
+#define GLINT_PIXEL_COMPARED 8u
+
+// AtlasParams.mode.x
+#define GLINT_ATLAS_PERSPECTIVE 1u
+#define GLINT_ATLAS_METRIC_RGB 2u
+
 #endif

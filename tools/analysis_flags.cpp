@@ -62,6 +62,10 @@ void add_sweep_flags(CLI::App& cmd, AnalysisOptions& o) {
     cmd.add_option_function<std::string>(
         "--backend", [&s](const std::string& v) { s.render.backend = parse_backend(v); }, "auto | vulkan | embree (default auto)");
     cmd.add_option("--device", s.render.device, "Vulkan device name (substring)");
+    cmd.add_option_function<std::string>(
+        "--accumulate", [&s](const std::string& v) { s.accumulate = parse_accumulation(v); },
+        "Compare and back-project on the GPU or the CPU: auto (GPU with Vulkan, unless per-view EXRs are "
+        "written) | gpu | host (default auto)");
     cmd.add_option("--max-incidence", s.max_incidence_deg, "Coverage rule: max incidence angle, degrees")->capture_default_str();
     cmd.add_option_function<std::string>(
         "--rule", [&d](const std::string& v) { d.rule = parse_decision_rule(v); },

@@ -28,7 +28,8 @@ void run() {
         for (const auto& d : devices) {
             out["devices"].push_back({{"name", d.name}, {"type", d.type}, {"driver", d.driver},
                                       {"api_version", d.api_version_text}, {"usable", d.is_usable},
-                                      {"reason", d.reason}, {"preferred", d.is_preferred}});
+                                      {"reason", d.reason}, {"preferred", d.is_preferred},
+                                      {"gpu_atlas", d.supports_gpu_atlas}, {"gpu_atlas_reason", d.gpu_atlas_reason}});
         }
         if (!vulkan_error.empty()) out["vulkan_error"] = vulkan_error;
         std::cout << out.dump(2) << '\n';
@@ -37,7 +38,11 @@ void run() {
         for (const auto& d : devices) {
             std::cout << (d.is_preferred ? "* " : "  ") << d.name << " [" << d.type << ", Vulkan "
                       << d.api_version_text << (d.driver.empty() ? "" : ", " + d.driver) << "]: "
-                      << (d.is_usable ? "usable" : "not usable, " + d.reason) << '\n';
+                      << (d.is_usable ? "usable" : "not usable, " + d.reason)
+                      << (!d.is_usable           ? ""
+                          : d.supports_gpu_atlas ? "; compares on the device"
+                                                 : "; compares on the CPU (" + d.gpu_atlas_reason + ")")
+                      << '\n';
         }
         std::cout << "embree (CPU): usable\n";
         std::cout << "--backend auto: " << to_string(chosen) << " (" << reason << ")\n";

@@ -17,6 +17,8 @@
 
 namespace glint::detail {
 
+struct VulkanMesh;
+
 /// A mesh on a device. Views are submitted, then finished in submission order:
 ///   submit(v0) submit(v1) finish()→frame 0 submit(v2) finish()→frame 1 …
 /// with at most max_in_flight() views submitted and not finished.
@@ -34,6 +36,9 @@ public:
     /// True when the work happens in finish() (CPU ray casting): a pair then runs its two
     /// finishes as two tasks. False when finish() only waits and resolves (Vulkan).
     [[nodiscard]] virtual bool works_in_finish() const { return false; }
+    /// The mesh's device buffers when the backend is Vulkan (the GPU atlas draws and reads
+    /// them: render/gpu_atlas.cpp); null otherwise. Valid while the backend lives.
+    [[nodiscard]] virtual const VulkanMesh* vulkan_mesh() const { return nullptr; }
 };
 
 /// The device half of a RenderContext.

@@ -5,6 +5,7 @@
 #include "render/detail/vk_pipeline.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace glint::detail {
 
@@ -20,6 +21,12 @@ VulkanDevice::VulkanDevice(const ContextOptions& options) : threads_(worker_coun
     info_ = c.info;
     VkPhysicalDeviceProperties props{};
     vkGetPhysicalDeviceProperties(physical_, &props);
+    limits_ = props.limits;
+    std::uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> family_props(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, family_props.data());
+    timestamp_bits_ = queue_family_ < families ? family_props[queue_family_].timestampValidBits : 0;
     max_dimension_ = std::min(props.limits.maxImageDimension2D,
                               std::min(props.limits.maxFramebufferWidth, props.limits.maxFramebufferHeight));
     try {
@@ -41,6 +48,7 @@ void VulkanDevice::release() noexcept {
     for (VkPipeline p : pipelines_) {
         if (p != VK_NULL_HANDLE) vkDestroyPipeline(device_, p, nullptr);
     }
+    destroy_atlas_pipelines(device_, atlas_);
     if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
     if (render_pass_ != VK_NULL_HANDLE) vkDestroyRenderPass(device_, render_pass_, nullptr);
     vkDestroyDevice(device_, nullptr);
@@ -54,13 +62,24 @@ void VulkanDevice::create_device() {
     q.queueFamilyIndex = queue_family_;
     q.queueCount = 1;
     q.pQueuePriorities = &priority;
-    VkPhysicalDeviceFeatures features{};
-    features.geometryShader = VK_TRUE;  // gl_PrimitiveID in the fragment shader
+    VkPhysicalDeviceVulkan12Features v12{};
+    v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+    VkPhysicalDeviceFeatures2 features{};
+    features.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    features.features.geometryShader = VK_TRUE;  // gl_PrimitiveID in the fragment shader
+    if (info_.supports_gpu_atlas) {
+        // The GPU atlas (render/gpu_atlas.h): the CPU path's double arithmetic, 64-bit
+        // fixed-point sums and maxima with buffer atomics.
+        features.features.shaderFloat64 = VK_TRUE;
+        features.features.shaderInt64 = VK_TRUE;
+        v12.shaderBufferInt64Atomics = VK_TRUE;
+        features.pNext = &v12;
+    }
     VkDeviceCreateInfo info{};
     info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
+    info.pNext = &features;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &q;
-    info.pEnabledFeatures = &features;
     GLINT_VK_CHECK(vkCreateDevice(physical_, &info, nullptr, &device_));
     ++creation_counters().vulkan_devices;
     vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
@@ -71,6 +90,13 @@ VkPipeline VulkanDevice::pipeline(bool cull_back_faces) {
     VkPipeline& p = pipelines_[cull_back_faces ? 1 : 0];
     if (p == VK_NULL_HANDLE) p = make_pipeline(device_, layout_, render_pass_, cull_back_faces);
     return p;
+}
+
+const AtlasPipelines& VulkanDevice::atlas_pipelines() {
+    GLINT_ASSERT(has_gpu_atlas(), "GPU atlas passes on a device without its features");
+    std::lock_guard<std::mutex> lock(pipeline_mutex_);
+    if (atlas_.pixels == VK_NULL_HANDLE) atlas_ = make_atlas_pipelines(device_, layout_);
+    return atlas_;
 }
 
 void VulkanDevice::submit(VkCommandBuffer cmd, VkFence fence) {

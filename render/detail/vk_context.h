@@ -6,7 +6,9 @@
 
 #include "render/context.h"
 #include "render/detail/backend.h"
+#include "render/detail/vk_compute.h"
 #include "render/detail/vk_device.h"
+#include "render/detail/vk_pipeline.h"
 
 #include <vulkan/vulkan.h>
 
@@ -35,6 +37,14 @@ public:
     [[nodiscard]] VkPipelineLayout layout() const { return layout_; }
     [[nodiscard]] const DeviceInfo& info() const { return info_; }
     [[nodiscard]] int threads() const { return threads_; }
+    [[nodiscard]] const VkPhysicalDeviceLimits& limits() const { return limits_; }
+    /// Valid bits of the queue's timestamps (0: the queue writes none).
+    [[nodiscard]] std::uint32_t timestamp_bits() const { return timestamp_bits_; }
+    /// Whether the GPU atlas's features were found and enabled (render/gpu_atlas.h);
+    /// info().gpu_atlas_reason says why not.
+    [[nodiscard]] bool has_gpu_atlas() const { return info_.supports_gpu_atlas; }
+    /// The GPU atlas's passes, created at their first use. \pre has_gpu_atlas().
+    [[nodiscard]] const AtlasPipelines& atlas_pipelines();
     /// The graphics pipeline for a cull mode, created at its first use.
     [[nodiscard]] VkPipeline pipeline(bool cull_back_faces);
     /// vkQueueSubmit of one command buffer signalling `fence`; the queue is shared by every
@@ -60,6 +70,16 @@ private:
     VkPipelineLayout layout_ = VK_NULL_HANDLE;
     std::mutex pipeline_mutex_;
     std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
+    VkPhysicalDeviceLimits limits_{};
+    std::uint32_t timestamp_bits_ = 0;
+    AtlasPipelines atlas_{};                 // created by atlas_pipelines() (pipeline_mutex_)
+};
+
+/// A renderer's mesh as the GPU atlas uses it: its device, buffers and cull mode.
+struct VulkanMesh {
+    std::shared_ptr<VulkanDevice> device;
+    MeshBuffers buffers;
+    bool cull_back_faces = false;
 };
 
 /// A mesh on a shared device (render/vulkan_backend.cpp).

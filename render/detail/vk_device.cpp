@@ -6,6 +6,7 @@
 #include "spirv/bindings.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <sstream>
@@ -174,6 +175,27 @@ bool has_optimal_features(VkPhysicalDevice pd, VkFormat format, VkFormatFeatureF
     return (props.optimalTilingFeatures & needed) == needed;
 }
 
+/// What the GPU atlas needs beyond rendering (render/gpu_atlas.h); `info` receives the verdict.
+void evaluate_gpu_atlas(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures& features,
+                        const VkQueueFamilyProperties& queue, DeviceInfo& info) {
+    VkPhysicalDeviceVulkan12Features v12{};
+    v12.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES;
+    VkPhysicalDeviceFeatures2 f2{};
+    f2.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2;
+    f2.pNext = &v12;
+    vkGetPhysicalDeviceFeatures2(pd, &f2);
+    std::vector<std::string> missing;
+    if (!features.shaderFloat64) missing.push_back("shaderFloat64");
+    if (!features.shaderInt64) missing.push_back("shaderInt64");
+    if (!v12.shaderBufferInt64Atomics) missing.push_back("shaderBufferInt64Atomics");
+    if (!(queue.queueFlags & VK_QUEUE_COMPUTE_BIT)) missing.push_back("compute on the graphics queue");
+    const VkFormatFeatureFlags storage = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    if (!has_optimal_features(pd, kNormalFormat, storage)) missing.push_back("RGBA32F storage image");
+    if (!has_optimal_features(pd, kIdFormat, storage)) missing.push_back("R32_UINT storage image");
+    info.supports_gpu_atlas = missing.empty();
+    for (std::size_t i = 0; i < missing.size(); ++i) info.gpu_atlas_reason += (i == 0 ? "lacks " : ", ") + missing[i];
+}
+
 /// What glint needs of a device; `reason` collects every missing piece.
 Candidate evaluate(VkPhysicalDevice pd) {
     Candidate c;
@@ -204,12 +226,16 @@ Candidate evaluate(VkPhysicalDevice pd) {
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &qcount, nullptr);
     std::vector<VkQueueFamilyProperties> queues(qcount);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &qcount, queues.data());
+    // The first graphics family that also computes (the GPU atlas runs its passes on the same
+    // queue), else the first graphics family.
     bool has_graphics = false;
-    for (std::uint32_t i = 0; i < qcount; ++i) {
-        if (queues[i].queueFlags & VK_QUEUE_GRAPHICS_BIT) {
-            c.queue_family = i;
-            has_graphics = true;
-            break;
+    const std::array<VkQueueFlags, 2> preferences{VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT, VK_QUEUE_GRAPHICS_BIT};
+    for (const VkQueueFlags wanted : preferences) {
+        for (std::uint32_t i = 0; i < qcount && !has_graphics; ++i) {
+            if ((queues[i].queueFlags & wanted) == wanted) {
+                c.queue_family = i;
+                has_graphics = true;
+            }
         }
     }
     if (!has_graphics) missing.push_back("a graphics queue");
@@ -223,6 +249,11 @@ Candidate evaluate(VkPhysicalDevice pd) {
     c.info.is_usable = missing.empty();
     for (std::size_t i = 0; i < missing.size(); ++i) {
         c.info.reason += (i == 0 ? "lacks " : ", ") + missing[i];
+    }
+    if (c.info.is_usable) {
+        evaluate_gpu_atlas(pd, features, queues[c.queue_family], c.info);
+    } else {
+        c.info.gpu_atlas_reason = "the device is not usable";
     }
     return c;
 }

@@ -11,20 +11,22 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 namespace glint::detail {
-namespace {
 
-VkShaderModule make_module(VkDevice device, ShaderId id) {
-        const auto code = spirv(id);
-        VkShaderModuleCreateInfo info{};
-        info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
-        info.codeSize = code.size_bytes();
-        info.pCode = code.data();
-        VkShaderModule module = VK_NULL_HANDLE;
-        GLINT_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
-        return module;
-    }
+VkShaderModule make_shader_module(VkDevice device, ShaderId id) {
+    const auto code = spirv(id);
+    VkShaderModuleCreateInfo info{};
+    info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
+    info.codeSize = code.size_bytes();
+    info.pCode = code.data();
+    VkShaderModule module = VK_NULL_HANDLE;
+    GLINT_VK_CHECK(vkCreateShaderModule(device, &info, nullptr, &module));
+    return module;
+}
+
+namespace {
 
 /// The fixed-function state of the pipeline; pointers into `self` stay valid while it lives.
 struct FixedState {
@@ -96,7 +98,8 @@ FixedState::FixedState(bool cull_back_faces) {
 
 }  // namespace
 
-VkRenderPass make_render_pass(VkDevice device) {
+VkRenderPass make_render_pass(VkDevice device, TargetUse use) {
+    const bool compute = use == TargetUse::Compute;
     std::array<VkAttachmentDescription, 3> att{};
     for (int i = 0; i < 2; ++i) {
         att[static_cast<std::size_t>(i)].format = i == 0 ? kNormalFormat : kIdFormat;
@@ -106,8 +109,9 @@ VkRenderPass make_render_pass(VkDevice device) {
         att[static_cast<std::size_t>(i)].stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
         att[static_cast<std::size_t>(i)].stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
         att[static_cast<std::size_t>(i)].initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-        // Left ready for vkCmdCopyImageToBuffer.
-        att[static_cast<std::size_t>(i)].finalLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        // Left ready for vkCmdCopyImageToBuffer, or for imageLoad in the compute passes.
+        att[static_cast<std::size_t>(i)].finalLayout =
+            compute ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
     }
     att[2].format = kDepthFormat;
     att[2].samples = VK_SAMPLE_COUNT_1_BIT;
@@ -127,12 +131,13 @@ VkRenderPass make_render_pass(VkDevice device) {
     subpass.colorAttachmentCount = 2;
     subpass.pColorAttachments = color_refs.data();
     subpass.pDepthStencilAttachment = &depth_ref;
+    const VkPipelineStageFlags reader = compute ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT;
     std::array<VkSubpassDependency, 2> deps{};
-    // In: the previous view in this slot read the colour images with a transfer and
-    // wrote depth; the clear (and layout transition) must wait for both.
+    // In: the previous view in these targets read the colour images (a transfer, or the
+    // compute passes) and wrote depth; the clear (and layout transition) must wait for both.
     deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     deps[0].dstSubpass = 0;
-    deps[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    deps[0].srcStageMask = reader | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
     deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
                            VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
     deps[0].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
@@ -140,13 +145,14 @@ VkRenderPass make_render_pass(VkDevice device) {
                             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
     // Out: colour writes must be complete and visible before the copy to the read-back
-    // buffers (the transition to TRANSFER_SRC happens inside this dependency).
+    // buffers, or before the compute passes' imageLoad (the transition to the final layout
+    // happens inside this dependency).
     deps[1].srcSubpass = 0;
     deps[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     deps[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    deps[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    deps[1].dstStageMask = reader;
     deps[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-    deps[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    deps[1].dstAccessMask = compute ? VK_ACCESS_SHADER_READ_BIT : VK_ACCESS_TRANSFER_READ_BIT;
     VkRenderPassCreateInfo rp{};
     rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO;
     rp.attachmentCount = static_cast<std::uint32_t>(att.size());
@@ -172,10 +178,10 @@ VkPipelineLayout make_pipeline_layout(VkDevice device) {
 }
 
 VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass render_pass, bool cull_back_faces) {
-    VkShaderModule vert = make_module(device, ShaderId::normal_vert);
+    VkShaderModule vert = make_shader_module(device, ShaderId::normal_vert);
     VkShaderModule frag = VK_NULL_HANDLE;
     try {
-        frag = make_module(device, ShaderId::normal_frag);
+        frag = make_shader_module(device, ShaderId::normal_frag);
     } catch (...) {
         vkDestroyShaderModule(device, vert, nullptr);
         throw;
@@ -211,6 +217,44 @@ VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass 
     vkDestroyShaderModule(device, frag, nullptr);
     if (r != VK_SUCCESS) vk_check_failed(r, "vkCreateGraphicsPipelines", __FILE__, __LINE__);
     return pipeline;
+}
+
+void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer, int width,
+                        int height, VkPipeline pipeline, VkPipelineLayout layout, const MeshBuffers& mesh,
+                        const View& view) {
+    const Camera& cam = view.camera;
+    PushConstants pc{};
+    const Eigen::Matrix4f clip = cam.clip_from_world().cast<float>();
+    std::memcpy(pc.clip_from_world, clip.data(), sizeof(pc.clip_from_world));
+    // depth = −z_camera = −(row 2 of camera_from_world) · (p, 1)
+    const Eigen::Matrix4d camera_from_world = cam.world_from_camera.inverse().matrix();
+    for (int k = 0; k < 4; ++k) pc.depth_row[k] = static_cast<float>(-camera_from_world(2, k));
+
+    std::array<VkClearValue, 3> clears{};
+    clears[0].color.float32[0] = clears[0].color.float32[1] = clears[0].color.float32[2] = 0.0f;
+    clears[0].color.float32[3] = 0.0f;
+    clears[1].color.uint32[0] = GLINT_NO_PRIMITIVE;
+    clears[2].depthStencil = {1.0f, 0};
+    VkRenderPassBeginInfo rp{};
+    rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
+    rp.renderPass = render_pass;
+    rp.framebuffer = framebuffer;
+    rp.renderArea = {{0, 0}, {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height)}};
+    rp.clearValueCount = static_cast<std::uint32_t>(clears.size());
+    rp.pClearValues = clears.data();
+    vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
+    VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &rp.renderArea);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(pc), &pc);
+    std::array<VkBuffer, 2> vbs{mesh.positions, mesh.normals};
+    std::array<VkDeviceSize, 2> offsets{0, 0};
+    vkCmdBindVertexBuffers(cmd, 0, 2, vbs.data(), offsets.data());
+    vkCmdBindIndexBuffer(cmd, mesh.indices, 0, VK_INDEX_TYPE_UINT32);
+    // One draw of every triangle from index 0, so gl_PrimitiveID is the triangle index.
+    vkCmdDrawIndexed(cmd, mesh.index_count, 1, 0, 0, 0);
+    vkCmdEndRenderPass(cmd);
 }
 
 }  // namespace glint::detail

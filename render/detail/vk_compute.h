@@ -1,0 +1,29 @@
+// The GPU atlas's Vulkan objects shared by every atlas on a device (internal): the descriptor
+// set layout and the two compute passes (shaders/atlas_pixels.comp, atlas_vertices.comp), and
+// the normal pass drawn into targets the compute passes read (render pass + graphics pipeline
+// per cull mode). See render/gpu_atlas.cpp for the per-view command buffer they form.
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include <array>
+
+namespace glint::detail {
+
+struct AtlasPipelines {
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;  ///< bindings of shaders/bindings.h
+    VkPipelineLayout layout = VK_NULL_HANDLE;           ///< the compute passes' (one set)
+    VkPipeline pixels = VK_NULL_HANDLE;                 ///< atlas_pixels.comp
+    VkPipeline vertices = VK_NULL_HANDLE;               ///< atlas_vertices.comp
+    VkRenderPass render_pass = VK_NULL_HANDLE;          ///< colour targets left in GENERAL
+    std::array<VkPipeline, 2> graphics{};               ///< normal pass on render_pass, [cull_back_faces]
+};
+
+/// Creates them all; `graphics_layout` is the normal pass's push-constant layout.
+/// \throw DeviceError (what was created is destroyed first).
+AtlasPipelines make_atlas_pipelines(VkDevice device, VkPipelineLayout graphics_layout);
+
+/// Destroys and resets; null handles are skipped.
+void destroy_atlas_pipelines(VkDevice device, AtlasPipelines& pipelines) noexcept;
+
+}  // namespace glint::detail

@@ -1,0 +1,163 @@
+// The GPU atlas: compare and back-projection on the device, so that a sweep's frames never
+// leave it (DESIGN.md "back-projection"; issue 13).
+//
+// Per view, one command buffer renders the reference and the examined mesh into sub-sample
+// targets that stay in device memory, then two compute passes do what the read-back path does
+// on the CPU (render/detail/resolve.cpp, scanner/compare.*, scanner/metric.*,
+// scanner/backproject.*, scanner/atlas.*):
+//
+//   atlas_pixels.comp    per output pixel: the s×s resolve of both frames (mean normal,
+//                        renormalised; depth; coverage; centre primitive), the comparison
+//                        (silhouette, angle, signed depth, the metric), and the scatter of the
+//                        pixel's value onto its reference triangle's vertices (barycentric
+//                        weights of the pixel-centre ray, incidence rule) with atomics; the
+//                        view's numbers (GpuViewSummary) reduced per workgroup.
+//   atlas_vertices.comp  per reference vertex: the gather of vertices that no pixel centre fell
+//                        on, and the fold of this view's per-vertex maximum and most frontal
+//                        observation into the sweep's (first view wins ties, as on the CPU).
+//
+// Only the per-view summary (32 bytes) crosses the bus per view, and the per-vertex totals
+// once per sweep (read_totals).
+//
+// Precision (what differs from the CPU path, and by how much):
+// - sums (weight, weight·value, missing weight, weight·signed depth) are 64-bit fixed point
+//   accumulated with integer atomics, so they do not depend on the order the device runs in;
+//   the scale is the largest power of two for which no sum can overflow (GpuAtlasTotals::
+//   *_resolution give the step: each observation is rounded to half a step, where the CPU
+//   rounds its double sums to half an ulp);
+// - everything else is computed with the CPU path's operations in the same order (float where
+//   it uses float, double where it uses double, no fused multiply-add), so on an IEEE device
+//   (lavapipe) the per-pixel angles, weights, counts, maxima and views equal the CPU's; the
+//   one function written differently is acos (a series in double, within 2 ulp of libm's), so a
+//   pixel angle may differ from the CPU's by one float ulp. Devices whose double division and
+//   square root are not correctly rounded differ by a few more ulps.
+//
+// Requirements: the Vulkan backend, both renderers on one context, world-space normals, and a
+// device with shaderFloat64, shaderInt64 and shaderBufferInt64Atomics (GpuAtlas::supported()).
+#pragma once
+
+#include "render/renderer.h"
+#include "render/view.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+/// The per-pixel deviation the device folds (scanner/metric.h describes both for users).
+enum class GpuMetric {
+    AngleDeg,  ///< angle between the two unit normals, degrees
+    RgbAbs,    ///< mean |ΔR|, |ΔG|, |ΔB| of the 8-bit normal colours, 0…255
+};
+
+struct GpuAtlasOptions {
+    GpuMetric metric = GpuMetric::AngleDeg;
+    /// Value of a reference pixel with no examined surface behind it.
+    float missing_value = 90.0f;
+    /// A pixel counts as covered (compared, scattered) at this share of its sub-samples.
+    float min_coverage = 0.999f;
+    /// cos of the largest incidence at which a pixel or vertex is an observation (> 0).
+    double min_cos_incidence = 0.2588;
+    /// Radius of the sweep's framed sphere (the gather pass's depth tolerance).
+    double framed_radius = 1.0;
+    /// Atlases kept: View::zoom_index selects one, 0 … zoom_count − 1.
+    int zoom_count = 1;
+
+    /// \throw InputError naming the field, its value and the rule.
+    void validate() const;
+};
+
+/// What one view showed (scanner/sweep.h's ViewSummary without the index).
+struct GpuViewSummary {
+    std::size_t reference_pixels = 0;  ///< reference pixels covered at min_coverage
+    std::size_t compared = 0;
+    std::size_t reference_only = 0;
+    std::size_t examined_only = 0;
+    double max_angle_deg = 0.0;
+    double mean_angle_deg = 0.0;       ///< fixed-point sum / compared (step angle_resolution)
+};
+
+/// Per-vertex totals of one zoom level: the state of scanner's AtlasAccumulator.
+struct GpuAtlasTotals {
+    std::vector<float> max;               ///< largest value at the vertex's nearest pixels (0: none)
+    std::vector<float> depth_at_max;      ///< signed depth there (NaN: missing surface)
+    std::vector<std::int32_t> max_view;   ///< -1: none
+    std::vector<double> weight;           ///< Σ w
+    std::vector<double> value_sum;        ///< Σ w·value
+    std::vector<double> missing_weight;   ///< Σ w where no examined surface was behind the pixel
+    std::vector<double> depth_sum;        ///< Σ w·signed depth
+    std::vector<double> depth_weight;     ///< Σ w where the depth was finite (= weight − missing)
+    std::vector<std::uint32_t> count;     ///< observations
+    std::vector<float> best_cos;          ///< most frontal cos(incidence) (-2: none)
+    std::vector<std::int32_t> best_view;  ///< -1: none
+    double weight_resolution = 0.0;       ///< fixed-point step of weight and missing_weight
+    double value_resolution = 0.0;        ///< of value_sum
+    double depth_resolution = 0.0;        ///< of depth_sum
+};
+
+/// Device time of the last run() by stage, from timestamps written between them (each stage
+/// from the end of the one before, so waits on the previous view are not counted). Zero and
+/// measured = false when the queue writes no timestamps.
+struct GpuAtlasTimings {
+    bool measured = false;
+    std::size_t views = 0;
+    double render_s = 0.0;    ///< both normal passes
+    double pixels_s = 0.0;    ///< atlas_pixels.comp: resolve, compare, scatter
+    double vertices_s = 0.0;  ///< atlas_vertices.comp: gather, fold
+};
+
+/// Called in view order after the device finished a view: its index in the span given to
+/// run() and its numbers. May throw to stop the run (the device is drained first).
+using GpuViewConsumer = std::function<void(std::size_t view_index, const GpuViewSummary& summary)>;
+
+namespace detail {
+class GpuAtlasImpl;
+struct VulkanMesh;
+}
+
+/// The per-vertex accumulators of a sweep on the reference renderer's device. Move-only; the
+/// renderers must outlive it (it draws with their meshes) and stay on one thread with it.
+class GpuAtlas {
+public:
+    /// Whether the GPU atlas can run for this pair of renderers and options; `why` receives
+    /// the reason when it cannot (Embree backend, two contexts, view-space normals, different
+    /// supersampling, a device without the features, buffers beyond the device's limits).
+    [[nodiscard]] static bool supported(const Renderer& reference, const Renderer& examined,
+                                        const GpuAtlasOptions& options, std::string* why = nullptr);
+
+    /// Allocates the per-vertex buffers (zoom_count × 64 bytes per reference vertex) and
+    /// compiles the passes at the first use on a device.
+    /// \throw InputError invalid options, renderers that supported() refuses;
+    /// \throw DeviceError a failed device call.
+    GpuAtlas(Renderer& reference, Renderer& examined, const GpuAtlasOptions& options);
+    ~GpuAtlas();
+    GpuAtlas(GpuAtlas&&) noexcept;
+    GpuAtlas& operator=(GpuAtlas&&) noexcept;
+    GpuAtlas(const GpuAtlas&) = delete;
+    GpuAtlas& operator=(const GpuAtlas&) = delete;
+
+    /// Clears the accumulators, then renders and folds every view (two in flight), handing
+    /// each view's summary to `consumer` in order. View::index is the view id recorded in
+    /// max_view / best_view; View::zoom_index selects the atlas.
+    /// \throw InputError a view's size or zoom; DeviceError; whatever the consumer throws.
+    void run(std::span<const View> views, const GpuViewConsumer& consumer = {});
+
+    /// Reads the totals of every zoom level back (once per sweep). \throw DeviceError.
+    [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
+
+    /// Where the device spent the last run()'s time (benchmarks; see GpuAtlasTimings).
+    [[nodiscard]] const GpuAtlasTimings& timings() const;
+
+private:
+    /// The renderer's device buffers; null for a non-Vulkan (or moved-from) renderer.
+    static const detail::VulkanMesh* vulkan_mesh(const Renderer& renderer);
+
+    std::unique_ptr<detail::GpuAtlasImpl> impl_;
+};
+
+}  // namespace glint

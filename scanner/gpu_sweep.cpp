@@ -1,0 +1,129 @@
+#include "scanner/gpu_sweep.h"
+
+#include "mesh/cancel.h"
+#include "mesh/error.h"
+#include "render/gpu_atlas.h"
+#include "scanner/coverage.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace glint {
+
+Accumulation parse_accumulation(const std::string& text) {
+    if (text == "auto") return Accumulation::Auto;
+    if (text == "gpu") return Accumulation::Gpu;
+    if (text == "host") return Accumulation::Host;
+    throw InputError("accumulate \"" + text + "\": expected auto, gpu or host");
+}
+
+std::string to_string(Accumulation accumulation) {
+    switch (accumulation) {
+    case Accumulation::Auto: return "auto";
+    case Accumulation::Gpu: return "gpu";
+    case Accumulation::Host: return "host";
+    }
+    return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+GpuAtlasOptions atlas_options(const SweepPlan& plan, const SweepOptions& options) {
+    return GpuAtlasOptions{
+        .metric = options.metric == Metric::RgbAbs ? GpuMetric::RgbAbs : GpuMetric::AngleDeg,
+        .missing_value = describe(options.metric).missing_value,
+        .min_coverage = options.compare.min_coverage,
+        .min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
+        .framed_radius = plan.radius,
+        .zoom_count = static_cast<int>(plan.footprints.size())};
+}
+
+/// AtlasAccumulator::finish over the device's totals.
+ZoomAtlas zoom_atlas(GpuAtlasTotals&& t, double footprint) {
+    ZoomAtlas a;
+    a.footprint = footprint;
+    const std::size_t n = t.max.size();
+    a.value_mean.resize(n);
+    a.weight.resize(n);
+    a.missing.resize(n);
+    a.best_cos.resize(n);
+    a.depth_mean.resize(n);
+    for (std::size_t v = 0; v < n; ++v) {
+        const double w = t.weight[v];
+        a.weight[v] = static_cast<float>(w);
+        a.value_mean[v] = w > 0 ? static_cast<float>(t.value_sum[v] / w) : 0.0f;
+        a.missing[v] = w > 0 ? static_cast<float>(t.missing_weight[v] / w) : 0.0f;
+        a.depth_mean[v] = t.depth_weight[v] > 0 ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
+                                                 : std::numeric_limits<float>::quiet_NaN();
+        a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
+    }
+    a.value_max = std::move(t.max);
+    a.depth_at_max = std::move(t.depth_at_max);
+    a.count = std::move(t.count);
+    a.best_view = std::move(t.best_view);
+    a.max_view = std::move(t.max_view);
+    return a;
+}
+
+}  // namespace
+
+bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Renderer& examined_renderer,
+                      const SweepPlan& plan, const SweepOptions& options, const ViewObserver& observer,
+                      SweepResult& result) {
+    if (options.accumulate == Accumulation::Host) return false;
+    const GpuAtlasOptions atlas_opts = atlas_options(plan, options);
+    std::string why;
+    if (!GpuAtlas::supported(reference_renderer, examined_renderer, atlas_opts, &why)) {
+        if (options.accumulate == Accumulation::Gpu) throw DeviceError("sweep: accumulate = gpu, but " + why);
+        result.accumulation_note = "compare and back-projection on the CPU: " + why;
+        return false;
+    }
+    GpuAtlas atlas(reference_renderer, examined_renderer, atlas_opts);
+    std::vector<View> views;
+    views.reserve(plan.views.size());
+    for (const auto& p : plan.views) views.push_back(p.view);
+
+    const Frame no_frame;
+    const DeviationMap no_deviation;
+    const auto t_run = Clock::now();
+    atlas.run(views, [&](std::size_t i, const GpuViewSummary& g) {
+        throw_if_cancelled();
+        const PlannedView& pv = plan.views[i];
+        result.views.push_back(ViewSummary{.index = pv.view.index,
+                                           .reference_pixels = g.reference_pixels,
+                                           .compared = g.compared,
+                                           .reference_only = g.reference_only,
+                                           .examined_only = g.examined_only,
+                                           .max_angle_deg = g.max_angle_deg,
+                                           .mean_angle_deg = g.mean_angle_deg});
+        if (observer) observer(pv, no_frame, no_frame, no_deviation);
+    });
+    result.render_seconds = seconds_since(t_run);
+    std::size_t compared = 0;
+    for (const auto& v : result.views) compared += v.compared;
+    if (compared == 0)
+        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
+                         std::to_string(result.views.size()) +
+                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+    const auto t_read = Clock::now();
+    std::vector<GpuAtlasTotals> totals = atlas.read_totals();
+    GLINT_ASSERT(totals.size() == plan.footprints.size(), "one atlas per zoom");
+    GLINT_ASSERT(totals.empty() || totals[0].max.size() == reference.vertex_count(), "atlas does not match the mesh");
+    for (std::size_t z = 0; z < totals.size(); ++z) {
+        SweepZoom zoom;
+        zoom.atlas = zoom_atlas(std::move(totals[z]), plan.footprints[z]);
+        zoom.coverage = coverage_of(reference, zoom.atlas, plan.options.roi);
+        result.zooms.push_back(std::move(zoom));
+    }
+    result.compare_seconds = seconds_since(t_read);
+    result.on_gpu = true;
+    return true;
+}
+
+}  // namespace glint
