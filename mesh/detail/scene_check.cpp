@@ -81,8 +81,11 @@ const json& member(const json& object, const char* key) {
     return it == object.end() ? kNull : *it;
 }
 
-// Triangles one instance of each mesh draws, from its primitives' accessor counts.
-std::vector<std::uint64_t> mesh_triangles(const json& doc) {
+// Triangles one instance of each mesh draws, from its primitives' accessor counts. A primitive
+// must draw points or triangles from a POSITION accessor that exists: assimp 5.2 reads line
+// loops and strips past their index buffer (a fuzz_gltf SEGV) and sizes a primitive without
+// positions from a count of −1 (a fuzz_glb 68 GB allocation); neither is a surface.
+std::vector<std::uint64_t> mesh_triangles(const json& doc, const std::string& source) {
     const json& accessors = member(doc, "accessors");
     const Ids accessor_ids(accessors);
     const auto accessor_list = elements(accessors);
@@ -93,11 +96,22 @@ std::vector<std::uint64_t> mesh_triangles(const json& doc) {
         return count.is_number_unsigned() ? count.get<std::uint64_t>() : 0;
     };
     std::vector<std::uint64_t> out;
-    for (const json* mesh : elements(member(doc, "meshes"))) {
+    const auto meshes = elements(member(doc, "meshes"));
+    for (std::size_t m = 0; m < meshes.size(); ++m) {
         std::uint64_t triangles = 0;
-        for (const json* prim : elements(member(*mesh, "primitives"))) {
+        const auto prims = elements(member(*meshes[m], "primitives"));
+        for (std::size_t p = 0; p < prims.size(); ++p) {
+            const json* prim = prims[p];
+            const std::string where = quoted(source) + ": glTF mesh " + std::to_string(m) + " primitive " + std::to_string(p);
             const json& mode_json = member(*prim, "mode");
+            if (!mode_json.is_null() && !mode_json.is_number_unsigned())
+                throw InputError(where + ": mode is not a number, expected 0 (points) or 4, 5, 6 (triangles)");
             const std::uint64_t mode = mode_json.is_number_unsigned() ? mode_json.get<std::uint64_t>() : 4;
+            if (mode != 0 && (mode < 4 || mode > 6))
+                throw InputError(where + ": mode " + std::to_string(mode) + (mode <= 3 ? " (lines)" : "") +
+                                 ", expected 0 (points) or 4, 5, 6 (triangles): glint reads surfaces");
+            if (accessor_ids.index(member(member(*prim, "attributes"), "POSITION")) == std::string::npos)
+                throw InputError(where + ": no POSITION accessor, expected vertex positions");
             const json& indices = member(*prim, "indices");
             const std::uint64_t n = indices.is_null() ? count_of(member(member(*prim, "attributes"), "POSITION"))
                                                       : count_of(indices);
@@ -121,11 +135,11 @@ struct Node {
     bool has_parent = false;
 };
 
-std::vector<Node> read_nodes(const json& doc) {
+std::vector<Node> read_nodes(const json& doc, const std::string& source) {
     const json& nodes_json = member(doc, "nodes");
     const Ids node_ids(nodes_json);
     const Ids mesh_ids(member(doc, "meshes"));
-    const std::vector<std::uint64_t> tris = mesh_triangles(doc);
+    const std::vector<std::uint64_t> tris = mesh_triangles(doc, source);
     std::vector<Node> nodes(node_ids.size);
     std::size_t k = 0;
     for (const json* n : elements(nodes_json)) {
@@ -205,7 +219,7 @@ void check_gltf_json(std::span<const char> text, const std::string& source, std:
         throw InputError(quoted(source) + ": glTF JSON does not parse: " + e.what());
     }
     if (!doc.is_object()) throw InputError(quoted(source) + ": glTF JSON is not an object");
-    std::vector<Node> nodes = read_nodes(doc);
+    std::vector<Node> nodes = read_nodes(doc, source);
     std::uint64_t instances = 0, triangles = 0;
     for (std::size_t root : scene_roots(doc, nodes)) {
         throw_if_cancelled();

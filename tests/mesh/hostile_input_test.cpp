@@ -114,6 +114,22 @@ TEST(HostileInput, RefusesGltfNodeCycle) {
     EXPECT_CONTAINS(load_error<InputError>(path), "cycle");
 }
 
+// fuzz_gltf: assimp 5.2 read a line loop past its index buffer (SIGSEGV); fuzz_glb: a line strip
+// without positions made it allocate 68 GB. glint reads surfaces: line primitives and
+// primitives without positions are refused before assimp sees them.
+TEST(HostileInput, RefusesGltfLinePrimitivesAndPrimitivesWithoutPositions) {
+    const std::string line_loop = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+                                  R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":2}]}],)"
+                                  R"("accessors":[{"componentType":5126,"count":3,"type":"VEC3"},)"
+                                  R"({"componentType":5123,"count":3,"type":"SCALAR"}]})";
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("line_loop.gltf", line_loop)),
+                    "glTF mesh 0 primitive 0: mode 2 (lines), expected 0 (points) or 4, 5, 6 (triangles)");
+    std::string no_positions = line_loop;
+    no_positions.replace(no_positions.find(R"("attributes")"), 12, R"("atqributes")");
+    no_positions.replace(no_positions.find(R"("mode":2)"), 8, R"("mode":4)");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("no_positions.gltf", no_positions)), "no POSITION accessor");
+}
+
 TEST(HostileInput, RefusesDeeplyNestedJson) {
     const auto path = write_bytes("nested.gltf", R"({"asset":{"extras":)" + std::string(100000, '[') + "}}");
     EXPECT_CONTAINS(load_error<InputError>(path), "deeper than 128 levels");
