@@ -114,8 +114,8 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
     std::size_t done = 0;
     result.sweep = run_sweep(reference, fitted, plan, options.sweep,
-                             [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
-                                 if (exporter) exporter->add(v, rf, ef, d);
+                             [&](const PlannedView& v, const DeviationMap& d) {
+                                 if (exporter) exporter->add(v, d);
                                  if (observer.views) observer.views(++done, plan.views.size());
                              });
 

@@ -34,6 +34,20 @@ public:
     /// True when the work happens in finish() (CPU ray casting): a pair then runs its two
     /// finishes as two tasks. False when finish() only waits and resolves (Vulkan).
     [[nodiscard]] virtual bool works_in_finish() const { return false; }
+
+    /// Band tracing (CPU ray casting): any band of output rows of a view can be traced and
+    /// resolved on its own, on any thread, so a frame can be streamed by bands without ever
+    /// being whole (render_view_pair_rows). 0: the backend renders whole frames only.
+    [[nodiscard]] virtual int band_rows() const { return 0; }
+    /// Per-thread working memory of trace_rows (nullptr when band_rows() is 0).
+    struct RowScratch {
+        virtual ~RowScratch() = default;
+    };
+    [[nodiscard]] virtual std::unique_ptr<RowScratch> make_row_scratch() const { return nullptr; }
+    /// Traces and resolves output rows [y0, y1) of `view` (y0 a multiple of band_rows()) into
+    /// `rows`, a frame of width × (y1 − y0) pixels whose row 0 is row y0 (world normals,
+    /// unmasked, bitwise as finish() gives them). Thread-safe for distinct scratch and rows.
+    virtual void trace_rows(const View& view, int y0, int y1, RowScratch& scratch, Frame& rows) const;
 };
 
 /// The device half of a RenderContext.
