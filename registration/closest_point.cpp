@@ -56,6 +56,7 @@ struct ClosestPointIndex::Impl {
     RTCScene scene = nullptr;
     ClosestPointIndexData data;
     Mesh own_mesh;  // positions (with room for Embree's 16-byte reads), triangles and normals
+    double diagonal = 0.0;  // of the mesh's bounding box
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -68,6 +69,14 @@ namespace {
 void embree_error(void* user, RTCError code, const char* message) {
     auto* text = static_cast<std::string*>(user);
     *text = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+}
+
+// The smallest float at or above d: Embree culls with a float radius, and a radius rounded
+// down could cull a triangle closer (in double) than the best found so far, so the point
+// found would depend on the order the BVH is walked in.
+float float_above(double d) {
+    const auto f = static_cast<float>(d);
+    return static_cast<double>(f) >= d ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
 }
 
 bool point_query_callback(RTCPointQueryFunctionArguments* args) {
@@ -87,7 +96,7 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
         state->best.barycentric = tp.barycentric;
         state->best.feature = kFeature[tp.feature];
         state->feature_index = tp.index;
-        args->query->radius = static_cast<float>(dist);
+        args->query->radius = float_above(dist);
         return true;
     }
     return false;
@@ -126,6 +135,7 @@ ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in) : impl_(std::make_uniq
     if (!own.has_normals()) compute_vertex_normals(own);
     auto& d = impl_->data;
     d.mesh = &own;
+    impl_->diagonal = bounds(own).diagonal();
     d.face_normals.resize(own.triangle_count());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, own.triangle_count(), 4096),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -162,13 +172,24 @@ ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = 
 const Mesh& ClosestPointIndex::mesh() const { return *impl_->data.mesh; }
 
 ClosestPoint ClosestPointIndex::closest(const Vec3d& q, double max_distance) const {
+    // note: a query without a bound first looks within 2 % of the mesh's size, and looks
+    // again without one only when it found nothing there: the BVH walk culls far nodes from
+    // the start instead of after its first hits. Between triangles as close as rounding can
+    // tell (a closest point on a shared vertex), which one is reported depends on the walk.
+    const double hint = std::isfinite(max_distance) ? max_distance : 0.02 * impl_->diagonal;
+    ClosestPoint c = query(q, hint);
+    if (!c.found && hint < max_distance) c = query(q, max_distance);
+    return c;
+}
+
+ClosestPoint ClosestPointIndex::query(const Vec3d& q, double max_distance) const {
     QueryState state{&impl_->data, q, {}, 0};
     RTCPointQuery query;
     query.x = static_cast<float>(q.x());
     query.y = static_cast<float>(q.y());
     query.z = static_cast<float>(q.z());
     query.time = 0.0f;
-    query.radius = std::isfinite(max_distance) ? static_cast<float>(max_distance) : std::numeric_limits<float>::infinity();
+    query.radius = std::isfinite(max_distance) ? float_above(max_distance) : std::numeric_limits<float>::infinity();
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(impl_->scene, &query, &context, point_query_callback, &state);

@@ -66,6 +66,8 @@ public:
     [[nodiscard]] const Mesh& mesh() const;
 
 private:
+    [[nodiscard]] ClosestPoint query(const Vec3d& q, double max_distance) const;
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
