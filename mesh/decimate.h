@@ -20,11 +20,16 @@ struct DecimatedMesh {
     double error = 0.0;                       ///< the simplifier's error estimate, mesh units
 };
 
+/// Triangles the simplifier works on at once (its working memory is ~60 bytes per triangle).
+inline constexpr std::size_t kDecimatePiece = 500000;
+
 /// The mesh with at most about `max_triangles` triangles (more when the kept triangles alone
 /// exceed it, or when the error allowed, `max_error` mesh units, stops the collapses first).
-/// keep[t] != 0: triangle t is kept as it is (empty: none). Scalars and labels are not carried
-/// (use original_vertex). \pre keep empty or one entry per triangle.
+/// keep[t] != 0: triangle t is kept as it is (empty: none). Larger meshes are simplified in
+/// slabs of `piece` triangles along their longest axis, each with its borders locked, so the
+/// seams keep their vertices. Scalars and labels are not carried (use original_vertex).
+/// \pre keep empty or one entry per triangle; piece > 0.
 [[nodiscard]] DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles, const std::vector<std::uint8_t>& keep,
-                                     double max_error);
+                                     double max_error, std::size_t piece = kDecimatePiece);
 
 }  // namespace glint

@@ -155,7 +155,9 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, con
         info_.warnings.push_back("mesh had no vertex normals: angle-weighted normals computed");
         source = &with_normals;
     }
-    backend_ = context_->impl().make_backend(*source, options_.frame_options());
+    FrameOptions frame = options_.frame_options();
+    frame.share_mesh = options.share_mesh && source == &mesh;  // never a copy made here
+    backend_ = context_->impl().make_backend(*source, frame);
 }
 
 Renderer::~Renderer() = default;

@@ -118,6 +118,7 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
                                  if (exporter) exporter->add(v, d);
                                  if (observer.views) observer.views(++done, plan.views.size());
                              });
+    fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
 
     announce(observer, "decide");
     t = Clock::now();

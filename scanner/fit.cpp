@@ -201,7 +201,7 @@ double curved_offset(const Mesh& exa, const Triangle& t, const ClosestPoint& c) 
 
 ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
     GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
-    const ClosestPointIndex index(fitted_examined);
+    const ClosestPointIndex index = ClosestPointIndex::borrowing(fitted_examined);
     const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
     std::vector<Vec3d> points(reference.vertex_count());
     for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();

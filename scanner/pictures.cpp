@@ -88,7 +88,8 @@ public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options)
         : reference_(reference), result_(result), options_(options), scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),
-          renderer_(reference, RenderOptions{.backend = Backend::Embree, .supersample = 2, .threads = threads_}) {
+          renderer_(shared_render_context(ContextOptions{.backend = Backend::Embree, .threads = threads_}), reference,
+                    FrameOptions{.supersample = 2, .share_mesh = true}) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
         for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <span>
 #include <thread>
 
@@ -143,11 +144,14 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     result.plan = plan;
     result.options = options;
 
-    // One device for the process (render/context.h), both meshes on it.
+    // One device for the process (render/context.h), both meshes on it, read in place (they
+    // outlive the renderers).
     const auto context = shared_render_context(options.render.context_options());
-    Renderer ref_renderer(context, reference, options.render.frame_options());
-    Renderer exa_renderer(context, examined, options.render.frame_options());
-    result.renderer = ref_renderer.info();
+    FrameOptions frames = options.render.frame_options();
+    frames.share_mesh = true;
+    std::optional<Renderer> ref_renderer(std::in_place, context, reference, frames);
+    std::optional<Renderer> exa_renderer(std::in_place, context, examined, frames);
+    result.renderer = ref_renderer->info();
 
     const int threads = std::max(1, options.render.threads > 0 ? options.render.threads
                                                                : static_cast<int>(std::thread::hardware_concurrency()));
@@ -159,7 +163,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     const auto t_views = Clock::now();
     double fold_seconds = 0.0;
     render_view_pair_rows(
-        ref_renderer, exa_renderer, views,
+        *ref_renderer, *exa_renderer, views,
         [&](std::size_t, const FrameRows& ref, const FrameRows& exa) { stream.rows(ref, exa); },
         [&](std::size_t i) {
             throw_if_cancelled();
@@ -168,6 +172,8 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
             fold_seconds += seconds_since(t);
         });
     const double views_seconds = seconds_since(t_views);
+    exa_renderer.reset();  // the scenes go before the atlases are finished (peak memory)
+    ref_renderer.reset();
     result.compare_seconds = std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
     result.render_seconds = views_seconds - result.compare_seconds;
     std::size_t compared = 0;

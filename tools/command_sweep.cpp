@@ -8,6 +8,7 @@
 #include "scanner/report.h"
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
+#include "tools/memory.h"
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 #include "tools/progress.h"
@@ -96,6 +97,7 @@ void run(SweepArgs& a) {
 
     std::optional<ProgressBar> bar;
     AnalysisObserver observer;
+    observer.stage = [](std::string_view) { give_back_free_memory(); };
     observer.views = [&](std::size_t done, std::size_t total) {
         if (!bar) bar.emplace("sweep", total);
         bar->update(done);

@@ -72,5 +72,16 @@ TEST(Decimate, BordersStayPutAndASmallMeshIsLeftAlone) {
     EXPECT_EQ(same.error, 0.0);
 }
 
+TEST(Decimate, InPiecesTheSurfaceStaysClosedAndMeetsTheBudget) {
+    const Mesh sphere = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
+    const DecimatedMesh d = decimate(sphere, 3000, {}, 1.0, 4000);  // 20480 triangles in 6 slabs
+    EXPECT_LE(d.mesh.triangle_count(), 3000u + 150u);
+    EXPECT_GT(d.mesh.triangle_count(), 1500u);
+    const auto open = border_vertices(d.mesh);
+    EXPECT_EQ(std::count(open.begin(), open.end(), 1), 0) << "the slabs do not join";
+    for (std::size_t k = 0; k < d.mesh.vertex_count(); ++k)
+        ASSERT_EQ(d.mesh.positions[k], sphere.positions[d.original_vertex[k]]);
+}
+
 }  // namespace
 }  // namespace glint

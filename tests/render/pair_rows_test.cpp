@@ -160,6 +160,14 @@ TEST_P(PairRowsTest, ExceptionsPropagateAndBothRenderersStayUsable) {
     expect_no_validation_messages(a);
 }
 
+TEST_P(PairRowsTest, AMeshReadInPlaceRendersTheFramesOfACopy) {
+    const Mesh mesh = make_bumpy_sphere(2);
+    auto context = std::make_shared<RenderContext>(test_options(GetParam()).context_options());
+    Renderer copy(context, mesh, FrameOptions{.supersample = 2});
+    Renderer shared(context, mesh, FrameOptions{.supersample = 2, .share_mesh = true});
+    for (const View& v : views_of(mesh)) expect_frames_equal(shared.render(v), copy.render(v), "view " + std::to_string(v.index));
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, PairRowsTest, testing::ValuesIn(all_backends()), backend_name);
 
 }  // namespace
