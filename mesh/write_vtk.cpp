@@ -15,6 +15,8 @@
 #include "mesh/atomic_file.h"
 #include "mesh/detail/write_common.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -35,24 +37,44 @@ using detail::StreamBuffer;
 namespace {
 
 // Shortest text that reads back as the same float (std::to_chars round-trips).
-void append_number(StreamBuffer& out, float v) {
+template <class Out>
+void append_number(Out& out, float v) {
     char buf[32];
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     out.append(buf, static_cast<std::size_t>(r.ptr - buf));
 }
 
-void append_number(StreamBuffer& out, std::int64_t v) {
+template <class Out>
+void append_number(Out& out, std::int64_t v) {
     char buf[24];
     const auto r = std::to_chars(buf, buf + sizeof buf, v);
     out.append(buf, static_cast<std::size_t>(r.ptr - buf));
 }
 
+// Items 0…count−1 as text (format(i, text) appends item i's), formatted in blocks on every
+// worker and written in order; at most kBlocks blocks are held at once.
+template <class Format>
+void format_in_parallel(StreamBuffer& out, std::size_t count, const Format& format) {
+    constexpr std::size_t kBlock = std::size_t{1} << 16, kBlocks = 16;
+    std::vector<std::string> texts(kBlocks);
+    for (std::size_t first = 0; first < count; first += kBlock * kBlocks) {
+        const std::size_t blocks = std::min(kBlocks, (count - first + kBlock - 1) / kBlock);
+        tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+            std::string& text = texts[b];
+            text.clear();
+            const std::size_t begin = first + b * kBlock, end = std::min(count, begin + kBlock);
+            for (std::size_t i = begin; i < end; ++i) format(i, text);
+        });
+        for (std::size_t b = 0; b < blocks; ++b) out += texts[b];
+    }
+}
+
 // Values, `per_line` to a line.
 void append_floats(StreamBuffer& out, const float* values, std::size_t count, std::size_t per_line, float nan_as) {
-    for (std::size_t i = 0; i < count; ++i) {
-        append_number(out, std::isnan(values[i]) ? nan_as : values[i]);
-        out.push_back((i + 1) % per_line == 0 || i + 1 == count ? '\n' : ' ');
-    }
+    format_in_parallel(out, count, [&](std::size_t i, std::string& text) {
+        append_number(text, std::isnan(values[i]) ? nan_as : values[i]);
+        text.push_back((i + 1) % per_line == 0 || i + 1 == count ? '\n' : ' ');
+    });
 }
 
 }  // namespace
@@ -77,14 +99,14 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
                "\nASCII\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " float\n";
         append_floats(out, mesh.positions.empty() ? nullptr : mesh.positions[0].data(), 3 * n, 3, nan_as);
         out += "POLYGONS " + std::to_string(mesh.triangles.size()) + " " + std::to_string(4 * mesh.triangles.size()) + "\n";
-        for (const auto& t : mesh.triangles) {
-            out += "3";
-            for (auto i : t) {
-                out.push_back(' ');
-                append_number(out, static_cast<std::int64_t>(i));
+        format_in_parallel(out, mesh.triangles.size(), [&](std::size_t t, std::string& text) {
+            text += "3";
+            for (auto i : mesh.triangles[t]) {
+                text.push_back(' ');
+                append_number(text, static_cast<std::int64_t>(i));
             }
-            out.push_back('\n');
-        }
+            text.push_back('\n');
+        });
         if (normals) {
             open_array();
             out += "NORMALS Normals float\n";
@@ -107,10 +129,10 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         if (labels) {
             open_array();
             out += "SCALARS label int 1\nLOOKUP_TABLE default\n";
-            for (std::size_t v = 0; v < n; ++v) {
-                append_number(out, static_cast<std::int64_t>(mesh.labels[v]));
-                out.push_back((v + 1) % 9 == 0 || v + 1 == n ? '\n' : ' ');
-            }
+            format_in_parallel(out, n, [&](std::size_t v, std::string& text) {
+                append_number(text, static_cast<std::int64_t>(mesh.labels[v]));
+                text.push_back((v + 1) % 9 == 0 || v + 1 == n ? '\n' : ' ');
+            });
         }
         out.flush();
     });

@@ -84,8 +84,7 @@ void run(SweepArgs& a) {
         print_options(options);
         return;
     }
-    const LoadedSurface ref = load_surface(a.reference, a.surface);
-    const LoadedSurface exa = load_surface(a.examined, a.surface);
+    const auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
     ExportOptions& e = options.exports;
     auto described = [](const LoadedSurface& s) { return s.surface ? "surface of a volume: " + describe(*s.surface) : ""; };
     e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(), ref.mesh.triangle_count()});
