@@ -107,19 +107,30 @@ std::vector<View> ring_views(const Mesh& mesh, int size, int count) {
     return views;
 }
 
-/// The sweep's read-back path for one zoom; returns the compared pixels.
+/// The sweep's read-back path for one zoom (frames read back, compared, scattered and folded
+/// on the host; one frame pair at a time, whole); returns the compared pixels.
 std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
     AtlasAccumulator atlas(s.reference, views.front().footprint);
     const BackprojectOptions bp{.framed_radius = framing_sphere(s.reference).radius};
+    const MetricDescriptor& metric = describe(Metric::AngleDeg);
     BackprojectScratch scratch;
+    ViewMaps maps;
+    std::vector<AtlasSample> samples;
     std::size_t compared = 0;
     render_view_pairs(*s.reference_renderer, *s.examined_renderer, views,
                       [&](std::size_t i, const Frame& reference, const Frame& examined) {
-                          const DeviationMap d =
-                              compare_frames(frame_view(reference), frame_view(examined), CompareOptions{},
-                                             Metric::AngleDeg);
-                          backproject_view(s.reference, views[i], reference, d, bp, atlas, scratch);
-                          compared += d.compared;
+                          const FrameView rv = frame_view(reference), ev = frame_view(examined);
+                          maps.resize(reference.width, reference.height);
+                          maps.deviation = compare_frames(rv, ev);
+                          maps.deviation.value.resize(maps.deviation.angle_deg.size());
+                          metric.compute(rv, ev, maps.deviation.angle_deg, maps.deviation.value);
+                          const FrameRows rows = frame_rows(reference, 0, reference.height);
+                          record_reference_rows(rows, bp.min_coverage, maps);
+                          samples.clear();
+                          static_cast<void>(scatter_rows(s.reference, views[i], rows, maps, bp, samples));
+                          const std::vector<AtlasSample>* bands[] = {&samples};
+                          fold_view(s.reference, views[i], bands, maps, bp, atlas, scratch, 0);
+                          compared += maps.deviation.compared;
                       });
     benchmark::DoNotOptimize(atlas.finish());
     return compared;

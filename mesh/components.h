@@ -31,6 +31,17 @@ private:
 std::size_t masked_components(const Mesh& mesh, std::span<const std::uint8_t> mask,
                               std::vector<std::int32_t>& component);
 
+/// The triangles around every vertex, ascending: triangles[offsets[v] … offsets[v + 1]) are
+/// those that use v (a triangle using v twice is listed twice). Built by a counting sort, O(n).
+struct VertexTriangles {
+    std::vector<std::uint32_t> offsets;    ///< vertex count + 1 entries
+    std::vector<std::uint32_t> triangles;
+
+    /// How many triangles around `a` also use `b` (the triangles sharing edge a–b).
+    [[nodiscard]] std::size_t sharing(const Mesh& mesh, std::uint32_t a, std::uint32_t b) const;
+};
+[[nodiscard]] VertexTriangles vertex_triangles(const Mesh& mesh);
+
 /// 1 for every vertex on a border edge (an edge used by exactly one triangle), else 0.
 [[nodiscard]] std::vector<std::uint8_t> border_vertices(const Mesh& mesh);
 

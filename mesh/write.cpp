@@ -55,7 +55,7 @@ namespace {
 // Appends raw values in little- or big-endian byte order.
 template <bool BigEndian>
 struct Bytes {
-    std::string buffer;
+    detail::StreamBuffer& buffer;
 
     template <class T>
     void put(T value) {
@@ -116,25 +116,24 @@ void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     header += "element face " + std::to_string(mesh.triangles.size()) + "\n";
     header += "property list uchar int vertex_indices\nend_header\n";
 
-    Bytes<false> body;
-    std::size_t per_vertex = 12 + (normals ? 12 : 0) + (colors ? 3 : 0) + (labels ? 4 : 0) + 4 * scalars.size();
-    body.buffer.reserve(per_vertex * n + 13 * mesh.triangles.size());
-    for (std::size_t v = 0; v < n; ++v) {
-        for (int k = 0; k < 3; ++k) body.put(mesh.positions[v][k]);
-        if (normals)
-            for (int k = 0; k < 3; ++k) body.put(mesh.normals[v][k]);
-        if (colors)
-            for (auto c : mesh.colors[v]) body.put(c);
-        for (const auto& s : scalars) body.put(s.second->values[v]);
-        if (labels) body.put(mesh.labels[v]);
-    }
-    for (const auto& t : mesh.triangles) {
-        body.put(std::uint8_t{3});
-        for (auto i : t) body.put(i);
-    }
     write_atomically(path, [&](std::ostream& out) {
-        out.write(header.data(), static_cast<std::streamsize>(header.size()));
-        out.write(body.buffer.data(), static_cast<std::streamsize>(body.buffer.size()));
+        detail::StreamBuffer buffer(out);
+        buffer += header;
+        Bytes<false> body{buffer};
+        for (std::size_t v = 0; v < n; ++v) {
+            for (int k = 0; k < 3; ++k) body.put(mesh.positions[v][k]);
+            if (normals)
+                for (int k = 0; k < 3; ++k) body.put(mesh.normals[v][k]);
+            if (colors)
+                for (auto c : mesh.colors[v]) body.put(c);
+            for (const auto& s : scalars) body.put(s.second->values[v]);
+            if (labels) body.put(mesh.labels[v]);
+        }
+        for (const auto& t : mesh.triangles) {
+            body.put(std::uint8_t{3});
+            for (auto i : t) body.put(i);
+        }
+        buffer.flush();
     });
 }
 

@@ -43,11 +43,16 @@ struct RayHit {
 };
 
 /// A BVH over a mesh for many closest-point and ray queries. Move-only; thread-safe queries.
-/// The index keeps a copy of the geometry. Normals are computed (angle-weighted) when absent.
+/// The index keeps a copy of the geometry (or, borrowing(), reads the caller's). Normals are
+/// computed (angle-weighted) when absent.
 class ClosestPointIndex {
 public:
     /// \throw InputError an empty mesh; DeviceError Embree could not build (its message).
     explicit ClosestPointIndex(const Mesh& mesh);
+    /// An index that reads `mesh` in place instead of copying it (its positions excepted):
+    /// `mesh` must outlive the index, unchanged. A mesh without normals is copied as above.
+    /// \throw as the constructor.
+    [[nodiscard]] static ClosestPointIndex borrowing(const Mesh& mesh);
     ~ClosestPointIndex();
     ClosestPointIndex(ClosestPointIndex&&) noexcept;
     ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;
@@ -66,6 +71,9 @@ public:
     [[nodiscard]] const Mesh& mesh() const;
 
 private:
+    ClosestPointIndex(const Mesh& mesh, bool borrow);
+    [[nodiscard]] ClosestPoint query(const Vec3d& q, double max_distance) const;
+
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

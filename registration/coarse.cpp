@@ -5,6 +5,7 @@
 #include "registration/detail/icp_core.h"
 
 #include <Eigen/Eigenvalues>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <limits>
@@ -57,9 +58,14 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPo
     quick.symmetric = false;
     const auto quick_samples = sample_surface(examined.mesh(), quick.samples, o.seed + 3);
     CoarseAlignment out;
-    for (auto h : hypotheses(sample_surface(reference.mesh(), 4000, o.seed + 2), samples)) {
-        const IcpRun r = run_icp(quick_samples, {}, reference, nullptr, h.reference_from_examined, quick, 12, diagonal);
-        if (r.result.log.empty()) continue;
+    // The hypotheses' short runs are independent: one task each (Ceres single-threaded in
+    // each), kept in the hypotheses' order.
+    std::vector<CoarseHypothesis> tried = hypotheses(sample_surface(reference.mesh(), 4000, o.seed + 2), samples);
+    std::vector<std::uint8_t> ran(tried.size(), 0);
+    tbb::parallel_for(std::size_t{0}, tried.size(), [&](std::size_t k) {
+        CoarseHypothesis& h = tried[k];
+        const IcpRun r = run_icp(quick_samples, {}, reference, nullptr, h.reference_from_examined, quick, 12, diagonal, 1);
+        if (r.result.log.empty()) return;
         // Score: robust residual spread, penalised by how much of the surface matched.
         const auto pairs = match(quick_samples, r.t, reference, quick, std::numeric_limits<double>::infinity());
         std::vector<double> res(pairs.size());
@@ -67,8 +73,10 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPo
         const double frac = static_cast<double>(pairs.size()) / static_cast<double>(quick_samples.size());
         h.score = (median_abs(res) + 1e-12 * diagonal) / std::max(frac, 1e-3) / std::max(frac, 1e-3);
         h.reference_from_examined = r.t;
-        out.hypotheses.push_back(h);
-    }
+        ran[k] = 1;
+    });
+    for (std::size_t k = 0; k < tried.size(); ++k)
+        if (ran[k]) out.hypotheses.push_back(tried[k]);
     out.description = "identity";
     if (out.hypotheses.empty()) return out;
     double best = std::numeric_limits<double>::max();

@@ -54,9 +54,9 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined, 
         if (inside == 0)
             throw InputError("registration: the ROI " + to_string(*o.roi) + " contains no vertex of the reference mesh");
     }
-    const ClosestPointIndex ref_index(reference);
+    const ClosestPointIndex ref_index = ClosestPointIndex::borrowing(reference);
     // The index computes angle-weighted normals when the mesh has none.
-    const ClosestPointIndex exa_index(examined);
+    const ClosestPointIndex exa_index = ClosestPointIndex::borrowing(examined);
     const Mesh& exam = exa_index.mesh();
     const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
     const auto samples = detail::sample_surface(exam, o.samples, o.seed);

@@ -57,6 +57,10 @@ struct FrameOptions {
     /// is turned off (with a warning in RendererInfo::warnings) for an open or non-manifold
     /// mesh; off by default.
     bool cull_back_faces = false;
+    /// CPU ray casting (Embree) reads the mesh's triangles and normals in place instead of
+    /// copying them: the mesh must then outlive the renderer, unchanged. (A mesh without
+    /// normals is copied anyway; the GPU uploads the mesh either way.)
+    bool share_mesh = false;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;

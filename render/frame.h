@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <vector>
 
 namespace glint {
@@ -54,5 +55,26 @@ struct Frame {
 
 /// A frame of the given size with every pixel uncovered.
 [[nodiscard]] Frame make_empty_frame(int width, int height, NormalSpace space = NormalSpace::World);
+
+/// Read-only rows [y0, y0 + height) of a frame, with the frame's conventions: pixel (x, y0 + r)
+/// at index r·width + x of each array. What a frame streamed by bands hands on
+/// (render_view_pair_rows, render/renderer.h).
+struct FrameRows {
+    int width = 0;
+    int height = 0;  ///< rows held
+    int y0 = 0;      ///< index of the first row in the whole frame
+    NormalSpace normal_space = NormalSpace::World;
+    std::span<const float> normal;               ///< 3 floats per pixel
+    std::span<const std::uint32_t> primitive_id;
+    std::span<const float> depth;
+    std::span<const float> coverage;
+
+    [[nodiscard]] std::size_t pixel_count() const {
+        return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    }
+};
+
+/// Rows [y0, y1) of `frame`. \pre 0 ≤ y0 ≤ y1 ≤ frame.height.
+[[nodiscard]] FrameRows frame_rows(const Frame& frame, int y0, int y1);
 
 }  // namespace glint

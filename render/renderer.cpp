@@ -7,6 +7,8 @@
 
 #include <tbb/task_group.h>
 
+#include <atomic>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -153,7 +155,9 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, con
         info_.warnings.push_back("mesh had no vertex normals: angle-weighted normals computed");
         source = &with_normals;
     }
-    backend_ = context_->impl().make_backend(*source, options_.frame_options());
+    FrameOptions frame = options_.frame_options();
+    frame.share_mesh = options.share_mesh && source == &mesh;  // never a copy made here
+    backend_ = context_->impl().make_backend(*source, frame);
 }
 
 Renderer::~Renderer() = default;
@@ -264,6 +268,75 @@ Frame Renderer::render(const View& view) {
         result = std::move(*frames[0]);
     });
     return result;
+}
+
+void detail::RenderBackend::trace_rows(const View&, int, int, RowScratch&, Frame&) const {
+    GLINT_ASSERT(false, "trace_rows on a backend that renders whole frames only");
+}
+
+namespace {
+
+/// body(worker, y0, y1) over the bands of `band` rows of a `height`-row frame, on up to
+/// `threads` workers taking bands from a shared counter (surface is slower than empty sky).
+void for_each_band(int height, int band, int threads, const std::function<void(int, int, int)>& body) {
+    const int bands = (height + band - 1) / band;
+    const int workers = std::clamp(threads, 1, std::max(1, bands));
+    std::atomic<int> next{0};
+    detail::parallel_for(workers, workers, [&](int t0, int t1) {
+        for (int t = t0; t < t1; ++t)
+            for (int b = next++; b < bands; b = next++) body(t, b * band, std::min(height, (b + 1) * band));
+    });
+}
+
+// note: bands of 8 rows when whole frames are split: 32 bands at 256², enough for 16 workers.
+constexpr int kWholeFrameBand = 8;
+
+}  // namespace
+
+void render_view_pair_rows(Renderer& first, Renderer& second, std::span<const View> views,
+                           const PairRowsConsumer& rows, const std::function<void(std::size_t)>& done) {
+    GLINT_ASSERT(first.backend_ != nullptr && second.backend_ != nullptr,
+                 "render_view_pair_rows on a moved-from Renderer");
+    if (&first == &second) throw InputError("render_view_pair_rows: the two renderers must be distinct");
+    const int threads = detail::worker_count(first.options_.threads);
+    const detail::RenderBackend* a = first.backend_.get();
+    const detail::RenderBackend* b = second.backend_.get();
+    const int band = a->band_rows();
+    if (band == 0 || b->band_rows() != band) {
+        render_view_pairs(first, second, views, [&](std::size_t i, const Frame& fa, const Frame& fb) {
+            for_each_band(fa.height, kWholeFrameBand, threads,
+                          [&](int, int y0, int y1) { rows(i, frame_rows(fa, y0, y1), frame_rows(fb, y0, y1)); });
+            done(i);
+        });
+        return;
+    }
+    for (const View& v : views) {
+        check_view(v, first.options_.supersample);
+        check_view(v, second.options_.supersample);
+    }
+    struct Worker {
+        std::unique_ptr<detail::RenderBackend::RowScratch> scratch_a, scratch_b;
+        Frame a, b;  // the band's rows
+    };
+    std::vector<Worker> workers(static_cast<std::size_t>(threads));
+    for (auto& w : workers) {
+        w.scratch_a = a->make_row_scratch();
+        w.scratch_b = b->make_row_scratch();
+    }
+    for (std::size_t i = 0; i < views.size(); ++i) {
+        const View& v = views[i];
+        for_each_band(v.camera.height, band, threads, [&](int t, int y0, int y1) {
+            Worker& w = workers[static_cast<std::size_t>(t)];
+            a->trace_rows(v, y0, y1, *w.scratch_a, w.a);
+            b->trace_rows(v, y0, y1, *w.scratch_b, w.b);
+            finish_frame(w.a, v, first.options_);
+            finish_frame(w.b, v, second.options_);
+            FrameRows ra = frame_rows(w.a, 0, y1 - y0), rb = frame_rows(w.b, 0, y1 - y0);
+            ra.y0 = rb.y0 = y0;
+            rows(i, ra, rb);
+        });
+        done(i);
+    }
 }
 
 void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> views,

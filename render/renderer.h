@@ -90,6 +90,11 @@ class RenderBackend;
 /// Receives both frames of view `view_index` (valid only during the call).
 using PairConsumer = std::function<void(std::size_t view_index, const Frame& first, const Frame& second)>;
 
+/// Receives rows [rows.y0, rows.y0 + rows.height) of both frames of view `view_index` (valid
+/// only during the call). Called on worker threads, concurrently for disjoint bands of rows of
+/// one view; every band of a view is handed on before the next view's first.
+using PairRowsConsumer = std::function<void(std::size_t view_index, const FrameRows& first, const FrameRows& second)>;
+
 /// A mesh uploaded to a device. Move-only. Not thread-safe: use one renderer per thread
 /// (renderers of one context may run on different threads).
 class Renderer {
@@ -129,6 +134,8 @@ public:
 private:
     friend void render_view_pairs(Renderer&, Renderer&, std::span<const View>, const PairConsumer&);
     friend class GpuAtlas;  // draws with the backends' device buffers (render/gpu_atlas.h)
+    friend void render_view_pair_rows(Renderer&, Renderer&, std::span<const View>, const PairRowsConsumer&,
+                                      const std::function<void(std::size_t)>&);
     std::shared_ptr<RenderContext> context_;
     std::unique_ptr<detail::RenderBackend> backend_;
     RenderOptions options_;
@@ -144,6 +151,19 @@ private:
 /// stay usable.
 void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> views,
                        const PairConsumer& consumer);
+
+/// render_view_pairs streamed by bands of rows, for work that reads a frame pair pixel by pixel
+/// as it is produced (the sweep's comparison and back-projection, scanner/sweep.h).
+/// CPU ray casting (Embree on both renderers): a worker traces and resolves one band of both
+/// frames and hands it on at once, so no frame is ever whole in memory and the consumer works
+/// while the band is still in cache. Other backends (Vulkan): each pair is rendered as
+/// render_view_pairs renders it, then handed on by bands on the workers. Either way the rows
+/// are bitwise those of render_view_pairs' frames, and `done(i)` runs on the calling thread
+/// after the last band of view i, in view order. Workers: the first renderer's
+/// RenderOptions::threads. Exceptions (the callbacks' or a device's) stop the run and
+/// propagate; both renderers stay usable.
+void render_view_pair_rows(Renderer& first, Renderer& second, std::span<const View> views,
+                           const PairRowsConsumer& rows, const std::function<void(std::size_t view_index)>& done);
 
 /// One Vulkan physical device as glint sees it.
 struct DeviceInfo {

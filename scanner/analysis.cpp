@@ -118,16 +118,17 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     SweepOptions sweep_options = options.sweep;
     if (want_exr && sweep_options.accumulate == Accumulation::Auto) sweep_options.accumulate = Accumulation::Host;
     result.sweep = run_sweep(reference, fitted, plan, sweep_options,
-                             [&](const PlannedView& v, const Frame& rf, const Frame& ef, const DeviationMap& d) {
-                                 if (exporter && d.width > 0) exporter->add(v, rf, ef, d);
+                             [&](const PlannedView& v, const DeviationMap& d) {
+                                 if (exporter && d.width > 0) exporter->add(v, d);
                                  if (observer.views) observer.views(++done, plan.views.size());
                              });
     if (want_exr && result.sweep.on_gpu)
         result.warnings.push_back("per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
                                   "no pixel came back; accumulate = auto or host writes them");
     if (sweep_options.accumulate != options.sweep.accumulate && result.sweep.renderer.backend == Backend::Vulkan)
-        result.sweep.accumulation_note = "per-view EXRs hold every pixel's comparison: frames read back (--no-exr "
-                                         "keeps compare on the GPU)";
+        result.sweep.accumulation_note = "per-view EXRs hold every pixel's comparison: frames read back (without "
+                                         "--exr compare stays on the GPU)";
+    fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
 
     announce(observer, "decide");
     t = Clock::now();

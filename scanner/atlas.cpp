@@ -45,6 +45,10 @@ void AtlasAccumulator::observe(std::uint32_t v, float w, bool nearest, const Atl
 }
 
 void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
+    add(s, view_index, 0, static_cast<std::uint32_t>(max_.size()));
+}
+
+void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index, std::uint32_t first, std::uint32_t last) {
     GLINT_ASSERT(s.triangle < mesh_->triangles.size(), "primitive id beyond the reference mesh");
     const auto& tri = mesh_->triangles[s.triangle];
     // The maximum goes to the vertex whose dual cell holds the pixel (largest weight) only,
@@ -54,7 +58,7 @@ void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
     for (std::size_t k = 0; k < 3; ++k) {
         // note: a pixel whose centre lies on the far side of a vertex (weight ~0) says
         // nothing about that vertex; 1e-3 skips those without losing real observations.
-        if (s.barycentric[k] < 1e-3f) continue;
+        if (s.barycentric[k] < 1e-3f || tri[k] < first || tri[k] >= last) continue;
         observe(tri[k], s.barycentric[k], k == nearest, s, view_index);
     }
 }

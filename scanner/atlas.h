@@ -47,6 +47,9 @@ public:
     AtlasAccumulator(const Mesh& reference, double footprint);
     /// Adds one pixel on sample.triangle. The caller has applied the coverage rule.
     void add(const AtlasSample& sample, std::int32_t view_index);
+    /// add() for the triangle's corners in [first, last) only: the share of one worker when
+    /// the vertices are split between workers (the others add the remaining corners).
+    void add(const AtlasSample& sample, std::int32_t view_index, std::uint32_t first, std::uint32_t last);
     /// Adds one observation of a single vertex (weight 1): the gathering pass, for vertices
     /// that no pixel centre fell on because the pixel is larger than their triangles.
     void add_vertex(std::uint32_t vertex, const AtlasSample& sample, std::int32_t view_index);

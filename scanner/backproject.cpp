@@ -3,9 +3,13 @@
 #include "mesh/error.h"
 #include "mesh/geometry.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 namespace glint {
 
@@ -57,71 +61,110 @@ AtlasSample pixel_sample(const DeviationMap& dev, std::size_t px, float missing_
     return s;
 }
 
-bool reference_covered(const Frame& f, std::size_t px, float min_coverage) {
-    return f.primitive_id[px] != kNoPrimitive && f.coverage[px] >= min_coverage;
-}
-
-std::size_t scatter(const Mesh& reference, const View& view, const Frame& frame, const DeviationMap& dev,
-                    const BackprojectOptions& o, AtlasAccumulator& atlas, std::vector<std::int32_t>& scattered_in) {
-    std::size_t covered = 0;
-    for (int y = 0; y < frame.height; ++y) {
-        for (int x = 0; x < frame.width; ++x) {
-            const std::size_t px = static_cast<std::size_t>(y) * static_cast<std::size_t>(frame.width) +
-                                   static_cast<std::size_t>(x);
-            if (!reference_covered(frame, px, o.min_coverage)) continue;
-            ++covered;
-            AtlasSample s = pixel_sample(dev, px, o.missing_value);
-            s.triangle = frame.primitive_id[px];
-            double cos_inc = 0.0;
-            if (!barycentric(reference, s.triangle, view.camera.pixel_ray(x + 0.5, y + 0.5), s.barycentric, cos_inc))
-                continue;
-            if (cos_inc < o.min_cos_incidence) continue;
-            s.cos_incidence = static_cast<float>(cos_inc);
-            atlas.add(s, view.index);
-            for (const auto v : reference.triangles[s.triangle]) scattered_in[v] = view.index;
+// One worker's vertex range [first, last): the scatter samples that reach its vertices (all
+// bands, pixel order), then the gather of those no sample reached.
+void fold_range(const Mesh& reference, const View& view, std::span<const std::vector<AtlasSample>* const> bands,
+                const ViewMaps& maps, const BackprojectOptions& o, AtlasAccumulator& atlas,
+                std::vector<std::int32_t>& scattered_in, std::uint32_t first, std::uint32_t last) {
+    for (const auto* band : bands)
+        for (const AtlasSample& s : *band) {
+            atlas.add(s, view.index, first, last);
+            for (const auto v : reference.triangles[s.triangle])
+                if (v >= first && v < last) scattered_in[v] = view.index;
         }
-    }
-    return covered;
-}
-
-void gather(const Mesh& reference, const View& view, const Frame& frame, const DeviationMap& dev,
-            const BackprojectOptions& o, AtlasAccumulator& atlas, const std::vector<std::int32_t>& scattered_in) {
+    const int width = maps.deviation.width, height = maps.deviation.height;
     const double depth_tolerance = std::max(3.0 * view.footprint, 0.02 * o.framed_radius);
     const Vec3d eye = view.camera.eye();
     const Vec3d forward = view.camera.forward();
     const bool ortho = view.camera.projection == Projection::Orthographic;
     const Projector project(view.camera);
-    for (std::size_t v = 0; v < reference.vertex_count(); ++v) {
+    for (std::uint32_t v = first; v < last; ++v) {
         if (scattered_in[v] == view.index) continue;
         const Vec3d p = reference.positions[v].cast<double>();
-        const Eigen::Vector3d uvd = project(p);
-        if (!(uvd.x() >= 0 && uvd.y() >= 0 && uvd.x() < frame.width && uvd.y() < frame.height)) continue;
-        const std::size_t px = static_cast<std::size_t>(uvd.y()) * static_cast<std::size_t>(frame.width) +
-                               static_cast<std::size_t>(uvd.x());
-        if (!reference_covered(frame, px, o.min_coverage)) continue;
-        if (std::abs(frame.depth[px] - uvd.z()) > depth_tolerance) continue;
+        // note: the incidence test first (a dot product), the projection only for vertices
+        // facing the camera; the tests are independent, so the order changes nothing else.
         const Vec3d to_camera = ortho ? Vec3d(-forward) : Vec3d((eye - p).normalized());
         const double cos_inc = reference.normals[v].cast<double>().dot(to_camera);
         if (cos_inc < o.min_cos_incidence) continue;
-        AtlasSample s = pixel_sample(dev, px, o.missing_value);
+        const Eigen::Vector3d uvd = project(p);
+        if (!(uvd.x() >= 0 && uvd.y() >= 0 && uvd.x() < width && uvd.y() < height)) continue;
+        const std::size_t px = static_cast<std::size_t>(uvd.y()) * static_cast<std::size_t>(width) +
+                               static_cast<std::size_t>(uvd.x());
+        if (!maps.reference_covered[px]) continue;
+        if (std::abs(maps.reference_depth[px] - uvd.z()) > depth_tolerance) continue;
+        AtlasSample s = pixel_sample(maps.deviation, px, o.missing_value);
         if (!s.valid) continue;
         s.cos_incidence = static_cast<float>(cos_inc);
-        atlas.add_vertex(static_cast<std::uint32_t>(v), s, view.index);
+        atlas.add_vertex(v, s, view.index);
     }
 }
 
 }  // namespace
 
-std::size_t backproject_view(const Mesh& reference, const View& view, const Frame& reference_frame,
-                             const DeviationMap& deviation, const BackprojectOptions& options,
-                             AtlasAccumulator& atlas, BackprojectScratch& scratch) {
-    GLINT_ASSERT(reference.has_normals(), "back-projection needs the reference's vertex normals");
-    GLINT_ASSERT(deviation.value.size() == reference_frame.pixel_count(), "deviation map without metric values");
-    if (scratch.scattered_in.size() != reference.vertex_count()) scratch.scattered_in.assign(reference.vertex_count(), -1);
-    const std::size_t covered =
-        scatter(reference, view, reference_frame, deviation, options, atlas, scratch.scattered_in);
-    gather(reference, view, reference_frame, deviation, options, atlas, scratch.scattered_in);
+void ViewMaps::resize(int width, int height) {
+    const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    deviation.width = width;
+    deviation.height = height;
+    deviation.angle_deg.resize(n);
+    deviation.signed_depth.resize(n);
+    deviation.value.resize(n);
+    deviation.silhouette.resize(n);
+    reference_depth.resize(n);
+    reference_covered.resize(n);
+}
+
+void record_reference_rows(const FrameRows& ref, float min_coverage, ViewMaps& maps) {
+    const std::size_t first = static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
+    for (std::size_t i = 0; i < ref.pixel_count(); ++i) {
+        maps.reference_depth[first + i] = ref.depth[i];
+        maps.reference_covered[first + i] = ref.primitive_id[i] != kNoPrimitive && ref.coverage[i] >= min_coverage;
+    }
+}
+
+std::size_t scatter_rows(const Mesh& reference, const View& view, const FrameRows& ref, const ViewMaps& maps,
+                         const BackprojectOptions& o, std::vector<AtlasSample>& samples) {
+    std::size_t covered = 0;
+    for (int r = 0; r < ref.height; ++r) {
+        const int y = ref.y0 + r;
+        for (int x = 0; x < ref.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.width) +
+                                  static_cast<std::size_t>(x);
+            if (ref.primitive_id[i] == kNoPrimitive || ref.coverage[i] < o.min_coverage) continue;
+            ++covered;
+            const std::size_t px = static_cast<std::size_t>(y) * static_cast<std::size_t>(ref.width) +
+                                   static_cast<std::size_t>(x);
+            AtlasSample s = pixel_sample(maps.deviation, px, o.missing_value);
+            s.triangle = ref.primitive_id[i];
+            double cos_inc = 0.0;
+            if (!barycentric(reference, s.triangle, view.camera.pixel_ray(x + 0.5, y + 0.5), s.barycentric, cos_inc))
+                continue;
+            if (cos_inc < o.min_cos_incidence) continue;
+            s.cos_incidence = static_cast<float>(cos_inc);
+            GLINT_ASSERT(s.triangle < reference.triangle_count(), "primitive id beyond the reference mesh");
+            samples.push_back(s);
+        }
+    }
     return covered;
+}
+
+void fold_view(const Mesh& reference, const View& view, std::span<const std::vector<AtlasSample>* const> bands,
+               const ViewMaps& maps, const BackprojectOptions& options, AtlasAccumulator& atlas,
+               BackprojectScratch& scratch, int threads) {
+    GLINT_ASSERT(reference.has_normals(), "back-projection needs the reference's vertex normals");
+    const auto n = static_cast<std::uint32_t>(reference.vertex_count());
+    if (scratch.scattered_in.size() != n) scratch.scattered_in.assign(n, -1);
+    // note: one range per worker: each goes through every sample, so more ranges than
+    // workers would only repeat that walk.
+    const auto ranges = static_cast<std::uint32_t>(
+        std::clamp(threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()), 1, 64));
+    tbb::task_arena arena(static_cast<int>(ranges));
+    arena.execute([&] {
+        tbb::parallel_for(std::uint32_t{0}, ranges, [&](std::uint32_t r) {
+            const auto first = static_cast<std::uint32_t>(std::uint64_t{n} * r / ranges);
+            const auto last = static_cast<std::uint32_t>(std::uint64_t{n} * (r + 1) / ranges);
+            fold_range(reference, view, bands, maps, options, atlas, scratch.scattered_in, first, last);
+        });
+    });
 }
 
 }  // namespace glint

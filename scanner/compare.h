@@ -52,10 +52,22 @@ struct DeviationMap {
 
 /// Read-only view of a rendered frame.
 [[nodiscard]] FrameView frame_view(const Frame& frame);
+/// Read-only view of rows of a frame (a frame of rows.height rows).
+[[nodiscard]] FrameView frame_view(const FrameRows& rows);
 
 /// Compares two frames of the same size (angle, signed depth, silhouette; `value` is left
 /// empty: see scanner/metric.h). \throw InputError when sizes differ.
 [[nodiscard]] DeviationMap compare_frames(const FrameView& reference, const FrameView& examined,
                                           const CompareOptions& options = {});
+
+/// compare_frames' per-pixel rule for every pixel of two views of one size, written into the
+/// spans (one entry per pixel): what a sweep runs on each band of rows as it is rendered.
+/// \pre the views have one size and the spans their pixel count.
+void compare_pixels(const FrameView& reference, const FrameView& examined, const CompareOptions& options,
+                    std::span<float> angle_deg, std::span<float> signed_depth, std::span<std::uint8_t> silhouette);
+
+/// The counts and the largest and mean angle of a map (DeviationMap's statistics) from its
+/// per-pixel values, summed in pixel order.
+void summarise(DeviationMap& map);
 
 }  // namespace glint

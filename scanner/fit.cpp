@@ -7,6 +7,9 @@
 #include "registration/landmarks.h"
 #include "scanner/landmarks.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -154,6 +157,9 @@ struct LocalShape {
 
 LocalShape local_shape(const Mesh& m) {
     LocalShape out{std::vector<float>(m.vertex_count(), 0.0f), std::vector<float>(m.vertex_count(), 0.0f)};
+    // note: the largest angle is the arc cosine of the smallest cosine (acos decreases): one
+    // acos per vertex instead of one per corner, the same value.
+    std::vector<float> min_cos(m.vertex_count(), 1.0f);
     for (std::size_t t = 0; t < m.triangle_count(); ++t) {
         const auto& tri = m.triangles[t];
         const Vec3f n = face_normal(m, t);
@@ -163,10 +169,10 @@ LocalShape local_shape(const Mesh& m) {
             out.edge[a] = std::max(out.edge[a], h);
             out.edge[b] = std::max(out.edge[b], h);
             if (n.squaredNorm() == 0.0f) continue;  // a degenerate triangle has no direction
-            const float c = std::clamp(m.normals[a].dot(n), -1.0f, 1.0f);
-            out.sharpness[a] = std::max(out.sharpness[a], std::acos(c));
+            min_cos[a] = std::min(min_cos[a], std::clamp(m.normals[a].dot(n), -1.0f, 1.0f));
         }
     }
+    for (std::size_t v = 0; v < m.vertex_count(); ++v) out.sharpness[v] = std::acos(min_cos[v]);
     return out;
 }
 
@@ -195,7 +201,7 @@ double curved_offset(const Mesh& exa, const Triangle& t, const ClosestPoint& c) 
 
 ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
     GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
-    const ClosestPointIndex index(fitted_examined);
+    const ClosestPointIndex index = ClosestPointIndex::borrowing(fitted_examined);
     const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
     std::vector<Vec3d> points(reference.vertex_count());
     for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();
@@ -207,28 +213,30 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
     e.distance.resize(points.size());
     e.tolerance.resize(points.size());
     e.at_border.assign(points.size(), 0);
-    for (std::size_t v = 0; v < points.size(); ++v) {
-        const ClosestPoint& c = closest[v];
-        // A reference vertex outside the examined surface (positive) means the examined
-        // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
-        const auto& t = exa.triangles[c.triangle];
-        e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
-        // The examined triangle's size decides how far it can cut a corner of the reference
-        // (its vertices lie on the surface, its interior does not); the sharper of the two
-        // surfaces there decides how much it turns.
-        float h = 0.0f, theta = ref_shape.sharpness[v];
-        for (const auto corner : t) {
-            h = std::max(h, exa_shape.edge[corner]);
-            theta = std::max(theta, exa_shape.sharpness[corner]);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+        for (std::size_t v = range.begin(); v != range.end(); ++v) {
+            const ClosestPoint& c = closest[v];
+            // A reference vertex outside the examined surface (positive) means the examined
+            // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
+            const auto& t = exa.triangles[c.triangle];
+            e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
+            // The examined triangle's size decides how far it can cut a corner of the reference
+            // (its vertices lie on the surface, its interior does not); the sharper of the two
+            // surfaces there decides how much it turns.
+            float h = 0.0f, theta = ref_shape.sharpness[v];
+            for (const auto corner : t) {
+                h = std::max(h, exa_shape.edge[corner]);
+                theta = std::max(theta, exa_shape.sharpness[corner]);
+            }
+            e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
+            // On the border: every corner the closest point depends on is a border vertex.
+            // note: 1e-9 separates a true zero barycentric weight from rounding.
+            bool on_border = c.feature != ClosestFeature::Face;
+            for (std::size_t k = 0; k < 3 && on_border; ++k)
+                if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]]) on_border = false;
+            e.at_border[v] = on_border ? 1 : 0;
         }
-        e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
-        // On the border: every corner the closest point depends on is a border vertex.
-        // note: 1e-9 separates a true zero barycentric weight from rounding.
-        bool on_border = c.feature != ClosestFeature::Face;
-        for (std::size_t k = 0; k < 3 && on_border; ++k)
-            if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]]) on_border = false;
-        e.at_border[v] = on_border ? 1 : 0;
-    }
+    });
     return e;
 }
 

@@ -89,7 +89,6 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Rende
     views.reserve(plan.views.size());
     for (const auto& p : plan.views) views.push_back(p.view);
 
-    const Frame no_frame;
     const DeviationMap no_deviation;
     const auto t_run = Clock::now();
     atlas.run(views, [&](std::size_t i, const GpuViewSummary& g) {
@@ -102,7 +101,7 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Rende
                                            .examined_only = g.examined_only,
                                            .max_angle_deg = g.max_angle_deg,
                                            .mean_angle_deg = g.mean_angle_deg});
-        if (observer) observer(pv, no_frame, no_frame, no_deviation);
+        if (observer) observer(pv, no_deviation);
     });
     result.render_seconds = seconds_since(t_run);
     std::size_t compared = 0;

@@ -16,7 +16,9 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-std::vector<float> angle_values(const FrameView&, const FrameView&, const DeviationMap& base) { return base.angle_deg; }
+void angle_values(const FrameView&, const FrameView&, std::span<const float> angle, std::span<float> value) {
+    std::copy(angle.begin(), angle.end(), value.begin());
+}
 
 // The 8-bit normal colour image (rgb = 0.5·n + 0.5, quantised as the paper saved it).
 OIIO::ImageBuf paper_colours(const FrameView& f) {
@@ -30,17 +32,15 @@ OIIO::ImageBuf paper_colours(const FrameView& f) {
     return buf;
 }
 
-std::vector<float> rgb_values(const FrameView& ref, const FrameView& exa, const DeviationMap& base) {
+void rgb_values(const FrameView& ref, const FrameView& exa, std::span<const float> angle, std::span<float> value) {
     const OIIO::ImageBuf diff = OIIO::ImageBufAlgo::absdiff(paper_colours(ref), paper_colours(exa));
     if (diff.has_error()) throw IoError("RGB difference: " + diff.geterror());
-    const std::size_t n = base.angle_deg.size();
+    const std::size_t n = angle.size();
     std::vector<float> px(3 * n);
     if (!diff.get_pixels(OIIO::ROI(0, ref.width, 0, ref.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, px.data()))
         throw IoError("RGB difference: " + diff.geterror());
-    std::vector<float> out(n, kNaN);
     for (std::size_t i = 0; i < n; ++i)
-        if (!std::isnan(base.angle_deg[i])) out[i] = 255.0f * (px[3 * i] + px[3 * i + 1] + px[3 * i + 2]) / 3.0f;
-    return out;
+        value[i] = std::isnan(angle[i]) ? kNaN : 255.0f * (px[3 * i] + px[3 * i + 1] + px[3 * i + 2]) / 3.0f;
 }
 
 // note: the histogram and colour ranges are the ranges a damage shows in: the angle's 90°
@@ -79,7 +79,8 @@ std::string to_string(Metric metric) { return std::string(describe(metric).name)
 DeviationMap compare_frames(const FrameView& reference, const FrameView& examined, const CompareOptions& options,
                             Metric metric) {
     DeviationMap d = compare_frames(reference, examined, options);
-    d.value = describe(metric).compute(reference, examined, d);
+    d.value.resize(d.angle_deg.size());
+    describe(metric).compute(reference, examined, d.angle_deg, d.value);
     return d;
 }
 

@@ -37,9 +37,11 @@ struct MetricDescriptor {
     double histogram_max = 90.0;  ///< histogram covers [0, histogram_max), last bin ≥ it
     double histogram_bin = 1.0;   ///< bin width
     double color_max = 20.0;      ///< per-view heat maps and mosaics: colour scale 0…color_max
-    /// Per-pixel values where `base` compared both frames (NaN elsewhere), same size as them.
-    std::vector<float> (*compute)(const FrameView& reference, const FrameView& examined,
-                                  const DeviationMap& base) = nullptr;
+    /// Per-pixel values where the comparison found an angle (NaN elsewhere), written into
+    /// `value`; both frames (or bands of rows of them) and both spans one size. Pixel by
+    /// pixel, so a sweep computes it band by band.
+    void (*compute)(const FrameView& reference, const FrameView& examined, std::span<const float> angle_deg,
+                    std::span<float> value) = nullptr;
 };
 
 /// Every metric glint knows, the primary first.

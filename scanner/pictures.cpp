@@ -7,6 +7,7 @@
 #include "scanner/detail/canvas.h"
 #include "scanner/detail/atlas_overview.h"
 #include "scanner/detail/legend.h"
+#include "scanner/detail/picture_batches.h"
 #include "scanner/detail/surface_paint.h"
 #include "scanner/metric.h"
 
@@ -86,8 +87,9 @@ class PictureWriter {
 public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options)
         : reference_(reference), result_(result), options_(options), scale_(shape_scale(result)),
-          renderer_(reference, RenderOptions{.backend = Backend::Embree, .supersample = 2,
-                                             .threads = result.sweep.options.render.threads}) {
+          threads_(result.sweep.options.render.threads),
+          renderer_(shared_render_context(ContextOptions{.backend = Backend::Embree, .threads = threads_}), reference,
+                    FrameOptions{.supersample = 2, .share_mesh = true}) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
         for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
@@ -124,19 +126,21 @@ public:
     }
 
 private:
-    ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame);
+    ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame, const ImageBuf& blank);
 
     const Mesh& reference_;
     const AnalysisResult& result_;
     const ExportOptions& options_;
     ShapeScale scale_;
+    int threads_ = 0;  ///< workers (RenderOptions::threads: 0 = the machine's)
     Renderer renderer_;
     std::vector<float> distance_;
     std::vector<ZoomContent> zooms_;
     std::set<int> best_;
 };
 
-ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame) {
+// `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
+ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame, const ImageBuf& blank) {
     const View& v = pv.view;
     const auto z = static_cast<std::size_t>(v.zoom_index);
     const auto painted = detail::paint_surface(reference_, frame, shown, zooms_[z].fields, {.limit = scale_.limit});
@@ -144,7 +148,8 @@ ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, c
     std::snprintf(title, sizeof title, "view %d: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)",
                   v.index, v.azimuth_deg, v.elevation_deg, v.zoom_index,
                   detail::format_number(v.footprint).c_str(), unit_or_units(result_).c_str());
-    ImageBuf sheet = detail::framed_sheet(frame.width, frame.height, title, zooms_[z].legend);
+    ImageBuf sheet = blank;
+    detail::draw_title(sheet, title);
     IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, painted.image);
     detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, painted.anchors, 14, 30);
     return sheet;
@@ -156,18 +161,30 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
     for (const auto& pv : plan.views)
         if (options_.write_views || best_.count(pv.view.index)) wanted.push_back(pv.view.index);
     std::vector<View> shown;
+    std::map<std::size_t, ImageBuf> blank;  // per zoom: every view of a zoom has one size
     for (int i : wanted) {
         const auto& pv = plan.views[static_cast<std::size_t>(i)];
-        shown.push_back(resized(pv.view, std::clamp(plan.sizes[static_cast<std::size_t>(pv.view.zoom_index)], kViewMin, kViewMax)));
+        const auto z = static_cast<std::size_t>(pv.view.zoom_index);
+        shown.push_back(resized(pv.view, std::clamp(plan.sizes[z], kViewMin, kViewMax)));
+        if (!blank.count(z))
+            blank.emplace(z, detail::framed_sheet(shown.back().camera.width, shown.back().camera.height, "",
+                                                  zooms_[z].legend));
     }
-    renderer_.render_views(shown, [&](std::size_t k, const Frame& frame) {
-        throw_if_cancelled();  // Ctrl-C stops at the next picture, as the sweep at the next view
-        const auto& pv = plan.views[static_cast<std::size_t>(wanted[k])];
-        const std::string png = detail::encode_png(view_picture(pv, shown[k], frame));
-        if (options_.write_views)
-            write_file_atomically(folder.file(fs::path("views") / (view_file_stem(pv.view) + ".png")), png);
-        if (best_.count(pv.view.index)) out.best_views[pv.view.index] = png;
-    });
+    // Painted and encoded on every worker; the best views' PNGs kept for the report page.
+    std::vector<std::string> kept(detail::batch_size(threads_));
+    detail::render_in_batches(
+        renderer_, shown, threads_,
+        [&](std::size_t slot, std::size_t k, const Frame& frame) {
+            const auto& pv = plan.views[static_cast<std::size_t>(wanted[k])];
+            const ImageBuf& sheet = blank.at(static_cast<std::size_t>(pv.view.zoom_index));
+            std::string png = detail::encode_png(view_picture(pv, shown[k], frame, sheet));
+            if (options_.write_views)
+                write_file_atomically(folder.file(fs::path("views") / (view_file_stem(pv.view) + ".png")), png);
+            kept[slot] = best_.count(pv.view.index) ? std::move(png) : std::string();
+        },
+        [&](std::size_t slot, std::size_t k) {
+            if (!kept[slot].empty()) out.best_views[wanted[k]] = std::move(kept[slot]);
+        });
 }
 
 std::string PictureWriter::mosaic(std::size_t z) {
@@ -188,23 +205,28 @@ std::string PictureWriter::mosaic(std::size_t z) {
                   detail::format_number(plan.footprints[z]).c_str(), unit_or_units(result_).c_str(), members.size(),
                   result_.decisions[z].regions.regions.size());
     ImageBuf sheet = detail::framed_sheet(grid_w, grid_h, title, zooms_[z].legend);
-    renderer_.render_views(shown, [&](std::size_t k, const Frame& frame) {
-        throw_if_cancelled();
-        const PlannedView& pv = *members[k];
-        const int col = rotary ? pv.step : pv.step % plan.columns;
-        const int row = rotary ? pv.ring : pv.step / plan.columns;
-        const int x = kRowLabel + col * (t + kGap) + (t - frame.width) / 2;
-        const int y = detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - frame.height) / 2;
-        const auto painted = detail::paint_surface(reference_, frame, shown[k], zooms_[z].fields,
-                                                   {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
-        IBA::paste(sheet, x, y, 0, 0, painted.image);
-        detail::draw_region_numbers(sheet, x, y, frame.width, painted.anchors, 10, 4);
-        if (!rotary) {
-            char label[48];
-            std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg, pv.view.elevation_deg);
-            detail::draw_text(sheet, x + 3, y + 11, label, 10, detail::kText);
-        }
-    });
+    std::vector<detail::PaintedSurface> painted(detail::batch_size(threads_));
+    detail::render_in_batches(
+        renderer_, shown, threads_,
+        [&](std::size_t slot, std::size_t k, const Frame& frame) {
+            painted[slot] = detail::paint_surface(reference_, frame, shown[k], zooms_[z].fields,
+                                                  {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
+        },
+        [&](std::size_t slot, std::size_t k) {
+            const PlannedView& pv = *members[k];
+            const auto& tile = painted[slot].image.spec();
+            const int col = rotary ? pv.step : pv.step % plan.columns;
+            const int row = rotary ? pv.ring : pv.step / plan.columns;
+            const int x = kRowLabel + col * (t + kGap) + (t - tile.width) / 2;
+            const int y = detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - tile.height) / 2;
+            IBA::paste(sheet, x, y, 0, 0, painted[slot].image);
+            detail::draw_region_numbers(sheet, x, y, tile.width, painted[slot].anchors, 10, 4);
+            if (!rotary) {
+                char label[48];
+                std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg, pv.view.elevation_deg);
+                detail::draw_text(sheet, x + 3, y + 11, label, 10, detail::kText);
+            }
+        });
     if (rotary) {
         for (int c = 0; c < plan.columns; ++c) {
             char b[32];

@@ -306,17 +306,21 @@ std::string regions_csv(const AnalysisResult& result) {
 
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
                    const AnalysisOptions& options) {
-    Mesh atlas = make_atlas_mesh(reference, result);
-    for (const auto& [name, values] : options.exports.extra_scalars) {
-        GLINT_ASSERT(values.size() == reference.vertex_count(), "extra atlas scalar '" + name + "' has the wrong length");
-        atlas.set_scalar(name, values);
+    {
+        // The atlas mesh (a copy of the reference with every scalar) lives only while its
+        // files are written.
+        Mesh atlas = make_atlas_mesh(reference, result);
+        for (const auto& [name, values] : options.exports.extra_scalars) {
+            GLINT_ASSERT(values.size() == reference.vertex_count(), "extra atlas scalar '" + name + "' has the wrong length");
+            atlas.set_scalar(name, values);
+        }
+        WriteOptions viewers;
+        viewers.cloudcompare_names = true;
+        if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
+        write_ply(atlas, folder.file("atlas.ply"), viewers);
+        write_vtk(atlas, folder.file("atlas.vtk"), viewers);
+        write_vtp(atlas, folder.file("atlas.vtp"), viewers);
     }
-    WriteOptions viewers;
-    viewers.cloudcompare_names = true;
-    if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
-    write_ply(atlas, folder.file("atlas.ply"), viewers);
-    write_vtk(atlas, folder.file("atlas.vtk"), viewers);
-    write_vtp(atlas, folder.file("atlas.vtp"), viewers);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     const std::string json_text = report_json(reference, result, options);
     write_file_atomically(folder.file("report.json"), json_text);

@@ -1,5 +1,6 @@
 #include "scanner/report_html.h"
 
+#include "mesh/decimate.h"
 #include "mesh/error.h"
 #include "scanner/detail/canvas.h"
 #include "scanner/metric.h"
@@ -12,6 +13,7 @@
 #include <cctype>
 #include <filesystem>
 #include <limits>
+#include <optional>
 
 namespace glint {
 
@@ -48,15 +50,44 @@ json field_json(const std::string& name, const std::string& label, const std::st
             {"range", {low, high}}, {"values", base64_of(values)}};
 }
 
-json fields_json(const Mesh& reference, const AnalysisResult& result, const ShapeScale& scale) {
-    const std::size_t n = reference.vertex_count();
+// What the page shows of the reference: the mesh itself, or for a large one a decimated copy
+// (mesh/decimate.h) whose vertices are vertices of the reference (`ids`: their ids there).
+struct ShownMesh {
+    const Mesh* mesh = nullptr;
+    std::optional<DecimatedMesh> decimated;
+
+    [[nodiscard]] std::size_t vertex(std::size_t k) const { return decimated ? decimated->original_vertex[k] : k; }
+    [[nodiscard]] std::size_t vertex_count() const { return mesh->vertex_count(); }
+};
+
+// Above `max_triangles`: the triangles that touch a region are kept as they are, so regions
+// keep their exact outline; the rest is collapsed (meshoptimizer) within 1 % of the size, the
+// surface's borders kept.
+ShownMesh shown_mesh(const Mesh& reference, const AnalysisResult& result, std::size_t max_triangles) {
+    ShownMesh shown{&reference, std::nullopt};
+    if (reference.triangle_count() <= max_triangles) return shown;
+    std::vector<std::uint8_t> keep(reference.triangle_count(), 0);
+    for (std::size_t t = 0; t < reference.triangle_count(); ++t)
+        for (const auto& d : result.decisions)
+            for (const auto v : reference.triangles[t])
+                if (d.regions.region_of_vertex[v] != 0) keep[t] = 1;
+    shown.decimated = decimate(reference, max_triangles, keep, 0.01 * result.size);
+    shown.mesh = &shown.decimated->mesh;
+    return shown;
+}
+
+json fields_json(const ShownMesh& shown, const AnalysisResult& result, const ShapeScale& scale) {
+    const std::size_t n = shown.vertex_count();
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string unit = result.unit.empty() ? "units" : result.unit;
     const std::string metric(m.name);
     json fields = json::array();
-    if (result.distance.size() == n)
-        fields.push_back(field_json("distance", "signed distance (shape change)", "signed", unit, -1, result.distance,
+    if (!result.distance.empty()) {
+        std::vector<float> distance(n);
+        for (std::size_t k = 0; k < n; ++k) distance[k] = result.distance[shown.vertex(k)];
+        fields.push_back(field_json("distance", "signed distance (shape change)", "signed", unit, -1, distance,
                                     -scale.limit, scale.limit));
+    }
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         const auto& a = result.sweep.zooms[z].atlas;
         const auto& seen = result.sweep.zooms[z].coverage.seen;
@@ -64,12 +95,13 @@ json fields_json(const Mesh& reference, const AnalysisResult& result, const Shap
         const std::string k = "_z" + std::to_string(z);
         const std::string at = " (zoom " + std::to_string(z) + ")";
         std::vector<float> mean(n), max(n), region(n), seen_f(n), count(n);
-        for (std::size_t v = 0; v < n; ++v) {
-            mean[v] = seen[v] ? a.value_mean[v] : kNaN;
-            max[v] = seen[v] ? a.value_max[v] : kNaN;
-            region[v] = static_cast<float>(d.regions.region_of_vertex[v]);
-            seen_f[v] = seen[v] ? 1.0f : 0.0f;
-            count[v] = static_cast<float>(a.count[v]);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t v = shown.vertex(i);
+            mean[i] = seen[v] ? a.value_mean[v] : kNaN;
+            max[i] = seen[v] ? a.value_max[v] : kNaN;
+            region[i] = static_cast<float>(d.regions.region_of_vertex[v]);
+            seen_f[i] = seen[v] ? 1.0f : 0.0f;
+            count[i] = static_cast<float>(a.count[v]);
         }
         const double top = std::max(2.0 * d.normal.value, 1e-6);
         fields.push_back(field_json(metric + "_mean" + k, "normal deviation, mean" + at, "sequential", std::string(m.symbol),
@@ -98,18 +130,26 @@ std::vector<float> inferno_knots() {
     return rgb;
 }
 
-json mesh_json(const Mesh& reference) {
+json mesh_json(const Mesh& reference, const ShownMesh& shown) {
+    const Mesh& m = *shown.mesh;
     std::vector<float> positions;
-    positions.reserve(3 * reference.vertex_count());
-    for (const auto& p : reference.positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+    positions.reserve(3 * m.vertex_count());
+    for (const auto& p : m.positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
     std::vector<std::uint32_t> indices;
-    indices.reserve(3 * reference.triangle_count());
-    for (const auto& t : reference.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+    indices.reserve(3 * m.triangle_count());
+    for (const auto& t : m.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
     const Bounds b = bounds(reference);
     const Vec3f c = b.center();
-    return {{"vertices", reference.vertex_count()}, {"triangles", reference.triangle_count()},
-            {"positions", base64_of(positions)}, {"indices", base64_of(indices)},
-            {"center", {c.x(), c.y(), c.z()}}, {"radius", 0.5 * b.diagonal()}};
+    json out = {{"vertices", reference.vertex_count()}, {"triangles", reference.triangle_count()},
+                {"positions", base64_of(positions)}, {"indices", base64_of(indices)},
+                {"center", {c.x(), c.y(), c.z()}}, {"radius", 0.5 * b.diagonal()}};
+    if (shown.decimated) {
+        // The page names a vertex by its id in the atlas files.
+        out["vertex_ids"] = base64_of(shown.decimated->original_vertex);
+        out["shown"] = {{"vertices", m.vertex_count()}, {"triangles", m.triangle_count()},
+                        {"error", shown.decimated->error}};
+    }
+    return out;
 }
 
 std::string data_uri(const std::string& png) { return "data:image/png;base64," + OIIO::Strutil::base64_encode(png); }
@@ -173,13 +213,14 @@ std::string fill_template(std::string_view page_template, const std::vector<std:
 }
 
 std::string report_html(const Mesh& reference, const AnalysisResult& result, const std::string& report_json,
-                        const PictureOutput& pictures) {
+                        const PictureOutput& pictures, std::size_t max_triangles) {
     const ShapeScale scale = shape_scale(result);
     json data;
     data["report"] = json::parse(report_json);
     data["unit"] = result.unit.empty() ? "units" : result.unit;
-    data["mesh"] = mesh_json(reference);
-    data["fields"] = fields_json(reference, result, scale);
+    const ShownMesh shown = shown_mesh(reference, result, max_triangles);
+    data["mesh"] = mesh_json(reference, shown);
+    data["fields"] = fields_json(shown, result, scale);
     data["shape_scale"] = {{"limit", scale.limit}, {"source", scale.source}, {"floor", scale.floor}};
     const auto knots = detail::diverging_knots();
     data["colormaps"] = {{"diverging", std::vector<float>(knots.begin(), knots.end())}, {"sequential", inferno_knots()}};

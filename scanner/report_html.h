@@ -15,7 +15,9 @@
 // little-endian typed arrays (float32 positions, uint32 indices, float32 per-vertex fields),
 // pictures as base64 PNG data URIs: only the regions' best views and the mosaics, so the size
 // stays bounded (about 0.9 MB of libraries + 48 bytes per vertex + 16 per triangle for one
-// zoom, plus the pictures). With `#selftest` appended to its URL the page checks itself and
+// zoom, plus the pictures). A mesh of more than kReportPageTriangles is shown decimated
+// (mesh/decimate.h): the triangles touching a region stay as they are, the rest is collapsed
+// to the budget; the page names vertices by their ids in the atlas files. With `#selftest` appended to its URL the page checks itself and
 // writes a JSON verdict into the element #selftest-verdict (tests/tools/report_html_test.py).
 #pragma once
 
@@ -27,10 +29,16 @@
 
 namespace glint {
 
+/// Triangles the page shows at most (about: the triangles touching a region are all kept).
+/// note: 250 000 triangles make a page of ~10 MB that browsers open in a second; a
+/// 2M-triangle atlas shown whole made 81 MB.
+inline constexpr std::size_t kReportPageTriangles = 250000;
+
 /// The page for a finished analysis. `report_json` is report.json's text (embedded whole).
 /// \pre result from analyse() on `reference`.
 [[nodiscard]] std::string report_html(const Mesh& reference, const AnalysisResult& result,
-                                      const std::string& report_json, const PictureOutput& pictures);
+                                      const std::string& report_json, const PictureOutput& pictures,
+                                      std::size_t max_triangles = kReportPageTriangles);
 
 /// Replaces every @NAME@ (capitals, digits, _) of `page_template` by values[NAME], in one pass:
 /// inserted text is never scanned again. \throw std::logic_error for a name without a value.

@@ -5,9 +5,14 @@
 #include "scanner/backproject.h"
 #include "scanner/gpu_sweep.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <span>
+#include <thread>
 
 namespace glint {
 
@@ -16,18 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-ViewSummary summarise(const PlannedView& pv, const DeviationMap& dev, std::size_t reference_pixels) {
-    ViewSummary s;
-    s.index = pv.view.index;
-    s.reference_pixels = reference_pixels;
-    s.compared = dev.compared;
-    s.reference_only = dev.reference_only;
-    s.examined_only = dev.examined_only;
-    s.max_angle_deg = dev.max_angle_deg;
-    s.mean_angle_deg = dev.mean_angle_deg;
-    return s;
-}
 
 }  // namespace
 
@@ -44,6 +37,104 @@ void SweepOptions::validate() const {
         throw OptionError("sweep.min_coverage", compare.min_coverage, "must be in (0, 1]");
 }
 
+namespace {
+
+// One view's comparison and back-projection as its bands of rows arrive (on the workers),
+// then its fold into the atlas (on the calling thread, in view order). Bands are known by
+// their first row; a worker writes only its band's rows of the maps and its band's entries.
+class ViewStream {
+public:
+    ViewStream(const Mesh& reference, const SweepPlan& plan, const SweepOptions& options, int threads)
+        : reference_(reference), plan_(plan), options_(options), threads_(threads),
+          backproject_{.min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
+                       .min_coverage = options.compare.min_coverage,
+                       .missing_value = describe(options.metric).missing_value,
+                       .framed_radius = plan.radius} {
+        for (double f : plan.footprints) atlases_.emplace_back(reference, f);
+        prepare(0);
+    }
+
+    // A band of both frames of the view prepared (any worker; bands concurrently).
+    void rows(const FrameRows& ref, const FrameRows& exa) {
+        const auto t0 = Clock::now();
+        const std::size_t first = static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
+        const std::size_t n = ref.pixel_count();
+        DeviationMap& d = maps_.deviation;
+        const FrameView rv = frame_view(ref), ev = frame_view(exa);
+        const std::span<float> angle = std::span(d.angle_deg).subspan(first, n);
+        compare_pixels(rv, ev, options_.compare, angle, std::span(d.signed_depth).subspan(first, n),
+                       std::span(d.silhouette).subspan(first, n));
+        describe(options_.metric).compute(rv, ev, angle, std::span(d.value).subspan(first, n));
+        record_reference_rows(ref, options_.compare.min_coverage, maps_);
+        const auto band = static_cast<std::size_t>(ref.y0);
+        samples_[band].clear();
+        covered_[band] = scatter_rows(reference_, view_->view, ref, maps_, backproject_, samples_[band]);
+        is_band_[band] = 1;
+        worker_seconds_.fetch_add(seconds_since(t0), std::memory_order_relaxed);
+    }
+
+    // View i is whole: its summary, the fold into its zoom's atlas, the observer; then the
+    // next view is prepared.
+    ViewSummary done(std::size_t i, const ViewObserver& observer) {
+        GLINT_ASSERT(view_ == &plan_.views[i], "sweep: views handed on out of order");
+        const PlannedView& pv = *view_;
+        DeviationMap& dev = maps_.deviation;
+        summarise(dev);
+        std::vector<const std::vector<AtlasSample>*> bands;
+        std::size_t covered = 0;
+        for (std::size_t y = 0; y < is_band_.size(); ++y)
+            if (is_band_[y]) {
+                bands.push_back(&samples_[y]);
+                covered += covered_[y];
+            }
+        fold_view(reference_, pv.view, bands, maps_, backproject_,
+                  atlases_[static_cast<std::size_t>(pv.view.zoom_index)], scratch_, threads_);
+        if (observer) observer(pv, dev);
+        ViewSummary s;
+        s.index = pv.view.index;
+        s.reference_pixels = covered;
+        s.compared = dev.compared;
+        s.reference_only = dev.reference_only;
+        s.examined_only = dev.examined_only;
+        s.max_angle_deg = dev.max_angle_deg;
+        s.mean_angle_deg = dev.mean_angle_deg;
+        if (i + 1 < plan_.views.size()) prepare(i + 1);
+        return s;
+    }
+
+    [[nodiscard]] const std::vector<AtlasAccumulator>& atlases() const { return atlases_; }
+    /// Seconds the workers spent comparing and scattering, summed over them.
+    [[nodiscard]] double worker_seconds() const { return worker_seconds_.load(); }
+
+private:
+    // Maps and band entries sized for view i (storage kept across views).
+    void prepare(std::size_t i) {
+        view_ = &plan_.views[i];
+        const Camera& c = view_->view.camera;
+        maps_.resize(c.width, c.height);
+        const auto rows = static_cast<std::size_t>(c.height);
+        samples_.resize(rows);
+        covered_.assign(rows, 0);
+        is_band_.assign(rows, 0);
+    }
+
+    const Mesh& reference_;
+    const SweepPlan& plan_;
+    const SweepOptions& options_;
+    int threads_;
+    BackprojectOptions backproject_;
+    std::vector<AtlasAccumulator> atlases_;
+    BackprojectScratch scratch_;
+    const PlannedView* view_ = nullptr;             // the view whose bands arrive
+    ViewMaps maps_;
+    std::vector<std::vector<AtlasSample>> samples_;  // per band, by its first row
+    std::vector<std::size_t> covered_;              // per band: covered reference pixels
+    std::vector<std::uint8_t> is_band_;             // 1 at the first row of each band seen
+    std::atomic<double> worker_seconds_{0.0};
+};
+
+}  // namespace
+
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan, const SweepOptions& options,
                       const ViewObserver& observer) {
     const auto t_start = Clock::now();
@@ -54,53 +145,51 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     result.plan = plan;
     result.options = options;
 
-    // One device for the process (render/context.h), both meshes on it.
+    // One device for the process (render/context.h), both meshes on it, read in place (they
+    // outlive the renderers).
     const auto context = shared_render_context(options.render.context_options());
-    Renderer ref_renderer(context, reference, options.render.frame_options());
-    Renderer exa_renderer(context, examined, options.render.frame_options());
-    result.renderer = ref_renderer.info();
+    FrameOptions frames = options.render.frame_options();
+    frames.share_mesh = true;
+    std::optional<Renderer> ref_renderer(std::in_place, context, reference, frames);
+    std::optional<Renderer> exa_renderer(std::in_place, context, examined, frames);
+    result.renderer = ref_renderer->info();
     // Compare and back-project on the GPU when the options and the device allow it
-    // (scanner/gpu_sweep.h); the read-back path below is the reference it is tested against.
-    if (run_sweep_on_gpu(reference, ref_renderer, exa_renderer, plan, options, observer, result)) {
+    // (scanner/gpu_sweep.h); the streamed path below is the reference it is tested against.
+    if (run_sweep_on_gpu(reference, *ref_renderer, *exa_renderer, plan, options, observer, result)) {
         result.total_seconds = seconds_since(t_start);
         return result;
     }
 
-    std::vector<AtlasAccumulator> atlases;
-    for (double f : plan.footprints) atlases.emplace_back(reference, f);
-    const BackprojectOptions bp{.min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
-                                .min_coverage = options.compare.min_coverage,
-                                .missing_value = describe(options.metric).missing_value,
-                                .framed_radius = plan.radius};
-    BackprojectScratch scratch;
+    const int threads = std::max(1, options.render.threads > 0 ? options.render.threads
+                                                               : static_cast<int>(std::thread::hardware_concurrency()));
+    ViewStream stream(reference, plan, options, threads);
     std::vector<View> views;
     views.reserve(plan.views.size());
     for (const auto& p : plan.views) views.push_back(p.view);
 
-    auto t_view = Clock::now();
-    // Both frames of a view in flight together; the next view's pair renders while this
-    // one is compared.
-    render_view_pairs(ref_renderer, exa_renderer, views, [&](std::size_t i, const Frame& ref_frame,
-                                                             const Frame& exa_frame) {
-        throw_if_cancelled();
-        const PlannedView& pv = plan.views[i];
-        result.render_seconds += seconds_since(t_view);
-        const auto t_compare = Clock::now();
-        const DeviationMap dev = compare_frames(frame_view(ref_frame), frame_view(exa_frame), options.compare, options.metric);
-        auto& atlas = atlases[static_cast<std::size_t>(pv.view.zoom_index)];
-        const std::size_t covered = backproject_view(reference, pv.view, ref_frame, dev, bp, atlas, scratch);
-        result.views.push_back(summarise(pv, dev, covered));
-        if (observer) observer(pv, ref_frame, exa_frame, dev);
-        result.compare_seconds += seconds_since(t_compare);
-        t_view = Clock::now();
-    });
+    const auto t_views = Clock::now();
+    double fold_seconds = 0.0;
+    render_view_pair_rows(
+        *ref_renderer, *exa_renderer, views,
+        [&](std::size_t, const FrameRows& ref, const FrameRows& exa) { stream.rows(ref, exa); },
+        [&](std::size_t i) {
+            throw_if_cancelled();
+            const auto t = Clock::now();
+            result.views.push_back(stream.done(i, observer));
+            fold_seconds += seconds_since(t);
+        });
+    const double views_seconds = seconds_since(t_views);
+    exa_renderer.reset();  // the scenes go before the atlases are finished (peak memory)
+    ref_renderer.reset();
+    result.compare_seconds = std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
+    result.render_seconds = views_seconds - result.compare_seconds;
     std::size_t compared = 0;
     for (const auto& v : result.views) compared += v.compared;
     if (compared == 0)
         throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
                          std::to_string(result.views.size()) +
                          " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
-    for (const auto& a : atlases) {
+    for (const auto& a : stream.atlases()) {
         SweepZoom z;
         z.atlas = a.finish();
         z.coverage = coverage_of(reference, z.atlas, plan.options.roi);

@@ -1,9 +1,16 @@
 // The rotary scan: render the reference and the fitted examined mesh from every view of a
 // plan, compare view by view, fold the deviations onto the reference surface.
 //
-//   plan ─▶ for each view: reference frame ─┬─▶ compare (metric) ─▶ back-project ─▶ ZoomAtlas[z]
-//                          examined frame  ─┘          (frames dropped after use)
+//   plan ─▶ for each view, band by band of rows as they are rendered (render_view_pair_rows):
+//             reference rows ─┬─▶ compare (metric) ─▶ scatter samples     (on the workers)
+//             examined rows  ─┘
+//           then, the view whole: samples + gather ─▶ ZoomAtlas[z]        (per-vertex ranges)
 //   ZoomAtlas[z] + ROI ─▶ coverage (seen mask)
+//
+// With Embree no frame is ever whole in memory: a worker traces a band of both frames and
+// compares and scatters it while it is in cache; what stays per view are the maps the gather
+// and the per-view exports read (ViewMaps, scanner/backproject.h). With Vulkan the frames are
+// read back whole and handed on by bands. The atlas is the same either way, bit for bit.
 //
 // The decision (floors, regions) is scanner/decision.h's; the whole pipeline (fit, distance,
 // sweep, decision, exports) is scanner/analysis.h's.
@@ -78,17 +85,21 @@ struct SweepResult {
     /// why (empty when the read-back path was asked for).
     bool on_gpu = false;
     std::string accumulation_note;
-    double render_seconds = 0.0;   ///< GPU path: render, compare and back-projection on the device
-    double compare_seconds = 0.0;  ///< compare + back-projection + observer; GPU path: reading the totals back
+    /// Read-back path: rendering and comparison share the workers band by band, so
+    /// compare_seconds is the comparison's share (compare + scatter summed over the workers and
+    /// divided by their number, plus the per-view fold, gather and observer) and render_seconds
+    /// the rest. GPU path: render_seconds is render, compare and back-projection on the device,
+    /// compare_seconds reading the totals back.
+    double render_seconds = 0.0;
+    double compare_seconds = 0.0;
     double total_seconds = 0.0;
 };
 
-/// Called after each view with both frames and their deviation map (valid during the call):
-/// per-view exports, progress. May throw (Cancelled, IoError) to stop the sweep. On the GPU
-/// path (SweepResult::on_gpu) nothing per pixel reaches the host: both frames and the map are
-/// empty (0 × 0); ask for Accumulation::Host when an observer needs them.
-using ViewObserver = std::function<void(const PlannedView& view, const Frame& reference,
-                                        const Frame& examined, const DeviationMap& deviation)>;
+/// Called after each view with its deviation map (valid during the call; `value` holds the
+/// metric): per-view exports, progress. May throw (Cancelled, IoError) to stop the sweep. On
+/// the GPU path (SweepResult::on_gpu) nothing per pixel reaches the host: the map is empty
+/// (0 x 0); ask for Accumulation::Host when an observer needs it.
+using ViewObserver = std::function<void(const PlannedView& view, const DeviationMap& deviation)>;
 
 /// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
 /// must already be in reference coordinates (fitted).

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 ViewExporter::ViewExporter(const OutputFolder& folder, Metric metric, const ExportOptions& options)
     : folder_(&folder), metric_(&describe(metric)), options_(options) {}
 
-void ViewExporter::add(const PlannedView& pv, const Frame&, const Frame&, const DeviationMap& dev) {
+void ViewExporter::add(const PlannedView& pv, const DeviationMap& dev) {
     if (!options_.write_exr) return;
     const View& v = pv.view;
     std::vector<float> sil(dev.silhouette.begin(), dev.silhouette.end());

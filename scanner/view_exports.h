@@ -19,7 +19,7 @@ public:
     ViewExporter(const ViewExporter&) = delete;
     ViewExporter& operator=(const ViewExporter&) = delete;
     /// Writes the view's EXR when ExportOptions::write_exr (a ViewObserver's work). \throw IoError.
-    void add(const PlannedView& view, const Frame& reference, const Frame& examined, const DeviationMap& deviation);
+    void add(const PlannedView& view, const DeviationMap& deviation);
 
 private:
     const OutputFolder* folder_;

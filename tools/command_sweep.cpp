@@ -8,6 +8,7 @@
 #include "scanner/report.h"
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
+#include "tools/memory.h"
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 #include "tools/progress.h"
@@ -83,8 +84,7 @@ void run(SweepArgs& a) {
         print_options(options);
         return;
     }
-    const LoadedSurface ref = load_surface(a.reference, a.surface);
-    const LoadedSurface exa = load_surface(a.examined, a.surface);
+    const auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
     ExportOptions& e = options.exports;
     auto described = [](const LoadedSurface& s) { return s.surface ? "surface of a volume: " + describe(*s.surface) : ""; };
     e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(), ref.mesh.triangle_count()});
@@ -96,6 +96,7 @@ void run(SweepArgs& a) {
 
     std::optional<ProgressBar> bar;
     AnalysisObserver observer;
+    observer.stage = [](std::string_view) { give_back_free_memory(); };
     observer.views = [&](std::size_t done, std::size_t total) {
         if (!bar) bar.emplace("sweep", total);
         bar->update(done);

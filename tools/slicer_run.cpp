@@ -11,6 +11,7 @@
 #include "scanner/analysis.h"
 #include "scanner/metric.h"
 #include "tools/command.h"
+#include "tools/memory.h"
 #include "tools/slicer_module.h"
 #include "tools/slicer_parameters.h"
 #include "volume/load.h"
@@ -236,7 +237,10 @@ void run_slicer_module(int argc, char** argv) {
     options.exports.inputs = {{"reference", call.positional[0], "", ref.mesh.vertex_count(), ref.mesh.triangle_count()},
                               {"examined", call.positional[1], "", exa.mesh.vertex_count(), exa.mesh.triangle_count()}};
     AnalysisObserver observer;
-    observer.stage = [&](std::string_view s) { progress.stage(s); };
+    observer.stage = [&](std::string_view s) {
+        give_back_free_memory();
+        progress.stage(s);
+    };
     observer.views = [&](std::size_t done, std::size_t total) { progress.views(done, total); };
     const AnalysisResult result = analyse(ref.mesh, exa.mesh, options, observer);
     deliver(result.output, "atlas.vtp", atlas.string());

@@ -3,7 +3,9 @@
 #include "mesh/error.h"
 
 #include <cstdio>
+#include <exception>
 #include <sstream>
+#include <thread>
 
 namespace glint::cli {
 
@@ -53,6 +55,31 @@ std::string describe(const SurfaceReport& r) {
                   static_cast<double>(r.range[0]), static_cast<double>(r.range[1]), r.triangles, r.components_kept,
                   r.components_found, r.seconds);
     return line;
+}
+
+std::pair<LoadedSurface, LoadedSurface> load_pair(const std::string& reference, const std::string& examined,
+                                                const SurfaceOptions& surface) {
+    if (is_volume_path(reference) || is_volume_path(examined))
+        return {load_surface(reference, surface), load_surface(examined, surface)};
+    LoadedSurface exa;
+    std::exception_ptr exa_error;
+    std::thread other([&] {
+        try {
+            exa = load_surface(examined, surface);
+        } catch (...) {
+            exa_error = std::current_exception();
+        }
+    });
+    LoadedSurface ref;
+    try {
+        ref = load_surface(reference, surface);
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (exa_error) std::rethrow_exception(exa_error);
+    return {std::move(ref), std::move(exa)};
 }
 
 }  // namespace glint::cli

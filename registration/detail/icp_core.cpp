@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -201,13 +202,17 @@ struct StepSolution {
 
 StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample>& ref_samples,
                         const ClosestPointIndex* examined, const Rigid& t, const RegistrationOptions& o, double scale,
-                        double max_distance) {
+                        double max_distance, int threads) {
     double x[6] = {0, 0, 0, 0, 0, 0};
+    // note: one loss function for every residual (the problem does not own it): a loss per
+    // residual was one allocation and one free per pair and iteration, for the same function.
+    const std::unique_ptr<ceres::LossFunction> loss(make_loss(o.loss, scale));
     ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
     for (const auto& p : pairs)
         problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
-                                 make_loss(o.loss, scale), x);
+                                 loss.get(), x);
     if (o.symmetric && examined) {
         const Rigid inv = t.inverse();
         std::vector<Vec3d> back(ref_samples.size());
@@ -220,13 +225,13 @@ StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample
             if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
             problem.AddResidualBlock(
                 new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(new PlaneToPoint{pw, ref_samples[i].point, nw}),
-                make_loss(o.loss, scale), x);
+                loss.get(), x);
         }
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
     so.max_num_iterations = o.inner_iterations;
-    so.num_threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    so.num_threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
     StepSolution out;
@@ -291,7 +296,7 @@ void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& 
 
 IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
                const ClosestPointIndex& reference, const ClosestPointIndex* examined, const Rigid& start,
-               const RegistrationOptions& o, int max_iterations, double diagonal) {
+               const RegistrationOptions& o, int max_iterations, double diagonal, int solver_threads) {
     IcpRun run;
     run.t = start;
     RegistrationResult& res = run.result;
@@ -320,7 +325,7 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         const double scale = anneal * sigma;
         // Far outliers (beyond 20σ, or the initial spread) do not enter the next matching.
         max_distance = std::max(20.0 * sigma, 1e-6 * diagonal);
-        const StepSolution solved = solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance);
+        const StepSolution solved = solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance, solver_threads);
         run.t = solved.step * run.t;
         IcpIteration log;
         log.iteration = it + 1;

@@ -49,10 +49,11 @@ struct IcpRun {
 
 /// Point-to-plane ICP from `start` for at most `max_iterations`; `ref_samples` and
 /// `examined` are used only for the symmetric variant. `diagonal` is the larger bounding
-/// diagonal (scales the tolerances).
+/// diagonal (scales the tolerances). `solver_threads`: Ceres' threads per step (0 = the
+/// machine's; 1 when several runs go in parallel).
 [[nodiscard]] IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
                              const ClosestPointIndex& reference, const ClosestPointIndex* examined,
                              const Rigid& start, const RegistrationOptions& o, int max_iterations,
-                             double diagonal);
+                             double diagonal, int solver_threads = 0);
 
 }  // namespace glint::detail

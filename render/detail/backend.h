@@ -39,6 +39,20 @@ public:
     /// The mesh's device buffers when the backend is Vulkan (the GPU atlas draws and reads
     /// them: render/gpu_atlas.cpp); null otherwise. Valid while the backend lives.
     [[nodiscard]] virtual const VulkanMesh* vulkan_mesh() const { return nullptr; }
+
+    /// Band tracing (CPU ray casting): any band of output rows of a view can be traced and
+    /// resolved on its own, on any thread, so a frame can be streamed by bands without ever
+    /// being whole (render_view_pair_rows). 0: the backend renders whole frames only.
+    [[nodiscard]] virtual int band_rows() const { return 0; }
+    /// Per-thread working memory of trace_rows (nullptr when band_rows() is 0).
+    struct RowScratch {
+        virtual ~RowScratch() = default;
+    };
+    [[nodiscard]] virtual std::unique_ptr<RowScratch> make_row_scratch() const { return nullptr; }
+    /// Traces and resolves output rows [y0, y1) of `view` (y0 a multiple of band_rows()) into
+    /// `rows`, a frame of width × (y1 − y0) pixels whose row 0 is row y0 (world normals,
+    /// unmasked, bitwise as finish() gives them). Thread-safe for distinct scratch and rows.
+    virtual void trace_rows(const View& view, int y0, int y1, RowScratch& scratch, Frame& rows) const;
 };
 
 /// The device half of a RenderContext.

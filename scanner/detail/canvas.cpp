@@ -103,6 +103,11 @@ std::string encode_png(const ImageBuf& image) {
     OIIO::Filesystem::IOVecOutput proxy(bytes);
     ImageBuf copy = image;  // set_write_ioproxy changes the buffer's state
     copy.set_write_ioproxy(&proxy);
+    // note: zlib level 1 with the "sub" row filter (libpng's PNG_FILTER_SUB = 16) encoded a
+    // 674 x 414 view picture in 6.7 ms instead of 19.8 ms (defaults: level 6, adaptive
+    // filters), the file 23 % larger (65 kB instead of 53 kB); the pixels are the same.
+    copy.specmod().attribute("png:compressionLevel", 1);
+    copy.specmod().attribute("png:filter", 16);
     if (!copy.write("picture.png", TypeDesc::UINT8, "png"))
         throw IoError("cannot encode a PNG picture: " + copy.geterror());
     return std::string(bytes.begin(), bytes.end());

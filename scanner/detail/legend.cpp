@@ -121,9 +121,11 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
 ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title, const LegendContent& legend) {
     const int h = kTitleHeight + std::max(picture_h, legend_min_height(legend));
     ImageBuf sheet = canvas(picture_w + kLegendWidth, h);
-    draw_text(sheet, 8, 20, title, 15);
+    draw_title(sheet, title);
     draw_legend(sheet, picture_w, kTitleHeight, h - kTitleHeight, legend);
     return sheet;
 }
+
+void draw_title(ImageBuf& sheet, const std::string& title) { draw_text(sheet, 8, 20, title, 15); }
 
 }  // namespace glint::detail

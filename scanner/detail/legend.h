@@ -33,8 +33,12 @@ inline constexpr int kLegendWidth = 290;
 void draw_legend(OIIO::ImageBuf& dst, int x, int y, int height, const LegendContent& content);
 
 /// A picture's canvas: the title line on top, the legend panel on the right; the picture
-/// (picture_w × picture_h) goes at (0, kTitleHeight).
+/// (picture_w × picture_h) goes at (0, kTitleHeight). An empty title leaves the title line
+/// blank: draw_title() writes it into a copy (one legend drawn for many pictures).
 [[nodiscard]] OIIO::ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
                                           const LegendContent& legend);
+
+/// The title line of a framed sheet.
+void draw_title(OIIO::ImageBuf& sheet, const std::string& title);
 
 }  // namespace glint::detail

@@ -20,6 +20,9 @@
   }
   const positions = new Float32Array(bytes(DATA.mesh.positions).buffer);
   const indices = new Uint32Array(bytes(DATA.mesh.indices).buffer);
+  // A large mesh is shown decimated: the page's vertex v is vertex vertexIds[v] of the atlas files.
+  const vertexIds = DATA.mesh.vertex_ids ? new Uint32Array(bytes(DATA.mesh.vertex_ids).buffer) : null;
+  const atlasVertex = (v) => (vertexIds ? vertexIds[v] : v);
   const fields = DATA.fields.map((f) => Object.assign({}, f, { data: new Float32Array(bytes(f.values).buffer) }));
   const byName = {};
   fields.forEach((f) => { byName[f.name] = f; });
@@ -220,7 +223,7 @@
     const p = new THREE.Vector3().fromArray(positions, 3 * v);
     const t = el("table");
     const row = (k, val) => { const tr = el("tr"); tr.appendChild(el("td", {}, k)); tr.appendChild(el("td", {}, val)); t.appendChild(tr); };
-    row("vertex " + v, "(" + [p.x, p.y, p.z].map((x) => fmt(x, 5)).join(", ") + ") " + UNIT);
+    row("vertex " + atlasVertex(v), "(" + [p.x, p.y, p.z].map((x) => fmt(x, 5)).join(", ") + ") " + UNIT);
     fields.forEach((f) => {
       const x = f.data[v];
       row(f.label, Number.isNaN(x) ? "unseen" : fmt(x, 4) + (f.unit ? " " + f.unit : ""));
@@ -379,7 +382,10 @@
     $("grey-unseen").addEventListener("change", () => { state.greyUnseen = $("grey-unseen").checked; recolour(); });
     $("view-reset").addEventListener("click", resetView);
     const z0 = REPORT.zooms[0] || { regions: [], coverage: 0 };
-    $("subtitle").textContent = DATA.mesh.vertices + " vertices, " + DATA.mesh.triangles + " triangles · lengths in " + UNIT +
+    const shown = DATA.mesh.shown ? " (shown decimated to " + DATA.mesh.shown.triangles + " triangles, within " +
+      fmt(DATA.mesh.shown.error, 2) + " " + UNIT + "; regions whole)" : "";
+    $("subtitle").textContent = DATA.mesh.vertices + " vertices, " + DATA.mesh.triangles + " triangles" + shown +
+      " · lengths in " + UNIT +
       " · " + z0.regions.length + " region(s) at zoom 0 · coverage " + fmt(100 * z0.coverage) + " %";
     selectField(byName.distance ? "distance" : fields[0].name);
     buildRegions();
@@ -486,7 +492,7 @@
     const tolerance = 6 + 255 * 0.15 * k.spread;
     const diff = Math.max(...got.map((g, i) => Math.abs(g - k.expected[i])));
     const f = state.field;
-    verdict.checks.colour = { field: f.name, vertex: k.vertex, value: f.data[k.vertex],
+    verdict.checks.colour = { field: f.name, vertex: atlasVertex(k.vertex), value: f.data[k.vertex],
                               vertex_colour: colourOf(f, k.vertex, state.low, state.high).map((x) => Math.round(255 * x)),
                               low: state.low, high: state.high, pixel: [k.xi, k.yi], expected: k.expected, got: got,
                               tolerance: tolerance, ok: diff <= tolerance };

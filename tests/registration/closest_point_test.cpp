@@ -64,6 +64,21 @@ TEST(ClosestPointIndex, BatchQueriesMatchSingleQueries) {
     for (std::size_t i = 0; i < q.size(); i += 97) EXPECT_EQ(batch[i].triangle, index.closest(q[i]).triangle);
 }
 
+TEST(ClosestPointIndex, ABorrowingIndexAnswersAsACopyingOne) {
+    const Mesh m = sphere(3);
+    const ClosestPointIndex copy(m);
+    const ClosestPointIndex borrowed = ClosestPointIndex::borrowing(m);
+    EXPECT_EQ(&borrowed.mesh(), &m);
+    EXPECT_NE(&copy.mesh(), &m);
+    for (int i = 0; i < 500; ++i) {
+        const Vec3d q(std::sin(i) * 12, std::cos(i * 0.7) * 9, std::sin(i * 1.3) * 11);
+        const ClosestPoint a = copy.closest(q), b = borrowed.closest(q);
+        EXPECT_EQ(a.triangle, b.triangle);
+        EXPECT_EQ(a.signed_distance, b.signed_distance);
+        EXPECT_EQ(a.normal, b.normal);
+    }
+}
+
 TEST(Pick, ThePixelAtTheImageCentreShowsTheNearestPoint) {
     const Mesh m = sphere(4);
     const ClosestPointIndex index(m);

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -138,6 +139,40 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_FALSE(fs::exists(dir / "atlas" / "views" / "z0_az000.0_el-30.0.png")) << "--no-views writes no view";
     // Bounded: the libraries (~0.9 MB) plus the data, nothing per view beyond the best ones.
     EXPECT_LT(html.size(), 4'000'000u);
+
+    // A mesh above the page's budget is shown decimated: every triangle touching a region kept,
+    // the rest collapsed; every vertex shown is an atlas vertex at its place, with its values.
+    const std::size_t budget = ref.triangle_count() / 8;
+    const nlohmann::json small = page_data(report_html(ref, result, read_text(dir / "atlas" / "report.json"), {}, budget));
+    EXPECT_EQ(small["mesh"]["triangles"].get<std::size_t>(), ref.triangle_count());
+    const auto ids = decode<std::uint32_t>(small["mesh"]["vertex_ids"]);
+    const auto shown_positions = decode<float>(small["mesh"]["positions"]);
+    const auto shown_indices = decode<std::uint32_t>(small["mesh"]["indices"]);
+    ASSERT_EQ(shown_positions.size(), 3 * ids.size());
+    std::size_t region_triangles = 0;
+    for (const auto& t : ref.triangles)
+        region_triangles += result.decisions[0].regions.region_of_vertex[t[0]] != 0 ||
+                            result.decisions[0].regions.region_of_vertex[t[1]] != 0 ||
+                            result.decisions[0].regions.region_of_vertex[t[2]] != 0;
+    EXPECT_LT(shown_indices.size() / 3, budget + region_triangles + budget / 2);
+    EXPECT_EQ(small["mesh"]["shown"]["triangles"].get<std::size_t>(), shown_indices.size() / 3);
+    std::map<std::string, nlohmann::json> small_fields;
+    for (const auto& f : small["fields"]) small_fields[f["name"]] = f;
+    const auto shown_distance = decode<float>(small_fields["distance"]["values"]);
+    const auto shown_region = decode<float>(small_fields["region_z0"]["values"]);
+    ASSERT_EQ(shown_distance.size(), ids.size());
+    std::vector<std::uint8_t> is_shown(ref.vertex_count(), 0);
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+        ASSERT_LT(ids[k], ref.vertex_count());
+        is_shown[ids[k]] = 1;
+        EXPECT_EQ(shown_positions[3 * k], ref.positions[ids[k]].x());
+        EXPECT_EQ(shown_distance[k], result.distance[ids[k]]);
+        EXPECT_EQ(shown_region[k], static_cast<float>(result.decisions[0].regions.region_of_vertex[ids[k]]));
+    }
+    for (std::size_t v = 0; v < ref.vertex_count(); ++v)
+        if (result.decisions[0].regions.region_of_vertex[v] != 0) {
+            EXPECT_TRUE(is_shown[v]) << "region vertex " << v;
+        }
 }
 
 }  // namespace

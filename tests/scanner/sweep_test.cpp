@@ -10,6 +10,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -187,6 +190,55 @@ TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
         }
     EXPECT_LT((regions[0].centroid - c / area).norm(), 0.3);
     EXPECT_NEAR(r.sweep.zooms[0].coverage.fraction, 1.0, 0.02);
+}
+
+template <typename T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// The views stream by bands through the workers and fold by vertex ranges, one per worker
+// (scanner/backproject.h): each vertex still receives its observations in one fixed order, so
+// the atlas must not change by a bit with the number of workers, on either backend (Vulkan:
+// whole frames handed on by bands).
+TEST(Sweep, TheAtlasIsTheSameBitForBitWhateverTheNumberOfWorkers) {
+    const Mesh ref = condyle(TessellationScheme::Ico, 4);
+    Mesh exa = condyle(TessellationScheme::Uv, 40);
+    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+    for (const Backend backend : {Backend::Embree, Backend::Vulkan}) {
+        AnalysisOptions o = options_with(0.2);
+        o.sweep.render.backend = backend;
+        o.sweep.plan.footprints = {0.2, 0.4};  // two zooms: two view sizes
+        o.sweep.render.threads = 1;
+        const AnalysisResult one = analyse(ref, exa, o);
+        o.sweep.render.threads = 3;
+        const AnalysisResult three = analyse(ref, exa, o);
+        ASSERT_EQ(one.sweep.zooms.size(), 2u);
+        for (std::size_t z = 0; z < 2; ++z) {
+            const ZoomAtlas& a = one.sweep.zooms[z].atlas;
+            const ZoomAtlas& b = three.sweep.zooms[z].atlas;
+            const std::string what = std::string(backend == Backend::Embree ? "Embree" : "Vulkan") + " zoom " +
+                                     std::to_string(z);
+            EXPECT_TRUE(same_bits(a.value_max, b.value_max)) << what;
+            EXPECT_TRUE(same_bits(a.value_mean, b.value_mean)) << what;
+            EXPECT_TRUE(same_bits(a.depth_at_max, b.depth_at_max)) << what;
+            EXPECT_TRUE(same_bits(a.depth_mean, b.depth_mean)) << what;
+            EXPECT_TRUE(same_bits(a.missing, b.missing)) << what;
+            EXPECT_TRUE(same_bits(a.weight, b.weight)) << what;
+            EXPECT_TRUE(same_bits(a.count, b.count)) << what;
+            EXPECT_TRUE(same_bits(a.best_cos, b.best_cos)) << what;
+            EXPECT_TRUE(same_bits(a.best_view, b.best_view)) << what;
+            EXPECT_TRUE(same_bits(a.max_view, b.max_view)) << what;
+            EXPECT_GT(*std::max_element(a.count.begin(), a.count.end()), 0u) << what;
+        }
+        ASSERT_EQ(one.sweep.views.size(), three.sweep.views.size());
+        for (std::size_t i = 0; i < one.sweep.views.size(); ++i) {
+            EXPECT_EQ(one.sweep.views[i].compared, three.sweep.views[i].compared);
+            EXPECT_EQ(one.sweep.views[i].reference_pixels, three.sweep.views[i].reference_pixels);
+            EXPECT_EQ(one.sweep.views[i].mean_angle_deg, three.sweep.views[i].mean_angle_deg);
+        }
+        EXPECT_EQ(one.decisions[0].regions.regions.size(), 1u);
+    }
 }
 
 }  // namespace

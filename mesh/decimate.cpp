@@ -1,0 +1,107 @@
+#include "mesh/decimate.h"
+
+#include "mesh/error.h"
+
+#include <meshoptimizer.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <limits>
+
+namespace glint {
+
+namespace {
+
+// `indices` (triangles, 3 per) simplified to `share` of their count, piece by piece; `error`:
+// the largest error estimate of a piece, mesh units. note: meshoptimizer's simplifier holds
+// ~60 bytes per triangle of working memory (a 2M-triangle atlas in one piece: 120 MB).
+// Triangles are ordered along the mesh's longest axis so a piece is one slab of the surface;
+// each piece keeps its borders (LockBorder), so the seams keep their vertices and still join.
+std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned> indices, double share,
+                                         double max_error, std::size_t piece_triangles, double& error) {
+    const std::size_t count = indices.size() / 3;
+    const std::size_t pieces = (count + piece_triangles - 1) / piece_triangles;
+    if (pieces > 1) {
+        const Bounds b = bounds(mesh);
+        const Vec3f extent = b.extent();
+        int axis = 0;
+        for (int a = 1; a < 3; ++a)
+            if (extent[a] > extent[axis]) axis = a;
+        std::vector<std::uint32_t> order(count);
+        std::vector<float> key(count);
+        for (std::size_t t = 0; t < count; ++t) {
+            order[t] = static_cast<std::uint32_t>(t);
+            key[t] = mesh.positions[indices[3 * t]][axis] + mesh.positions[indices[3 * t + 1]][axis] +
+                     mesh.positions[indices[3 * t + 2]][axis];
+        }
+        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; });
+        std::vector<unsigned> sorted(indices.size());
+        for (std::size_t t = 0; t < count; ++t) std::copy_n(&indices[3 * order[t]], 3, &sorted[3 * t]);
+        indices = std::move(sorted);
+    }
+    const auto* xyz = reinterpret_cast<const float*>(mesh.positions.data());
+    const float scale = meshopt_simplifyScale(xyz, mesh.vertex_count(), sizeof(Vec3f));
+    // The pieces are independent (each keeps its borders): simplified on every worker, joined
+    // in order.
+    std::vector<std::vector<unsigned>> simplified(pieces);
+    std::vector<float> errors(pieces, 0.0f);
+    tbb::parallel_for(std::size_t{0}, pieces, [&](std::size_t p) {
+        const std::size_t first = count * p / pieces, last = count * (p + 1) / pieces;
+        const std::size_t n = 3 * (last - first);
+        auto& piece = simplified[p];
+        piece.resize(n);
+        const auto target = static_cast<std::size_t>(share * static_cast<double>(last - first));
+        piece.resize(meshopt_simplify(piece.data(), &indices[3 * first], n, xyz, mesh.vertex_count(), sizeof(Vec3f),
+                                      3 * target, static_cast<float>(max_error / scale), meshopt_SimplifyLockBorder,
+                                      &errors[p]));
+    });
+    std::vector<unsigned> out;
+    for (std::size_t p = 0; p < pieces; ++p) {
+        out.insert(out.end(), simplified[p].begin(), simplified[p].end());
+        error = std::max(error, static_cast<double>(errors[p]) * static_cast<double>(scale));
+    }
+    return out;
+}
+
+}  // namespace
+
+DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles, const std::vector<std::uint8_t>& keep,
+                       double max_error, std::size_t piece) {
+    GLINT_ASSERT(keep.empty() || keep.size() == mesh.triangle_count(), "decimate: one keep flag per triangle");
+    GLINT_ASSERT(piece > 0, "decimate: pieces of at least one triangle");
+    std::vector<unsigned> kept, rest;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+        auto& into = !keep.empty() && keep[t] ? kept : rest;
+        into.insert(into.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
+    }
+    DecimatedMesh out;
+    const std::size_t budget = max_triangles > kept.size() / 3 ? max_triangles - kept.size() / 3 : 0;
+    if (3 * budget < rest.size() && !rest.empty()) {
+        // note: the target is never below one triangle in 64 of the rest, so a tiny budget
+        // does not collapse the surface into a few large triangles.
+        const double share = static_cast<double>(std::max(budget, rest.size() / 3 / 64)) / static_cast<double>(rest.size() / 3);
+        rest = simplify_in_pieces(mesh, std::move(rest), share, max_error, piece, out.error);
+    }
+    // The vertices the triangles use, renumbered in order of first use.
+    std::vector<std::uint32_t> remap(mesh.vertex_count(), std::numeric_limits<std::uint32_t>::max());
+    const bool normals = mesh.has_normals();
+    for (const auto* part : {&kept, &rest})
+        for (std::size_t i = 0; i < part->size(); i += 3) {
+            Triangle t{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const unsigned v = (*part)[i + k];
+                if (remap[v] == std::numeric_limits<std::uint32_t>::max()) {
+                    remap[v] = static_cast<std::uint32_t>(out.original_vertex.size());
+                    out.original_vertex.push_back(v);
+                    out.mesh.positions.push_back(mesh.positions[v]);
+                    if (normals) out.mesh.normals.push_back(mesh.normals[v]);
+                }
+                t[k] = remap[v];
+            }
+            out.mesh.triangles.push_back(t);
+        }
+    out.mesh.unit = mesh.unit;
+    return out;
+}
+
+}  // namespace glint
