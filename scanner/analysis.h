@@ -42,7 +42,7 @@ struct ExportOptions {
     /// nothing is written.
     std::filesystem::path output;
     bool write_views = true;        ///< per-view PNG heat maps
-    bool write_exr = true;          ///< per-view EXR with the raw numbers
+    bool write_exr = false;         ///< per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back)
     /// An existing output folder is replaced (atomically, when the run completes); false:
     /// it is refused before anything is loaded (--force).
     bool replace_existing = false;

@@ -160,7 +160,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     if (!run.output_root.empty()) {
         ExportOptions& e = options.exports;
         e.output = run.output_root / sc.name;
-        e.write_views = e.write_exr = run.write_views;
+        e.write_views = run.write_views;
         e.replace_existing = run.replace_existing;
         e.command_line = run.command_line;
         auto describe_source = [](const SurfaceSource& s) {

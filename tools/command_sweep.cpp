@@ -30,7 +30,8 @@ struct SweepArgs {
     SurfaceOptions surface;
     AnalysisOptions options;
     bool no_views = false;
-    bool no_exr = false;
+    bool exr = false;
+    bool no_exr = false;  // the default since EXRs became opt-in; accepted for scripts
     std::string calibration;
     std::string output;
     bool print = false;
@@ -77,7 +78,7 @@ void run(SweepArgs& a) {
     options.exports.output = a.output;
     options.exports.replace_existing = a.force;
     options.exports.write_views = !a.no_views;
-    options.exports.write_exr = !a.no_exr;
+    options.exports.write_exr = a.exr && !a.no_exr;
     options.exports.command_line = global_flags().command_line;
     options.validate();
     if (a.print) {
@@ -116,7 +117,10 @@ void setup(CLI::App& app) {
     add_fit_flags(*cmd, a.options.fit, "--fit-roi");
     add_sweep_flags(*cmd, a.options);
     cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");
-    cmd->add_flag("--no-exr", a.no_exr, "Do not write per-view EXR files");
+    auto* exr = cmd->add_flag("--exr", a.exr,
+                              "Also write per-view EXR files with every pixel's comparison (a GPU sweep then reads "
+                              "its frames back)");
+    cmd->add_flag("--no-exr", a.no_exr, "No per-view EXR files (the default; kept for scripts)")->excludes(exr);
     cmd->add_option("--calibration", a.calibration, "calibration.json from glint calibrate: its zoom and threshold")
         ->excludes("--zoom")
         ->excludes("--threshold-deg");

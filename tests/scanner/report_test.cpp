@@ -40,7 +40,8 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     options.sweep.render.supersample = 2;
     options.sweep.max_incidence_deg = 70.0;
     options.exports.output = dir / "atlas";
-    options.exports.command_line = "glint sweep ref.ply exa.ply -o atlas";
+    options.exports.command_line = "glint sweep ref.ply exa.ply -o atlas --exr";
+    options.exports.write_exr = true;
     options.exports.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
     // A scenario's ground truth rides along into the atlas files, beside glint's own fields.
     std::vector<float> truth(ref.vertex_count());
