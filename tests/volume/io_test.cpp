@@ -184,6 +184,29 @@ TEST(ReadVolume, RefusesANiftiDatatypeOrDimensionNiftilibWouldPrintAbout) {
     expect_input_error(dir / "dims.nii", "expected 1 to 7 dimensions");  // read as swapped: 9 fits neither order
 }
 
+// A NUL inside a header key made MetaIO loop (a fuzz_mha timeout; the input is the regression
+// seed fuzz/corpus/mha/regression_nul_in_header_key.mha): any control byte in the header is
+// refused with its line, before MetaIO reads the file.
+TEST(ReadVolume, RefusesAMetaImageHeaderThatIsNotKeyValueText) {
+    const fs::path dir = fresh_dir("header_control_byte");
+    std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+                         "ElementDataFile = LOCAL\n";
+    header.insert(header.find("NDims") + 5, std::string("\0entDat\x01", 8));
+    write_text(dir / "v.mha", header + std::string(8 * 8 * 8 * 2, '\0'));
+    expect_input_error(dir / "v.mha", "MetaImage header line 2 holds the control byte 0x0");
+    // A key of 300 bytes overran MetaIO's key buffer (libc aborted: fuzz_mha; the seed
+    // regression_long_header_key.mha); keys are identifiers of up to 64 characters.
+    write_text(dir / "long.mha", "ObjectType = Image\nNDims" + std::string(300, '\xff') + " = 3\nDimSize = 8 8 8\n"
+                                 "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" + std::string(1024, '\0'));
+    expect_input_error(dir / "long.mha", "MetaImage header line 2 has the key \"NDims???");
+    write_text(dir / "nodata.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n");
+    expect_input_error(dir / "nodata.mha", "no ElementDataFile");
+    // Binary voxels after ElementDataFile = LOCAL are not header: a clean file still reads.
+    write_text(dir / "ok.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+                               "ElementDataFile = LOCAL\n" + std::string(8 * 8 * 8 * 2, '\x01'));
+    EXPECT_EQ(read_volume(dir / "ok.mha").geometry.voxel_count(), 512u);
+}
+
 TEST(ReadVolume, RefusesAZeroSpacingOrASingularDirection) {
     const fs::path dir = fresh_dir("bad_geometry");
     write_text(dir / "v.raw", std::string(8 * 8 * 8 * 2, '\0'));

@@ -216,21 +216,44 @@ std::string printable(std::string text) {
     return text;
 }
 
-// MetaIO reads every array field of a MetaImage header with NDims entries, and on a value it
-// cannot parse ("NDims = = -3") it goes on reading with a failed stream through billions of
-// entries (a fuzz_mha timeout). So NDims is read here first: one plain integer from 1 to 4.
+// MetaIO trusts its header: it reads every array field with NDims entries, and on a value it
+// cannot parse ("NDims = = -3") goes on reading a failed stream through billions of entries;
+// a NUL inside a key made it loop, a key of a few hundred bytes overran a fixed buffer (libc
+// aborted the process): fuzz_mha findings. So the header is read here first, up to
+// ElementDataFile: text lines 'Key = Value' (a key of letters, digits and '_' up to 64
+// characters, a line up to 4096 bytes, no control byte), NDims one integer from 1 to 4.
 void check_metaimage_header(const fs::path& path) {
+    constexpr std::size_t kMaxKey = 64, kMaxLine = 4096;
+    constexpr int kMaxLines = 1024;
     std::ifstream in(path, std::ios::binary);
     std::string line;
-    for (int n = 0; n < 256 && std::getline(in, line); ++n) {
+    auto refuse = [&](int n, const std::string& found) {
+        throw InputError(quoted(path) + ": MetaImage header line " + std::to_string(n + 1) + " " + found +
+                         ", expected text lines 'Key = Value' up to ElementDataFile");
+    };
+    auto trim = [](std::string t) {
+        t.erase(0, t.find_first_not_of(" \t\r"));
+        t.erase(t.find_last_not_of(" \t\r") + 1);
+        return t;
+    };
+    for (int n = 0; n < kMaxLines && std::getline(in, line); ++n) {
+        if (line.size() > kMaxLine) refuse(n, "is " + std::to_string(line.size()) + " bytes long");
+        for (const char c : line) {
+            const auto u = static_cast<unsigned char>(c);
+            if (u < 0x20 && c != '\t' && c != '\r') {
+                std::ostringstream found;
+                found << "holds the control byte 0x" << std::hex << static_cast<int>(u);
+                refuse(n, found.str());
+            }
+        }
+        if (trim(line).empty()) continue;
         const auto eq = line.find('=');
-        if (eq == std::string::npos) continue;
-        auto trim = [](std::string t) {
-            t.erase(0, t.find_first_not_of(" \t\r"));
-            t.erase(t.find_last_not_of(" \t\r") + 1);
-            return t;
-        };
+        if (eq == std::string::npos) refuse(n, "has no '=' (\"" + printable(trim(line).substr(0, 40)) + "\")");
         const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
+        const bool identifier = !key.empty() && key.size() <= kMaxKey && std::all_of(key.begin(), key.end(), [](char c) {
+            return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+        });
+        if (!identifier) refuse(n, "has the key \"" + printable(key.substr(0, 40)) + (key.size() > 40 ? "...\"" : "\""));
         if (key == "ElementDataFile") return;
         if (key != "NDims") continue;
         int dims = 0;
@@ -238,6 +261,8 @@ void check_metaimage_header(const fs::path& path) {
         if (r.ec != std::errc() || r.ptr != value.data() + value.size() || dims < 1 || dims > 4)
             throw InputError(quoted(path) + ": NDims = \"" + printable(value.substr(0, 40)) + "\", expected an integer from 1 to 4");
     }
+    throw InputError(quoted(path) + ": no ElementDataFile within the first " + std::to_string(kMaxLines) +
+                     " lines of the MetaImage header, expected 'ElementDataFile = LOCAL' or a file name");
 }
 
 // Rejects what is not one scalar 3D volume, before any voxel is read.
