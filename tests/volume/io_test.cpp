@@ -201,6 +201,14 @@ TEST(ReadVolume, RefusesAMetaImageHeaderThatIsNotKeyValueText) {
     expect_input_error(dir / "long.mha", "MetaImage header line 2 has the key \"NDims???");
     write_text(dir / "nodata.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n");
     expect_input_error(dir / "nodata.mha", "no ElementDataFile");
+    // MetaIO divided by the step of a data-file value with a space that is no slice pattern
+    // (SIGFPE: fuzz_mha; the seed regression_data_file_not_a_pattern.mha).
+    write_text(dir / "pattern.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+                                    "ElementDataFile = LOCObjectType = Image%\n");
+    expect_input_error(dir / "pattern.mha", "expected LOCAL, LIST, a file name or a slice pattern");
+    write_text(dir / "pattern.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+                                    "ElementDataFile = s.%d 1 8 0\n");
+    expect_input_error(dir / "pattern.mha", "step > 0");
     // Binary voxels after ElementDataFile = LOCAL are not header: a clean file still reads.
     write_text(dir / "ok.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
                                "ElementDataFile = LOCAL\n" + std::string(8 * 8 * 8 * 2, '\x01'));

@@ -216,6 +216,22 @@ std::string printable(std::string text) {
     return text;
 }
 
+// ElementDataFile is LOCAL, LIST, one file name, or a slice pattern "name%d first last step";
+// MetaIO divides by the step of anything with a space in it (a fuzz_mha SIGFPE on
+// "LOCObjectType = Image%"), so a pattern must parse with first <= last and a step above 0.
+void check_data_file_value(const fs::path& path, const std::string& value) {
+    if (value.find_first_of(" \t") == std::string::npos) return;
+    std::istringstream in(value);
+    std::string format, rest;
+    long first = 0, last = 0, step = 0;
+    in >> format >> first >> last >> step;
+    const bool parsed = !in.fail() && !(in >> rest);
+    if (!parsed || step <= 0 || last < first)
+        throw InputError(quoted(path) + ": ElementDataFile = \"" + printable(value.substr(0, 60)) +
+                         "\", expected LOCAL, LIST, a file name or a slice pattern 'name%d first last step' "
+                         "(first <= last, step > 0)");
+}
+
 // MetaIO trusts its header: it reads every array field with NDims entries, and on a value it
 // cannot parse ("NDims = = -3") goes on reading a failed stream through billions of entries;
 // a NUL inside a key made it loop, a key of a few hundred bytes overran a fixed buffer (libc
@@ -254,7 +270,10 @@ void check_metaimage_header(const fs::path& path) {
             return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
         });
         if (!identifier) refuse(n, "has the key \"" + printable(key.substr(0, 40)) + (key.size() > 40 ? "...\"" : "\""));
-        if (key == "ElementDataFile") return;
+        if (key == "ElementDataFile") {
+            check_data_file_value(path, value);
+            return;
+        }
         if (key != "NDims") continue;
         int dims = 0;
         const auto r = std::from_chars(value.data(), value.data() + value.size(), dims);
