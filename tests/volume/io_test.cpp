@@ -194,11 +194,16 @@ TEST(ReadVolume, RefusesAMetaImageHeaderThatIsNotKeyValueText) {
     header.insert(header.find("NDims") + 5, std::string("\0entDat\x01", 8));
     write_text(dir / "v.mha", header + std::string(8 * 8 * 8 * 2, '\0'));
     expect_input_error(dir / "v.mha", "MetaImage header line 2 holds the control byte 0x0");
-    // A key of 300 bytes overran MetaIO's key buffer (libc aborted: fuzz_mha; the seed
-    // regression_long_header_key.mha); keys are identifiers of up to 64 characters.
-    write_text(dir / "long.mha", "ObjectType = Image\nNDims" + std::string(300, '\xff') + " = 3\nDimSize = 8 8 8\n"
-                                 "ElementType = MET_SHORT\nElementDataFile = LOCAL\n" + std::string(1024, '\0'));
-    expect_input_error(dir / "long.mha", "MetaImage header line 2 has the key \"NDims???");
+    // A key or a value of a few hundred bytes overran MetaIO's 255-byte fields (libc aborted:
+    // fuzz_mha; the seeds regression_long_header_key.mha and regression_long_header_value.mha):
+    // lines are refused above 254 bytes, keys that are not identifiers of up to 64 characters.
+    const std::string rest = "DimSize = 8 8 8\nElementType = MET_SHORT\nElementDataFile = LOCAL\n" + std::string(1024, '\0');
+    write_text(dir / "long.mha", "ObjectType = Image\nNDims" + std::string(300, '\xff') + " = 3\n" + rest);
+    expect_input_error(dir / "long.mha", "MetaImage header line 2 is 309 bytes long");
+    write_text(dir / "long.mha", "ObjectType = Image" + std::string(240, 'x') + "\nNDims = 3\n" + rest);
+    expect_input_error(dir / "long.mha", "MetaImage header line 1 is 258 bytes long");
+    write_text(dir / "key.mha", "ObjectType = Image\nNDims" + std::string(30, '\xff') + " = 3\n" + rest);
+    expect_input_error(dir / "key.mha", "MetaImage header line 2 has the key \"NDims???");
     write_text(dir / "nodata.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n");
     expect_input_error(dir / "nodata.mha", "no ElementDataFile");
     // MetaIO divided by the step of a data-file value with a space that is no slice pattern

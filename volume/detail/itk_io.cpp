@@ -235,11 +235,12 @@ void check_data_file_value(const fs::path& path, const std::string& value) {
 // MetaIO trusts its header: it reads every array field with NDims entries, and on a value it
 // cannot parse ("NDims = = -3") goes on reading a failed stream through billions of entries;
 // a NUL inside a key made it loop, a key of a few hundred bytes overran a fixed buffer (libc
-// aborted the process): fuzz_mha findings. So the header is read here first, up to
+// aborted the process), and so did a value of a few hundred bytes (MetaIO keeps its string
+// fields in 255-byte arrays): fuzz_mha findings. So the header is read here first, up to
 // ElementDataFile: text lines 'Key = Value' (a key of letters, digits and '_' up to 64
-// characters, a line up to 4096 bytes, no control byte), NDims one integer from 1 to 4.
+// characters, a line up to 254 bytes, no control byte), NDims one integer from 1 to 4.
 void check_metaimage_header(const fs::path& path) {
-    constexpr std::size_t kMaxKey = 64, kMaxLine = 4096;
+    constexpr std::size_t kMaxKey = 64, kMaxLine = 254;
     constexpr int kMaxLines = 1024;
     std::ifstream in(path, std::ios::binary);
     std::string line;
@@ -253,7 +254,9 @@ void check_metaimage_header(const fs::path& path) {
         return t;
     };
     for (int n = 0; n < kMaxLines && std::getline(in, line); ++n) {
-        if (line.size() > kMaxLine) refuse(n, "is " + std::to_string(line.size()) + " bytes long");
+        if (line.size() > kMaxLine)
+            refuse(n, "is " + std::to_string(line.size()) + " bytes long (MetaIO's fields hold " +
+                          std::to_string(kMaxLine) + ")");
         for (const char c : line) {
             const auto u = static_cast<unsigned char>(c);
             if (u < 0x20 && c != '\t' && c != '\r') {
