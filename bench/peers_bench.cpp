@@ -3,7 +3,7 @@
 //
 //   glint    `glint sweep REF EXA --register -o OUT --force` with every other option at its
 //            default: load both files, fit, signed distance, 60 views at 256² (s = 2),
-//            decision, atlas files, per-view EXR and PNG pictures, mosaic, atlas.png,
+//            decision, atlas files, per-view PNG pictures, mosaic, atlas.png,
 //            report.json / report.html;
 //   Open3D   `/usr/bin/python3 bench/open3d_peer.py REF EXA`: import, load, point-to-plane ICP,
 //            signed closest-point distance of every reference vertex (Debian's python3-open3d).
@@ -23,7 +23,9 @@
 // glint_rest_s = load + exports + process start).
 // Without python3-open3d the Open3D half is skipped and the label says why.
 // GLINT_BENCH_BASELINE=/path/to/an/older/glint adds that binary to every round (counters
-// prefixed base_): before/after measured side by side on the same files.
+// prefixed base_): before/after measured side by side on the same files;
+// GLINT_BENCH_BASELINE_ARGS adds options to the baseline's command line only (e.g. "--no-exr"
+// for a glint from before per-view EXRs became opt-in, so both write the same files).
 #include "bench/blob_pair.h"
 #include "mesh/write.h"
 
@@ -43,6 +45,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -152,11 +155,16 @@ struct Round {
     nlohmann::json peer;
 };
 
-GlintRun run_glint(const std::string& executable, const Files& f) {
+GlintRun run_glint(const std::string& executable, const Files& f, const char* extra_args = nullptr) {
     const fs::path out = f.folder / "glint_out";
+    std::vector<std::string> argv{executable, "sweep", f.reference.string(), f.examined.string(), "--register", "-o",
+                                  out.string(), "--force"};
+    if (extra_args != nullptr) {
+        std::istringstream words(extra_args);
+        for (std::string w; words >> w;) argv.push_back(w);
+    }
     GlintRun r;
-    r.process = run_process({executable, "sweep", f.reference.string(), f.examined.string(), "--register", "-o",
-                             out.string(), "--force"}, {});
+    r.process = run_process(argv, {});
     r.report = read_json(out / "report.json");
     return r;
 }
@@ -175,7 +183,7 @@ Round run_round(const Files& f, int first) {
             r.peer = read_json(peer_json);
         },
         [&] {
-            if (baseline != nullptr) r.baseline = run_glint(baseline, f);
+            if (baseline != nullptr) r.baseline = run_glint(baseline, f, std::getenv("GLINT_BENCH_BASELINE_ARGS"));
         }};
     for (int k = 0; k < 3; ++k) steps[(first + k) % 3]();
     return r;

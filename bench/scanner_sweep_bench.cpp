@@ -1,5 +1,5 @@
 // The whole inspection in one process, stage by stage, as `glint sweep REF EXA --register`
-// runs it with its defaults (60 views at 256², s = 2, per-view EXR and PNG pictures, mosaic,
+// runs it with its defaults (60 views at 256², s = 2, per-view PNG pictures, mosaic,
 // atlas.png, atlas files, report.json / report.html), on the benchmarks' blob pair
 // (bench/blob_pair.h: ~200k and ~2M triangles) read from binary PLY files.
 // Counters, seconds per run: load (both files), fit, distance, render, compare_atlas
