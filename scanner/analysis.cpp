@@ -68,6 +68,45 @@ const Mesh& in_analysis_unit(const Mesh& examined, const UnitResolution& units, 
     return *storage;
 }
 
+// The sweep of the fitted pair, per-view exports and progress on the way. Per-view EXRs hold
+// every pixel's comparison, so those sweeps read their frames back.
+void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options, const OutputFolder* folder,
+                const AnalysisObserver& observer, AnalysisResult& result) {
+    const SweepPlan plan = make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
+    std::optional<ViewExporter> exporter;
+    if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
+    std::size_t done = 0;
+    const bool want_exr = exporter && options.exports.write_exr;
+    SweepOptions sweep_options = options.sweep;
+    if (want_exr && sweep_options.accumulate == Accumulation::Auto) sweep_options.accumulate = Accumulation::Host;
+    result.sweep = run_sweep(reference, fitted, plan, sweep_options, [&](const PlannedView& v, const DeviationMap& d) {
+        if (exporter && d.width > 0) exporter->add(v, d);
+        if (observer.views) observer.views(++done, plan.views.size());
+    });
+    if (want_exr && result.sweep.on_gpu)
+        result.warnings.push_back("per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
+                                  "no pixel came back; accumulate = auto or host writes them");
+    if (sweep_options.accumulate != options.sweep.accumulate && result.sweep.renderer.backend == Backend::Vulkan)
+        result.sweep.accumulation_note = "per-view EXRs hold every pixel's comparison: frames read back (without "
+                                         "--exr compare stays on the GPU)";
+}
+
+// One decision per zoom from the atlas and the shape evidence; their warnings named by zoom.
+void decide_step(const Mesh& reference, const AnalysisOptions& options, AnalysisResult& result) {
+    for (const auto& zoom : result.sweep.zooms) {
+        const DecisionEvidence evidence{.atlas = &zoom.atlas,
+                                        .coverage = &zoom.coverage,
+                                        .distance = &result.distance,
+                                        .tolerance = &result.tolerance,
+                                        .at_border = &result.at_border,
+                                        .metric = options.sweep.metric,
+                                        .size = result.size};
+        result.decisions.push_back(decide(reference, evidence, options.decision));
+        for (const auto& w : result.decisions.back().warnings)
+            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
+    }
+}
+
 }  // namespace
 
 AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const AnalysisOptions& options,
@@ -109,41 +148,12 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");
-    const SweepPlan plan = make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
-    std::optional<ViewExporter> exporter;
-    if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
-    std::size_t done = 0;
-    // Per-view EXRs hold every pixel's comparison: those sweeps read their frames back.
-    const bool want_exr = exporter && options.exports.write_exr;
-    SweepOptions sweep_options = options.sweep;
-    if (want_exr && sweep_options.accumulate == Accumulation::Auto) sweep_options.accumulate = Accumulation::Host;
-    result.sweep = run_sweep(reference, fitted, plan, sweep_options,
-                             [&](const PlannedView& v, const DeviationMap& d) {
-                                 if (exporter && d.width > 0) exporter->add(v, d);
-                                 if (observer.views) observer.views(++done, plan.views.size());
-                             });
-    if (want_exr && result.sweep.on_gpu)
-        result.warnings.push_back("per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
-                                  "no pixel came back; accumulate = auto or host writes them");
-    if (sweep_options.accumulate != options.sweep.accumulate && result.sweep.renderer.backend == Backend::Vulkan)
-        result.sweep.accumulation_note = "per-view EXRs hold every pixel's comparison: frames read back (without "
-                                         "--exr compare stays on the GPU)";
+    sweep_step(reference, fitted, options, folder ? &*folder : nullptr, observer, result);
     fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
 
     announce(observer, "decide");
     t = Clock::now();
-    for (const auto& zoom : result.sweep.zooms) {
-        const DecisionEvidence evidence{.atlas = &zoom.atlas,
-                                        .coverage = &zoom.coverage,
-                                        .distance = &result.distance,
-                                        .tolerance = &result.tolerance,
-                                        .at_border = &result.at_border,
-                                        .metric = options.sweep.metric,
-                                        .size = result.size};
-        result.decisions.push_back(decide(reference, evidence, options.decision));
-        for (const auto& w : result.decisions.back().warnings)
-            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
-    }
+    decide_step(reference, options, result);
     result.decision_seconds = seconds_since(t);
     result.swap_hint = swap_hint(reference, examined, result);
     if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
