@@ -15,6 +15,7 @@
 // scatter), dev_vertices_ms (gather, fold) (tools/bench prints the medians). Renderer and
 // atlas creation (mesh upload, buffers, pipelines) is not timed; the GPU path's per-sweep
 // read-back of the per-vertex totals is, once per 16 views (a real sweep has 60 or more).
+#include "bench/bumpy_sphere.h"
 #include "mesh/damage.h"
 #include "mesh/normals.h"
 #include "render/context.h"
@@ -36,37 +37,6 @@
 namespace glint {
 namespace {
 
-/// Bumpy UV sphere with 4·rings·(rings − 1) triangles (bench/render_bench.cpp's surface).
-Mesh bumpy_sphere(int rings) {
-    Mesh mesh;
-    const int segments = 2 * rings;
-    const double pi = std::numbers::pi;
-    const auto point = [&](double theta, double phi) {
-        const double r = 1.0 + 0.05 * std::sin(7.0 * theta) * std::cos(5.0 * phi);
-        return Vec3f(static_cast<float>(r * std::sin(theta) * std::cos(phi)),
-                     static_cast<float>(r * std::sin(theta) * std::sin(phi)), static_cast<float>(r * std::cos(theta)));
-    };
-    mesh.positions.push_back(point(0.0, 0.0));
-    for (int i = 1; i < rings; ++i) {
-        for (int j = 0; j < segments; ++j) mesh.positions.push_back(point(pi * i / rings, 2.0 * pi * j / segments));
-    }
-    mesh.positions.push_back(point(pi, 0.0));
-    const auto south = static_cast<std::uint32_t>(mesh.positions.size() - 1);
-    const auto at = [&](int ring, int seg) {
-        return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (seg % segments));
-    };
-    for (int j = 0; j < segments; ++j) mesh.triangles.push_back({0, at(1, j), at(1, j + 1)});
-    for (int i = 1; i + 1 < rings; ++i) {
-        for (int j = 0; j < segments; ++j) {
-            mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    for (int j = 0; j < segments; ++j) mesh.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
-    compute_vertex_normals(mesh);
-    return mesh;
-}
-
 struct Setup {
     Mesh reference;
     Mesh examined;
@@ -83,8 +53,8 @@ Setup& setup(int kilo_triangles) {
     if (inserted) {
         // 4·r² ≈ triangles: r = 158 → 99.5k, r = 500 → 998k; the examined mesh 5 % more rings.
         const int rings = kilo_triangles >= 1000 ? 500 : 158;
-        s.reference = bumpy_sphere(rings);
-        s.examined = bumpy_sphere(rings * 21 / 20);
+        s.reference = bench::bumpy_sphere(rings);
+        s.examined = bench::bumpy_sphere(rings * 21 / 20);
         apply_damage(s.examined, {DamageSpec{.kind = DamageKind::Dent, .center = {0.0, 1.0, 0.3}, .radius = 0.25,
                                              .depth = 0.02}});
         const auto context = shared_render_context(ContextOptions{.backend = Backend::Vulkan});

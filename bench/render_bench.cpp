@@ -8,6 +8,7 @@
 // framed to fit, s = 1, rendered through Renderer::render_views (the streaming path the
 // sweep uses) with a consumer that reads every pixel's coverage, so read-back is real.
 // Also: resident memory while streaming a 360-view sweep at 512² (bounded, not ∝ views).
+#include "bench/bumpy_sphere.h"
 #include "mesh/mesh.h"
 #include "mesh/normals.h"
 #include "render/renderer.h"
@@ -26,44 +27,13 @@
 namespace glint {
 namespace {
 
-/// Bumpy UV sphere with 4·rings·(rings − 1) triangles.
-Mesh make_bench_mesh(int rings) {
-    Mesh mesh;
-    const int segments = 2 * rings;
-    const double pi = std::numbers::pi;
-    const auto point = [&](double theta, double phi) {
-        const double r = 1.0 + 0.05 * std::sin(7.0 * theta) * std::cos(5.0 * phi);
-        return Vec3f(static_cast<float>(r * std::sin(theta) * std::cos(phi)),
-                     static_cast<float>(r * std::sin(theta) * std::sin(phi)), static_cast<float>(r * std::cos(theta)));
-    };
-    mesh.positions.push_back(point(0.0, 0.0));
-    for (int i = 1; i < rings; ++i) {
-        for (int j = 0; j < segments; ++j) mesh.positions.push_back(point(pi * i / rings, 2.0 * pi * j / segments));
-    }
-    mesh.positions.push_back(point(pi, 0.0));
-    const auto south = static_cast<std::uint32_t>(mesh.positions.size() - 1);
-    const auto at = [&](int ring, int seg) {
-        return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (seg % segments));
-    };
-    for (int j = 0; j < segments; ++j) mesh.triangles.push_back({0, at(1, j), at(1, j + 1)});
-    for (int i = 1; i + 1 < rings; ++i) {
-        for (int j = 0; j < segments; ++j) {
-            mesh.triangles.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
-            mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
-        }
-    }
-    for (int j = 0; j < segments; ++j) mesh.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
-    compute_vertex_normals(mesh);
-    return mesh;
-}
-
 const Mesh& bench_mesh(int kilo_triangles) {
     static std::map<int, Mesh> cache;
     auto it = cache.find(kilo_triangles);
     if (it == cache.end()) {
         // 4·r² ≈ triangles: r = 158 → 99.5k, r = 500 → 998k.
         const int rings = kilo_triangles >= 1000 ? 500 : 158;
-        it = cache.emplace(kilo_triangles, make_bench_mesh(rings)).first;
+        it = cache.emplace(kilo_triangles, bench::bumpy_sphere(rings)).first;
     }
     return it->second;
 }
