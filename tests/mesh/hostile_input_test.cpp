@@ -130,6 +130,24 @@ TEST(HostileInput, RefusesGltfLinePrimitivesAndPrimitivesWithoutPositions) {
     EXPECT_CONTAINS(load_error<InputError>(write_bytes("no_positions.gltf", no_positions)), "no POSITION accessor");
 }
 
+// fuzz_glb: an 18-byte file named .glb without the "glTF" magic made assimp try every importer
+// it has by content, and one read past its buffer (regression seed
+// fuzz/corpus/glb/regression_not_a_glb.glb). Only what assimp's glTF importers claim goes on:
+// a GLB with its magic and version 1 or 2, glTF JSON whose asset.version starts with 1 or 2.
+TEST(HostileInput, RefusesGltfThatAssimpsGltfImportersWouldNotClaim) {
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("not.glb", R"(as": {indexarrayon)")),
+                    "a .glb file that does not start with \"glTF\" (found \"as\":\"), expected a binary glTF");
+    std::string glb = "glTF";
+    const std::uint32_t header[4] = {7, 40, 20, 0x4E4F534Au};
+    glb.append(reinterpret_cast<const char*>(header), sizeof header);
+    glb += std::string(20, ' ');
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("v7.glb", glb)), "GLB version 7, expected 1 or 2");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("empty.gltf", "{}")), "glTF JSON has no asset.version");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("v3.gltf", R"({"asset":{"version":"3.0"}})")),
+                    "asset.version \"3.0\", expected \"1.0\" or \"2.0\"");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("vnum.gltf", R"({"asset":{"version":2}})")), "asset.version 2,");
+}
+
 TEST(HostileInput, RefusesDeeplyNestedJson) {
     const auto path = write_bytes("nested.gltf", R"({"asset":{"extras":)" + std::string(100000, '[') + "}}");
     EXPECT_CONTAINS(load_error<InputError>(path), "deeper than 128 levels");
