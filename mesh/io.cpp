@@ -119,8 +119,10 @@ Format detect(std::span<const char> data, const std::string& ext) {
     if (detail::is_binary_stl(data)) return Format::Stl;
     if (ext == ".ply" || ext == ".vtk") return ext == ".ply" ? Format::Ply : Format::Vtk;
     if (starts_with(data, "OFF") || starts_with(data, "solid")) return Format::AssimpText;
-    if (ext.empty()) return Format::Unknown;
-    return Format::AssimpBinary;  // let assimp try by extension (glb, 3ds, dae, fbx, …)
+    if (ext == ".glb") return Format::AssimpBinary;
+    // note: assimp would try any other extension (3ds, dae, fbx, …) with readers nobody has
+    // fuzzed here; glint reads the formats it documents and tests, nothing else.
+    return Format::Unknown;
 }
 
 // assimp gives an OBJ one vertex per face corner; the file's own count is its "v" lines.
@@ -255,8 +257,9 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
             loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             break;
         case Format::Unknown:
-            throw InputError(quoted(source) + ": unknown mesh format (no extension and no known "
-                                              "signature); expected PLY, STL, OBJ, OFF, glTF or VTK");
+            throw InputError(quoted(source) + ": unknown mesh format (" +
+                             (ext.empty() ? std::string("no extension") : "extension " + ext) +
+                             " and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
     }
     if (format == Format::AssimpText && ext == ".obj") count_obj_vertices(data, loaded.report);
     // note: 64 KiB holds any header glint has met; a unit comment further in is not looked for.

@@ -148,6 +148,14 @@ TEST(HostileInput, RefusesGltfThatAssimpsGltfImportersWouldNotClaim) {
     EXPECT_CONTAINS(load_error<InputError>(write_bytes("vnum.gltf", R"({"asset":{"version":2}})")), "asset.version 2,");
 }
 
+// Formats glint does not document are not handed to assimp's other importers (unfuzzed here).
+TEST(HostileInput, RefusesFormatsOutsideTheDocumentedOnes) {
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("model.3ds", std::string(64, '\x4d'))),
+                    "unknown mesh format (extension .3ds and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("scene.dae", "<?xml version=\"1.0\"?><COLLADA/>")),
+                    "unknown mesh format (extension .dae");
+}
+
 TEST(HostileInput, RefusesDeeplyNestedJson) {
     const auto path = write_bytes("nested.gltf", R"({"asset":{"extras":)" + std::string(100000, '[') + "}}");
     EXPECT_CONTAINS(load_error<InputError>(path), "deeper than 128 levels");
