@@ -115,6 +115,13 @@ std::vector<std::uint64_t> mesh_triangles(const json& doc, const std::string& so
             const json& indices = member(*prim, "indices");
             const std::uint64_t n = indices.is_null() ? count_of(member(member(*prim, "attributes"), "POSITION"))
                                                       : count_of(indices);
+            // note: assimp sizes a strip or fan of n < 3 vertices as n − 2 faces (a fuzz_glb
+            // allocation of 2^64 bytes from an index accessor of count 0).
+            const std::uint64_t needed = mode == 0 ? 1 : 3;
+            if (n < needed)
+                throw InputError(where + ": draws " + std::to_string(n) + " vertices (" +
+                                 (indices.is_null() ? "POSITION" : "indices") + " accessor count), expected at least " +
+                                 std::to_string(needed));
             if (mode == 4) triangles = add_sat(triangles, n / 3);
             else if ((mode == 5 || mode == 6) && n > 2) triangles = add_sat(triangles, n - 2);
         }

@@ -128,6 +128,13 @@ TEST(HostileInput, RefusesGltfLinePrimitivesAndPrimitivesWithoutPositions) {
     no_positions.replace(no_positions.find(R"("attributes")"), 12, R"("atqributes")");
     no_positions.replace(no_positions.find(R"("mode":2)"), 8, R"("mode":4)");
     EXPECT_CONTAINS(load_error<InputError>(write_bytes("no_positions.gltf", no_positions)), "no POSITION accessor");
+    // fuzz_glb: a triangle strip whose index accessor counts 0 made assimp allocate 2^64 bytes
+    // (regression seed fuzz/corpus/glb/regression_strip_of_no_vertices.glb).
+    std::string empty_strip = line_loop;
+    empty_strip.replace(empty_strip.find(R"("mode":2)"), 8, R"("mode":5)");
+    empty_strip.replace(empty_strip.rfind(R"("count":3)"), 9, R"("count":0)");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("empty_strip.gltf", empty_strip)),
+                    "glTF mesh 0 primitive 0: draws 0 vertices (indices accessor count), expected at least 3");
 }
 
 // fuzz_glb: an 18-byte file named .glb without the "glTF" magic made assimp try every importer
