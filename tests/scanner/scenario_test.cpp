@@ -13,8 +13,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Each test writes into a folder of its own: CTest runs the tests of this file as parallel
+// processes, and a shared bad.toml was rewritten by one while another read it (a CI failure).
 fs::path write_scenario(const std::string& name, const std::string& text) {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "scenarios";
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "scenarios" /
+                         ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(dir);
     const fs::path p = dir / (name + ".toml");
     std::ofstream(p) << text;
