@@ -1,13 +1,15 @@
 // The render and sweep benchmarks' surface: a bumpy latitude/longitude sphere (an exact
-// analytic shape, no file needed) at any size, with vertex normals.
+// analytic shape, no file needed) at any size, with vertex normals, and a ring of views of it.
 #pragma once
 
 #include "mesh/mesh.h"
 #include "mesh/normals.h"
+#include "render/view.h"
 
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <vector>
 
 namespace glint::bench {
 
@@ -40,6 +42,18 @@ inline Mesh bumpy_sphere(int rings) {
     for (int j = 0; j < segments; ++j) mesh.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
     compute_vertex_normals(mesh);
     return mesh;
+}
+
+/// `count` views around the mesh: azimuths evenly spaced, elevations spread over ±60°,
+/// orthographic, framed to fit, size × size pixels.
+inline std::vector<View> ring_views(const Mesh& mesh, int size, int count) {
+    std::vector<View> views;
+    for (int i = 0; i < count; ++i) {
+        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count,
+                                                 .elevation_deg = -60.0 + 120.0 * ((i * 7) % count) / count,
+                                                 .width = size, .height = size, .index = i}));
+    }
+    return views;
 }
 
 }  // namespace glint::bench

@@ -67,16 +67,6 @@ Setup& setup(int kilo_triangles) {
     return s;
 }
 
-std::vector<View> ring_views(const Mesh& mesh, int size, int count) {
-    std::vector<View> views;
-    for (int i = 0; i < count; ++i) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count,
-                                                 .elevation_deg = -60.0 + 120.0 * ((i * 7) % count) / count,
-                                                 .width = size, .height = size, .index = i}));
-    }
-    return views;
-}
-
 /// The sweep's read-back path for one zoom (frames read back, compared, scattered and folded
 /// on the host; one frame pair at a time, whole); returns the compared pixels.
 std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
@@ -123,7 +113,7 @@ void BM_GpuVsReadBack(benchmark::State& state) {
         state.SkipWithError("the Vulkan device cannot run the GPU atlas (see glint devices)");
         return;
     }
-    const std::vector<View> views = ring_views(s.reference, size, 16);
+    const std::vector<View> views = bench::ring_views(s.reference, size, 16);
     double read_back_s = 0.0;
     double gpu_s = 0.0;
     std::size_t compared_read_back = 0;

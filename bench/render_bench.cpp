@@ -46,22 +46,12 @@ Renderer& bench_renderer(Backend backend, int kilo_triangles) {
     return *slot;
 }
 
-std::vector<View> bench_views(const Mesh& mesh, int size, int count) {
-    std::vector<View> views;
-    for (int i = 0; i < count; ++i) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count,
-                                                 .elevation_deg = -60.0 + 120.0 * ((i * 7) % count) / count,
-                                                 .width = size, .height = size, .index = i}));
-    }
-    return views;
-}
-
 void BM_RenderViews(benchmark::State& state) {
     const auto backend = static_cast<Backend>(state.range(0));
     const int kilo = static_cast<int>(state.range(1));
     const int size = static_cast<int>(state.range(2));
     Renderer& renderer = bench_renderer(backend, kilo);
-    const std::vector<View> views = bench_views(bench_mesh(kilo), size, 16);
+    const std::vector<View> views = bench::ring_views(bench_mesh(kilo), size, 16);
     std::size_t covered = 0;
     for (auto _ : state) {
         renderer.render_views(views, [&](std::size_t, const Frame& f) { covered += f.covered_count(); });
@@ -86,7 +76,7 @@ long resident_kib() {
 void BM_Sweep360Memory(benchmark::State& state) {
     const auto backend = static_cast<Backend>(state.range(0));
     const Mesh& mesh = bench_mesh(100);
-    const std::vector<View> views = bench_views(mesh, 512, 360);
+    const std::vector<View> views = bench::ring_views(mesh, 512, 360);
     long before = 0, built = 0, first = 0, at_90 = 0, at_180 = 0, peak = 0;
     std::string device;
     for (auto _ : state) {

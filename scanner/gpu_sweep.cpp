@@ -104,12 +104,7 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Rende
         if (observer) observer(pv, no_deviation);
     });
     result.render_seconds = seconds_since(t_run);
-    std::size_t compared = 0;
-    for (const auto& v : result.views) compared += v.compared;
-    if (compared == 0)
-        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
-                         std::to_string(result.views.size()) +
-                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+    require_overlap(result.views);
     const auto t_read = Clock::now();
     std::vector<GpuAtlasTotals> totals = atlas.read_totals();
     GLINT_ASSERT(totals.size() == plan.footprints.size(), "one atlas per zoom");

@@ -135,6 +135,15 @@ private:
 
 }  // namespace
 
+void require_overlap(const std::vector<ViewSummary>& views) {
+    std::size_t compared = 0;
+    for (const auto& v : views) compared += v.compared;
+    if (compared == 0)
+        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
+                         std::to_string(views.size()) +
+                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+}
+
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan, const SweepOptions& options,
                       const ViewObserver& observer) {
     const auto t_start = Clock::now();
@@ -183,12 +192,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     ref_renderer.reset();
     result.compare_seconds = std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
     result.render_seconds = views_seconds - result.compare_seconds;
-    std::size_t compared = 0;
-    for (const auto& v : result.views) compared += v.compared;
-    if (compared == 0)
-        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
-                         std::to_string(result.views.size()) +
-                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+    require_overlap(result.views);
     for (const auto& a : stream.atlases()) {
         SweepZoom z;
         z.atlas = a.finish();

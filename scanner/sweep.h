@@ -101,6 +101,10 @@ struct SweepResult {
 /// (0 x 0); ask for Accumulation::Host when an observer needs it.
 using ViewObserver = std::function<void(const PlannedView& view, const DeviationMap& deviation)>;
 
+/// \throw InputError when no view compared a single pixel (the surfaces do not overlap: a
+/// wrong fit); both paths of run_sweep check it after the last view.
+void require_overlap(const std::vector<ViewSummary>& views);
+
 /// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
 /// must already be in reference coordinates (fitted).
 /// \throw InputError invalid options, an empty plan, a reference without normals, surfaces
