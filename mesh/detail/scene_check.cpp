@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstring>
+#include <optional>
 #include <string_view>
 #include <unordered_map>
 #include <vector>
@@ -279,10 +280,90 @@ void check_glb(std::span<const char> data, const std::string& source, std::uint6
     check_gltf_json(data.subspan(start, static_cast<std::size_t>(length)), source, max_triangles);
 }
 
-// OFF header: an optional "[ST][C][N][4][n]OFF" keyword, then vertex, face and edge counts.
-// note: assimp reads the counts right after the letters "OFF", even inside the same word
-// ("OFF2222…"), and from the first numbers when there is no keyword; so does this check
-// (found by fuzz/fuzz_off: a count glued to "OFF" made assimp run for minutes).
+// assimp's own reading of an OFF header (its OFFLoader), byte for byte: the data ends in a NUL
+// (assimp appends one; an embedded NUL ends a line), tokens are separated by spaces, tabs and
+// line ends, lines starting with '#' are skipped only between tokens, the keyword's optional
+// letters ST, C, N, 4, n are taken one by one before "OFF", "n" adds a dimension number before
+// the counts, and a number is the run of digits at the cursor read into 32 bits (it wraps and
+// stops at the first non-digit; no digit reads 0).
+class OffHeaderCursor {
+public:
+    explicit OffHeaderCursor(std::span<const char> data) : data_(data) {}
+    char at(std::size_t k = 0) const { return pos_ + k < data_.size() ? data_[pos_ + k] : '\0'; }
+    std::size_t pos() const { return pos_; }
+    std::size_t end() const { return data_.size() + 1; }  // counting assimp's NUL
+    void advance(std::size_t n) { pos_ += n; }
+    void next_token() {
+        skip_blanks();
+        while (pos_ < end() && (at() == '#' || at() == '\n' || at() == '\r')) {
+            while (at() != '\r' && at() != '\n' && at() != '\0') ++pos_;
+            while (at() == '\r' || at() == '\n') ++pos_;
+            skip_blanks();
+        }
+    }
+    std::uint32_t number() {
+        std::uint32_t value = 0;
+        while (at() >= '0' && at() <= '9') value = value * 10u + static_cast<std::uint32_t>(at() - '0'), ++pos_;
+        return value;
+    }
+
+private:
+    void skip_blanks() {
+        while (at() == ' ' || at() == '\t' || at() == '\r' || at() == '\n') ++pos_;
+    }
+    std::span<const char> data_;
+    std::size_t pos_ = 0;
+};
+
+struct OffCounts {
+    std::uint64_t vertices = 0, faces = 0;
+    std::size_t header_end = 0;
+};
+
+// The vertex and face counts as assimp reads them; nullopt where assimp refuses the header itself.
+std::optional<OffCounts> assimp_off_counts(std::span<const char> data) {
+    OffHeaderCursor c(data);
+    c.next_token();
+    const auto take = [&](std::string_view letters) {
+        // assimp tests "car < end - letters" before comparing, so a prefix touching the end is not taken
+        if (c.pos() + letters.size() >= c.end()) return false;
+        for (std::size_t k = 0; k < letters.size(); ++k)
+            if (c.at(k) != letters[k]) return false;
+        c.advance(letters.size());
+        return true;
+    };
+    take("ST");
+    take("C");
+    take("N");
+    take("4");
+    const bool dimension = take("n");
+    if (take("OFF")) {
+        c.next_token();
+    } else {
+        c.next_token();
+        if (c.pos() + 1 >= c.end() || c.at() < '0' || c.at() > '9') return std::nullopt;
+    }
+    if (dimension) {
+        if (c.number() > 3) return std::nullopt;
+        c.next_token();
+    }
+    c.next_token();
+    OffCounts counts;
+    counts.vertices = c.number();
+    c.next_token();
+    counts.faces = c.number();
+    c.next_token();
+    (void)c.number();  // edges
+    counts.header_end = std::min(c.pos(), data.size());
+    return counts;
+}
+
+// OFF header: an optional "[ST][C][N][4][n]OFF" keyword, then vertex, face and edge counts. Two
+// readings are checked: the plain one (words of the first lines, a count glued to "OFF" split
+// off), which names what a person reads, and assimp's own (assimp_off_counts), which is what
+// assimp allocates for: it reads "nOFF 3 1 N" as dimension 3, 1 vertex and N faces.
+// note: both found by fuzz/fuzz_off: a count glued to "OFF" made assimp run for minutes, and a
+// face count after "nOFF" made it allocate 39 GB.
 void check_off(std::span<const char> data, const std::string& source) {
     std::size_t pos = 0;
     std::string_view line;
@@ -297,18 +378,24 @@ void check_off(std::span<const char> data, const std::string& source) {
             words.push_back(w);
         }
     }
-    if (words.size() < 2) return;  // assimp reports it
-    std::uint64_t counts[2] = {0, 0};
-    for (std::size_t k = 0; k < 2; ++k) {
-        const auto w = words[k];
-        const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[k]);
-        if (r.ec != std::errc() || r.ptr != w.data() + w.size())
-            throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") + " count is \"" +
-                             printable(w) + "\", expected a non-negative integer");
+    if (words.size() >= 2) {
+        std::uint64_t counts[2] = {0, 0};
+        for (std::size_t k = 0; k < 2; ++k) {
+            const auto w = words[k];
+            const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[k]);
+            if (r.ec != std::errc() || r.ptr != w.data() + w.size())
+                throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") + " count is \"" +
+                                 printable(w) + "\", expected a non-negative integer");
+        }
+        const std::uint64_t left = data.size() - std::min(pos, data.size()) + 1;
+        check_count_fits(counts[0], 6, left, source, "OFF vertex list");  // "0 0 0\n"
+        check_count_fits(counts[1], 2, left, source, "OFF face list");    // "0\n"
     }
-    const std::uint64_t left = data.size() - std::min(pos, data.size()) + 1;
-    check_count_fits(counts[0], 6, left, source, "OFF vertex list");  // "0 0 0\n"
-    check_count_fits(counts[1], 2, left, source, "OFF face list");    // "0\n"
+    if (const auto assimp = assimp_off_counts(data)) {
+        const std::uint64_t left = data.size() - assimp->header_end + 1;
+        check_count_fits(assimp->vertices, 6, left, source, "OFF vertex list (as assimp reads the header)");
+        check_count_fits(assimp->faces, 2, left, source, "OFF face list (as assimp reads the header)");
+    }
 }
 
 // Every OBJ face line gives at least one triangle.

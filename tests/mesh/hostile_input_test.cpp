@@ -246,3 +246,26 @@ TEST(HostileInput, RefusesOffCountGluedToTheKeyword) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Found by fuzz/fuzz_off in CI (AddressSanitizer out of memory: 39 GB): after "nOFF" assimp
+// reads a dimension first, so "nOFF 1 1 N" is 1 vertex and N faces, and it allocates N faces
+// before reading any. The plain reading (1 vertex, 1 face) let it through.
+TEST(HostileInput, RefusesOffFaceCountAsAssimpReadsIt) {
+    const auto path = test::write_bytes(test::output_dir("hostile_input_test"), "dimension.off",
+                                        "nOFF 1 1 2443364828\n0 0 0\n3 0 0 0\n");
+    EXPECT_CONTAINS(load_error<InputError>(path),
+                    "OFF face list (as assimp reads the header) declares 2443364828 items");
+}
+
+// A 2-D "nOFF" file that assimp reads (dimension 2, then the counts) still loads.
+TEST(HostileInput, LoadsTwoDimensionalOff) {
+    const auto path = test::write_bytes(test::output_dir("hostile_input_test"), "flat.off",
+                                        "nOFF\n2\n3 1 0\n0 0\n1 0\n0 1\n3 0 1 2\n");
+    EXPECT_EQ(load_mesh(path).mesh.triangle_count(), 1u);
+}
+
+}  // namespace
+}  // namespace glint
