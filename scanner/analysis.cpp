@@ -3,12 +3,14 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "render/context.h"
 #include "scanner/output_folder.h"
 #include "scanner/report.h"
 #include "scanner/view_exports.h"
 
 #include <chrono>
 #include <cstdio>
+#include <future>
 #include <optional>
 
 namespace glint {
@@ -47,25 +49,17 @@ SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_
 // reference cannot show as a loss: no region, or gains only. Only a hint (a growth can look
 // the same), given when the examined surface is 10 % larger and no region at zoom 0 is a
 // loss. note: 10 % because two scans of one surface differ by a few %.
-std::string swap_hint(const Mesh& reference, const Mesh& examined, const AnalysisResult& result) {
+std::string swap_hint(const Mesh& reference, double exa_area, const AnalysisResult& result) {
     if (result.decisions.empty()) return "";
     for (const auto& r : result.decisions[0].regions.regions)
         if (r.kind != RegionKind::Bump) return "";
-    const double ref_area = surface_area(reference), exa_area = surface_area(examined);
+    const double ref_area = surface_area(reference);
     if (!(exa_area > 1.1 * ref_area)) return "";
     char b[240];
     std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and no region is a loss: "
                   "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
                   100.0 * (exa_area / ref_area - 1.0));
     return b;
-}
-
-// The examined mesh in the analysis unit: itself, or a scaled copy kept in `storage`.
-const Mesh& in_analysis_unit(const Mesh& examined, const UnitResolution& units, std::optional<Mesh>& storage) {
-    if (units.examined_scale == 1.0) return examined;
-    storage = examined;
-    scale_to_analysis_unit(*storage, units);
-    return *storage;
 }
 
 // The sweep of the fitted pair, per-view exports and progress on the way. Per-view EXRs hold
@@ -109,7 +103,7 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
 
 }  // namespace
 
-AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const AnalysisOptions& options,
+AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOptions& options,
                        const AnalysisObserver& observer) {
     const auto t_start = Clock::now();
     options.validate();
@@ -121,21 +115,32 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     const Mesh& reference = with_normals ? *with_normals : reference_in;
     // Units and sizes, then the output location: both checked before the long work.
     AnalysisResult result;
-    result.units = resolve_units(reference, examined_in, options.units);
+    result.units = resolve_units(reference, examined, options.units);
     result.unit = result.units.unit;
-    std::optional<Mesh> scaled;
-    const Mesh& examined = in_analysis_unit(examined_in, result.units, scaled);
+    if (result.units.examined_scale != 1.0) scale_to_analysis_unit(examined, result.units);
     std::optional<OutputFolder> folder;
     if (!options.exports.output.empty()) folder.emplace(options.exports.output, options.exports.replace_existing);
 
     result.size = bounds(reference).diagonal();
     result.warnings = options.exports.warnings;
     for (const auto& w : result.units.warnings) result.warnings.push_back(w);
+    // The render device is opened while the fit runs: choosing it loads the Vulkan drivers
+    // (lavapipe brings LLVM), 0.05-0.1 s on a CPU machine and more where a GPU starts. The
+    // sweep takes the same shared context (render/context.h); a failure here is left for the
+    // sweep to report.
+    auto device = std::async(std::launch::async, [render = options.sweep.render.context_options()] {
+        try {
+            (void)shared_render_context(render);
+        } catch (const std::exception&) {
+        }
+    });
     announce(observer, "fit");
     auto t = Clock::now();
     result.fit = fit_or_refuse(reference, examined, options.fit);
     for (const auto& w : result.fit.warnings) result.warnings.push_back(w);
-    Mesh fitted = examined;
+    const double examined_area = surface_area(examined);
+    // The examined mesh becomes the fitted one in place (it is this call's own copy).
+    Mesh& fitted = examined;
     transform_mesh(fitted, result.fit.reference_from_examined);
     result.fit_seconds = seconds_since(t);
 
@@ -148,6 +153,7 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");
+    device.wait();
     sweep_step(reference, fitted, options, folder ? &*folder : nullptr, observer, result);
     fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
 
@@ -155,7 +161,7 @@ AnalysisResult analyse(const Mesh& reference_in, const Mesh& examined_in, const 
     t = Clock::now();
     decide_step(reference, options, result);
     result.decision_seconds = seconds_since(t);
-    result.swap_hint = swap_hint(reference, examined, result);
+    result.swap_hint = swap_hint(reference, examined_area, result);
     if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 
     if (folder) {

@@ -103,10 +103,13 @@ struct AnalysisObserver {
     std::function<void(std::size_t done, std::size_t total)> views;
 };
 
-/// Runs the pipeline. The reference must have vertex normals (loaded meshes do).
+/// Runs the pipeline. The reference must have vertex normals (loaded meshes do). The examined
+/// mesh is taken by value and fitted in place: a caller done with it moves it in, and the
+/// largest meshes are not held twice.
 /// \throw OptionError invalid options; InputError meshes whose sizes differ by more than
-/// kMaxScaleRatio (unless allowed), a fit that did not converge, surfaces that do not overlap; IoError, DeviceError; Cancelled (nothing half-written is left).
-[[nodiscard]] AnalysisResult analyse(const Mesh& reference, const Mesh& examined, const AnalysisOptions& options,
+/// kMaxScaleRatio (unless allowed), a fit that did not converge, surfaces that do not overlap;
+/// IoError, DeviceError; Cancelled (nothing half-written is left).
+[[nodiscard]] AnalysisResult analyse(const Mesh& reference, Mesh examined, const AnalysisOptions& options,
                                      const AnalysisObserver& observer = {});
 
 }  // namespace glint

@@ -203,19 +203,21 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
     GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
     const ClosestPointIndex index = ClosestPointIndex::borrowing(fitted_examined);
     const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
-    std::vector<Vec3d> points(reference.vertex_count());
-    for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();
-    const auto closest = index.closest(points);
+    const std::size_t n = reference.vertex_count();
     const auto border = border_vertices(exa);
     const LocalShape ref_shape = local_shape(reference);
     const LocalShape exa_shape = local_shape(exa);
     ShapeEvidence e;
-    e.distance.resize(points.size());
-    e.tolerance.resize(points.size());
-    e.at_border.assign(points.size(), 0);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<std::size_t>& range) {
+    e.distance.resize(n);
+    e.tolerance.resize(n);
+    e.at_border.assign(n, 0);
+    // note: each vertex's closest point is used where it is found, not gathered first: a
+    // ClosestPoint is 112 bytes, 112 MB at 1M vertices on top of the index at this stage's
+    // peak (issue 13: peak memory at 2M triangles). Chunks of 512 neighbouring vertices keep
+    // the BVH nodes they visit in cache (as ClosestPointIndex::closest does).
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& range) {
         for (std::size_t v = range.begin(); v != range.end(); ++v) {
-            const ClosestPoint& c = closest[v];
+            const ClosestPoint c = index.closest(reference.positions[v].cast<double>());
             // A reference vertex outside the examined surface (positive) means the examined
             // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
             const auto& t = exa.triangles[c.triangle];

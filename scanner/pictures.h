@@ -9,9 +9,10 @@
 //   atlas.png                    the atlas (zoom 0) from six directions along the axes
 //
 // They are drawn after the decision (regions are known only then) from the reference alone:
-// its frames are rendered again on the CPU (Embree, render/renderer.h), per-pixel values come
-// from the frame's primitive ids (scanner/detail/surface_paint.h). Pictures are rendered at
-// the size they are shown (mosaic tiles at the tile size), so nothing full-size is resized.
+// its frames are rendered again on the CPU (Embree, render/renderer.h, one ray per pixel),
+// per-pixel values come from the frame's primitive ids (scanner/detail/surface_paint.h).
+// Pictures are rendered at the size they are shown (mosaic tiles at the tile size), so nothing
+// full-size is resized.
 #pragma once
 
 #include "mesh/mesh.h"

@@ -18,6 +18,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace glint::cli {
 namespace {
@@ -85,7 +86,7 @@ void run(SweepArgs& a) {
         print_options(options);
         return;
     }
-    const auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
+    auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
     ExportOptions& e = options.exports;
     auto described = [](const LoadedSurface& s) { return s.surface ? "surface of a volume: " + describe(*s.surface) : ""; };
     e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(), ref.mesh.triangle_count()});
@@ -102,7 +103,7 @@ void run(SweepArgs& a) {
         if (!bar) bar.emplace("sweep", total);
         bar->update(done);
     };
-    const AnalysisResult result = analyse(ref.mesh, exa.mesh, options, observer);
+    const AnalysisResult result = analyse(ref.mesh, std::move(exa.mesh), options, observer);
     if (bar) bar->finish();
     if (global_flags().json) std::cout << report_json(ref.mesh, result, options);
     else if (!global_flags().quiet) print_summary(result);

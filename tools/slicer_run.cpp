@@ -27,6 +27,7 @@
 #include <string>
 #include <system_error>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 namespace glint::cli {
@@ -233,7 +234,7 @@ void run_slicer_module(int argc, char** argv) {
     options.validate();
     SlicerProgress progress;
     const LoadedSurface ref = load_surface(call.positional[0], {});
-    const LoadedSurface exa = load_surface(call.positional[1], {});
+    LoadedSurface exa = load_surface(call.positional[1], {});
     options.exports.inputs = {{"reference", call.positional[0], "", ref.mesh.vertex_count(), ref.mesh.triangle_count()},
                               {"examined", call.positional[1], "", exa.mesh.vertex_count(), exa.mesh.triangle_count()}};
     AnalysisObserver observer;
@@ -242,7 +243,7 @@ void run_slicer_module(int argc, char** argv) {
         progress.stage(s);
     };
     observer.views = [&](std::size_t done, std::size_t total) { progress.views(done, total); };
-    const AnalysisResult result = analyse(ref.mesh, exa.mesh, options, observer);
+    const AnalysisResult result = analyse(ref.mesh, std::move(exa.mesh), options, observer);
     deliver(result.output, "atlas.vtp", atlas.string());
     if (call.values.count("regions") != 0) deliver(result.output, "regions.csv", call.values.at("regions"));
     if (call.values.count("mosaic") != 0) deliver(result.output, "mosaic_z0.png", call.values.at("mosaic"));
