@@ -34,7 +34,12 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
             key[t] = mesh.positions[indices[3 * t]][axis] + mesh.positions[indices[3 * t + 1]][axis] +
                      mesh.positions[indices[3 * t + 2]][axis];
         }
-        std::sort(order.begin(), order.end(), [&](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; });
+        // Only the slabs matter, not the order inside one: each piece boundary is placed by a
+        // partition (nth_element), O(n) per boundary instead of a sort of every triangle.
+        const auto by_key = [&](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; };
+        for (std::size_t p = 1; p < pieces; ++p)
+            std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(count * (p - 1) / pieces),
+                             order.begin() + static_cast<std::ptrdiff_t>(count * p / pieces), order.end(), by_key);
         std::vector<unsigned> sorted(indices.size());
         for (std::size_t t = 0; t < count; ++t) std::copy_n(&indices[3 * order[t]], 3, &sorted[3 * t]);
         indices = std::move(sorted);
