@@ -55,14 +55,19 @@ Setup& setup(int kilo_triangles) {
         const int rings = kilo_triangles >= 1000 ? 500 : 158;
         s.reference = bench::bumpy_sphere(rings);
         s.examined = bench::bumpy_sphere(rings * 21 / 20);
-        apply_damage(s.examined, {DamageSpec{.kind = DamageKind::Dent, .center = {0.0, 1.0, 0.3}, .radius = 0.25,
+        apply_damage(s.examined, {DamageSpec{.kind = DamageKind::Dent,
+                                             .center = {0.0, 1.0, 0.3},
+                                             .radius = 0.25,
                                              .depth = 0.02}});
         const auto context = shared_render_context(ContextOptions{.backend = Backend::Vulkan});
-        s.reference_renderer = std::make_unique<Renderer>(context, s.reference, FrameOptions{.supersample = 1});
-        s.examined_renderer = std::make_unique<Renderer>(context, s.examined, FrameOptions{.supersample = 1});
+        s.reference_renderer =
+            std::make_unique<Renderer>(context, s.reference, FrameOptions{.supersample = 1});
+        s.examined_renderer =
+            std::make_unique<Renderer>(context, s.examined, FrameOptions{.supersample = 1});
         if (GpuAtlas::supported(*s.reference_renderer, *s.examined_renderer, {}))
-            s.atlas = std::make_unique<GpuAtlas>(*s.reference_renderer, *s.examined_renderer,
-                                                 GpuAtlasOptions{.framed_radius = framing_sphere(s.reference).radius});
+            s.atlas = std::make_unique<GpuAtlas>(
+                *s.reference_renderer, *s.examined_renderer,
+                GpuAtlasOptions{.framed_radius = framing_sphere(s.reference).radius});
     }
     return s;
 }
@@ -77,21 +82,22 @@ std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
     ViewMaps maps;
     std::vector<AtlasSample> samples;
     std::size_t compared = 0;
-    render_view_pairs(*s.reference_renderer, *s.examined_renderer, views,
-                      [&](std::size_t i, const Frame& reference, const Frame& examined) {
-                          const FrameView rv = frame_view(reference), ev = frame_view(examined);
-                          maps.resize(reference.width, reference.height);
-                          maps.deviation = compare_frames(rv, ev);
-                          maps.deviation.value.resize(maps.deviation.angle_deg.size());
-                          metric.compute(rv, ev, maps.deviation.angle_deg, maps.deviation.value);
-                          const FrameRows rows = frame_rows(reference, 0, reference.height);
-                          record_reference_rows(rows, bp.min_coverage, maps);
-                          samples.clear();
-                          static_cast<void>(scatter_rows(s.reference, views[i], rows, maps, bp, samples));
-                          const std::vector<AtlasSample>* bands[] = {&samples};
-                          fold_view(s.reference, views[i], bands, maps, bp, atlas, scratch, 0);
-                          compared += maps.deviation.compared;
-                      });
+    render_view_pairs(
+        *s.reference_renderer, *s.examined_renderer, views,
+        [&](std::size_t i, const Frame& reference, const Frame& examined) {
+            const FrameView rv = frame_view(reference), ev = frame_view(examined);
+            maps.resize(reference.width, reference.height);
+            maps.deviation = compare_frames(rv, ev);
+            maps.deviation.value.resize(maps.deviation.angle_deg.size());
+            metric.compute(rv, ev, maps.deviation.angle_deg, maps.deviation.value);
+            const FrameRows rows = frame_rows(reference, 0, reference.height);
+            record_reference_rows(rows, bp.min_coverage, maps);
+            samples.clear();
+            static_cast<void>(scatter_rows(s.reference, views[i], rows, maps, bp, samples));
+            const std::vector<AtlasSample>* bands[] = {&samples};
+            fold_view(s.reference, views[i], bands, maps, bp, atlas, scratch, 0);
+            compared += maps.deviation.compared;
+        });
     benchmark::DoNotOptimize(atlas.finish());
     return compared;
 }
@@ -99,7 +105,8 @@ std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
 /// The sweep's GPU path; returns the compared pixels.
 std::size_t run_gpu(Setup& s, const std::vector<View>& views) {
     std::size_t compared = 0;
-    s.atlas->run(views, [&](std::size_t, const GpuViewSummary& summary) { compared += summary.compared; });
+    s.atlas->run(views,
+                 [&](std::size_t, const GpuViewSummary& summary) { compared += summary.compared; });
     benchmark::DoNotOptimize(s.atlas->read_totals());
     return compared;
 }
@@ -127,7 +134,8 @@ void BM_GpuVsReadBack(benchmark::State& state) {
         read_back_s += std::chrono::duration<double>(t1 - t0).count();
         gpu_s += std::chrono::duration<double>(t2 - t1).count();
     }
-    if (compared_read_back != compared_gpu) state.SkipWithError("the two paths compared different pixels");
+    if (compared_read_back != compared_gpu)
+        state.SkipWithError("the two paths compared different pixels");
     const double views_run = static_cast<double>(views.size() * state.iterations());
     state.counters["readback_views_per_s"] = read_back_s > 0.0 ? views_run / read_back_s : 0.0;
     state.counters["gpu_views_per_s"] = gpu_s > 0.0 ? views_run / gpu_s : 0.0;
@@ -140,8 +148,8 @@ void BM_GpuVsReadBack(benchmark::State& state) {
         state.counters["dev_pixels_ms"] = t.pixels_s * per_view_ms;
         state.counters["dev_vertices_ms"] = t.vertices_s * per_view_ms;
     }
-    state.SetLabel(std::to_string(s.reference.triangle_count()) + " tri " + std::to_string(size) + "² s=1 | " +
-                   s.reference_renderer->info().device_name);
+    state.SetLabel(std::to_string(s.reference.triangle_count()) + " tri " + std::to_string(size) +
+                   "² s=1 | " + s.reference_renderer->info().device_name);
 }
 
 BENCHMARK(BM_GpuVsReadBack)

@@ -8,6 +8,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -15,7 +16,6 @@
 #include <map>
 #include <random>
 #include <string>
-#include <unistd.h>
 
 namespace {
 
@@ -37,7 +37,9 @@ Mesh noisy_torus(int rows, int cols) {
                                      static_cast<float>(r * std::sin(u)) + noise(rng),
                                      static_cast<float>(0.3 * std::sin(v)) + noise(rng));
         }
-    auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % rows) * cols + (j % cols)); };
+    auto id = [&](int i, int j) {
+        return static_cast<std::uint32_t>((i % rows) * cols + (j % cols));
+    };
     m.triangles.reserve(2 * m.positions.size());
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {
@@ -63,7 +65,7 @@ void write_binary_stl(const Mesh& m, const fs::path& path) {
 
 // The generated files, made on first use and removed at exit.
 class Files {
-public:
+  public:
     ~Files() {
         std::error_code ec;
         fs::remove_all(dir_, ec);
@@ -83,8 +85,9 @@ public:
         return p;
     }
 
-private:
-    Files() : dir_(fs::temp_directory_path() / ("glint_mesh_io_bench_" + std::to_string(::getpid()))) {
+  private:
+    Files()
+        : dir_(fs::temp_directory_path() / ("glint_mesh_io_bench_" + std::to_string(::getpid()))) {
         fs::create_directories(dir_);
     }
     fs::path dir_;
@@ -97,30 +100,35 @@ void run(benchmark::State& state, const std::string& size, const std::string& ex
     const fs::path path = Files::get().path(size, ext);
     std::size_t triangles = 0;
     for (auto _ : state) {
-        auto loaded = reader == kFast ? glint::load_mesh(path, options) : glint::load_mesh_assimp(path, options);
+        auto loaded = reader == kFast ? glint::load_mesh(path, options)
+                                      : glint::load_mesh_assimp(path, options);
         triangles = loaded.mesh.triangle_count();
         benchmark::DoNotOptimize(loaded.mesh.positions.data());
     }
     state.counters["triangles"] = static_cast<double>(triangles);
-    state.counters["Mtri/s"] = benchmark::Counter(static_cast<double>(triangles) * static_cast<double>(state.iterations()) / 1e6,
-                                                  benchmark::Counter::kIsRate);
+    state.counters["Mtri/s"] = benchmark::Counter(
+        static_cast<double>(triangles) * static_cast<double>(state.iterations()) / 1e6,
+        benchmark::Counter::kIsRate);
 }
 
 const LoadOptions kFull{};  // weld + repairs + checks + angle-weighted normals
-const LoadOptions kParseOnly{.weld = false, .drop_degenerate = false, .drop_unused = false,
-                             .compute_normals = false};
+const LoadOptions kParseOnly{
+    .weld = false, .drop_degenerate = false, .drop_unused = false, .compute_normals = false};
 
 void register_all() {
     for (const char* size : {"200k", "2M"})
         for (const char* ext : {"ply", "stl"}) {
             for (Reader r : {kFast, kAssimp}) {
-                const std::string name = std::string("Load/") + ext + "/" + (r == kFast ? "glint" : "assimp") + "/" + size;
-                benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { run(s, size, ext, r, kFull); })
-                    ->Unit(benchmark::kMillisecond);
+                const std::string name = std::string("Load/") + ext + "/" +
+                                         (r == kFast ? "glint" : "assimp") + "/" + size;
+                benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
+                    run(s, size, ext, r, kFull);
+                })->Unit(benchmark::kMillisecond);
             }
             const std::string name = std::string("ParseOnly/") + ext + "/glint/" + size;
-            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) { run(s, size, ext, kFast, kParseOnly); })
-                ->Unit(benchmark::kMillisecond);
+            benchmark::RegisterBenchmark(name.c_str(), [=](benchmark::State& s) {
+                run(s, size, ext, kFast, kParseOnly);
+            })->Unit(benchmark::kMillisecond);
         }
 }
 

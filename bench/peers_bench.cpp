@@ -30,12 +30,12 @@
 #include "mesh/write.h"
 
 #include <benchmark/benchmark.h>
-#include <nlohmann/json.hpp>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstdlib>
@@ -44,8 +44,8 @@
 #include <functional>
 #include <map>
 #include <optional>
-#include <stdexcept>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -81,7 +81,8 @@ const Files& files(int size_class) {
     auto& cache = files_written.pairs;
     if (auto it = cache.find(size_class); it != cache.end()) return it->second;
     std::string name = (fs::temp_directory_path() / "glint_bench_peers_XXXXXX").string();
-    if (mkdtemp(name.data()) == nullptr) throw std::runtime_error("cannot create a folder under /tmp");
+    if (mkdtemp(name.data()) == nullptr)
+        throw std::runtime_error("cannot create a folder under /tmp");
     bench::BlobPair pair = bench::make_blob_pair(size_class);
     Files f{name, fs::path(name) / "reference.ply", fs::path(name) / "examined.ply", pair.truth,
             pair.reference.triangle_count()};
@@ -103,7 +104,8 @@ ProcessRun run_process(const std::vector<std::string>& argv, const fs::path& std
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     const std::string out = stdout_file.empty() ? "/dev/null" : stdout_file.string();
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
+                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
     const auto t0 = std::chrono::steady_clock::now();
     pid_t pid = 0;
     const int err = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
@@ -116,7 +118,8 @@ ProcessRun run_process(const std::vector<std::string>& argv, const fs::path& std
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     r.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw std::runtime_error(argv[0] + " " + argv[1] + " failed (status " + std::to_string(status) + ")");
+        throw std::runtime_error(argv[0] + " " + argv[1] + " failed (status " +
+                                 std::to_string(status) + ")");
     return r;
 }
 
@@ -129,16 +132,21 @@ nlohmann::json read_json(const fs::path& path) {
 double rotation_error_deg(const nlohmann::json& rows, const Rigid& truth) {
     Rigid fit = Rigid::Identity();
     for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) fit.matrix()(r, c) = rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
+        for (int c = 0; c < 4; ++c)
+            fit.matrix()(r, c) =
+                rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
     return rotation_angle_deg(truth.inverse() * fit);
 }
 
 // Why Open3D cannot run here ("" when it can).
 const std::string& open3d_missing() {
     static const std::string reason = [] {
-        if (!fs::exists("/usr/bin/python3")) return std::string("Open3D skipped: /usr/bin/python3 not found");
+        if (!fs::exists("/usr/bin/python3"))
+            return std::string("Open3D skipped: /usr/bin/python3 not found");
         const int rc = std::system("/usr/bin/python3 -c 'import open3d' >/dev/null 2>&1");
-        return rc == 0 ? std::string() : std::string("Open3D skipped: python3-open3d is not installed (tools/setup)");
+        return rc == 0
+                   ? std::string()
+                   : std::string("Open3D skipped: python3-open3d is not installed (tools/setup)");
     }();
     return reason;
 }
@@ -155,10 +163,11 @@ struct Round {
     nlohmann::json peer;
 };
 
-GlintRun run_glint(const std::string& executable, const Files& f, const char* extra_args = nullptr) {
+GlintRun run_glint(const std::string& executable, const Files& f,
+                   const char* extra_args = nullptr) {
     const fs::path out = f.folder / "glint_out";
-    std::vector<std::string> argv{executable, "sweep", f.reference.string(), f.examined.string(), "--register", "-o",
-                                  out.string(), "--force"};
+    std::vector<std::string> argv{executable,   "sweep", f.reference.string(), f.examined.string(),
+                                  "--register", "-o",    out.string(),         "--force"};
     if (extra_args != nullptr) {
         std::istringstream words(extra_args);
         for (std::string w; words >> w;) argv.push_back(w);
@@ -178,19 +187,22 @@ Round run_round(const Files& f, int first) {
         [&] {
             if (!open3d_missing().empty()) return;
             const fs::path peer_json = f.folder / "open3d.json";
-            r.open3d = run_process({"/usr/bin/python3", GLINT_OPEN3D_SCRIPT, f.reference.string(), f.examined.string()},
+            r.open3d = run_process({"/usr/bin/python3", GLINT_OPEN3D_SCRIPT, f.reference.string(),
+                                    f.examined.string()},
                                    peer_json);
             r.peer = read_json(peer_json);
         },
         [&] {
-            if (baseline != nullptr) r.baseline = run_glint(baseline, f, std::getenv("GLINT_BENCH_BASELINE_ARGS"));
+            if (baseline != nullptr)
+                r.baseline = run_glint(baseline, f, std::getenv("GLINT_BENCH_BASELINE_ARGS"));
         }};
     for (int k = 0; k < 3; ++k) steps[(first + k) % 3]();
     return r;
 }
 
 // glint's stages (report.json timings_s) and its fit's error, counters named prefix + stage.
-void stage_counters(benchmark::State& state, const std::string& prefix, const GlintRun& g, const Rigid& truth) {
+void stage_counters(benchmark::State& state, const std::string& prefix, const GlintRun& g,
+                    const Rigid& truth) {
     auto& c = state.counters;
     const auto& t = g.report.at("timings_s");
     c[prefix + "s"] = g.process.seconds;
@@ -201,7 +213,8 @@ void stage_counters(benchmark::State& state, const std::string& prefix, const Gl
     c[prefix + "compare_atlas_s"] = t.at("compare_and_atlas").get<double>();
     c[prefix + "decision_s"] = t.at("decision").get<double>();
     c[prefix + "rest_s"] = g.process.seconds - t.at("total").get<double>();
-    c[prefix + "rot_err_deg"] = rotation_error_deg(g.report.at("fit").at("reference_from_examined"), truth);
+    c[prefix + "rot_err_deg"] =
+        rotation_error_deg(g.report.at("fit").at("reference_from_examined"), truth);
 }
 
 void BM_Peers(benchmark::State& state) {
@@ -216,7 +229,8 @@ void BM_Peers(benchmark::State& state) {
         if (!r.peer.is_null()) {
             c["open3d_s"] = r.open3d.seconds;
             c["open3d_work_s"] = r.peer.at("work_s").get<double>();
-            c["open3d_rot_err_deg"] = rotation_error_deg(r.peer.at("reference_from_examined"), f.truth);
+            c["open3d_rot_err_deg"] =
+                rotation_error_deg(r.peer.at("reference_from_examined"), f.truth);
             c["ratio"] = r.glint.process.seconds / r.open3d.seconds;
             c["ratio_work"] = r.glint.process.seconds / r.peer.at("work_s").get<double>();
         }
@@ -224,7 +238,13 @@ void BM_Peers(benchmark::State& state) {
     state.counters["ref_triangles"] = static_cast<double>(f.triangles);
     if (!open3d_missing().empty()) state.SetLabel(open3d_missing());
 }
-BENCHMARK(BM_Peers)->Arg(1)->Arg(2)->ArgName("size_class")->UseManualTime()->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Peers)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("size_class")
+    ->UseManualTime()
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace glint

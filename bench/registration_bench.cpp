@@ -29,7 +29,12 @@ void BM_Register(benchmark::State& state) {
     state.counters["ref_triangles"] = static_cast<double>(p.reference.triangle_count());
     state.counters["exa_triangles"] = static_cast<double>(p.examined.triangle_count());
 }
-BENCHMARK(BM_Register)->Arg(1)->Arg(2)->ArgName("size_class")->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_Register)
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("size_class")
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace glint

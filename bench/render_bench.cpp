@@ -16,13 +16,13 @@
 
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <memory>
 #include <numbers>
 #include <string>
-#include <unistd.h>
 
 namespace glint {
 namespace {
@@ -42,7 +42,9 @@ const Mesh& bench_mesh(int kilo_triangles) {
 Renderer& bench_renderer(Backend backend, int kilo_triangles) {
     static std::map<std::pair<int, int>, std::unique_ptr<Renderer>> cache;
     auto& slot = cache[{static_cast<int>(backend), kilo_triangles}];
-    if (!slot) slot = std::make_unique<Renderer>(bench_mesh(kilo_triangles), RenderOptions{.backend = backend});
+    if (!slot)
+        slot = std::make_unique<Renderer>(bench_mesh(kilo_triangles),
+                                          RenderOptions{.backend = backend});
     return *slot;
 }
 
@@ -54,12 +56,13 @@ void BM_RenderViews(benchmark::State& state) {
     const std::vector<View> views = bench::ring_views(bench_mesh(kilo), size, 16);
     std::size_t covered = 0;
     for (auto _ : state) {
-        renderer.render_views(views, [&](std::size_t, const Frame& f) { covered += f.covered_count(); });
+        renderer.render_views(views,
+                              [&](std::size_t, const Frame& f) { covered += f.covered_count(); });
     }
     benchmark::DoNotOptimize(covered);
     state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(views.size()));
-    state.SetLabel(to_string(backend) + " " + std::to_string(renderer.info().triangle_count) + " tri " +
-                   std::to_string(size) + "² | " + renderer.info().device_name);
+    state.SetLabel(to_string(backend) + " " + std::to_string(renderer.info().triangle_count) +
+                   " tri " + std::to_string(size) + "² | " + renderer.info().device_name);
 }
 
 long resident_kib() {

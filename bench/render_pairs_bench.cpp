@@ -37,10 +37,10 @@ Pair& bench_pair(Backend backend) {
     auto [it, inserted] = cache.try_emplace(static_cast<int>(backend));
     Pair& p = it->second;
     if (inserted) {
-        p.reference = make_phantom(PhantomOptions{.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico,
-                                                  .resolution = 6});
-        p.examined = make_phantom(PhantomOptions{.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv,
-                                                 .resolution = 160});
+        p.reference = make_phantom(PhantomOptions{
+            .kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 6});
+        p.examined = make_phantom(PhantomOptions{
+            .kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 160});
         const auto context = shared_render_context(ContextOptions{.backend = backend});
         const FrameOptions frame{.supersample = 2};
         p.reference_renderer = std::make_unique<Renderer>(context, p.reference, frame);
@@ -53,15 +53,20 @@ Pair& bench_pair(Backend backend) {
 std::vector<View> ring_views(const Mesh& mesh, int size, int count) {
     std::vector<View> views(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) {
-        const ViewSpec spec{.azimuth_deg = 360.0 * i / count, .elevation_deg = i % 2 == 0 ? 30.0 : -30.0,
-                            .width = size, .height = size, .index = i};
+        const ViewSpec spec{.azimuth_deg = 360.0 * i / count,
+                            .elevation_deg = i % 2 == 0 ? 30.0 : -30.0,
+                            .width = size,
+                            .height = size,
+                            .index = i};
         views[static_cast<std::size_t>(i)] = make_view(mesh, spec);
     }
     return views;
 }
 
 /// The consumer's share of the work: reads every pixel of both frames.
-std::size_t consume(const Frame& a, const Frame& b) { return a.covered_count() + b.covered_count(); }
+std::size_t consume(const Frame& a, const Frame& b) {
+    return a.covered_count() + b.covered_count();
+}
 
 std::size_t run_sequential(Pair& p, const std::vector<View>& views) {
     std::size_t covered = 0;
@@ -99,7 +104,8 @@ void BM_PairsVsSequential(benchmark::State& state) {
         sequential_s += std::chrono::duration<double>(t1 - t0).count();
         pairs_s += std::chrono::duration<double>(t2 - t1).count();
     }
-    if (covered_sequential != covered_pairs) state.SkipWithError("pairs and sequential frames differ");
+    if (covered_sequential != covered_pairs)
+        state.SkipWithError("pairs and sequential frames differ");
     const auto n = static_cast<double>(state.iterations());
     state.counters["sequential_ms"] = 1e3 * sequential_s / n;
     state.counters["pairs_ms"] = 1e3 * pairs_s / n;

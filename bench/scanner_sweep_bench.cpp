@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 void BM_Sweep(benchmark::State& state) {
-    const fs::path folder = fs::temp_directory_path() / ("glint_bench_sweep_" + std::to_string(getpid()));
+    const fs::path folder =
+        fs::temp_directory_path() / ("glint_bench_sweep_" + std::to_string(getpid()));
     fs::create_directories(folder);
     {
         const bench::BlobPair pair = bench::make_blob_pair(static_cast<int>(state.range(0)));
@@ -36,7 +37,8 @@ void BM_Sweep(benchmark::State& state) {
     options.exports.output = folder / "out";
     options.exports.replace_existing = true;  // the benchmark repeats into one folder
     std::size_t regions = 0, triangles = 0;
-    double load_s = 0, fit_s = 0, distance_s = 0, render_s = 0, compare_s = 0, decision_s = 0, export_s = 0;
+    double load_s = 0, fit_s = 0, distance_s = 0, render_s = 0, compare_s = 0, decision_s = 0,
+           export_s = 0;
     for (auto _ : state) {
         const auto t0 = std::chrono::steady_clock::now();
         const LoadedMesh reference = load_mesh(folder / "reference.ply");
@@ -53,7 +55,9 @@ void BM_Sweep(benchmark::State& state) {
         triangles = reference.mesh.triangle_count();
     }
     fs::remove_all(folder);
-    const auto per_run = [&](double total) { return total / static_cast<double>(state.iterations()); };
+    const auto per_run = [&](double total) {
+        return total / static_cast<double>(state.iterations());
+    };
     state.counters["load_s"] = per_run(load_s);
     state.counters["fit_s"] = per_run(fit_s);
     state.counters["distance_s"] = per_run(distance_s);

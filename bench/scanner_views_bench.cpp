@@ -43,8 +43,10 @@ const Pair& pair(int kilo_triangles) {
         const int rings = kilo_triangles >= 1000 ? 500 : 158;
         it->second.reference = bench::bumpy_sphere(rings);
         it->second.examined = bench::bumpy_sphere(rings * 21 / 20);
-        apply_damage(it->second.examined, {DamageSpec{.kind = DamageKind::Dent, .center = {0.0, 1.0, 0.3},
-                                                      .radius = 0.25, .depth = 0.02}});
+        apply_damage(it->second.examined, {DamageSpec{.kind = DamageKind::Dent,
+                                                      .center = {0.0, 1.0, 0.3},
+                                                      .radius = 0.25,
+                                                      .depth = 0.02}});
     }
     return it->second;
 }
@@ -84,12 +86,14 @@ void BM_SweepViews(benchmark::State& state) {
     state.counters["total_s"] = total_s / runs;
     state.counters["setup_s"] = setup_s / runs;
     static const char* const names[] = {"embree", "readback", "gpu"};
-    state.SetLabel(std::string(names[state.range(0)]) + " " + std::to_string(p.reference.triangle_count()) + " tri " +
+    state.SetLabel(std::string(names[state.range(0)]) + " " +
+                   std::to_string(p.reference.triangle_count()) + " tri " +
                    std::to_string(options.plan.size) + "² | " + device);
 }
 
 BENCHMARK(BM_SweepViews)
-    ->ArgsProduct({{static_cast<int>(Path::Embree), static_cast<int>(Path::ReadBack), static_cast<int>(Path::Gpu)},
+    ->ArgsProduct({{static_cast<int>(Path::Embree), static_cast<int>(Path::ReadBack),
+                    static_cast<int>(Path::Gpu)},
                    {100, 1000},
                    {512, 1024}})
     ->ArgNames({"path", "ktri", "size"})

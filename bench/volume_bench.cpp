@@ -20,7 +20,8 @@ double peak_mib() {
 }
 
 void BM_CtheadBoneSurface(benchmark::State& state) {
-    const std::filesystem::path path = std::filesystem::path(GLINT_SHARED_DATA_DIR) / "ct_head_cthead" / "CThead.mhd";
+    const std::filesystem::path path =
+        std::filesystem::path(GLINT_SHARED_DATA_DIR) / "ct_head_cthead" / "CThead.mhd";
     if (!std::filesystem::exists(path)) {
         state.SkipWithError("../shared/data/ct_head_cthead/CThead.mhd is absent");
         return;
@@ -45,7 +46,8 @@ void BM_Synthetic512Surface(benchmark::State& state) {
         return glint::make_ellipsoid_volume(o);
     }();
     std::size_t triangles = 0;
-    for (auto _ : state) triangles = glint::extract_surface(volume, {.iso = 500.0}).report.triangles;
+    for (auto _ : state)
+        triangles = glint::extract_surface(volume, {.iso = 500.0}).report.triangles;
     state.counters["triangles"] = static_cast<double>(triangles);
     state.counters["peak_MiB"] = peak_mib();
 }

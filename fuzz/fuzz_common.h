@@ -19,10 +19,11 @@
 namespace glint::fuzz {
 
 /// A per-process file "<tmp>/glint-fuzz-<pid><ext>" holding `prefix` then the input.
-inline std::filesystem::path write_input(std::string_view ext, std::string_view prefix, const std::uint8_t* data,
-                                         std::size_t size) {
-    const std::filesystem::path path = std::filesystem::temp_directory_path() /
-                                       ("glint-fuzz-" + std::to_string(::getpid()) + std::string(ext));
+inline std::filesystem::path write_input(std::string_view ext, std::string_view prefix,
+                                         const std::uint8_t* data, std::size_t size) {
+    const std::filesystem::path path =
+        std::filesystem::temp_directory_path() /
+        ("glint-fuzz-" + std::to_string(::getpid()) + std::string(ext));
     std::FILE* f = std::fopen(path.c_str(), "wb");
     if (f == nullptr) std::abort();
     std::fwrite(prefix.data(), 1, prefix.size(), f);
@@ -33,8 +34,8 @@ inline std::filesystem::path write_input(std::string_view ext, std::string_view 
 
 /// Runs `read` on the input written to a temporary file; glint errors are expected.
 template <class Read>
-int read_file(std::string_view ext, std::string_view prefix, const std::uint8_t* data, std::size_t size,
-              Read read) {
+int read_file(std::string_view ext, std::string_view prefix, const std::uint8_t* data,
+              std::size_t size, Read read) {
     const auto path = write_input(ext, prefix, data, size);
     try {
         read(path);
@@ -48,7 +49,8 @@ int read_file(std::string_view ext, std::string_view prefix, const std::uint8_t*
 inline int load_mesh_input(std::string_view ext, std::string_view prefix, const std::uint8_t* data,
                            std::size_t size) {
     return read_file(ext, prefix, data, size, [](const std::filesystem::path& path) {
-        (void)glint::load_mesh(path, glint::LoadOptions{.allow_points_only = true, .max_triangles = 1'000'000});
+        (void)glint::load_mesh(
+            path, glint::LoadOptions{.allow_points_only = true, .max_triangles = 1'000'000});
     });
 }
 

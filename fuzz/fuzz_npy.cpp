@@ -4,6 +4,7 @@
 #include "scanner/scenario.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    return glint::fuzz::read_file(".npy", "", data, size,
-                                  [](const std::filesystem::path& path) { (void)glint::read_npy_mask(path); });
+    return glint::fuzz::read_file(".npy", "", data, size, [](const std::filesystem::path& path) {
+        (void)glint::read_npy_mask(path);
+    });
 }

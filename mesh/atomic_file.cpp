@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 
+#include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -9,7 +10,6 @@
 #include <mutex>
 #include <set>
 #include <system_error>
-#include <unistd.h>
 
 namespace glint {
 
@@ -68,7 +68,8 @@ void commit(const fs::path& temp, const fs::path& target, const fs::path& path) 
 
 }  // namespace
 
-void write_atomically_to_path(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+void write_atomically_to_path(const fs::path& path,
+                              const std::function<void(const fs::path&)>& write) {
     fs::path target;
     const fs::path temp = prepare(path, target);
     try {
@@ -92,7 +93,8 @@ void write_atomically(const fs::path& path, const std::function<void(std::ostrea
                           temp.string() + "\": " + std::strerror(errno));
         write(out);
         out.flush();
-        if (!out) throw IoError("cannot write \"" + path.string() + "\": write failed (disk full?)");
+        if (!out)
+            throw IoError("cannot write \"" + path.string() + "\": write failed (disk full?)");
     });
 }
 

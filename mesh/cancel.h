@@ -13,7 +13,7 @@ namespace glint {
 
 /// Thrown by throw_if_cancelled() once cancellation was requested (glint exits 130).
 class Cancelled : public Error {
-public:
+  public:
     using Error::Error;
 };
 

@@ -55,7 +55,8 @@ VertexTriangles vertex_triangles(const Mesh& mesh) {
     out.triangles.resize(out.offsets.back());
     std::vector<std::uint32_t> fill(out.offsets.begin(), out.offsets.end() - 1);
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-        for (const auto v : mesh.triangles[t]) out.triangles[fill[v]++] = static_cast<std::uint32_t>(t);
+        for (const auto v : mesh.triangles[t])
+            out.triangles[fill[v]++] = static_cast<std::uint32_t>(t);
     return out;
 }
 

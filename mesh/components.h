@@ -14,14 +14,14 @@ namespace glint {
 /// Disjoint sets over 0…n−1 with path halving (no ranks: the meshes' edge order keeps the
 /// trees shallow enough, and halving alone is amortised logarithmic).
 class UnionFind {
-public:
+  public:
     explicit UnionFind(std::size_t n);
     /// Representative of x's set.
     [[nodiscard]] std::uint32_t find(std::uint32_t x);
     /// Joins the sets of a and b.
     void unite(std::uint32_t a, std::uint32_t b);
 
-private:
+  private:
     std::vector<std::uint32_t> parent_;
 };
 
@@ -34,7 +34,7 @@ std::size_t masked_components(const Mesh& mesh, std::span<const std::uint8_t> ma
 /// The triangles around every vertex, ascending: triangles[offsets[v] … offsets[v + 1]) are
 /// those that use v (a triangle using v twice is listed twice). Built by a counting sort, O(n).
 struct VertexTriangles {
-    std::vector<std::uint32_t> offsets;    ///< vertex count + 1 entries
+    std::vector<std::uint32_t> offsets;  ///< vertex count + 1 entries
     std::vector<std::uint32_t> triangles;
 
     /// How many triangles around `a` also use `b` (the triangles sharing edge a–b).

@@ -38,8 +38,10 @@ double pit_profile(double s) {
 
 // Deterministic 3D value noise in [0, 1]: hashed lattice values, trilinear with smoothstep.
 double lattice(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t seed) {
-    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^ static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full ^
-                      static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull ^ (std::uint64_t{seed} << 17);
+    std::uint64_t h = static_cast<std::uint64_t>(x) * 0x9E3779B97F4A7C15ull ^
+                      static_cast<std::uint64_t>(y) * 0xC2B2AE3D27D4EB4Full ^
+                      static_cast<std::uint64_t>(z) * 0x165667B19E3779F9ull ^
+                      (std::uint64_t{seed} << 17);
     h ^= h >> 33;
     h *= 0xFF51AFD7ED558CCDull;
     h ^= h >> 33;
@@ -49,7 +51,8 @@ double lattice(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t see
 double value_noise(const Vec3d& p, std::uint32_t seed) {
     const Vec3d f = p.array().floor();
     const Vec3d t = p - f;
-    const auto x0 = static_cast<std::int64_t>(f.x()), y0 = static_cast<std::int64_t>(f.y()), z0 = static_cast<std::int64_t>(f.z());
+    const auto x0 = static_cast<std::int64_t>(f.x()), y0 = static_cast<std::int64_t>(f.y()),
+               z0 = static_cast<std::int64_t>(f.z());
     const double sx = smoothstep(t.x()), sy = smoothstep(t.y()), sz = smoothstep(t.z());
     double acc = 0.0;
     for (int dx = 0; dx < 2; ++dx)
@@ -94,7 +97,8 @@ std::string describe(const DamageSpec& d, std::size_t index) {
 void check_spec(const DamageSpec& d, std::size_t index) {
     auto positive = [&](double v, const char* field) {
         if (!(v > 0) || !std::isfinite(v))
-            throw InputError(describe(d, index) + ": " + field + " = " + std::to_string(v) + ", expected a number > 0");
+            throw InputError(describe(d, index) + ": " + field + " = " + std::to_string(v) +
+                             ", expected a number > 0");
     };
     if (d.kind == DamageKind::Noise) {
         positive(d.sigma, "sigma");
@@ -103,20 +107,23 @@ void check_spec(const DamageSpec& d, std::size_t index) {
     positive(d.radius, "radius");
     positive(d.depth, "depth");
     if (d.kind == DamageKind::Groove && d.path.size() < 2)
-        throw InputError(describe(d, index) + ": path has " + std::to_string(d.path.size()) + " point(s), expected at least 2");
+        throw InputError(describe(d, index) + ": path has " + std::to_string(d.path.size()) +
+                         " point(s), expected at least 2");
     if (d.kind == DamageKind::Flatten && d.plane_normal && !(d.plane_normal->norm() > 0))
         throw InputError(describe(d, index) + ": normal must not be zero");
 }
 
 // `where` names the spec in messages: "damage spec 'dent:…'" or "pose '…'".
-std::vector<double> numbers(const std::string& where, const std::string& key, const std::string& text) {
+std::vector<double> numbers(const std::string& where, const std::string& key,
+                            const std::string& text) {
     return parse_number_list(text, where + ": " + key);
 }
 
 Vec3d vec3(const std::string& where, const std::string& key, const std::string& text) {
     const auto v = numbers(where, key, text);
     if (v.size() != 3)
-        throw InputError(where + ": " + key + ": expected x,y,z, found " + std::to_string(v.size()) + " numbers");
+        throw InputError(where + ": " + key + ": expected x,y,z, found " +
+                         std::to_string(v.size()) + " numbers");
     return {v[0], v[1], v[2]};
 }
 
@@ -124,13 +131,20 @@ Vec3d vec3(const std::string& where, const std::string& key, const std::string& 
 
 std::string to_string(DamageKind kind) {
     switch (kind) {
-        case DamageKind::Dent: return "dent";
-        case DamageKind::Bump: return "bump";
-        case DamageKind::Pit: return "pit";
-        case DamageKind::Groove: return "groove";
-        case DamageKind::Flatten: return "flatten";
-        case DamageKind::Erosion: return "erosion";
-        case DamageKind::Noise: return "noise";
+        case DamageKind::Dent:
+            return "dent";
+        case DamageKind::Bump:
+            return "bump";
+        case DamageKind::Pit:
+            return "pit";
+        case DamageKind::Groove:
+            return "groove";
+        case DamageKind::Flatten:
+            return "flatten";
+        case DamageKind::Erosion:
+            return "erosion";
+        case DamageKind::Noise:
+            return "noise";
     }
     return "?";
 }
@@ -146,8 +160,10 @@ Vec3d place_on_surface(const Mesh& mesh, const DamageSpec& d, std::size_t k) {
             double dist = 0.0;
             nearest_vertex(mesh, d.path[p], dist);
             if (dist > d.radius)
-                throw InputError(describe(d, k) + ": path point " + std::to_string(p + 1) + " lies " + std::to_string(dist) +
-                                 " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
+                throw InputError(describe(d, k) + ": path point " + std::to_string(p + 1) +
+                                 " lies " + std::to_string(dist) +
+                                 " from the surface, outside the surface (radius " +
+                                 std::to_string(d.radius) + ")");
         }
         return d.center;
     }
@@ -155,32 +171,44 @@ Vec3d place_on_surface(const Mesh& mesh, const DamageSpec& d, std::size_t k) {
     const double dist = (center - d.center).norm();
     if (dist > d.radius)
         throw InputError(describe(d, k) + ": centre lies " + std::to_string(dist) +
-                         " from the surface, outside the surface (radius " + std::to_string(d.radius) + ")");
+                         " from the surface, outside the surface (radius " +
+                         std::to_string(d.radius) + ")");
     return center;
 }
 
 // One damage's move of every vertex (`offset`, mesh units) and its displacement along the
 // vertex normal (`disp`, the ground truth).
-void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center, std::vector<Vec3d>& offset,
-              std::vector<double>& disp) {
+void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center,
+              std::vector<Vec3d>& offset, std::vector<double>& disp) {
     Vec3d plane_n = Vec3d::UnitZ();
     if (d.kind == DamageKind::Flatten) {
         double unused = 0.0;
-        plane_n = d.plane_normal ? d.plane_normal->normalized()
-                                 : mesh.normals[nearest_vertex(mesh, center, unused)].cast<double>().normalized();
+        plane_n =
+            d.plane_normal
+                ? d.plane_normal->normalized()
+                : mesh.normals[nearest_vertex(mesh, center, unused)].cast<double>().normalized();
     }
     for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
         const Vec3d p = mesh.positions[v].cast<double>();
         const Vec3d normal = mesh.normals[v].cast<double>();
-        const double dist = d.kind == DamageKind::Groove ? distance_to_path(p, d.path) : (p - center).norm();
+        const double dist =
+            d.kind == DamageKind::Groove ? distance_to_path(p, d.path) : (p - center).norm();
         const double s = dist / d.radius;
         if (s >= 1.0) continue;
         double amount = 0.0;
         switch (d.kind) {
-            case DamageKind::Dent: amount = -d.depth * bump_profile(s); break;
-            case DamageKind::Bump: amount = d.depth * bump_profile(s); break;
-            case DamageKind::Pit: amount = -d.depth * pit_profile(s); break;
-            case DamageKind::Groove: amount = -d.depth * bump_profile(s); break;
+            case DamageKind::Dent:
+                amount = -d.depth * bump_profile(s);
+                break;
+            case DamageKind::Bump:
+                amount = d.depth * bump_profile(s);
+                break;
+            case DamageKind::Pit:
+                amount = -d.depth * pit_profile(s);
+                break;
+            case DamageKind::Groove:
+                amount = -d.depth * bump_profile(s);
+                break;
             case DamageKind::Erosion: {
                 // note: noise at ~3 cells per radius gives a rough floor with a few
                 // lumps; 0.3 + 0.7·noise keeps every eroded vertex below the surface.
@@ -199,7 +227,8 @@ void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center, std::v
                 disp[v] = move.dot(normal);
                 continue;
             }
-            case DamageKind::Noise: break;
+            case DamageKind::Noise:
+                break;
         }
         disp[v] = amount;
         offset[v] += amount * normal;
@@ -225,7 +254,8 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
         if (d.kind == DamageKind::Noise) {
             std::mt19937 rng(d.seed);
             std::normal_distribution<double> gauss(0.0, d.sigma);
-            for (std::size_t v = 0; v < n; ++v) offset[v] += gauss(rng) * mesh.normals[v].cast<double>();
+            for (std::size_t v = 0; v < n; ++v)
+                offset[v] += gauss(rng) * mesh.normals[v].cast<double>();
             continue;
         }
         std::vector<double> disp(n, 0.0);
@@ -239,7 +269,8 @@ void apply_damage(Mesh& mesh, const std::vector<DamageSpec>& damages) {
             }
         }
     }
-    for (std::size_t v = 0; v < n; ++v) mesh.positions[v] = (mesh.positions[v].cast<double>() + offset[v]).cast<float>();
+    for (std::size_t v = 0; v < n; ++v)
+        mesh.positions[v] = (mesh.positions[v].cast<double>() + offset[v]).cast<float>();
     std::vector<float> gt(n), label(n);
     for (std::size_t v = 0; v < n; ++v) {
         gt[v] = static_cast<float>(total[v]);
@@ -281,7 +312,8 @@ DamageSpec parse_damage_spec(const std::string& text) {
         const std::string value = item.substr(eq + 1);
         auto scalar = [&]() {
             const auto v = numbers(where, key, value);
-            if (v.size() != 1) throw InputError("damage spec '" + text + "': " + key + ": expected one number");
+            if (v.size() != 1)
+                throw InputError("damage spec '" + text + "': " + key + ": expected one number");
             return v[0];
         };
         if (key == "center") d.center = vec3(where, key, value);
@@ -307,9 +339,11 @@ Rigid parse_pose_spec(const std::string& text) {
     if (text.find('=') == std::string::npos) {
         const auto v = numbers("pose '" + text + "'", "pose", text);
         if (v.size() != 6)
-            throw InputError("pose '" + text + "': expected rx,ry,rz,tx,ty,tz (degrees, mesh units), found " +
+            throw InputError("pose '" + text +
+                             "': expected rx,ry,rz,tx,ty,tz (degrees, mesh units), found " +
                              std::to_string(v.size()) + " numbers");
-        pose.linear() = (Eigen::AngleAxisd(v[2] * deg, Vec3d::UnitZ()) * Eigen::AngleAxisd(v[1] * deg, Vec3d::UnitY()) *
+        pose.linear() = (Eigen::AngleAxisd(v[2] * deg, Vec3d::UnitZ()) *
+                         Eigen::AngleAxisd(v[1] * deg, Vec3d::UnitY()) *
                          Eigen::AngleAxisd(v[0] * deg, Vec3d::UnitX()))
                             .toRotationMatrix();
         pose.translation() = Vec3d(v[3], v[4], v[5]);
@@ -326,10 +360,13 @@ Rigid parse_pose_spec(const std::string& text) {
         if (key == "axis") axis = vec3("pose '" + text + "'", key, value);
         else if (key == "angle") {
             const auto v = numbers("pose '" + text + "'", key, value);
-            if (v.size() != 1) throw InputError("pose '" + text + "': angle: expected one number (degrees)");
+            if (v.size() != 1)
+                throw InputError("pose '" + text + "': angle: expected one number (degrees)");
             angle = v[0];
         } else if (key == "t") pose.translation() = vec3("pose '" + text + "'", key, value);
-        else throw InputError("pose '" + text + "': unknown key '" + key + "', expected axis, angle or t");
+        else
+            throw InputError("pose '" + text + "': unknown key '" + key +
+                             "', expected axis, angle or t");
     }
     if (!(axis.norm() > 0)) throw InputError("pose '" + text + "': axis must not be zero");
     pose.linear() = Eigen::AngleAxisd(angle * deg, axis.normalized()).toRotationMatrix();

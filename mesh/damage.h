@@ -18,28 +18,28 @@
 namespace glint {
 
 enum class DamageKind {
-    Dent,       ///< smooth inward radial bump (negative depth = loss)
-    Bump,       ///< smooth outward radial bump
-    Pit,        ///< steep narrow hole: flat-bottomed with a short smooth wall
-    Groove,     ///< scratch along a polyline path, smooth cross-section
-    Flatten,    ///< planar cut: vertices beyond a plane are pushed onto it, blended at the rim
-    Erosion,    ///< rough loss: dent modulated by seeded value noise
-    Noise,      ///< global Gaussian noise along normals (not counted as damage in labels)
+    Dent,     ///< smooth inward radial bump (negative depth = loss)
+    Bump,     ///< smooth outward radial bump
+    Pit,      ///< steep narrow hole: flat-bottomed with a short smooth wall
+    Groove,   ///< scratch along a polyline path, smooth cross-section
+    Flatten,  ///< planar cut: vertices beyond a plane are pushed onto it, blended at the rim
+    Erosion,  ///< rough loss: dent modulated by seeded value noise
+    Noise,    ///< global Gaussian noise along normals (not counted as damage in labels)
 };
 
 /// One damage. Positions are in mesh coordinates.
 struct DamageSpec {
     DamageKind kind = DamageKind::Dent;
-    Vec3d center{0, 0, 0};     ///< projected onto the surface (closest point) when applied
-    double radius = 1.0;       ///< footprint radius on the surface (mesh units)
-    double depth = 0.1;        ///< magnitude of displacement (mesh units, > 0)
-    std::vector<Vec3d> path;   ///< Groove: polyline (center unused); ≥ 2 points
+    Vec3d center{0, 0, 0};    ///< projected onto the surface (closest point) when applied
+    double radius = 1.0;      ///< footprint radius on the surface (mesh units)
+    double depth = 0.1;       ///< magnitude of displacement (mesh units, > 0)
+    std::vector<Vec3d> path;  ///< Groove: polyline (center unused); ≥ 2 points
     /// Flatten: outward normal of the cutting plane, which passes `depth` below the surface
     /// point nearest `center`; unset: the surface's normal there (a flattening of the surface
     /// as it faces, whatever its orientation in space).
     std::optional<Vec3d> plane_normal;
-    double sigma = 0.01;       ///< Noise: standard deviation (mesh units)
-    std::uint32_t seed = 1;    ///< Erosion / Noise
+    double sigma = 0.01;     ///< Noise: standard deviation (mesh units)
+    std::uint32_t seed = 1;  ///< Erosion / Noise
 };
 
 /// Fraction of a damage's depth above which a vertex is labelled damaged.

@@ -17,8 +17,9 @@ namespace {
 // ~60 bytes per triangle of working memory (a 2M-triangle atlas in one piece: 120 MB).
 // Triangles are ordered along the mesh's longest axis so a piece is one slab of the surface;
 // each piece keeps its borders (LockBorder), so the seams keep their vertices and still join.
-std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned> indices, double share,
-                                         double max_error, std::size_t piece_triangles, double& error) {
+std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned> indices,
+                                         double share, double max_error,
+                                         std::size_t piece_triangles, double& error) {
     const std::size_t count = indices.size() / 3;
     const std::size_t pieces = (count + piece_triangles - 1) / piece_triangles;
     if (pieces > 1) {
@@ -31,7 +32,8 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
         std::vector<float> key(count);
         for (std::size_t t = 0; t < count; ++t) {
             order[t] = static_cast<std::uint32_t>(t);
-            key[t] = mesh.positions[indices[3 * t]][axis] + mesh.positions[indices[3 * t + 1]][axis] +
+            key[t] = mesh.positions[indices[3 * t]][axis] +
+                     mesh.positions[indices[3 * t + 1]][axis] +
                      mesh.positions[indices[3 * t + 2]][axis];
         }
         // Only the slabs matter, not the order inside one: each piece boundary is placed by a
@@ -39,9 +41,11 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
         const auto by_key = [&](std::uint32_t x, std::uint32_t y) { return key[x] < key[y]; };
         for (std::size_t p = 1; p < pieces; ++p)
             std::nth_element(order.begin() + static_cast<std::ptrdiff_t>(count * (p - 1) / pieces),
-                             order.begin() + static_cast<std::ptrdiff_t>(count * p / pieces), order.end(), by_key);
+                             order.begin() + static_cast<std::ptrdiff_t>(count * p / pieces),
+                             order.end(), by_key);
         std::vector<unsigned> sorted(indices.size());
-        for (std::size_t t = 0; t < count; ++t) std::copy_n(&indices[3 * order[t]], 3, &sorted[3 * t]);
+        for (std::size_t t = 0; t < count; ++t)
+            std::copy_n(&indices[3 * order[t]], 3, &sorted[3 * t]);
         indices = std::move(sorted);
     }
     // The pieces are independent (each keeps its borders): simplified on every worker, joined
@@ -60,7 +64,8 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
         std::vector<Vec3f> xyz(global.size());
         for (std::size_t k = 0; k < global.size(); ++k) xyz[k] = mesh.positions[global[k]];
         for (auto& v : local)
-            v = static_cast<unsigned>(std::lower_bound(global.begin(), global.end(), v) - global.begin());
+            v = static_cast<unsigned>(std::lower_bound(global.begin(), global.end(), v) -
+                                      global.begin());
         const float* coords = reinterpret_cast<const float*>(xyz.data());
         // The simplifier measures its error relative to the extent of the vertices it is given.
         const float scale = meshopt_simplifyScale(coords, xyz.size(), sizeof(Vec3f));
@@ -68,8 +73,9 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
         piece.resize(n);
         const auto target = static_cast<std::size_t>(share * static_cast<double>(last - first));
         float piece_error = 0.0f;
-        piece.resize(meshopt_simplify(piece.data(), local.data(), n, coords, xyz.size(), sizeof(Vec3f), 3 * target,
-                                      static_cast<float>(max_error / scale), meshopt_SimplifyLockBorder, &piece_error));
+        piece.resize(meshopt_simplify(
+            piece.data(), local.data(), n, coords, xyz.size(), sizeof(Vec3f), 3 * target,
+            static_cast<float>(max_error / scale), meshopt_SimplifyLockBorder, &piece_error));
         for (auto& v : piece) v = global[v];
         errors[p] = static_cast<double>(piece_error) * static_cast<double>(scale);
     });
@@ -83,9 +89,10 @@ std::vector<unsigned> simplify_in_pieces(const Mesh& mesh, std::vector<unsigned>
 
 }  // namespace
 
-DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles, const std::vector<std::uint8_t>& keep,
-                       double max_error, std::size_t piece) {
-    GLINT_ASSERT(keep.empty() || keep.size() == mesh.triangle_count(), "decimate: one keep flag per triangle");
+DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles,
+                       const std::vector<std::uint8_t>& keep, double max_error, std::size_t piece) {
+    GLINT_ASSERT(keep.empty() || keep.size() == mesh.triangle_count(),
+                 "decimate: one keep flag per triangle");
     GLINT_ASSERT(piece > 0, "decimate: pieces of at least one triangle");
     std::vector<unsigned> kept, rest;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
@@ -93,15 +100,18 @@ DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles, const std::v
         into.insert(into.end(), mesh.triangles[t].begin(), mesh.triangles[t].end());
     }
     DecimatedMesh out;
-    const std::size_t budget = max_triangles > kept.size() / 3 ? max_triangles - kept.size() / 3 : 0;
+    const std::size_t budget =
+        max_triangles > kept.size() / 3 ? max_triangles - kept.size() / 3 : 0;
     if (3 * budget < rest.size() && !rest.empty()) {
         // note: the target is never below one triangle in 64 of the rest, so a tiny budget
         // does not collapse the surface into a few large triangles.
-        const double share = static_cast<double>(std::max(budget, rest.size() / 3 / 64)) / static_cast<double>(rest.size() / 3);
+        const double share = static_cast<double>(std::max(budget, rest.size() / 3 / 64)) /
+                             static_cast<double>(rest.size() / 3);
         rest = simplify_in_pieces(mesh, std::move(rest), share, max_error, piece, out.error);
     }
     // The vertices the triangles use, renumbered in order of first use.
-    std::vector<std::uint32_t> remap(mesh.vertex_count(), std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint32_t> remap(mesh.vertex_count(),
+                                     std::numeric_limits<std::uint32_t>::max());
     const bool normals = mesh.has_normals();
     for (const auto* part : {&kept, &rest})
         for (std::size_t i = 0; i < part->size(); i += 3) {

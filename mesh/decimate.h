@@ -15,9 +15,9 @@
 namespace glint {
 
 struct DecimatedMesh {
-    Mesh mesh;                                ///< positions, triangles, normals (when the input had them)
+    Mesh mesh;  ///< positions, triangles, normals (when the input had them)
     std::vector<std::uint32_t> original_vertex;  ///< per vertex of `mesh`: its id in the input
-    double error = 0.0;                       ///< the simplifier's error estimate, mesh units
+    double error = 0.0;                          ///< the simplifier's error estimate, mesh units
 };
 
 /// Triangles the simplifier works on at once (its working memory is ~60 bytes per triangle).
@@ -29,7 +29,8 @@ inline constexpr std::size_t kDecimatePiece = 500000;
 /// slabs of `piece` triangles along their longest axis, each with its borders locked, so the
 /// seams keep their vertices. Scalars and labels are not carried (use original_vertex).
 /// \pre keep empty or one entry per triangle; piece > 0.
-[[nodiscard]] DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles, const std::vector<std::uint8_t>& keep,
-                                     double max_error, std::size_t piece = kDecimatePiece);
+[[nodiscard]] DecimatedMesh decimate(const Mesh& mesh, std::size_t max_triangles,
+                                     const std::vector<std::uint8_t>& keep, double max_error,
+                                     std::size_t piece = kDecimatePiece);
 
 }  // namespace glint

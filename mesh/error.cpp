@@ -21,7 +21,8 @@ OptionError OptionError::prefixed(const std::string& section) const {
     const std::string full = section + "." + key_;
     const std::string message = what();
     // The message starts with the key: put the prefix there too.
-    return OptionError(Whole{}, full, message.rfind(key_, 0) == 0 ? section + "." + message : message);
+    return OptionError(Whole{}, full,
+                       message.rfind(key_, 0) == 0 ? section + "." + message : message);
 }
 
 }  // namespace glint

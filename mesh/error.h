@@ -12,13 +12,13 @@ namespace glint {
 
 /// Base of every error glint reports to a user.
 class Error : public std::runtime_error {
-public:
+  public:
     using std::runtime_error::runtime_error;
 };
 
 /// Bad input: a malformed or inconsistent file, an invalid option or scenario. Exit code 2.
 class InputError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
@@ -26,7 +26,7 @@ public:
 /// write it ("sweep.size", "registration.loss"), so a scenario loader can point at the line
 /// that set it. Message: "<key> = <value>: <rule>".
 class OptionError : public InputError {
-public:
+  public:
     OptionError(std::string key, const std::string& value, const std::string& rule)
         : InputError(key + " = " + value + ": " + rule), key_(std::move(key)) {}
     OptionError(std::string key, double value, const std::string& rule);
@@ -34,21 +34,22 @@ public:
     [[nodiscard]] OptionError prefixed(const std::string& section) const;
     [[nodiscard]] const std::string& key() const noexcept { return key_; }
 
-private:
+  private:
     struct Whole {};  // the message is already complete
-    OptionError(Whole, std::string key, const std::string& message) : InputError(message), key_(std::move(key)) {}
+    OptionError(Whole, std::string key, const std::string& message)
+        : InputError(message), key_(std::move(key)) {}
     std::string key_;
 };
 
 /// A read or write failed (missing file, unwritable folder, short write). Exit code 3.
 class IoError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
 /// No usable compute/graphics device, or a device call failed. Exit code 3.
 class DeviceError : public Error {
-public:
+  public:
     using Error::Error;
 };
 
@@ -60,7 +61,7 @@ namespace detail {
 }  // namespace glint
 
 /// Cheap invariant check that stays on in release; throws std::logic_error with file:line.
-#define GLINT_ASSERT(cond, msg)                                                  \
-    do {                                                                         \
+#define GLINT_ASSERT(cond, msg)                                                        \
+    do {                                                                               \
         if (!(cond)) ::glint::detail::assert_failed(#cond, (msg), __FILE__, __LINE__); \
     } while (false)

@@ -110,7 +110,8 @@ Vec3d direction_from_az_el(double azimuth_deg, double elevation_deg) {
     return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
 }
 
-TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c) {
+TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b,
+                                        const Vec3d& c) {
     const Vec3d ab = b - a, ac = c - a, ap = p - a;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0 && d2 <= 0) return {a, {1, 0, 0}, 2, 0};

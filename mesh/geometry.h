@@ -64,13 +64,13 @@ struct Camera {
 
 /// Camera::project for many points: the camera's inverse pose and scales computed once.
 class Projector {
-public:
+  public:
     explicit Projector(const Camera& camera);
     /// Pixel coordinates (u, v) of a world point and its depth along the view axis, as
     /// Camera::project.
     [[nodiscard]] Eigen::Vector3d operator()(const Vec3d& world) const;
 
-private:
+  private:
     Rigid camera_from_world_;
     bool orthographic_;
     double half_width_;   ///< orthographic: world half width; perspective: tan(fov/2)·aspect
@@ -97,7 +97,8 @@ struct TrianglePoint {
     int feature = 0;
     int index = 0;
 };
-[[nodiscard]] TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a, const Vec3d& b, const Vec3d& c);
+[[nodiscard]] TrianglePoint closest_point_on_triangle(const Vec3d& p, const Vec3d& a,
+                                                      const Vec3d& b, const Vec3d& c);
 
 /// Closest point on a mesh by brute force over its triangles (for a handful of queries;
 /// registration/ has the BVH for many).

@@ -15,8 +15,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cctype>
-#include <cmath>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -48,7 +48,7 @@ std::string lower_extension(const fs::path& path) {
 // The bytes of a file, memory-mapped (read-only, private) so large binary files are not
 // copied before parsing.
 class FileBytes {
-public:
+  public:
     FileBytes(const fs::path& path, const std::string& source) {
         std::error_code ec;
         const auto status = fs::status(path, ec);
@@ -71,7 +71,8 @@ public:
         void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
         const int err = errno;
         ::close(fd);
-        if (map == MAP_FAILED) throw IoError(quoted(source) + ": cannot map: " + std::strerror(err));
+        if (map == MAP_FAILED)
+            throw IoError(quoted(source) + ": cannot map: " + std::strerror(err));
         data_ = static_cast<const char*>(map);
     }
     ~FileBytes() { release(); }
@@ -84,7 +85,7 @@ public:
     }
     [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
 
-private:
+  private:
     const char* data_ = nullptr;
     std::size_t size_ = 0;
 };
@@ -151,8 +152,8 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
         if (!p.allFinite()) {
             const int k = !std::isfinite(p.x()) ? 0 : !std::isfinite(p.y()) ? 1 : 2;
             throw InputError(quoted(source) + ": vertex " + std::to_string(v) + " of " +
-                             std::to_string(mesh.positions.size()) + ": coordinate " +
-                             "xyz"[k] + " is " + (std::isnan(p[k]) ? "NaN" : "infinite") +
+                             std::to_string(mesh.positions.size()) + ": coordinate " + "xyz"[k] +
+                             " is " + (std::isnan(p[k]) ? "NaN" : "infinite") +
                              ", expected a finite number");
         }
     }
@@ -160,8 +161,9 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (auto i : mesh.triangles[t])
             if (i >= n)
-                throw InputError(quoted(source) + ": triangle " + std::to_string(t) + " uses vertex " +
-                                 std::to_string(i) + ", the file has " + std::to_string(n) + " vertices");
+                throw InputError(quoted(source) + ": triangle " + std::to_string(t) +
+                                 " uses vertex " + std::to_string(i) + ", the file has " +
+                                 std::to_string(n) + " vertices");
     if (!mesh.normals.empty() && mesh.normals.size() != n) mesh.normals.clear();
 
     const bool points_only = mesh.triangles.empty();
@@ -257,13 +259,16 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
             loaded.mesh = detail::read_assimp(path, source, loaded.report, options);
             break;
         case Format::Unknown:
-            throw InputError(quoted(source) + ": unknown mesh format (" +
-                             (ext.empty() ? std::string("no extension") : "extension " + ext) +
-                             " and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
+            throw InputError(
+                quoted(source) + ": unknown mesh format (" +
+                (ext.empty() ? std::string("no extension") : "extension " + ext) +
+                " and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
     }
     if (format == Format::AssimpText && ext == ".obj") count_obj_vertices(data, loaded.report);
     // note: 64 KiB holds any header glint has met; a unit comment further in is not looked for.
-    if (loaded.mesh.unit.empty()) loaded.mesh.unit = unit_from_header(data.first(std::min<std::size_t>(data.size(), 65536)), ext);
+    if (loaded.mesh.unit.empty())
+        loaded.mesh.unit =
+            unit_from_header(data.first(std::min<std::size_t>(data.size(), 65536)), ext);
     file.release();
     finish(loaded, options, source);
     return loaded;

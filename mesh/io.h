@@ -21,11 +21,11 @@ enum class MeshReader { FastPly, FastStl, Vtk, Assimp };
 /// What loading did to the file's content on the way in: every repair is counted.
 struct LoadReport {
     std::filesystem::path path;
-    std::string format;                    ///< "ply-binary-le", "stl-ascii", "vtk-binary", "obj", …
+    std::string format;  ///< "ply-binary-le", "stl-ascii", "vtk-binary", "obj", …
     MeshReader reader = MeshReader::Assimp;
-    std::size_t file_vertices = 0;         ///< vertices as stored (STL: 3 per facet)
-    std::size_t file_triangles = 0;        ///< triangles as stored (after fan-splitting polygons)
-    std::size_t welded_vertices = 0;       ///< file vertices merged into another (identical position)
+    std::size_t file_vertices = 0;    ///< vertices as stored (STL: 3 per facet)
+    std::size_t file_triangles = 0;   ///< triangles as stored (after fan-splitting polygons)
+    std::size_t welded_vertices = 0;  ///< file vertices merged into another (identical position)
     /// OBJ through assimp: the importer's vertex count, one per face corner (file_vertices is
     /// the file's "v" lines); welding merged them back, which welded_vertices does not count.
     std::size_t importer_corner_vertices = 0;
@@ -45,13 +45,13 @@ inline constexpr std::uint64_t kDefaultMaxTriangles = 50'000'000;
 void set_default_max_triangles(std::uint64_t max_triangles) noexcept;
 
 struct LoadOptions {
-    bool weld = true;                   ///< merge vertices with identical positions
-    bool drop_degenerate = true;        ///< drop triangles with a repeated vertex / zero area
-    bool drop_unused = true;            ///< drop vertices no triangle uses (keeps point clouds
-                                        ///< when there are no triangles at all)
-    bool compute_normals = true;        ///< angle-weighted vertex normals
-    bool allow_fast_path = true;        ///< our own binary PLY / STL readers
-    bool allow_points_only = false;     ///< accept a file without triangles (point cloud)
+    bool weld = true;                ///< merge vertices with identical positions
+    bool drop_degenerate = true;     ///< drop triangles with a repeated vertex / zero area
+    bool drop_unused = true;         ///< drop vertices no triangle uses (keeps point clouds
+                                     ///< when there are no triangles at all)
+    bool compute_normals = true;     ///< angle-weighted vertex normals
+    bool allow_fast_path = true;     ///< our own binary PLY / STL readers
+    bool allow_points_only = false;  ///< accept a file without triangles (point cloud)
     /// Refuse a file with more triangles than this (as stored, after fan-splitting polygons
     /// and expanding scene instances), before reading its bulk where the format states counts.
     std::uint64_t max_triangles = default_max_triangles();
@@ -71,7 +71,8 @@ struct LoadedMesh {
 ///        a count the file's size cannot hold, more than options.max_triangles triangles, a
 ///        glTF node graph nested deeper than 64 or expanding to too many instances
 /// \throw Cancelled SIGINT / SIGTERM arrived while reading (mesh/cancel.h)
-[[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path, const LoadOptions& options = {});
+[[nodiscard]] LoadedMesh load_mesh(const std::filesystem::path& path,
+                                   const LoadOptions& options = {});
 
 /// Loads with assimp only (no fast path); used to cross-check the fast readers.
 [[nodiscard]] LoadedMesh load_mesh_assimp(const std::filesystem::path& path,

@@ -20,8 +20,8 @@ ScalarField* Mesh::find_scalar(const std::string& name) {
 
 void Mesh::set_scalar(std::string name, std::vector<float> values) {
     GLINT_ASSERT(values.size() == positions.size(),
-                 "scalar '" + name + "' has " + std::to_string(values.size()) +
-                     " values for " + std::to_string(positions.size()) + " vertices");
+                 "scalar '" + name + "' has " + std::to_string(values.size()) + " values for " +
+                     std::to_string(positions.size()) + " vertices");
     if (auto* field = find_scalar(name)) {
         field->values = std::move(values);
         return;

@@ -46,11 +46,11 @@ struct Bounds {
 struct Mesh {
     std::vector<Vec3f> positions;
     std::vector<Triangle> triangles;
-    std::vector<Vec3f> normals;               ///< per vertex, unit; empty until computed
-    std::vector<Rgb8> colors;                 ///< per vertex; optional
-    std::vector<ScalarField> scalars;         ///< named per-vertex scalars; optional
-    std::vector<std::int32_t> labels;         ///< per-vertex label (0 = none); optional
-    std::string unit;                         ///< "mm", "m", … or "" when unknown
+    std::vector<Vec3f> normals;        ///< per vertex, unit; empty until computed
+    std::vector<Rgb8> colors;          ///< per vertex; optional
+    std::vector<ScalarField> scalars;  ///< named per-vertex scalars; optional
+    std::vector<std::int32_t> labels;  ///< per-vertex label (0 = none); optional
+    std::string unit;                  ///< "mm", "m", … or "" when unknown
 
     [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
     [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }

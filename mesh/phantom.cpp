@@ -46,7 +46,8 @@ double smooth_min(double a, double b, double k) {
 }
 
 double condyle_field(const Vec3d& p) {
-    return smooth_min(ellipsoid_field(p, kHeadCenter, kHeadAxes), ellipsoid_field(p, kNeckCenter, kNeckAxes), kBlend);
+    return smooth_min(ellipsoid_field(p, kHeadCenter, kHeadAxes),
+                      ellipsoid_field(p, kNeckCenter, kNeckAxes), kBlend);
 }
 
 Vec3d condyle_gradient(const Vec3d& p) {
@@ -95,31 +96,37 @@ SphereMesh uv_sphere(int rings) {
         const double theta = kPi * i / rings;
         for (int j = 0; j < segments; ++j) {
             const double phi = 2 * kPi * j / segments;
-            s.directions.push_back({std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)});
+            s.directions.push_back({std::sin(theta) * std::cos(phi),
+                                    std::sin(theta) * std::sin(phi), std::cos(theta)});
         }
     }
     s.directions.push_back({0, 0, -1});
     const auto south = static_cast<std::uint32_t>(s.directions.size() - 1);
-    auto id = [&](int ring, int j) { return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (j % segments)); };
+    auto id = [&](int ring, int j) {
+        return static_cast<std::uint32_t>(1 + (ring - 1) * segments + (j % segments));
+    };
     for (int j = 0; j < segments; ++j) s.triangles.push_back({0, id(1, j), id(1, j + 1)});
     for (int i = 1; i < rings - 1; ++i)
         for (int j = 0; j < segments; ++j) {
             s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
             s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
         }
-    for (int j = 0; j < segments; ++j) s.triangles.push_back({id(rings - 1, j), south, id(rings - 1, j + 1)});
+    for (int j = 0; j < segments; ++j)
+        s.triangles.push_back({id(rings - 1, j), south, id(rings - 1, j + 1)});
     return s;
 }
 
 SphereMesh ico_sphere(int level) {
     SphereMesh s;
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                             {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    const double v[12][3] = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                             {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                             {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (const auto& p : v) s.directions.push_back(Vec3d(p[0], p[1], p[2]).normalized());
-    s.triangles = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                   {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                   {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    s.triangles = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                   {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                   {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                   {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (int l = 0; l < level; ++l) {
         std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> midpoint;
         auto mid = [&](std::uint32_t a, std::uint32_t b) {
@@ -149,14 +156,16 @@ SphereMesh ico_sphere(int level) {
 
 // Torus around z: major radius R, tube radius r; u around z, v around the tube.
 Vec3d torus_point(double R, double r, double u, double v) {
-    return {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)};
+    return {(R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u),
+            r * std::sin(v)};
 }
 
 Mesh torus(const PhantomOptions& o) {
     const double R = o.radii.x();
     const double r = o.radii.y();
-    if (!(r < R)) throw InputError("phantom torus: tube radius " + std::to_string(r) + " must be below the major radius " +
-                                   std::to_string(R));
+    if (!(r < R))
+        throw InputError("phantom torus: tube radius " + std::to_string(r) +
+                         " must be below the major radius " + std::to_string(R));
     const int rings = std::max(3, o.resolution);  // around the tube
     const int segments = 2 * rings;               // around z
     const bool staggered = o.scheme == TessellationScheme::Ico;
@@ -166,10 +175,13 @@ Mesh torus(const PhantomOptions& o) {
             // Ico scheme: every other ring of the tube turned by half a cell, so the grid is
             // made of different triangles than the Uv scheme's.
             const double shift = staggered && (i % 2) ? 0.5 : 0.0;
-            m.positions.push_back(torus_point(R, r, 2 * kPi * i / segments, 2 * kPi * (j + shift) / rings).cast<float>());
+            m.positions.push_back(
+                torus_point(R, r, 2 * kPi * i / segments, 2 * kPi * (j + shift) / rings)
+                    .cast<float>());
         }
     auto id = [&](int i, int j) {
-        return static_cast<std::uint32_t>(((i % segments + segments) % segments) * rings + ((j % rings + rings) % rings));
+        return static_cast<std::uint32_t>(((i % segments + segments) % segments) * rings +
+                                          ((j % rings + rings) % rings));
     };
     for (int i = 0; i < segments; ++i)
         for (int j = 0; j < rings; ++j) {
@@ -189,16 +201,19 @@ Mesh torus(const PhantomOptions& o) {
 
 Mesh make_phantom(const PhantomOptions& o) {
     std::ostringstream where;
-    where << "phantom " << to_string(o.kind) << " (" << to_string(o.scheme) << ", resolution " << o.resolution << ")";
+    where << "phantom " << to_string(o.kind) << " (" << to_string(o.scheme) << ", resolution "
+          << o.resolution << ")";
     if ((o.radii.array() <= 0).any() || !o.radii.allFinite())
-        throw InputError(where.str() + ": sizes must be > 0, found (" + std::to_string(o.radii.x()) + ", " +
-                         std::to_string(o.radii.y()) + ", " + std::to_string(o.radii.z()) + ")");
+        throw InputError(where.str() + ": sizes must be > 0, found (" +
+                         std::to_string(o.radii.x()) + ", " + std::to_string(o.radii.y()) + ", " +
+                         std::to_string(o.radii.z()) + ")");
     // note: the limits keep a phantom below ~5M triangles (≈ 200 MB as a Mesh).
     const bool ico = o.scheme == TessellationScheme::Ico && o.kind != PhantomKind::Torus;
     const int lo = ico ? 0 : (o.kind == PhantomKind::Torus ? 3 : 2);
     const int hi = ico ? 9 : 1500;
     if (o.resolution < lo || o.resolution > hi)
-        throw InputError(where.str() + ": resolution must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+        throw InputError(where.str() + ": resolution must be in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "]");
 
     Mesh m;
     if (o.kind == PhantomKind::Torus) {
@@ -211,11 +226,15 @@ Mesh make_phantom(const PhantomOptions& o) {
         for (const auto& d : s.directions) {
             Vec3d p;
             switch (o.kind) {
-                case PhantomKind::Sphere: p = o.radii.x() * d; break;
+                case PhantomKind::Sphere:
+                    p = o.radii.x() * d;
+                    break;
                 case PhantomKind::Ellipsoid:
                     p = d / (d.array() / o.radii.array()).matrix().norm();
                     break;
-                default: p = scale * (kCondyleOrigin + condyle_radius(d) * d); break;
+                default:
+                    p = scale * (kCondyleOrigin + condyle_radius(d) * d);
+                    break;
             }
             m.positions.push_back(p.cast<float>());
         }
@@ -227,7 +246,8 @@ Mesh make_phantom(const PhantomOptions& o) {
 
 Vec3d phantom_normal(const PhantomOptions& o, const Vec3d& p) {
     switch (o.kind) {
-        case PhantomKind::Sphere: return p.normalized();
+        case PhantomKind::Sphere:
+            return p.normalized();
         case PhantomKind::Ellipsoid:
             return (p.array() / (o.radii.array() * o.radii.array())).matrix().normalized();
         case PhantomKind::Torus: {
@@ -259,14 +279,20 @@ TessellationScheme parse_scheme(const std::string& text) {
 
 std::string to_string(PhantomKind kind) {
     switch (kind) {
-        case PhantomKind::Sphere: return "sphere";
-        case PhantomKind::Ellipsoid: return "ellipsoid";
-        case PhantomKind::Torus: return "torus";
-        case PhantomKind::Condyle: return "condyle";
+        case PhantomKind::Sphere:
+            return "sphere";
+        case PhantomKind::Ellipsoid:
+            return "ellipsoid";
+        case PhantomKind::Torus:
+            return "torus";
+        case PhantomKind::Condyle:
+            return "condyle";
     }
     return "?";
 }
 
-std::string to_string(TessellationScheme scheme) { return scheme == TessellationScheme::Uv ? "uv" : "ico"; }
+std::string to_string(TessellationScheme scheme) {
+    return scheme == TessellationScheme::Uv ? "uv" : "ico";
+}
 
 }  // namespace glint

@@ -31,8 +31,9 @@ SurfaceMesh to_surface_mesh(const Mesh& mesh) {
     polygons.reserve(mesh.triangle_count());
     for (const auto& t : mesh.triangles) polygons.push_back({t[0], t[1], t[2]});
     if (!pmp::is_polygon_soup_a_polygon_mesh(polygons))
-        throw InputError("remesh: the mesh is not an oriented 2-manifold (non-manifold edges or vertices, or "
-                         "inconsistent orientation); expected a manifold surface");
+        throw InputError(
+            "remesh: the mesh is not an oriented 2-manifold (non-manifold edges or vertices, or "
+            "inconsistent orientation); expected a manifold surface");
     SurfaceMesh out;
     pmp::polygon_soup_to_polygon_mesh(points, polygons, out);
     return out;
@@ -45,7 +46,8 @@ Mesh from_surface_mesh(const SurfaceMesh& sm) {
     for (const auto v : sm.vertices()) {
         const Point& p = sm.point(v);
         id.emplace(v, static_cast<std::uint32_t>(out.positions.size()));
-        out.positions.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
+        out.positions.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                   static_cast<float>(p.z()));
     }
     for (const auto f : sm.faces()) {
         Triangle t{};
@@ -64,13 +66,16 @@ Mesh from_surface_mesh(const SurfaceMesh& sm) {
 Mesh remesh_isotropic(const Mesh& mesh, const RemeshOptions& options) {
     if (mesh.triangle_count() == 0) throw InputError("remesh: empty mesh (0 triangles)");
     if (!(options.target_edge > 0.0))
-        throw InputError("remesh: target edge " + std::to_string(options.target_edge) + ", expected > 0");
+        throw InputError("remesh: target edge " + std::to_string(options.target_edge) +
+                         ", expected > 0");
     if (options.iterations < 1)
-        throw InputError("remesh: iterations " + std::to_string(options.iterations) + ", expected ≥ 1");
+        throw InputError("remesh: iterations " + std::to_string(options.iterations) +
+                         ", expected ≥ 1");
     SurfaceMesh sm = to_surface_mesh(mesh);
-    pmp::isotropic_remeshing(faces(sm), options.target_edge, sm,
-                             pmp::parameters::number_of_iterations(static_cast<unsigned>(options.iterations))
-                                 .number_of_relaxation_steps(3));
+    pmp::isotropic_remeshing(
+        faces(sm), options.target_edge, sm,
+        pmp::parameters::number_of_iterations(static_cast<unsigned>(options.iterations))
+            .number_of_relaxation_steps(3));
     sm.collect_garbage();
     Mesh out = from_surface_mesh(sm);
     out.unit = mesh.unit;
@@ -83,7 +88,8 @@ EdgeStats edge_stats(const Mesh& mesh) {
     edges.reserve(mesh.triangle_count() * 3);
     for (const auto& t : mesh.triangles)
         for (int k = 0; k < 3; ++k) {
-            const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+            const std::uint32_t a = t[static_cast<std::size_t>(k)],
+                                b = t[static_cast<std::size_t>((k + 1) % 3)];
             edges.emplace_back(std::min(a, b), std::max(a, b));
         }
     std::sort(edges.begin(), edges.end());
@@ -93,8 +99,10 @@ EdgeStats edge_stats(const Mesh& mesh) {
     if (edges.empty()) return s;
     std::vector<double> lengths;
     lengths.reserve(edges.size());
-    for (const auto& [a, b] : edges) lengths.push_back(static_cast<double>((mesh.positions[a] - mesh.positions[b]).norm()));
-    s.mean = std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
+    for (const auto& [a, b] : edges)
+        lengths.push_back(static_cast<double>((mesh.positions[a] - mesh.positions[b]).norm()));
+    s.mean =
+        std::accumulate(lengths.begin(), lengths.end(), 0.0) / static_cast<double>(lengths.size());
     const auto [lo, hi] = std::minmax_element(lengths.begin(), lengths.end());
     s.min = *lo;
     s.max = *hi;

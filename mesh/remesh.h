@@ -10,8 +10,8 @@
 namespace glint {
 
 struct RemeshOptions {
-    double target_edge = 1.0;   ///< mesh units, > 0
-    int iterations = 3;         ///< split / collapse / flip / relax / project rounds, ≥ 1
+    double target_edge = 1.0;  ///< mesh units, > 0
+    int iterations = 3;        ///< split / collapse / flip / relax / project rounds, ≥ 1
 };
 
 /// Isotropic remeshing towards `target_edge`: every new or moved vertex is projected back onto

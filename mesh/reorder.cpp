@@ -50,7 +50,8 @@ ReorderMap reorder_for_locality(Mesh& mesh) {
     // Which original triangle each new triangle is: the optimisers emit whole triangles,
     // possibly with rotated corners, so match on the canonical rotation.
     std::vector<std::pair<std::array<std::uint32_t, 3>, std::uint32_t>> keyed(nt);
-    for (std::size_t t = 0; t < nt; ++t) keyed[t] = {canonical(mesh.triangles[t]), static_cast<std::uint32_t>(t)};
+    for (std::size_t t = 0; t < nt; ++t)
+        keyed[t] = {canonical(mesh.triangles[t]), static_cast<std::uint32_t>(t)};
     std::sort(keyed.begin(), keyed.end());
     std::vector<bool> taken(nt, false);
     map.original_triangle.resize(nt);
@@ -68,12 +69,14 @@ ReorderMap reorder_for_locality(Mesh& mesh) {
 
     // Vertex fetch order; vertices no triangle uses keep their relative order at the end.
     std::vector<unsigned int> remap(nv);
-    const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), overdraw.data(), index_count, nv);
+    const std::size_t used =
+        meshopt_optimizeVertexFetchRemap(remap.data(), overdraw.data(), index_count, nv);
     std::uint32_t next = static_cast<std::uint32_t>(used);
     for (auto& r : remap)
         if (r == ~0u) r = next++;
     map.original_vertex.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v) map.original_vertex[remap[v]] = static_cast<std::uint32_t>(v);
+    for (std::size_t v = 0; v < nv; ++v)
+        map.original_vertex[remap[v]] = static_cast<std::uint32_t>(v);
     for (auto& tri : new_triangles)
         for (auto& i : tri) i = remap[i];
     mesh.triangles = std::move(new_triangles);
@@ -89,7 +92,8 @@ ReorderMap reorder_for_locality(Mesh& mesh) {
 }
 
 std::vector<float> to_original_order(const ReorderMap& map, const std::vector<float>& values) {
-    GLINT_ASSERT(values.size() == map.original_vertex.size(), "values do not match the reordered mesh");
+    GLINT_ASSERT(values.size() == map.original_vertex.size(),
+                 "values do not match the reordered mesh");
     std::vector<float> out(values.size());
     for (std::size_t v = 0; v < values.size(); ++v) out[map.original_vertex[v]] = values[v];
     return out;

@@ -28,7 +28,9 @@ Roi parse_roi(const std::string& text) {
     const std::string kind = text.substr(0, colon);
     const std::string where = "ROI '" + text + "'";
     if (colon == std::string::npos)
-        throw InputError(where + ": expected 'sphere:x,y,z,r', 'box:x0,y0,z0,x1,y1,z1' or 'mask:FILE.ply[:SCALAR]'");
+        throw InputError(
+            where +
+            ": expected 'sphere:x,y,z,r', 'box:x0,y0,z0,x1,y1,z1' or 'mask:FILE.ply[:SCALAR]'");
     const std::string rest = text.substr(colon + 1);
     Roi roi;
     if (kind == "mask") {
@@ -39,22 +41,27 @@ Roi parse_roi(const std::string& text) {
         roi.mask_file = named ? rest.substr(0, sep) : rest;
         roi.mask_property = named ? rest.substr(sep + 1) : "label";
         if (roi.mask_file.empty()) throw InputError(where + ": expected a mesh file after 'mask:'");
-        if (roi.mask_property.empty()) throw InputError(where + ": empty scalar name after the file");
+        if (roi.mask_property.empty())
+            throw InputError(where + ": empty scalar name after the file");
         return roi;
     }
     const auto v = parse_number_list(rest, where);
     if (kind == "sphere") {
-        if (v.size() != 4) throw InputError(where + ": sphere needs 4 numbers x,y,z,r, found " + std::to_string(v.size()));
+        if (v.size() != 4)
+            throw InputError(where + ": sphere needs 4 numbers x,y,z,r, found " +
+                             std::to_string(v.size()));
         roi.shape = Roi::Shape::Sphere;
         roi.center = {v[0], v[1], v[2]};
         roi.radius = v[3];
         if (!(roi.radius > 0)) throw InputError(where + ": radius must be > 0");
     } else if (kind == "box") {
-        if (v.size() != 6) throw InputError(where + ": box needs 6 numbers, found " + std::to_string(v.size()));
+        if (v.size() != 6)
+            throw InputError(where + ": box needs 6 numbers, found " + std::to_string(v.size()));
         roi.shape = Roi::Shape::Box;
         roi.min = {v[0], v[1], v[2]};
         roi.max = {v[3], v[4], v[5]};
-        if ((roi.max.array() <= roi.min.array()).any()) throw InputError(where + ": box max must exceed min on every axis");
+        if ((roi.max.array() <= roi.min.array()).any())
+            throw InputError(where + ": box max must exceed min on every axis");
     } else {
         throw InputError(where + ": unknown shape '" + kind + "', expected sphere, box or mask");
     }
@@ -66,11 +73,12 @@ std::string to_string(const Roi& roi) {
     s.precision(10);
     switch (roi.shape) {
         case Roi::Shape::Sphere:
-            s << "sphere:" << roi.center.x() << ',' << roi.center.y() << ',' << roi.center.z() << ',' << roi.radius;
+            s << "sphere:" << roi.center.x() << ',' << roi.center.y() << ',' << roi.center.z()
+              << ',' << roi.radius;
             break;
         case Roi::Shape::Box:
-            s << "box:" << roi.min.x() << ',' << roi.min.y() << ',' << roi.min.z() << ',' << roi.max.x() << ','
-              << roi.max.y() << ',' << roi.max.z();
+            s << "box:" << roi.min.x() << ',' << roi.min.y() << ',' << roi.min.z() << ','
+              << roi.max.x() << ',' << roi.max.y() << ',' << roi.max.z();
             break;
         case Roi::Shape::VertexMask:
             s << "mask:" << roi.mask_file.string() << ':' << roi.mask_property;
@@ -86,8 +94,8 @@ void read_roi_mask(Roi& roi, std::size_t vertex_count) {
     keep.weld = keep.drop_degenerate = keep.drop_unused = false;
     const LoadedMesh mask = load_mesh(roi.mask_file, keep);
     if (mask.mesh.vertex_count() != vertex_count)
-        throw InputError(where + ": " + std::to_string(mask.mesh.vertex_count()) + " vertices, the reference has " +
-                         std::to_string(vertex_count));
+        throw InputError(where + ": " + std::to_string(mask.mesh.vertex_count()) +
+                         " vertices, the reference has " + std::to_string(vertex_count));
     roi.vertex_mask.clear();
     roi.vertex_mask.reserve(vertex_count);
     if (roi.mask_property == "label" && !mask.mesh.labels.empty()) {
@@ -95,11 +103,14 @@ void read_roi_mask(Roi& roi, std::size_t vertex_count) {
     } else if (const ScalarField* f = mask.mesh.find_scalar(roi.mask_property)) {
         for (float x : f->values) roi.vertex_mask.push_back(x != 0.0f);
     } else {
-        throw InputError(where + ": no '" + roi.mask_property + "' property" +
-                         (roi.mask_property == "label" ? "; name a scalar as mask:FILE:SCALAR" : ""));
+        throw InputError(
+            where + ": no '" + roi.mask_property + "' property" +
+            (roi.mask_property == "label" ? "; name a scalar as mask:FILE:SCALAR" : ""));
     }
-    if (std::none_of(roi.vertex_mask.begin(), roi.vertex_mask.end(), [](std::uint8_t m) { return m != 0; }))
-        throw InputError(where + ": '" + roi.mask_property + "' is zero on every vertex: the region is empty");
+    if (std::none_of(roi.vertex_mask.begin(), roi.vertex_mask.end(),
+                     [](std::uint8_t m) { return m != 0; }))
+        throw InputError(where + ": '" + roi.mask_property +
+                         "' is zero on every vertex: the region is empty");
 }
 
 }  // namespace glint

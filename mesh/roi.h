@@ -20,10 +20,10 @@ namespace glint {
 struct Roi {
     enum class Shape { Sphere, Box, VertexMask };
     Shape shape = Shape::Sphere;
-    Vec3d center{0, 0, 0};   ///< sphere
-    double radius = 0.0;     ///< sphere, mesh units
-    Vec3d min{0, 0, 0};      ///< box
-    Vec3d max{0, 0, 0};      ///< box
+    Vec3d center{0, 0, 0};  ///< sphere
+    double radius = 0.0;    ///< sphere, mesh units
+    Vec3d min{0, 0, 0};     ///< box
+    Vec3d max{0, 0, 0};     ///< box
     /// VertexMask: one entry per reference vertex, non-zero inside. Empty until
     /// read_roi_mask() (or the caller) fills it.
     std::vector<std::uint8_t> vertex_mask;
@@ -36,7 +36,9 @@ struct Roi {
     /// Whether a point lies inside a sphere or box ROI; for a VertexMask use contains().
     [[nodiscard]] bool contains_point(const Vec3d& p) const;
     /// Whether the mask still has to be read from mask_file.
-    [[nodiscard]] bool needs_mask() const { return shape == Shape::VertexMask && vertex_mask.empty(); }
+    [[nodiscard]] bool needs_mask() const {
+        return shape == Shape::VertexMask && vertex_mask.empty();
+    }
 };
 
 /// Parses "sphere:x,y,z,r", "box:x0,y0,z0,x1,y1,z1" or "mask:FILE[:SCALAR]" (the mask is

@@ -19,7 +19,9 @@ struct UnitName {
 // note: only lengths people scan or segment anatomy and parts in; "ft" and "nm" are left out
 // on purpose (a mesh in either is far more likely a mislabelled one).
 constexpr std::array<UnitName, 5> kUnits{{
-    {"um", 1e-6, {"um", "micrometre", "micrometres", "micrometer", "micrometers", "micron", "microns", "mum"}},
+    {"um",
+     1e-6,
+     {"um", "micrometre", "micrometres", "micrometer", "micrometers", "micron", "microns", "mum"}},
     {"mm", 1e-3, {"mm", "millimetre", "millimetres", "millimeter", "millimeters", "", "", ""}},
     {"cm", 1e-2, {"cm", "centimetre", "centimetres", "centimeter", "centimeters", "", "", ""}},
     {"m", 1.0, {"m", "metre", "metres", "meter", "meters", "", "", ""}},
@@ -30,7 +32,8 @@ std::string lower_ascii(std::string_view s) {
     std::string out;
     for (std::size_t i = 0; i < s.size(); ++i) {
         // "µ" (U+00B5) and "μ" (U+03BC) in UTF-8 both become 'u'.
-        if (i + 1 < s.size() && ((s[i] == '\xC2' && s[i + 1] == '\xB5') || (s[i] == '\xCE' && s[i + 1] == '\xBC'))) {
+        if (i + 1 < s.size() &&
+            ((s[i] == '\xC2' && s[i + 1] == '\xB5') || (s[i] == '\xCE' && s[i + 1] == '\xBC'))) {
             out.push_back('u');
             ++i;
             continue;
@@ -40,7 +43,9 @@ std::string lower_ascii(std::string_view s) {
     return out;
 }
 
-bool is_word(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (c & 0x80); }
+bool is_word(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || (c & 0x80);
+}
 
 // In one comment line: "unit" or "units", then optional ':' / '=' / spaces, then a unit word.
 std::string unit_in_line(std::string_view line) {
@@ -58,7 +63,9 @@ std::string unit_in_line(std::string_view line) {
             while (k < l.size() && (l[k] == ' ' || l[k] == '\t')) ++k;
             std::size_t e = k;
             while (e < l.size() && is_word(l[e])) ++e;
-            if (std::string next = canonical_unit(std::string_view(l).substr(k, e - k)); !next.empty()) u = next;
+            if (std::string next = canonical_unit(std::string_view(l).substr(k, e - k));
+                !next.empty())
+                u = next;
         }
         if (!u.empty()) return u;
     }
@@ -113,11 +120,13 @@ std::string with_unit(double value, const std::string& unit, int power, const ch
     char number[64];
     std::snprintf(number, sizeof number, format, value);
     static constexpr const char* kPower[] = {"", "", "²", "³"};
-    return std::string(number) + " " + (unit.empty() ? std::string("units") : unit) + kPower[std::clamp(power, 0, 3)];
+    return std::string(number) + " " + (unit.empty() ? std::string("units") : unit) +
+           kPower[std::clamp(power, 0, 3)];
 }
 
 std::string unit_suffix(const std::string& unit, int power) {
-    return "_" + (unit.empty() ? std::string("units") : unit) + (power > 1 ? std::to_string(power) : std::string());
+    return "_" + (unit.empty() ? std::string("units") : unit) +
+           (power > 1 ? std::to_string(power) : std::string());
 }
 
 }  // namespace glint

@@ -27,7 +27,8 @@ namespace glint {
 /// `extension` its lowercase extension with the dot. Looks only where formats put comments:
 /// PLY "comment" lines, lines starting with '#' (OBJ, OFF; VTK's title line too), the first
 /// line of an ASCII STL and the 80-byte binary STL header; glTF/GLB are metres.
-[[nodiscard]] std::string unit_from_header(std::span<const char> head, const std::string& extension);
+[[nodiscard]] std::string unit_from_header(std::span<const char> head,
+                                           const std::string& extension);
 
 /// `value` followed by the unit for people: "0.4 mm", "12 mm²" (power 2), "3 mm³"; with an
 /// unknown unit "0.4 units". printf precision `format` ("%.4g").

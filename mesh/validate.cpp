@@ -42,13 +42,15 @@ void check_mesh(const Mesh& mesh, const std::string& source) {
     }
     const Vec3f extent = bounds(mesh).extent();
     if (!(extent.maxCoeff() > 0.0f))
-        throw InputError(quoted(source) + ": all vertices coincide (zero extent), expected a surface");
+        throw InputError(quoted(source) +
+                         ": all vertices coincide (zero extent), expected a surface");
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
         throw InputError(quoted(source) + ": has " + std::to_string(mesh.normals.size()) +
                          " normals for " + std::to_string(n) + " vertices");
 }
 
-std::size_t connected_components(const Mesh& mesh, std::vector<std::uint32_t>& component_of_vertex) {
+std::size_t connected_components(const Mesh& mesh,
+                                 std::vector<std::uint32_t>& component_of_vertex) {
     const std::size_t n = mesh.positions.size();
     UnionFind sets(n);
     std::vector<bool> used(n, false);
@@ -99,8 +101,8 @@ ValidationReport validate_mesh(const Mesh& mesh, const std::string& source) {
     }
     std::vector<std::uint32_t> component;
     report.components = connected_components(mesh, component);
-    report.unused_vertices = static_cast<std::size_t>(
-        std::count(component.begin(), component.end(), 0xFFFFFFFFu));
+    report.unused_vertices =
+        static_cast<std::size_t>(std::count(component.begin(), component.end(), 0xFFFFFFFFu));
     report.is_closed = report.boundary_edges == 0 && report.non_manifold_edges == 0;
 
     if (report.boundary_edges > 0)

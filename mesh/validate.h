@@ -16,10 +16,10 @@ struct ValidationReport {
     std::size_t non_manifold_edges = 0;  ///< edges used by more than two triangles
     std::size_t components = 0;          ///< connected components (by shared vertices)
     std::size_t unused_vertices = 0;
-    bool is_closed = false;              ///< no boundary and no non-manifold edge
+    bool is_closed = false;  ///< no boundary and no non-manifold edge
     Bounds bounds;
     double area = 0.0;
-    std::vector<std::string> findings;   ///< human-readable, one per problem kind
+    std::vector<std::string> findings;  ///< human-readable, one per problem kind
 };
 
 /// Checks hard invariants and throws InputError naming `source` (a file name or a label)

@@ -55,16 +55,19 @@ std::vector<std::uint32_t> weld_vertices(Mesh& mesh, RepairCounts& counts) {
     std::vector<Keyed> keyed(n);
     for (std::size_t v = 0; v < n; ++v) {
         const auto& p = mesh.positions[v];
-        keyed[v] = {{float_bits(p.x()), float_bits(p.y()), float_bits(p.z())}, static_cast<std::uint32_t>(v)};
+        keyed[v] = {{float_bits(p.x()), float_bits(p.y()), float_bits(p.z())},
+                    static_cast<std::uint32_t>(v)};
     }
     std::sort(keyed.begin(), keyed.end(), [](const Keyed& a, const Keyed& b) {
-        return std::tie(a.key.x, a.key.y, a.key.z, a.vertex) < std::tie(b.key.x, b.key.y, b.key.z, b.vertex);
+        return std::tie(a.key.x, a.key.y, a.key.z, a.vertex) <
+               std::tie(b.key.x, b.key.y, b.key.z, b.vertex);
     });
     // The first vertex (lowest index) of each run of equal positions represents it.
     std::vector<std::uint32_t> representative(n);
     for (std::size_t i = 0; i < n; ++i) {
         const bool starts_run = i == 0 || !(keyed[i].key == keyed[i - 1].key);
-        representative[keyed[i].vertex] = starts_run ? keyed[i].vertex : representative[keyed[i - 1].vertex];
+        representative[keyed[i].vertex] =
+            starts_run ? keyed[i].vertex : representative[keyed[i - 1].vertex];
     }
     // New ids in order of first appearance, as the vertices come in the file.
     std::vector<std::uint32_t> new_of_old(n);
@@ -112,8 +115,9 @@ void drop_degenerate_triangles(Mesh& mesh, RepairCounts& counts) {
             continue;
         }
         const int k = tri[0] < tri[1] ? (tri[0] < tri[2] ? 0 : 2) : (tri[1] < tri[2] ? 1 : 2);
-        keyed.push_back({tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)],
-                         tri[static_cast<std::size_t>((k + 2) % 3)], static_cast<std::uint32_t>(t)});
+        keyed.push_back(
+            {tri[static_cast<std::size_t>(k)], tri[static_cast<std::size_t>((k + 1) % 3)],
+             tri[static_cast<std::size_t>((k + 2) % 3)], static_cast<std::uint32_t>(t)});
     }
     std::sort(keyed.begin(), keyed.end(), [](const Keyed& x, const Keyed& y) {
         return std::tie(x.a, x.b, x.c, x.triangle) < std::tie(y.a, y.b, y.c, y.triangle);

@@ -43,9 +43,9 @@ void check_sizes(const Mesh& mesh, const fs::path& path) {
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (auto i : mesh.triangles[t])
             if (i >= n)
-                throw InputError("cannot write \"" + path.string() + "\": triangle " + std::to_string(t) +
-                                 " uses vertex " + std::to_string(i) + ", mesh has " +
-                                 std::to_string(n) + " vertices");
+                throw InputError("cannot write \"" + path.string() + "\": triangle " +
+                                 std::to_string(t) + " uses vertex " + std::to_string(i) +
+                                 ", mesh has " + std::to_string(n) + " vertices");
 }
 
 }  // namespace detail
@@ -78,7 +78,8 @@ namespace {
 
 // The scalars a PLY carries, in order: every field under its own name, then (options) the
 // quality copy for MeshLab and the scalar_<name> copies for CloudCompare.
-std::vector<std::pair<std::string, const ScalarField*>> ply_scalars(const Mesh& mesh, const fs::path& path,
+std::vector<std::pair<std::string, const ScalarField*>> ply_scalars(const Mesh& mesh,
+                                                                    const fs::path& path,
                                                                     const WriteOptions& options) {
     std::vector<std::pair<std::string, const ScalarField*>> out;
     if (!options.write_scalars) return out;
@@ -86,8 +87,8 @@ std::vector<std::pair<std::string, const ScalarField*>> ply_scalars(const Mesh& 
     if (!options.quality_scalar.empty()) {
         const ScalarField* q = mesh.find_scalar(options.quality_scalar);
         if (!q)
-            throw InputError("cannot write \"" + path.string() + "\": quality scalar \"" + options.quality_scalar +
-                             "\" is not a scalar of the mesh");
+            throw InputError("cannot write \"" + path.string() + "\": quality scalar \"" +
+                             options.quality_scalar + "\" is not a scalar of the mesh");
         if (!mesh.find_scalar("quality")) out.emplace_back("quality", q);
     }
     if (options.cloudcompare_names)

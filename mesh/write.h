@@ -31,19 +31,23 @@ struct WriteOptions {
 };
 
 /// Binary little-endian PLY. \throw IoError on any write failure (nothing left behind).
-void write_ply(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+void write_ply(const Mesh& mesh, const std::filesystem::path& path,
+               const WriteOptions& options = {});
 
 /// VTK legacy POLYDATA, ASCII: normals, colours (COLOR_SCALARS), scalars and labels as point
 /// data, each array after its own POINT_DATA line (the later ones after "CELL_DATA 0"); NaN written as options.vtk_legacy_nan; the
 /// unit, when known, in the title line ("glint mesh unit mm"). \throw IoError.
-void write_vtk(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+void write_vtk(const Mesh& mesh, const std::filesystem::path& path,
+               const WriteOptions& options = {});
 
 /// VTK XML PolyData (.vtp), arrays inline as base64 binary (little endian, UInt32 headers):
 /// float positions, normals, scalars (NaN kept), Int32 labels, UInt8 colours.
 /// \throw IoError on any write failure.
-void write_vtp(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+void write_vtp(const Mesh& mesh, const std::filesystem::path& path,
+               const WriteOptions& options = {});
 
 /// Writes by extension (.ply, .vtk, .vtp); \throw InputError for another extension.
-void write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options = {});
+void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                const WriteOptions& options = {});
 
 }  // namespace glint

@@ -70,7 +70,8 @@ void format_in_parallel(StreamBuffer& out, std::size_t count, const Format& form
 }
 
 // Values, `per_line` to a line.
-void append_floats(StreamBuffer& out, const float* values, std::size_t count, std::size_t per_line, float nan_as) {
+void append_floats(StreamBuffer& out, const float* values, std::size_t count, std::size_t per_line,
+                   float nan_as) {
     format_in_parallel(out, count, [&](std::size_t i, std::string& text) {
         append_number(text, std::isnan(values[i]) ? nan_as : values[i]);
         text.push_back((i + 1) % per_line == 0 || i + 1 == count ? '\n' : ' ');
@@ -95,10 +96,13 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
             out += point_data;
             point_data = "CELL_DATA 0\nPOINT_DATA " + std::to_string(n) + "\n";
         };
-        out += "# vtk DataFile Version 3.0\nglint mesh" + (mesh.unit.empty() ? std::string() : " unit " + mesh.unit) +
+        out += "# vtk DataFile Version 3.0\nglint mesh" +
+               (mesh.unit.empty() ? std::string() : " unit " + mesh.unit) +
                "\nASCII\nDATASET POLYDATA\nPOINTS " + std::to_string(n) + " float\n";
-        append_floats(out, mesh.positions.empty() ? nullptr : mesh.positions[0].data(), 3 * n, 3, nan_as);
-        out += "POLYGONS " + std::to_string(mesh.triangles.size()) + " " + std::to_string(4 * mesh.triangles.size()) + "\n";
+        append_floats(out, mesh.positions.empty() ? nullptr : mesh.positions[0].data(), 3 * n, 3,
+                      nan_as);
+        out += "POLYGONS " + std::to_string(mesh.triangles.size()) + " " +
+               std::to_string(4 * mesh.triangles.size()) + "\n";
         format_in_parallel(out, mesh.triangles.size(), [&](std::size_t t, std::string& text) {
             text += "3";
             for (auto i : mesh.triangles[t]) {
@@ -117,7 +121,9 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
             out += "COLOR_SCALARS rgb 3\n";  // ASCII colour scalars are floats in [0, 1]
             std::vector<float> c(3 * n);
             for (std::size_t v = 0; v < n; ++v)
-                for (int k = 0; k < 3; ++k) c[3 * v + static_cast<std::size_t>(k)] = mesh.colors[v][static_cast<std::size_t>(k)] / 255.0f;
+                for (int k = 0; k < 3; ++k)
+                    c[3 * v + static_cast<std::size_t>(k)] =
+                        mesh.colors[v][static_cast<std::size_t>(k)] / 255.0f;
             append_floats(out, c.data(), c.size(), 3, 0.0f);
         }
         if (scalars)
@@ -144,15 +150,17 @@ namespace {
 // groups are encoded as they come, what is left waits for the next piece; finish() pads. The
 // text is the one the whole sequence encoded at once gives.
 class Base64Writer {
-public:
+  public:
     explicit Base64Writer(StreamBuffer& out) : out_(out) {}
     void add(const void* data, std::size_t size) {
         const auto* bytes = static_cast<const std::uint8_t*>(data);
         for (std::size_t i = 0; i < size; ++i) {
             group_[held_++] = bytes[i];
             if (held_ == 3) {
-                const char quad[4] = {kAlphabet[group_[0] >> 2], kAlphabet[((group_[0] & 3) << 4) | (group_[1] >> 4)],
-                                      kAlphabet[((group_[1] & 15) << 2) | (group_[2] >> 6)], kAlphabet[group_[2] & 63]};
+                const char quad[4] = {kAlphabet[group_[0] >> 2],
+                                      kAlphabet[((group_[0] & 3) << 4) | (group_[1] >> 4)],
+                                      kAlphabet[((group_[1] & 15) << 2) | (group_[2] >> 6)],
+                                      kAlphabet[group_[2] & 63]};
                 out_.append(quad, 4);
                 held_ = 0;
             }
@@ -160,34 +168,39 @@ public:
     }
     void finish() {
         if (held_ == 1) {
-            const char quad[4] = {kAlphabet[group_[0] >> 2], kAlphabet[(group_[0] & 3) << 4], '=', '='};
+            const char quad[4] = {kAlphabet[group_[0] >> 2], kAlphabet[(group_[0] & 3) << 4], '=',
+                                  '='};
             out_.append(quad, 4);
         } else if (held_ == 2) {
-            const char quad[4] = {kAlphabet[group_[0] >> 2], kAlphabet[((group_[0] & 3) << 4) | (group_[1] >> 4)],
+            const char quad[4] = {kAlphabet[group_[0] >> 2],
+                                  kAlphabet[((group_[0] & 3) << 4) | (group_[1] >> 4)],
                                   kAlphabet[(group_[1] & 15) << 2], '='};
             out_.append(quad, 4);
         }
         held_ = 0;
     }
 
-private:
-    static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  private:
+    static constexpr char kAlphabet[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     StreamBuffer& out_;
     std::uint8_t group_[3] = {0, 0, 0};
     int held_ = 0;
 };
 
 void open_data_array(StreamBuffer& out, const char* type, const std::string& name, int components) {
-    out += std::string("        <DataArray type=\"") + type + "\"" + (name.empty() ? "" : " Name=\"" + name + "\"") +
-           " NumberOfComponents=\"" + std::to_string(components) + "\" format=\"binary\">";
+    out += std::string("        <DataArray type=\"") + type + "\"" +
+           (name.empty() ? "" : " Name=\"" + name + "\"") + " NumberOfComponents=\"" +
+           std::to_string(components) + "\" format=\"binary\">";
 }
 
 // One inline binary DataArray: base64 of a UInt32 byte count followed by the raw values
 // (little endian: the machines glint runs on, checked below).
 template <class T>
-void append_array(StreamBuffer& out, const char* type, const std::string& name, int components, const T* values,
-                  std::size_t count) {
-    static_assert(std::endian::native == std::endian::little, "VTP arrays are written as LittleEndian");
+void append_array(StreamBuffer& out, const char* type, const std::string& name, int components,
+                  const T* values, std::size_t count) {
+    static_assert(std::endian::native == std::endian::little,
+                  "VTP arrays are written as LittleEndian");
     const auto bytes = static_cast<std::uint32_t>(count * sizeof(T));
     open_data_array(out, type, name, components);
     Base64Writer b64(out);
@@ -212,10 +225,12 @@ void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         StreamBuffer out(stream);
         out += "<?xml version=\"1.0\"?>\n";
         if (!mesh.unit.empty()) out += "<!-- unit " + mesh.unit + " -->\n";
-        out += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
-               "  <PolyData>\n    <Piece NumberOfPoints=\"" + std::to_string(n) +
-               "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" + std::to_string(t) +
-               "\">\n";
+        out +=
+            "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n"
+            "  <PolyData>\n    <Piece NumberOfPoints=\"" +
+            std::to_string(n) +
+            "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" +
+            std::to_string(t) + "\">\n";
         out += "      <PointData";
         if (scalars) out += " Scalars=\"" + safe_name(mesh.scalars.front().name) + "\"";
         if (normals) out += " Normals=\"Normals\"";
@@ -223,10 +238,12 @@ void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         if (normals) append_array(out, "Float32", "Normals", 3, mesh.normals[0].data(), 3 * n);
         if (colors) append_array(out, "UInt8", "rgb", 3, mesh.colors[0].data(), 3 * n);
         if (scalars)
-            for (const auto& f : mesh.scalars) append_array(out, "Float32", safe_name(f.name), 1, f.values.data(), n);
+            for (const auto& f : mesh.scalars)
+                append_array(out, "Float32", safe_name(f.name), 1, f.values.data(), n);
         if (labels) append_array(out, "Int32", "label", 1, mesh.labels.data(), n);
         out += "      </PointData>\n      <Points>\n";
-        append_array(out, "Float32", "Points", 3, n > 0 ? mesh.positions[0].data() : nullptr, 3 * n);
+        append_array(out, "Float32", "Points", 3, n > 0 ? mesh.positions[0].data() : nullptr,
+                     3 * n);
         out += "      </Points>\n      <Polys>\n";
         // Connectivity and offsets as Int32, made and encoded a block of triangles at a time.
         constexpr std::size_t kBlock = 16384;
@@ -239,7 +256,8 @@ void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         for (std::size_t first = 0; first < t; first += kBlock) {
             block.clear();
             for (std::size_t i = first; i < std::min(t, first + kBlock); ++i)
-                for (std::size_t k = 0; k < 3; ++k) block.push_back(static_cast<std::int32_t>(mesh.triangles[i][k]));
+                for (std::size_t k = 0; k < 3; ++k)
+                    block.push_back(static_cast<std::int32_t>(mesh.triangles[i][k]));
             connectivity.add(block.data(), block.size() * sizeof(std::int32_t));
         }
         connectivity.finish();
@@ -250,7 +268,8 @@ void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         offsets.add(&offsets_bytes, sizeof offsets_bytes);
         for (std::size_t first = 0; first < t; first += kBlock) {
             block.clear();
-            for (std::size_t i = first; i < std::min(t, first + kBlock); ++i) block.push_back(static_cast<std::int32_t>(3 * (i + 1)));
+            for (std::size_t i = first; i < std::min(t, first + kBlock); ++i)
+                block.push_back(static_cast<std::int32_t>(3 * (i + 1)));
             offsets.add(block.data(), block.size() * sizeof(std::int32_t));
         }
         offsets.finish();

@@ -40,9 +40,13 @@ struct AnalysisHandle {
     FitHandle fit;
 };
 
-py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
+py::object json_loads(const std::string& text) {
+    return py::module_::import("json").attr("loads")(text);
+}
 
-py::object optional_string(const std::string& s) { return s.empty() ? py::object(py::none()) : py::object(py::str(s)); }
+py::object optional_string(const std::string& s) {
+    return s.empty() ? py::object(py::none()) : py::object(py::str(s));
+}
 
 // The registration's evidence, or None when the fit came from a file or was the identity.
 template <class Get>
@@ -56,7 +60,8 @@ FitMode fit_mode(bool do_register, const std::optional<std::filesystem::path>& f
     return do_register ? FitMode::Register : FitMode::Identity;
 }
 
-FitHandle register_pair(py::handle reference, py::handle examined, const std::optional<std::filesystem::path>& output,
+FitHandle register_pair(py::handle reference, py::handle examined,
+                        const std::optional<std::filesystem::path>& output,
                         const py::kwargs& kwargs) {
     Keywords k;
     apply_keywords(k, kwargs, kSurfaceKeywords | kFitKeywords | kUnitKeywords, "register");
@@ -80,16 +85,15 @@ FitHandle register_pair(py::handle reference, py::handle examined, const std::op
 
 InputRecord input_record(const char* role, const MeshHandle& h) {
     InputRecord r{role, {}, "", h.mesh.vertex_count(), h.mesh.triangle_count()};
-    if (h.report)
-        r.path = h.report->path;
-    else
-        r.description = h.source;
+    if (h.report) r.path = h.report->path;
+    else r.description = h.source;
     return r;
 }
 
 AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_register,
                             const std::optional<std::filesystem::path>& fit_file,
-                            const std::optional<std::filesystem::path>& output, const py::kwargs& kwargs) {
+                            const std::optional<std::filesystem::path>& output,
+                            const py::kwargs& kwargs) {
     Keywords k;
     apply_keywords(k, kwargs, ~0u, "analyse");
     AnalysisOptions& options = k.analysis;
@@ -104,7 +108,8 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
     if (fit_file) options.exports.inputs.push_back({"fit", *fit_file, "", 0, 0});
     for (const auto* h : {ref.get(), exa.get()})
         if (h->report)
-            for (const auto& w : h->report->warnings) options.exports.warnings.push_back(h->source + ": " + w);
+            for (const auto& w : h->report->warnings)
+                options.exports.warnings.push_back(h->source + ": " + w);
     return run_interruptible_value([&] {
         AnalysisHandle a;
         a.result = analyse(ref->mesh, exa->mesh, options);
@@ -119,41 +124,65 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
 }
 
 void bind_fit(py::module_& m) {
-    py::class_<FitHandle>(m, "Fit", "A rigid fit of the examined mesh onto the reference, with its evidence.")
+    py::class_<FitHandle>(m, "Fit",
+                          "A rigid fit of the examined mesh onto the reference, with its evidence.")
         .def_property_readonly(
-            "matrix", [](const FitHandle& f) { return Eigen::Matrix4d(f.outcome.reference_from_examined.matrix()); },
+            "matrix",
+            [](const FitHandle& f) {
+                return Eigen::Matrix4d(f.outcome.reference_from_examined.matrix());
+            },
             "4×4 float64 reference_from_examined (maps examined points into the reference frame)")
         .def_property_readonly(
-            "rotation", [](const FitHandle& f) { return Eigen::Matrix3d(f.outcome.reference_from_examined.linear()); },
+            "rotation",
+            [](const FitHandle& f) {
+                return Eigen::Matrix3d(f.outcome.reference_from_examined.linear());
+            },
             "3×3 rotation of reference_from_examined")
         .def_property_readonly(
             "translation",
-            [](const FitHandle& f) { return Eigen::Vector3d(f.outcome.reference_from_examined.translation()); },
+            [](const FitHandle& f) {
+                return Eigen::Vector3d(f.outcome.reference_from_examined.translation());
+            },
             "translation of reference_from_examined (mesh units)")
         .def_property_readonly("rotation_deg",
-                               [](const FitHandle& f) { return rotation_angle_deg(f.outcome.reference_from_examined); })
-        .def_property_readonly(
-            "mode", [](const FitHandle& f) { return to_string(f.outcome.mode); }, "register, file, identity or truth")
-        .def_property_readonly("converged", [](const FitHandle& f) { return f.outcome.converged; })
-        .def_property_readonly(
-            "rms", [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.rms; }); },
-            "point-to-plane RMS of the inliers (mesh units); None without a registration")
-        .def_property_readonly("inlier_fraction",
                                [](const FitHandle& f) {
-                                   return evidence(f, [](const RegistrationResult& r) { return r.inlier_fraction; });
+                                   return rotation_angle_deg(f.outcome.reference_from_examined);
                                })
         .def_property_readonly(
-            "overlap",
-            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.overlap; }); })
+            "mode", [](const FitHandle& f) { return to_string(f.outcome.mode); },
+            "register, file, identity or truth")
+        .def_property_readonly("converged", [](const FitHandle& f) { return f.outcome.converged; })
         .def_property_readonly(
-            "iterations",
-            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.iterations; }); })
+            "rms",
+            [](const FitHandle& f) {
+                return evidence(f, [](const RegistrationResult& r) { return r.rms; });
+            },
+            "point-to-plane RMS of the inliers (mesh units); None without a registration")
+        .def_property_readonly(
+            "inlier_fraction",
+            [](const FitHandle& f) {
+                return evidence(f, [](const RegistrationResult& r) { return r.inlier_fraction; });
+            })
+        .def_property_readonly("overlap",
+                               [](const FitHandle& f) {
+                                   return evidence(
+                                       f, [](const RegistrationResult& r) { return r.overlap; });
+                               })
+        .def_property_readonly("iterations",
+                               [](const FitHandle& f) {
+                                   return evidence(
+                                       f, [](const RegistrationResult& r) { return r.iterations; });
+                               })
         .def_property_readonly(
             "termination",
-            [](const FitHandle& f) { return evidence(f, [](const RegistrationResult& r) { return r.termination; }); })
+            [](const FitHandle& f) {
+                return evidence(f, [](const RegistrationResult& r) { return r.termination; });
+            })
         .def_property_readonly("termination_detail",
                                [](const FitHandle& f) {
-                                   return evidence(f, [](const RegistrationResult& r) { return r.termination_detail; });
+                                   return evidence(f, [](const RegistrationResult& r) {
+                                       return r.termination_detail;
+                                   });
                                })
         .def_property_readonly("unit", [](const FitHandle& f) { return optional_string(f.unit); })
         .def_property_readonly("warnings", [](const FitHandle& f) { return f.outcome.warnings; })
@@ -162,8 +191,11 @@ void bind_fit(py::module_& m) {
             "the fit as fit.json holds it (evidence, per-iteration log, options)")
         .def(
             "save",
-            [](const FitHandle& f, const std::filesystem::path& path) { write_file_atomically(path, f.outcome.json); },
-            py::arg("path"), "Writes fit.json (glint sweep --fit and glint.analyse(fit=…) read it).")
+            [](const FitHandle& f, const std::filesystem::path& path) {
+                write_file_atomically(path, f.outcome.json);
+            },
+            py::arg("path"),
+            "Writes fit.json (glint sweep --fit and glint.analyse(fit=…) read it).")
         .def("__repr__", [](const FitHandle& f) {
             return "<glint.Fit " + to_string(f.outcome.mode) +
                    (f.outcome.converged ? ", converged" : ", NOT converged") + ", rotation " +
@@ -178,11 +210,13 @@ void bind_analysis_class(py::module_& m) {
             "the reference surface (glint.Mesh) coloured by damage, with every atlas field in "
             "atlas.scalars (the scalars of atlas.ply)")
         .def_property_readonly(
-            "fields", [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
+            "fields",
+            [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
             "per-vertex numpy arrays by name: angle_max_z0, angle_mean_z0, depth_z0, missing_z0, "
             "count_z0, seen_z0, region_z0 (…_z<k> per zoom), distance, distance_tolerance")
         .def_property_readonly(
-            "report", [](const AnalysisHandle& a) { return json_loads(a.report); }, "report.json as a dict")
+            "report", [](const AnalysisHandle& a) { return json_loads(a.report); },
+            "report.json as a dict")
         .def_property_readonly(
             "regions",
             [](const AnalysisHandle& a) {
@@ -198,10 +232,13 @@ void bind_analysis_class(py::module_& m) {
             },
             "every region of every zoom as a dict (report.json's, with its zoom)")
         .def_property_readonly(
-            "regions_csv", [](const AnalysisHandle& a) { return a.regions_csv; }, "regions.csv's text")
+            "regions_csv", [](const AnalysisHandle& a) { return a.regions_csv; },
+            "regions.csv's text")
         .def_property_readonly("fit", [](const AnalysisHandle& a) { return a.fit; })
-        .def_property_readonly("unit", [](const AnalysisHandle& a) { return optional_string(a.result.unit); })
-        .def_property_readonly("warnings", [](const AnalysisHandle& a) { return a.result.warnings; })
+        .def_property_readonly(
+            "unit", [](const AnalysisHandle& a) { return optional_string(a.result.unit); })
+        .def_property_readonly("warnings",
+                               [](const AnalysisHandle& a) { return a.result.warnings; })
         .def_property_readonly(
             "output",
             [](const AnalysisHandle& a) -> py::object {
@@ -222,20 +259,23 @@ void bind_analysis_class(py::module_& m) {
 void bind_analysis(py::module_& m) {
     bind_fit(m);
     bind_analysis_class(m);
-    m.def("register", &register_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
-          py::arg("output") = py::none(),
-          ("Fits the examined surface onto the reference (robust ICP, as glint register). reference, examined: "
-           "glint.Mesh or paths. output: also write fit.json there. Keywords: " +
-           keyword_names(kSurfaceKeywords | kFitKeywords | kUnitKeywords) +
-           ". Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).")
-              .c_str());
-    m.def("analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
-          py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
-          ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or register=False for meshes "
-           "already aligned), signed distance, sweep, decision and, with output=, the folder glint sweep writes. "
-           "Keywords: " +
-           keyword_names(~0u) + ". Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written).")
-              .c_str());
+    m.def(
+        "register", &register_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
+        py::arg("output") = py::none(),
+        ("Fits the examined surface onto the reference (robust ICP, as glint register). reference, examined: "
+         "glint.Mesh or paths. output: also write fit.json there. Keywords: " +
+         keyword_names(kSurfaceKeywords | kFitKeywords | kUnitKeywords) +
+         ". Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).")
+            .c_str());
+    m.def(
+        "analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
+        py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
+        ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or register=False for meshes "
+         "already aligned), signed distance, sweep, decision and, with output=, the folder glint sweep writes. "
+         "Keywords: " +
+         keyword_names(~0u) +
+         ". Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written).")
+            .c_str());
 }
 
 }  // namespace glint::python

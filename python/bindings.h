@@ -27,7 +27,8 @@ struct MeshHandle {
 /// A read-only numpy view (rows × cols) of `rows` contiguous records of `cols` T each,
 /// owned by `owner` (no copy). Empty data gives a (0, cols) array.
 template <class T>
-pybind11::array readonly_view(const T* data, std::size_t rows, std::size_t cols, pybind11::handle owner) {
+pybind11::array readonly_view(const T* data, std::size_t rows, std::size_t cols,
+                              pybind11::handle owner) {
     std::vector<pybind11::ssize_t> shape{static_cast<pybind11::ssize_t>(rows)};
     std::vector<pybind11::ssize_t> strides{static_cast<pybind11::ssize_t>(cols * sizeof(T))};
     if (cols > 1) {
@@ -41,7 +42,8 @@ pybind11::array readonly_view(const T* data, std::size_t rows, std::size_t cols,
 
 /// A mesh argument: a glint.Mesh as it is, or a path (str, os.PathLike) loaded as glint.load
 /// does (a volume with surface.iso). Loads with the GIL released.
-[[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(pybind11::handle value, const SurfaceOptions& surface,
+[[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(pybind11::handle value,
+                                                        const SurfaceOptions& surface,
                                                         const char* role);
 
 void bind_mesh(pybind11::module_& m);

@@ -36,15 +36,18 @@ PyObject* new_exception(py::module_& m, const char* name, py::tuple bases, const
 
 void register_exceptions(py::module_& m) {
     const py::handle exception(PyExc_Exception);
-    g_error = new_exception(m, "Error", py::make_tuple(exception),
-                            "Base of glint's errors; the message is glint's one line (what, where, found, expected).");
+    g_error = new_exception(
+        m, "Error", py::make_tuple(exception),
+        "Base of glint's errors; the message is glint's one line (what, where, found, expected).");
     const py::handle error(g_error);
-    g_input_error = new_exception(m, "InputError", py::make_tuple(error, py::handle(PyExc_ValueError)),
-                                  "Bad input: a malformed file, an invalid option (glint exit code 2).");
+    g_input_error =
+        new_exception(m, "InputError", py::make_tuple(error, py::handle(PyExc_ValueError)),
+                      "Bad input: a malformed file, an invalid option (glint exit code 2).");
     g_io_error = new_exception(m, "IoError", py::make_tuple(error, py::handle(PyExc_OSError)),
                                "A read or write failed (glint exit code 3).");
-    g_device_error = new_exception(m, "DeviceError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
-                                   "No usable render device, or a device call failed (glint exit code 3).");
+    g_device_error =
+        new_exception(m, "DeviceError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
+                      "No usable render device, or a device call failed (glint exit code 3).");
     // note: Cancelled derives from glint::Error, so it is caught first; it becomes Python's
     // own KeyboardInterrupt, as a Ctrl-C anywhere else in Python does.
     py::register_exception_translator([](std::exception_ptr p) {
@@ -99,7 +102,8 @@ void run_interruptible(const std::function<void()>& work) {
     }
     worker.join();
     reset_cancel();
-    if (signalled) throw py::error_already_set();  // the handler's exception, set by PyErr_CheckSignals
+    if (signalled)
+        throw py::error_already_set();  // the handler's exception, set by PyErr_CheckSignals
     if (failure) std::rethrow_exception(failure);
 }
 

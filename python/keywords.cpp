@@ -44,10 +44,12 @@ bool as<bool>(py::handle value) {
 const std::vector<Keyword>& keywords() {
     static const std::vector<Keyword> table = {
         // Surfaces of volumes (volume/surface.h).
-        {"iso", kSurfaceKeywords, "a number", [](Keywords& k, py::handle v) { k.surface.iso = as<double>(v); }},
+        {"iso", kSurfaceKeywords, "a number",
+         [](Keywords& k, py::handle v) { k.surface.iso = as<double>(v); }},
         {"surface_roi", kSurfaceKeywords, "a string (sphere:… or box:…)",
          [](Keywords& k, py::handle v) { k.surface.roi = parse_roi(as<std::string>(v)); }},
-        {"largest", kSurfaceKeywords, "a bool", [](Keywords& k, py::handle v) { k.surface.largest = as<bool>(v); }},
+        {"largest", kSurfaceKeywords, "a bool",
+         [](Keywords& k, py::handle v) { k.surface.largest = as<bool>(v); }},
         {"seed", kSurfaceKeywords, "three numbers (mm)",
          [](Keywords& k, py::handle v) {
              const auto p = as<std::array<double, 3>>(v);
@@ -63,17 +65,27 @@ const std::vector<Keyword>& keywords() {
          [](Keywords& k, py::handle v) { k.surface.tolerance_mm = as<double>(v); }},
         // Registration (scanner/fit.h, registration/icp.h).
         {"loss", kFitKeywords, "a string",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.loss = parse_loss(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.fit.registration.loss = parse_loss(as<std::string>(v));
+         }},
         {"fit_roi", kFitKeywords, "a string (sphere:…, box:… or mask:FILE)",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.roi = parse_roi(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.fit.registration.roi = parse_roi(as<std::string>(v));
+         }},
         {"landmarks", kFitKeywords, "a path",
-         [](Keywords& k, py::handle v) { k.analysis.fit.landmarks_file = as<std::filesystem::path>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.fit.landmarks_file = as<std::filesystem::path>(v);
+         }},
         {"init", kFitKeywords, "a path",
-         [](Keywords& k, py::handle v) { k.analysis.fit.init_file = as<std::filesystem::path>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.fit.init_file = as<std::filesystem::path>(v);
+         }},
         {"samples", kFitKeywords, "an integer",
          [](Keywords& k, py::handle v) { k.analysis.fit.registration.samples = as<int>(v); }},
         {"max_iterations", kFitKeywords, "an integer",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.max_iterations = as<int>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.fit.registration.max_iterations = as<int>(v);
+         }},
         {"symmetric", kFitKeywords, "a bool",
          [](Keywords& k, py::handle v) { k.analysis.fit.registration.symmetric = as<bool>(v); }},
         {"coarse", kFitKeywords, "a bool",
@@ -85,32 +97,48 @@ const std::vector<Keyword>& keywords() {
          [](Keywords& k, py::handle v) { k.analysis.units.allow_scale_mismatch = as<bool>(v); }},
         // The sweep (scanner/sweep.h, scanner/plan.h).
         {"plan", kSweepKeywords, "a string (rotary or sphere:N)",
-         [](Keywords& k, py::handle v) { parse_plan_kind(as<std::string>(v), k.analysis.sweep.plan); }},
+         [](Keywords& k, py::handle v) {
+             parse_plan_kind(as<std::string>(v), k.analysis.sweep.plan);
+         }},
         {"azimuth_step", kSweepKeywords, "a number (degrees)",
          [](Keywords& k, py::handle v) { k.analysis.sweep.plan.azimuth_step_deg = as<double>(v); }},
         {"elevations", kSweepKeywords, "a sequence of numbers (degrees)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.plan.elevations_deg = as<std::vector<double>>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.plan.elevations_deg = as<std::vector<double>>(v);
+         }},
         {"zoom", kSweepKeywords, "a sequence of footprints (mesh units per pixel)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.plan.footprints = as<std::vector<double>>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.plan.footprints = as<std::vector<double>>(v);
+         }},
         {"roi", kSweepKeywords, "a string (sphere:…, box:… or mask:FILE)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.plan.roi = parse_roi(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.plan.roi = parse_roi(as<std::string>(v));
+         }},
         {"size", kSweepKeywords, "an integer (pixels)",
          [](Keywords& k, py::handle v) { k.analysis.sweep.plan.size = as<int>(v); }},
         {"supersample", kSweepKeywords, "an integer",
          [](Keywords& k, py::handle v) { k.analysis.sweep.render.supersample = as<int>(v); }},
         {"metric", kSweepKeywords, "a string",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.metric = parse_metric(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.metric = parse_metric(as<std::string>(v));
+         }},
         {"backend", kSweepKeywords, "a string (auto, vulkan, embree)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.render.backend = parse_backend(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.render.backend = parse_backend(as<std::string>(v));
+         }},
         {"device", kSweepKeywords, "a string",
          [](Keywords& k, py::handle v) { k.analysis.sweep.render.device = as<std::string>(v); }},
         {"accumulate", kSweepKeywords, "a string (auto, gpu, host)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.accumulate = parse_accumulation(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.sweep.accumulate = parse_accumulation(as<std::string>(v));
+         }},
         {"max_incidence", kSweepKeywords, "a number (degrees)",
          [](Keywords& k, py::handle v) { k.analysis.sweep.max_incidence_deg = as<double>(v); }},
         // The decision (scanner/decision.h).
         {"rule", kDecisionKeywords, "a string (fused or normal)",
-         [](Keywords& k, py::handle v) { k.analysis.decision.rule = parse_decision_rule(as<std::string>(v)); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.decision.rule = parse_decision_rule(as<std::string>(v));
+         }},
         {"threshold_deg", kDecisionKeywords, "a number",
          [](Keywords& k, py::handle v) { k.analysis.decision.threshold = as<double>(v); }},
         {"noise_k", kDecisionKeywords, "a number",
@@ -120,7 +148,9 @@ const std::vector<Keyword>& keywords() {
         {"shape_threshold", kDecisionKeywords, "a number (mesh units)",
          [](Keywords& k, py::handle v) { k.analysis.decision.shape_threshold = as<double>(v); }},
         {"min_region_vertices", kDecisionKeywords, "a non-negative integer",
-         [](Keywords& k, py::handle v) { k.analysis.decision.min_region_vertices = as<std::size_t>(v); }},
+         [](Keywords& k, py::handle v) {
+             k.analysis.decision.min_region_vertices = as<std::size_t>(v);
+         }},
         // Exports (scanner/analysis.h).
         {"views", kExportKeywords, "a bool",
          [](Keywords& k, py::handle v) { k.analysis.exports.write_views = as<bool>(v); }},
@@ -141,7 +171,8 @@ std::string keyword_names(unsigned groups) {
     return names;
 }
 
-void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups, const std::string& function) {
+void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups,
+                    const std::string& function) {
     for (const auto& [key, value] : kwargs) {
         const auto name = py::cast<std::string>(key);
         const Keyword* found = nullptr;
@@ -154,7 +185,8 @@ void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups, c
         try {
             found->apply(into, value);
         } catch (const py::cast_error&) {
-            throw InputError(function + ": " + name + " = " + py::cast<std::string>(py::repr(value)) + ": expected " +
+            throw InputError(function + ": " + name + " = " +
+                             py::cast<std::string>(py::repr(value)) + ": expected " +
                              found->expected);
         } catch (const InputError& e) {
             throw InputError(function + ": " + name + ": " + e.what());

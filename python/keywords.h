@@ -24,20 +24,25 @@ struct Keywords {
 
 /// Which keywords a function accepts.
 enum KeywordGroup : unsigned {
-    kSurfaceKeywords = 1u << 0,   ///< iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
-    kFitKeywords = 1u << 1,       ///< loss, fit_roi, landmarks, init, samples, max_iterations, symmetric, coarse
-    kUnitKeywords = 1u << 2,      ///< unit, allow_scale_mismatch
-    kSweepKeywords = 1u << 3,     ///< plan, azimuth_step, elevations, zoom, roi, size, supersample, metric,
-                                  ///< backend, device, max_incidence
-    kDecisionKeywords = 1u << 4,  ///< rule, threshold_deg, noise_k, min_threshold_deg, shape_threshold,
-                                  ///< min_region_vertices
-    kExportKeywords = 1u << 5,    ///< views, exr, force
+    kSurfaceKeywords =
+        1u << 0,  ///< iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
+    kFitKeywords =
+        1u << 1,  ///< loss, fit_roi, landmarks, init, samples, max_iterations, symmetric, coarse
+    kUnitKeywords = 1u << 2,  ///< unit, allow_scale_mismatch
+    kSweepKeywords =
+        1u << 3,  ///< plan, azimuth_step, elevations, zoom, roi, size, supersample, metric,
+                  ///< backend, device, max_incidence
+    kDecisionKeywords =
+        1u << 4,  ///< rule, threshold_deg, noise_k, min_threshold_deg, shape_threshold,
+                  ///< min_region_vertices
+    kExportKeywords = 1u << 5,  ///< views, exr, force
 };
 
 /// Applies `kwargs` to `into`. \throw pybind11::type_error for a keyword the function does not
 /// take (naming the ones it does); InputError naming the keyword for a value of the wrong type
 /// or one its parser refuses.
-void apply_keywords(Keywords& into, const pybind11::kwargs& kwargs, unsigned groups, const std::string& function);
+void apply_keywords(Keywords& into, const pybind11::kwargs& kwargs, unsigned groups,
+                    const std::string& function);
 
 /// The keywords of `groups`, comma-separated (for docstrings and errors).
 [[nodiscard]] std::string keyword_names(unsigned groups);

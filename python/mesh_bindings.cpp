@@ -90,9 +90,11 @@ std::shared_ptr<MeshHandle> from_arrays(
         for (py::ssize_t c = 0; c < 3; ++c) {
             const std::int64_t v = t(i, c);
             if (v < 0 || v >= p.shape(0))
-                throw InputError("glint.Mesh: triangle " + std::to_string(i) + " uses vertex " + std::to_string(v) +
-                                 ", mesh has " + std::to_string(p.shape(0)) + " vertices");
-            mesh.triangles[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] = static_cast<std::uint32_t>(v);
+                throw InputError("glint.Mesh: triangle " + std::to_string(i) + " uses vertex " +
+                                 std::to_string(v) + ", mesh has " + std::to_string(p.shape(0)) +
+                                 " vertices");
+            mesh.triangles[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
+                static_cast<std::uint32_t>(v);
         }
     mesh.unit = unit.value_or("");
     check_mesh(mesh, "glint.Mesh");
@@ -101,11 +103,14 @@ std::shared_ptr<MeshHandle> from_arrays(
     return handle;
 }
 
-py::object optional_string(const std::string& s) { return s.empty() ? py::object(py::none()) : py::object(py::str(s)); }
+py::object optional_string(const std::string& s) {
+    return s.empty() ? py::object(py::none()) : py::object(py::str(s));
+}
 
 }  // namespace
 
-std::shared_ptr<MeshHandle> mesh_argument(py::handle value, const SurfaceOptions& surface, const char* role) {
+std::shared_ptr<MeshHandle> mesh_argument(py::handle value, const SurfaceOptions& surface,
+                                          const char* role) {
     if (py::isinstance<MeshHandle>(value)) return py::cast<std::shared_ptr<MeshHandle>>(value);
     std::filesystem::path path;
     try {
@@ -122,30 +127,33 @@ void bind_mesh(py::module_& m) {
 
 Arrays are read-only numpy views into the mesh (no copy); they keep the mesh alive. Copy
 them (numpy.array(mesh.positions)) to change them.)");
-    mesh.def(py::init(&from_arrays), py::arg("positions"), py::arg("triangles"), py::arg("unit") = py::none(),
-             "A mesh from an N×3 array of positions and an M×3 array of vertex ids (counter-clockwise seen from "
-             "outside); copied, checked as a loaded mesh is, vertex normals computed.")
+    mesh.def(
+            py::init(&from_arrays), py::arg("positions"), py::arg("triangles"),
+            py::arg("unit") = py::none(),
+            "A mesh from an N×3 array of positions and an M×3 array of vertex ids (counter-clockwise seen from "
+            "outside); copied, checked as a loaded mesh is, vertex normals computed.")
         .def_property_readonly(
             "positions",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
-                return readonly_view(x.positions.empty() ? nullptr : x.positions.front().data(), x.positions.size(), 3,
-                                     self);
+                return readonly_view(x.positions.empty() ? nullptr : x.positions.front().data(),
+                                     x.positions.size(), 3, self);
             },
             "N×3 float32 vertex positions (mesh units)")
         .def_property_readonly(
             "triangles",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
-                return readonly_view(x.triangles.empty() ? nullptr : x.triangles.front().data(), x.triangles.size(), 3,
-                                     self);
+                return readonly_view(x.triangles.empty() ? nullptr : x.triangles.front().data(),
+                                     x.triangles.size(), 3, self);
             },
             "M×3 uint32 vertex ids, counter-clockwise seen from outside")
         .def_property_readonly(
             "normals",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
-                return readonly_view(x.normals.empty() ? nullptr : x.normals.front().data(), x.normals.size(), 3, self);
+                return readonly_view(x.normals.empty() ? nullptr : x.normals.front().data(),
+                                     x.normals.size(), 3, self);
             },
             "N×3 float32 unit vertex normals (angle-weighted)")
         .def_property_readonly(
@@ -177,24 +185,29 @@ them (numpy.array(mesh.positions)) to change them.)");
             "unit", [](const MeshHandle& h) { return optional_string(h.mesh.unit); },
             "length unit the file states (\"mm\", …), or None")
         .def_property_readonly(
-            "source", [](const MeshHandle& h) { return h.source; }, "the file, or what made the mesh")
+            "source", [](const MeshHandle& h) { return h.source; },
+            "the file, or what made the mesh")
         .def_property_readonly(
             "report",
             [](const MeshHandle& h) -> py::object {
                 if (!h.report) return py::none();
                 py::dict d = report_dict(*h.report);
-                d["surface"] = h.surface ? py::object(surface_dict(*h.surface)) : py::object(py::none());
+                d["surface"] =
+                    h.surface ? py::object(surface_dict(*h.surface)) : py::object(py::none());
                 return d;
             },
             "what loading repaired (welded, dropped, split) and, for a volume, the surface extraction; None for arrays")
-        .def_property_readonly("vertex_count", [](const MeshHandle& h) { return h.mesh.vertex_count(); })
-        .def_property_readonly("triangle_count", [](const MeshHandle& h) { return h.mesh.triangle_count(); })
+        .def_property_readonly("vertex_count",
+                               [](const MeshHandle& h) { return h.mesh.vertex_count(); })
+        .def_property_readonly("triangle_count",
+                               [](const MeshHandle& h) { return h.mesh.triangle_count(); })
         .def(
             "save",
             [](const MeshHandle& h, const std::filesystem::path& path) {
                 run_interruptible([&] { write_mesh(h.mesh, path); });
             },
-            py::arg("path"), "Writes the mesh (.ply, .vtk or .vtp by extension) with its colours and scalars.")
+            py::arg("path"),
+            "Writes the mesh (.ply, .vtk or .vtp by extension) with its colours and scalars.")
         .def("__repr__", [](const MeshHandle& h) {
             return "<glint.Mesh " + std::to_string(h.mesh.vertex_count()) + " vertices, " +
                    std::to_string(h.mesh.triangle_count()) + " triangles from " + h.source + ">";
@@ -210,7 +223,8 @@ them (numpy.array(mesh.positions)) to change them.)");
         py::arg("path"),
         ("Loads a mesh file (PLY, STL, OBJ, OFF, glTF, VTK) or extracts the iso-surface of a volume (MetaImage, "
          "NIfTI, NRRD, DICOM folder; iso= required). Keywords: " +
-         keyword_names(kSurfaceKeywords) + " (as glint surface's flags). Raises glint.InputError, glint.IoError.")
+         keyword_names(kSurfaceKeywords) +
+         " (as glint surface's flags). Raises glint.InputError, glint.IoError.")
             .c_str());
 }
 

@@ -25,8 +25,12 @@ struct ClosestPointIndexData {
     const Mesh* mesh = nullptr;
     VertexTriangles around;  // triangles around each vertex, ascending
 
-    [[nodiscard]] Vec3d vertex_normal(std::uint32_t v) const { return mesh->normals[v].cast<double>(); }
-    [[nodiscard]] Vec3d face_normal(std::uint32_t t) const { return glint::face_normal(*mesh, t).cast<double>(); }
+    [[nodiscard]] Vec3d vertex_normal(std::uint32_t v) const {
+        return mesh->normals[v].cast<double>();
+    }
+    [[nodiscard]] Vec3d face_normal(std::uint32_t t) const {
+        return glint::face_normal(*mesh, t).cast<double>();
+    }
     // Sum of the normals of the triangles sharing edge (a, b), in triangle order.
     [[nodiscard]] Vec3d edge_normal(std::uint32_t a, std::uint32_t b) const {
         Vec3d sum = Vec3d::Zero();
@@ -56,7 +60,7 @@ struct ClosestPointIndex::Impl {
     ClosestPointIndexData data;
     Mesh own_mesh;  // the copy the queries read (empty when the index reads the caller's mesh)
     std::vector<Vec3f> positions;  // what Embree reads: with room for its 16-byte reads
-    double diagonal = 0.0;  // of the mesh's bounding box
+    double diagonal = 0.0;         // of the mesh's bounding box
 
     ~Impl() {
         if (scene) rtcReleaseScene(scene);
@@ -68,7 +72,8 @@ namespace {
 
 void embree_error(void* user, RTCError code, const char* message) {
     auto* text = static_cast<std::string*>(user);
-    *text = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+    *text =
+        "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
 }
 
 // The smallest float at or above d: Embree culls with a float radius, and a radius rounded
@@ -76,7 +81,8 @@ void embree_error(void* user, RTCError code, const char* message) {
 // found would depend on the order the BVH is walked in.
 float float_above(double d) {
     const auto f = static_cast<float>(d);
-    return static_cast<double>(f) >= d ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+    return static_cast<double>(f) >= d ? f
+                                       : std::nextafter(f, std::numeric_limits<float>::infinity());
 }
 
 bool point_query_callback(RTCPointQueryFunctionArguments* args) {
@@ -84,9 +90,11 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
     const ClosestPointIndexData& d = *state->data;
     const Mesh& m = *d.mesh;
     const auto& tri = m.triangles[args->primID];
-    const TrianglePoint tp = closest_point_on_triangle(state->query, m.positions[tri[0]].cast<double>(),
-                                                       m.positions[tri[1]].cast<double>(), m.positions[tri[2]].cast<double>());
-    constexpr ClosestFeature kFeature[3] = {ClosestFeature::Face, ClosestFeature::Edge, ClosestFeature::Vertex};
+    const TrianglePoint tp = closest_point_on_triangle(
+        state->query, m.positions[tri[0]].cast<double>(), m.positions[tri[1]].cast<double>(),
+        m.positions[tri[2]].cast<double>());
+    constexpr ClosestFeature kFeature[3] = {ClosestFeature::Face, ClosestFeature::Edge,
+                                            ClosestFeature::Vertex};
     const double dist = (tp.point - state->query).norm();
     if (dist < state->best.distance) {
         state->best.found = true;
@@ -109,14 +117,21 @@ void finish_query(const ClosestPointIndexData& d, QueryState& s) {
     const auto k = static_cast<std::size_t>(s.feature_index);
     Vec3d pseudo = Vec3d::Zero();
     switch (s.best.feature) {
-        case ClosestFeature::Face: pseudo = d.face_normal(s.best.triangle); break;
-        case ClosestFeature::Edge: pseudo = d.edge_normal(tri[k], tri[(k + 1) % 3]); break;
-        case ClosestFeature::Vertex: pseudo = d.vertex_normal(tri[k]); break;
+        case ClosestFeature::Face:
+            pseudo = d.face_normal(s.best.triangle);
+            break;
+        case ClosestFeature::Edge:
+            pseudo = d.edge_normal(tri[k], tri[(k + 1) % 3]);
+            break;
+        case ClosestFeature::Vertex:
+            pseudo = d.vertex_normal(tri[k]);
+            break;
     }
     const double side = (s.query - s.best.point).dot(pseudo);
     s.best.signed_distance = side < 0 ? -s.best.distance : s.best.distance;
     Vec3d n = Vec3d::Zero();
-    for (int c = 0; c < 3; ++c) n += s.best.barycentric[c] * d.vertex_normal(tri[static_cast<std::size_t>(c)]);
+    for (int c = 0; c < 3; ++c)
+        n += s.best.barycentric[c] * d.vertex_normal(tri[static_cast<std::size_t>(c)]);
     s.best.normal = n.norm() > 0 ? Vec3d(n.normalized()) : d.face_normal(s.best.triangle);
 }
 
@@ -124,10 +139,14 @@ void finish_query(const ClosestPointIndexData& d, QueryState& s) {
 
 ClosestPointIndex::ClosestPointIndex(const Mesh& mesh) : ClosestPointIndex(mesh, false) {}
 
-ClosestPointIndex ClosestPointIndex::borrowing(const Mesh& mesh) { return ClosestPointIndex(mesh, true); }
+ClosestPointIndex ClosestPointIndex::borrowing(const Mesh& mesh) {
+    return ClosestPointIndex(mesh, true);
+}
 
-ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow) : impl_(std::make_unique<Impl>()) {
-    if (mesh_in.triangles.empty()) throw InputError("closest-point index: the mesh has no triangles");
+ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow)
+    : impl_(std::make_unique<Impl>()) {
+    if (mesh_in.triangles.empty())
+        throw InputError("closest-point index: the mesh has no triangles");
     // note: unless borrowing, the index keeps its own copy of the geometry, so it cannot
     // dangle when the caller's mesh goes away (a temporary, a moved-from vector).
     const bool copy = !borrow || !mesh_in.has_normals();
@@ -164,8 +183,9 @@ ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow) : impl_(s
     RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, padded.data(), 0,
                                3 * sizeof(float), padded.size());
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh->triangles.data(), 0,
-                               3 * sizeof(std::uint32_t), mesh->triangle_count());
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               mesh->triangles.data(), 0, 3 * sizeof(std::uint32_t),
+                               mesh->triangle_count());
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);
@@ -198,7 +218,8 @@ ClosestPoint ClosestPointIndex::query(const Vec3d& q, double max_distance) const
     query.y = static_cast<float>(q.y());
     query.z = static_cast<float>(q.z());
     query.time = 0.0f;
-    query.radius = std::isfinite(max_distance) ? float_above(max_distance) : std::numeric_limits<float>::infinity();
+    query.radius = std::isfinite(max_distance) ? float_above(max_distance)
+                                               : std::numeric_limits<float>::infinity();
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(impl_->scene, &query, &context, point_query_callback, &state);
@@ -206,13 +227,16 @@ ClosestPoint ClosestPointIndex::query(const Vec3d& q, double max_distance) const
     return state.best;
 }
 
-std::vector<ClosestPoint> ClosestPointIndex::closest(std::span<const Vec3d> queries, double max_distance) const {
+std::vector<ClosestPoint> ClosestPointIndex::closest(std::span<const Vec3d> queries,
+                                                     double max_distance) const {
     std::vector<ClosestPoint> out(queries.size());
     // note: contiguous chunks of 512 keep neighbouring queries (samples and vertices are
     // stored near their neighbours) on one thread, so the BVH nodes they visit stay in cache.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 512), [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t i = r.begin(); i != r.end(); ++i) out[i] = closest(queries[i], max_distance);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, queries.size(), 512),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t i = r.begin(); i != r.end(); ++i)
+                              out[i] = closest(queries[i], max_distance);
+                      });
     return out;
 }
 
@@ -242,7 +266,8 @@ RayHit ClosestPointIndex::intersect(const Ray& ray) const {
     hit.point = Vec3d::Zero();
     Vec3d n = Vec3d::Zero();
     for (int k = 0; k < 3; ++k) {
-        hit.point += hit.barycentric[k] * impl_->data.mesh->positions[tri[static_cast<std::size_t>(k)]].cast<double>();
+        hit.point += hit.barycentric[k] *
+                     impl_->data.mesh->positions[tri[static_cast<std::size_t>(k)]].cast<double>();
         n += hit.barycentric[k] * impl_->data.vertex_normal(tri[static_cast<std::size_t>(k)]);
     }
     hit.normal = n.normalized();
@@ -253,7 +278,8 @@ RayHit pick(const ClosestPointIndex& index, const Camera& camera, double u, doub
     return index.intersect(camera.pixel_ray(u, v));
 }
 
-std::vector<double> signed_distances(const ClosestPointIndex& index, std::span<const Vec3d> points) {
+std::vector<double> signed_distances(const ClosestPointIndex& index,
+                                     std::span<const Vec3d> points) {
     const auto cps = index.closest(points);
     std::vector<double> out(cps.size());
     for (std::size_t i = 0; i < cps.size(); ++i) out[i] = cps[i].signed_distance;

@@ -23,13 +23,13 @@ namespace glint {
 enum class ClosestFeature : std::uint8_t { Face, Edge, Vertex };
 
 struct ClosestPoint {
-    bool found = false;              ///< false when nothing lies within the query radius
-    Vec3d point{0, 0, 0};            ///< closest point on the mesh
+    bool found = false;    ///< false when nothing lies within the query radius
+    Vec3d point{0, 0, 0};  ///< closest point on the mesh
     std::uint32_t triangle = 0;
-    Vec3d barycentric{0, 0, 0};      ///< of `point` in `triangle`
+    Vec3d barycentric{0, 0, 0};  ///< of `point` in `triangle`
     double distance = std::numeric_limits<double>::infinity();
     double signed_distance = std::numeric_limits<double>::infinity();  ///< + outside, − inside
-    Vec3d normal{0, 0, 0};           ///< interpolated unit vertex normal at `point`
+    Vec3d normal{0, 0, 0};  ///< interpolated unit vertex normal at `point`
     ClosestFeature feature = ClosestFeature::Face;
 };
 
@@ -39,14 +39,14 @@ struct RayHit {
     Vec3d point{0, 0, 0};
     std::uint32_t triangle = 0;
     Vec3d barycentric{0, 0, 0};
-    Vec3d normal{0, 0, 0};           ///< interpolated unit vertex normal
+    Vec3d normal{0, 0, 0};  ///< interpolated unit vertex normal
 };
 
 /// A BVH over a mesh for many closest-point and ray queries. Move-only; thread-safe queries.
 /// The index keeps a copy of the geometry (or, borrowing(), reads the caller's). Normals are
 /// computed (angle-weighted) when absent.
 class ClosestPointIndex {
-public:
+  public:
     /// \throw InputError an empty mesh; DeviceError Embree could not build (its message).
     explicit ClosestPointIndex(const Mesh& mesh);
     /// An index that reads `mesh` in place instead of copying it (its positions excepted):
@@ -60,17 +60,18 @@ public:
     ClosestPointIndex& operator=(const ClosestPointIndex&) = delete;
 
     /// Closest point to q within max_distance (found = false when none).
-    [[nodiscard]] ClosestPoint closest(const Vec3d& q,
-                                       double max_distance = std::numeric_limits<double>::infinity()) const;
+    [[nodiscard]] ClosestPoint closest(
+        const Vec3d& q, double max_distance = std::numeric_limits<double>::infinity()) const;
     /// Many queries, in parallel over the machine's cores.
-    [[nodiscard]] std::vector<ClosestPoint> closest(std::span<const Vec3d> queries,
-                                                    double max_distance = std::numeric_limits<double>::infinity()) const;
+    [[nodiscard]] std::vector<ClosestPoint> closest(
+        std::span<const Vec3d> queries,
+        double max_distance = std::numeric_limits<double>::infinity()) const;
     /// First hit of a ray (direction need not be unit).
     [[nodiscard]] RayHit intersect(const Ray& ray) const;
 
     [[nodiscard]] const Mesh& mesh() const;
 
-private:
+  private:
     ClosestPointIndex(const Mesh& mesh, bool borrow);
     [[nodiscard]] ClosestPoint query(const Vec3d& q, double max_distance) const;
 
@@ -82,6 +83,7 @@ private:
 [[nodiscard]] RayHit pick(const ClosestPointIndex& index, const Camera& camera, double u, double v);
 
 /// Signed distance of every point to the mesh (see the sign rule above).
-[[nodiscard]] std::vector<double> signed_distances(const ClosestPointIndex& index, std::span<const Vec3d> points);
+[[nodiscard]] std::vector<double> signed_distances(const ClosestPointIndex& index,
+                                                   std::span<const Vec3d> points);
 
 }  // namespace glint

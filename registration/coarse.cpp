@@ -4,8 +4,8 @@
 #include "registration/detail/coarse.h"
 #include "registration/detail/icp_core.h"
 
-#include <Eigen/Eigenvalues>
 #include <tbb/parallel_for.h>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <limits>
@@ -31,7 +31,8 @@ void principal_frame(const std::vector<Sample>& s, Vec3d& centroid, Eigen::Matri
 }
 
 // Identity, and the principal frames matched under every proper sign flip.
-std::vector<CoarseHypothesis> hypotheses(const std::vector<Sample>& reference, const std::vector<Sample>& examined) {
+std::vector<CoarseHypothesis> hypotheses(const std::vector<Sample>& reference,
+                                         const std::vector<Sample>& examined) {
     Vec3d cr, ce;
     Eigen::Matrix3d ar, ae;
     principal_frame(reference, cr, ar);
@@ -52,7 +53,8 @@ std::vector<CoarseHypothesis> hypotheses(const std::vector<Sample>& reference, c
 }  // namespace
 
 CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPointIndex& examined,
-                             const std::vector<Sample>& samples, const RegistrationOptions& o, double diagonal) {
+                             const std::vector<Sample>& samples, const RegistrationOptions& o,
+                             double diagonal) {
     RegistrationOptions quick = o;
     quick.samples = std::min(o.samples, 2000);
     quick.symmetric = false;
@@ -60,18 +62,23 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPo
     CoarseAlignment out;
     // The hypotheses' short runs are independent: one task each (Ceres single-threaded in
     // each), kept in the hypotheses' order.
-    std::vector<CoarseHypothesis> tried = hypotheses(sample_surface(reference.mesh(), 4000, o.seed + 2), samples);
+    std::vector<CoarseHypothesis> tried =
+        hypotheses(sample_surface(reference.mesh(), 4000, o.seed + 2), samples);
     std::vector<std::uint8_t> ran(tried.size(), 0);
     tbb::parallel_for(std::size_t{0}, tried.size(), [&](std::size_t k) {
         CoarseHypothesis& h = tried[k];
-        const IcpRun r = run_icp(quick_samples, {}, reference, nullptr, h.reference_from_examined, quick, 12, diagonal, 1);
+        const IcpRun r = run_icp(quick_samples, {}, reference, nullptr, h.reference_from_examined,
+                                 quick, 12, diagonal, 1);
         if (r.result.log.empty()) return;
         // Score: robust residual spread, penalised by how much of the surface matched.
-        const auto pairs = match(quick_samples, r.t, reference, quick, std::numeric_limits<double>::infinity());
+        const auto pairs =
+            match(quick_samples, r.t, reference, quick, std::numeric_limits<double>::infinity());
         std::vector<double> res(pairs.size());
         for (std::size_t i = 0; i < pairs.size(); ++i) res[i] = pairs[i].r;
-        const double frac = static_cast<double>(pairs.size()) / static_cast<double>(quick_samples.size());
-        h.score = (median_abs(res) + 1e-12 * diagonal) / std::max(frac, 1e-3) / std::max(frac, 1e-3);
+        const double frac =
+            static_cast<double>(pairs.size()) / static_cast<double>(quick_samples.size());
+        h.score =
+            (median_abs(res) + 1e-12 * diagonal) / std::max(frac, 1e-3) / std::max(frac, 1e-3);
         h.reference_from_examined = r.t;
         ran[k] = 1;
     });
@@ -94,25 +101,30 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPo
     for (const auto& c : out.hypotheses) {
         if (c.score > 1.5 * best) continue;
         ++tied;
-        if (pick == nullptr || angle(c.reference_from_examined) < angle(pick->reference_from_examined)) pick = &c;
+        if (pick == nullptr ||
+            angle(c.reference_from_examined) < angle(pick->reference_from_examined))
+            pick = &c;
     }
     out.reference_from_examined = pick->reference_from_examined;
     out.description = pick->name;
     if (tied > 1)
-        out.description += " (" + std::to_string(tied) +
-                           " hypotheses fit about equally, the shape may be symmetric: kept the smallest rotation)";
+        out.description +=
+            " (" + std::to_string(tied) +
+            " hypotheses fit about equally, the shape may be symmetric: kept the smallest rotation)";
     return out;
 }
 
 }  // namespace detail
 
-CoarseAlignment coarse_align(const Mesh& reference, const Mesh& examined, const RegistrationOptions& options) {
+CoarseAlignment coarse_align(const Mesh& reference, const Mesh& examined,
+                             const RegistrationOptions& options) {
     options.validate();
     if (reference.triangles.empty() || examined.triangles.empty())
         throw InputError("coarse alignment: both meshes need triangles");
     const ClosestPointIndex ref_index(reference);
     const ClosestPointIndex exa_index(examined);
-    const double diagonal = std::max(bounds(reference).diagonal(), bounds(exa_index.mesh()).diagonal());
+    const double diagonal =
+        std::max(bounds(reference).diagonal(), bounds(exa_index.mesh()).diagonal());
     const auto samples = detail::sample_surface(exa_index.mesh(), options.samples, options.seed);
     return detail::coarse_align(ref_index, exa_index, samples, options, diagonal);
 }

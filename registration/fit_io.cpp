@@ -11,7 +11,8 @@
 
 namespace glint {
 
-std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, const RegistrationSources& sources) {
+std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
+                    const RegistrationSources& sources) {
     auto matrix = [](const Rigid& t) {
         nlohmann::json rows = nlohmann::json::array();
         for (int i = 0; i < 4; ++i) rows.push_back({t(i, 0), t(i, 1), t(i, 2), t(i, 3)});
@@ -19,8 +20,12 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, c
     };
     nlohmann::json log = nlohmann::json::array();
     for (const auto& l : r.log)
-        log.push_back({{"iteration", l.iteration}, {"cost", l.cost}, {"rms", l.rms}, {"loss_scale", l.loss_scale},
-                       {"overlap", l.overlap}, {"rotation_step_deg", l.rotation_step_deg},
+        log.push_back({{"iteration", l.iteration},
+                       {"cost", l.cost},
+                       {"rms", l.rms},
+                       {"loss_scale", l.loss_scale},
+                       {"overlap", l.overlap},
+                       {"rotation_step_deg", l.rotation_step_deg},
                        {"translation_step", l.translation_step}});
     auto vec = [](const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
     nlohmann::json roi;
@@ -31,9 +36,13 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, c
     } else if (o.roi->shape == Roi::Shape::Box) {
         roi = {{"shape", "box"}, {"min", vec(o.roi->min)}, {"max", vec(o.roi->max)}};
     } else {
-        const auto on = std::count_if(o.roi->vertex_mask.begin(), o.roi->vertex_mask.end(), [](std::uint8_t m) { return m != 0; });
-        roi = {{"shape", "vertex_mask"}, {"file", o.roi->mask_file.string()}, {"property", o.roi->mask_property},
-               {"vertices", o.roi->vertex_mask.size()}, {"masked_vertices", on}};
+        const auto on = std::count_if(o.roi->vertex_mask.begin(), o.roi->vertex_mask.end(),
+                                      [](std::uint8_t m) { return m != 0; });
+        roi = {{"shape", "vertex_mask"},
+               {"file", o.roi->mask_file.string()},
+               {"property", o.roi->mask_property},
+               {"vertices", o.roi->vertex_mask.size()},
+               {"masked_vertices", on}};
     }
     const nlohmann::json initial = o.initial ? matrix(*o.initial) : nlohmann::json(nullptr);
     const Eigen::AngleAxisd aa(Eigen::Matrix3d(r.reference_from_examined.linear()));
@@ -42,8 +51,9 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, c
         {"examined_from_reference", matrix(r.examined_from_reference)},
         {"rotation_deg", aa.angle() * 180.0 / std::numbers::pi},
         {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
-        {"translation", {r.reference_from_examined.translation().x(), r.reference_from_examined.translation().y(),
-                         r.reference_from_examined.translation().z()}},
+        {"translation",
+         {r.reference_from_examined.translation().x(), r.reference_from_examined.translation().y(),
+          r.reference_from_examined.translation().z()}},
         {"rms", r.rms},
         {"inlier_fraction", r.inlier_fraction},
         {"overlap", r.overlap},
@@ -52,14 +62,23 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o, c
         {"termination", r.termination},
         {"termination_detail", r.termination_detail},
         {"coarse", r.coarse},
-        {"options", {{"loss", to_string(o.loss)}, {"samples", o.samples}, {"max_iterations", o.max_iterations},
-                     {"max_normal_angle_deg", o.max_normal_angle_deg}, {"symmetric", o.symmetric},
-                     {"rotation_tolerance_deg", o.rotation_tolerance_deg},
-                     {"translation_tolerance", o.translation_tolerance}, {"cost_tolerance", o.cost_tolerance},
-                     {"min_overlap", o.min_overlap}, {"overlap_distance", o.overlap_distance},
-                     {"anneal", {o.anneal_start, o.anneal_end}}, {"seed", o.seed},
-                     {"roi", roi}, {"initial", initial}, {"init_file", sources.init_file},
-                     {"landmarks_file", sources.landmarks_file}}},
+        {"options",
+         {{"loss", to_string(o.loss)},
+          {"samples", o.samples},
+          {"max_iterations", o.max_iterations},
+          {"max_normal_angle_deg", o.max_normal_angle_deg},
+          {"symmetric", o.symmetric},
+          {"rotation_tolerance_deg", o.rotation_tolerance_deg},
+          {"translation_tolerance", o.translation_tolerance},
+          {"cost_tolerance", o.cost_tolerance},
+          {"min_overlap", o.min_overlap},
+          {"overlap_distance", o.overlap_distance},
+          {"anneal", {o.anneal_start, o.anneal_end}},
+          {"seed", o.seed},
+          {"roi", roi},
+          {"initial", initial},
+          {"init_file", sources.init_file},
+          {"landmarks_file", sources.landmarks_file}}},
         {"log", log},
     };
     return j.dump(2) + "\n";
@@ -74,26 +93,34 @@ Rigid read_fit(const std::string& path) {
     } catch (const nlohmann::json::exception& e) {
         throw InputError("fit \"" + path + "\": not valid JSON: " + e.what());
     }
-    const auto& m = j.contains("reference_from_examined") ? j["reference_from_examined"] : nlohmann::json();
+    const auto& m =
+        j.contains("reference_from_examined") ? j["reference_from_examined"] : nlohmann::json();
     if (!m.is_array() || m.size() != 4)
-        throw InputError("fit \"" + path + "\": expected \"reference_from_examined\" as a 4×4 array of rows");
+        throw InputError("fit \"" + path +
+                         "\": expected \"reference_from_examined\" as a 4×4 array of rows");
     Rigid t = Rigid::Identity();
     for (int r = 0; r < 4; ++r) {
-        if (!m[static_cast<std::size_t>(r)].is_array() || m[static_cast<std::size_t>(r)].size() != 4)
-            throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) + " of reference_from_examined is not 4 numbers");
+        if (!m[static_cast<std::size_t>(r)].is_array() ||
+            m[static_cast<std::size_t>(r)].size() != 4)
+            throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) +
+                             " of reference_from_examined is not 4 numbers");
         for (int c = 0; c < 4; ++c) {
             // note: a non-number here threw nlohmann's type_error (exit 4); found by fuzz/fuzz_fit.
             const auto& v = m[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
             if (!v.is_number())
-                throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) + " of reference_from_examined: entry " +
-                                 std::to_string(c + 1) + " is " + v.type_name() + ", expected a number");
+                throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) +
+                                 " of reference_from_examined: entry " + std::to_string(c + 1) +
+                                 " is " + v.type_name() + ", expected a number");
             t(r, c) = v.get<double>();
         }
     }
     const Eigen::Matrix3d rot = t.linear();
     // note: 1e-6 tolerates the rounding of a matrix printed with ~10 digits.
-    if (!(rot.transpose() * rot).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || std::abs(rot.determinant() - 1) > 1e-6)
-        throw InputError("fit \"" + path + "\": reference_from_examined is not a rigid motion (rotation part not orthonormal)");
+    if (!(rot.transpose() * rot).isApprox(Eigen::Matrix3d::Identity(), 1e-6) ||
+        std::abs(rot.determinant() - 1) > 1e-6)
+        throw InputError(
+            "fit \"" + path +
+            "\": reference_from_examined is not a rigid motion (rotation part not orthonormal)");
     return t;
 }
 

@@ -11,13 +11,14 @@ namespace glint {
 
 /// Where options came from, recorded in fit.json so that a fit can be reproduced.
 struct RegistrationSources {
-    std::string init_file;          ///< fit.json the initial pose was read from
-    std::string landmarks_file;     ///< landmarks JSON the initial pose was fitted to
+    std::string init_file;       ///< fit.json the initial pose was read from
+    std::string landmarks_file;  ///< landmarks JSON the initial pose was fitted to
 };
 
 /// The result as JSON text (fit.json): matrices, evidence, per-iteration log, and the options
 /// (ROI numbers, source files) that reproduce it.
-[[nodiscard]] std::string to_json(const RegistrationResult& result, const RegistrationOptions& options,
+[[nodiscard]] std::string to_json(const RegistrationResult& result,
+                                  const RegistrationOptions& options,
                                   const RegistrationSources& sources = {});
 
 /// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).

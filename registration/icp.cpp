@@ -20,10 +20,14 @@ RobustLoss parse_loss(const std::string& text) {
 
 std::string to_string(RobustLoss loss) {
     switch (loss) {
-        case RobustLoss::None: return "none";
-        case RobustLoss::Huber: return "huber";
-        case RobustLoss::Cauchy: return "cauchy";
-        case RobustLoss::Tukey: return "tukey";
+        case RobustLoss::None:
+            return "none";
+        case RobustLoss::Huber:
+            return "huber";
+        case RobustLoss::Cauchy:
+            return "cauchy";
+        case RobustLoss::Tukey:
+            return "tukey";
     }
     return "?";
 }
@@ -31,28 +35,37 @@ std::string to_string(RobustLoss loss) {
 void RegistrationOptions::validate() const {
     if (samples < 50) throw OptionError("samples", samples, "must be ≥ 50");
     if (max_iterations < 1) throw OptionError("max_iterations", max_iterations, "must be ≥ 1");
-    if (inner_iterations < 1) throw OptionError("inner_iterations", inner_iterations, "must be ≥ 1");
-    if (!(anneal_end > 0) || anneal_start < anneal_end) throw OptionError("anneal", anneal_start, "needs start ≥ end > 0");
+    if (inner_iterations < 1)
+        throw OptionError("inner_iterations", inner_iterations, "must be ≥ 1");
+    if (!(anneal_end > 0) || anneal_start < anneal_end)
+        throw OptionError("anneal", anneal_start, "needs start ≥ end > 0");
     if (!(max_normal_angle_deg > 0 && max_normal_angle_deg <= 180))
         throw OptionError("max_normal_angle", max_normal_angle_deg, "must be in (0, 180] degrees");
     if (!(cost_tolerance >= 0)) throw OptionError("cost_tolerance", cost_tolerance, "must be ≥ 0");
-    if (!(min_overlap >= 0 && min_overlap <= 1)) throw OptionError("min_overlap", min_overlap, "must be in [0, 1]");
-    if (!(overlap_distance > 0)) throw OptionError("overlap_distance", overlap_distance, "must be > 0");
+    if (!(min_overlap >= 0 && min_overlap <= 1))
+        throw OptionError("min_overlap", min_overlap, "must be in [0, 1]");
+    if (!(overlap_distance > 0))
+        throw OptionError("overlap_distance", overlap_distance, "must be > 0");
 }
 
-RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined, const RegistrationOptions& o) {
+RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
+                                   const RegistrationOptions& o) {
     o.validate();
     if (reference.triangles.empty() || examined.triangles.empty())
         throw InputError("registration: both meshes need triangles");
-    if (o.roi && o.roi->shape == Roi::Shape::VertexMask && o.roi->vertex_mask.size() != reference.vertex_count())
-        throw InputError("registration: the ROI vertex mask has " + std::to_string(o.roi->vertex_mask.size()) +
-                         " entries, the reference has " + std::to_string(reference.vertex_count()) + " vertices");
+    if (o.roi && o.roi->shape == Roi::Shape::VertexMask &&
+        o.roi->vertex_mask.size() != reference.vertex_count())
+        throw InputError("registration: the ROI vertex mask has " +
+                         std::to_string(o.roi->vertex_mask.size()) +
+                         " entries, the reference has " + std::to_string(reference.vertex_count()) +
+                         " vertices");
     if (o.roi) {
         std::size_t inside = 0;
         for (std::size_t v = 0; v < reference.vertex_count(); ++v)
             inside += o.roi->contains(v, reference.positions[v].cast<double>());
         if (inside == 0)
-            throw InputError("registration: the ROI " + to_string(*o.roi) + " contains no vertex of the reference mesh");
+            throw InputError("registration: the ROI " + to_string(*o.roi) +
+                             " contains no vertex of the reference mesh");
     }
     const ClosestPointIndex ref_index = ClosestPointIndex::borrowing(reference);
     // The index computes angle-weighted normals when the mesh has none.
@@ -60,7 +73,9 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined, 
     const Mesh& exam = exa_index.mesh();
     const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
     const auto samples = detail::sample_surface(exam, o.samples, o.seed);
-    const auto ref_samples = o.symmetric ? detail::sample_surface(ref_index.mesh(), o.samples / 2, o.seed + 1) : std::vector<detail::Sample>{};
+    const auto ref_samples =
+        o.symmetric ? detail::sample_surface(ref_index.mesh(), o.samples / 2, o.seed + 1)
+                    : std::vector<detail::Sample>{};
 
     Rigid start = o.initial.value_or(Rigid::Identity());
     std::string coarse = o.initial ? "given initial pose" : "identity";
@@ -69,7 +84,8 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined, 
         start = c.reference_from_examined;
         coarse = c.description;
     }
-    detail::IcpRun run = detail::run_icp(samples, ref_samples, ref_index, &exa_index, start, o, o.max_iterations, diagonal);
+    detail::IcpRun run = detail::run_icp(samples, ref_samples, ref_index, &exa_index, start, o,
+                                         o.max_iterations, diagonal);
     run.result.reference_from_examined = run.t;
     run.result.examined_from_reference = run.t.inverse();
     run.result.coarse = coarse;

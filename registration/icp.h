@@ -36,9 +36,9 @@ struct RegistrationOptions {
     /// `anneal_start` down to `anneal_end` (halving each iteration).
     double anneal_start = 8.0;
     double anneal_end = 2.0;
-    int samples = 20000;            ///< area-uniform samples on the examined mesh
+    int samples = 20000;  ///< area-uniform samples on the examined mesh
     int max_iterations = 60;
-    int inner_iterations = 8;       ///< Ceres LM iterations per ICP iteration
+    int inner_iterations = 8;            ///< Ceres LM iterations per ICP iteration
     double max_normal_angle_deg = 60.0;  ///< reject pairs whose normals differ more
     /// Convergence on parameter change: rotation change below this (degrees) and
     /// translation change below `translation_tolerance` × the larger bounding diagonal.
@@ -59,13 +59,13 @@ struct RegistrationOptions {
     /// normal. note: 1% of the size is ~15× the RMS of real scans (bunny: 0.12 to 0.15 mm
     /// on ~0.2 m) and below the misfit of unrelated surfaces.
     double overlap_distance = 0.01;
-    bool coarse = true;             ///< try principal-axis hypotheses first (not with landmarks/init)
-    bool symmetric = false;         ///< also pull reference samples onto the examined mesh
+    bool coarse = true;      ///< try principal-axis hypotheses first (not with landmarks/init)
+    bool symmetric = false;  ///< also pull reference samples onto the examined mesh
     /// Fit only on this region of the reference (a stable region, mesh/roi.h); a vertex
     /// mask must already be read (Roi::needs_mask() false). Empty: the whole surface.
     std::optional<Roi> roi;
-    std::optional<Rigid> initial;   ///< start from this reference_from_examined
-    std::uint32_t seed = 1;         ///< sampling is deterministic for a seed
+    std::optional<Rigid> initial;  ///< start from this reference_from_examined
+    std::uint32_t seed = 1;        ///< sampling is deterministic for a seed
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -73,10 +73,10 @@ struct RegistrationOptions {
 
 struct IcpIteration {
     int iteration = 0;
-    double cost = 0.0;            ///< robust cost ½Σρ(r²) after this iteration's solve
-    double rms = 0.0;             ///< of inlier point-to-plane residuals before the step
-    double loss_scale = 0.0;      ///< 0 without a robust loss
-    double overlap = 0.0;         ///< share of samples with an accepted pair
+    double cost = 0.0;        ///< robust cost ½Σρ(r²) after this iteration's solve
+    double rms = 0.0;         ///< of inlier point-to-plane residuals before the step
+    double loss_scale = 0.0;  ///< 0 without a robust loss
+    double overlap = 0.0;     ///< share of samples with an accepted pair
     double rotation_step_deg = 0.0;
     double translation_step = 0.0;
 };
@@ -87,16 +87,16 @@ struct RegistrationResult {
     // Evidence, all measured at the final pose. A sample has an accepted pair when its
     // closest reference point lies within `overlap_distance` × size, inside the ROI, with a
     // compatible normal; samples whose closest point lies outside the ROI are left out.
-    double rms = 0.0;               ///< point-to-plane RMS of inliers (mesh units)
-    double inlier_fraction = 0.0;   ///< share of accepted pairs within 3σ (σ = 1.4826 MAD)
-    double overlap = 0.0;           ///< share of samples with an accepted pair
+    double rms = 0.0;              ///< point-to-plane RMS of inliers (mesh units)
+    double inlier_fraction = 0.0;  ///< share of accepted pairs within 3σ (σ = 1.4826 MAD)
+    double overlap = 0.0;          ///< share of samples with an accepted pair
     int iterations = 0;
     bool converged = false;
     /// Why ICP stopped: "parameter change", "cost change" (both converged), "max
     /// iterations", "low overlap", "no overlap", "solver failure".
     std::string termination;
-    std::string termination_detail; ///< one line with the numbers behind `termination`
-    std::string coarse;             ///< which coarse hypothesis was kept
+    std::string termination_detail;  ///< one line with the numbers behind `termination`
+    std::string coarse;              ///< which coarse hypothesis was kept
     std::vector<IcpIteration> log;
 };
 

@@ -14,7 +14,8 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
         throw InputError("landmarks: " + std::to_string(examined.size()) + " examined points for " +
                          std::to_string(reference.size()) + " reference points, expected pairs");
     if (examined.size() < 3)
-        throw InputError("landmarks: " + std::to_string(examined.size()) + " pair(s), expected at least 3");
+        throw InputError("landmarks: " + std::to_string(examined.size()) +
+                         " pair(s), expected at least 3");
     Eigen::Matrix3Xd src(3, examined.size()), dst(3, reference.size());
     for (std::size_t i = 0; i < examined.size(); ++i) {
         src.col(static_cast<Eigen::Index>(i)) = examined[i];
@@ -27,7 +28,8 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
         // note: a second singular value below 1e-6 of the first means the points lie on a
         // line (to 1 µm in 1 m): the rotation about that line is undetermined.
         if (!(sv(1) > 1e-6 * sv(0)))
-            throw InputError("landmarks: the points are collinear (or coincide), a rotation about their line is undetermined");
+            throw InputError(
+                "landmarks: the points are collinear (or coincide), a rotation about their line is undetermined");
     }
     Rigid t = Rigid::Identity();
     t.matrix() = Eigen::umeyama(src, dst, false);
@@ -44,27 +46,37 @@ std::vector<LandmarkPair> read_landmarks(const std::string& path) {
         throw InputError("landmarks \"" + path + "\": not valid JSON: " + e.what());
     }
     if (!j.is_object() || !j.contains("pairs") || !j["pairs"].is_array())
-        throw InputError("landmarks \"" + path + "\": expected {\"pairs\": [{\"examined\": [x,y,z], \"reference\": [x,y,z]}, …]}");
+        throw InputError(
+            "landmarks \"" + path +
+            "\": expected {\"pairs\": [{\"examined\": [x,y,z], \"reference\": [x,y,z]}, …]}");
     std::vector<LandmarkPair> pairs;
     std::size_t i = 0;
     for (const auto& p : j["pairs"]) {
         ++i;
         const std::string where = "landmarks \"" + path + "\": pair " + std::to_string(i);
-        if (!p.is_object()) throw InputError(where + ": expected {\"examined\": …, \"reference\": …}, found " + p.type_name());
-        auto numbers = [&](const nlohmann::json& v, std::size_t n, const std::string& what, const std::string& shape) {
+        if (!p.is_object())
+            throw InputError(where + ": expected {\"examined\": …, \"reference\": …}, found " +
+                             p.type_name());
+        auto numbers = [&](const nlohmann::json& v, std::size_t n, const std::string& what,
+                           const std::string& shape) {
             if (!v.is_array() || v.size() != n)
                 throw InputError(where + ": " + what + " must be " + shape + ", found " +
-                                 (v.is_array() ? "an array of " + std::to_string(v.size()) : std::string(v.type_name())));
+                                 (v.is_array() ? "an array of " + std::to_string(v.size())
+                                               : std::string(v.type_name())));
             std::vector<double> out;
             for (const auto& x : v) {
-                if (!x.is_number()) throw InputError(where + ": " + what + " must be " + shape + " (numbers), found a " + x.type_name());
+                if (!x.is_number())
+                    throw InputError(where + ": " + what + " must be " + shape +
+                                     " (numbers), found a " + x.type_name());
                 out.push_back(x.get<double>());
             }
             return out;
         };
         auto side = [&](const char* key) {
             const std::string what = std::string("'") + key + "'";
-            if (!p.contains(key)) throw InputError(where + ": no " + what + " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
+            if (!p.contains(key))
+                throw InputError(where + ": no " + what +
+                                 " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
             const auto& s = p[key];
             LandmarkSide out;
             if (s.is_array()) {
@@ -72,30 +84,38 @@ std::vector<LandmarkPair> read_landmarks(const std::string& path) {
                 out.point = Vec3d(v[0], v[1], v[2]);
                 return out;
             }
-            if (!s.is_object() || !s.contains("view") || !s.contains("pixel") || !s["view"].is_object())
-                throw InputError(where + ": " + what + " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
-                                 "\"size\": N}, \"pixel\": [u, v]}");
+            if (!s.is_object() || !s.contains("view") || !s.contains("pixel") ||
+                !s["view"].is_object())
+                throw InputError(
+                    where + ": " + what +
+                    " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
+                    "\"size\": N}, \"pixel\": [u, v]}");
             const auto px = numbers(s["pixel"], 2, what + " pixel", "[u, v]");
             out.u = px[0];
             out.v = px[1];
             const auto& view = s["view"];
             auto number = [&](const char* field, bool required, double fallback) {
                 if (!view.contains(field)) {
-                    if (required) throw InputError(where + ": " + what + " view has no '" + field + "'");
+                    if (required)
+                        throw InputError(where + ": " + what + " view has no '" + field + "'");
                     return fallback;
                 }
                 if (!view[field].is_number())
-                    throw InputError(where + ": " + what + " view '" + field + "' must be a number, found " + view[field].type_name());
+                    throw InputError(where + ": " + what + " view '" + field +
+                                     "' must be a number, found " + view[field].type_name());
                 return view[field].get<double>();
             };
             out.view.azimuth_deg = number("azimuth", true, 0.0);
             out.view.elevation_deg = number("elevation", true, 0.0);
             const double size = number("size", true, 0.0);
             if (!(size >= 1 && size <= 1 << 16 && size == std::floor(size)))
-                throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) + ", expected a whole number of pixels ≥ 1");
+                throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) +
+                                 ", expected a whole number of pixels ≥ 1");
             out.view.size = static_cast<int>(size);
             out.view.footprint = number("footprint", false, 0.0);
-            if (out.view.footprint < 0) throw InputError(where + ": " + what + " view 'footprint' must be > 0 (or left out)");
+            if (out.view.footprint < 0)
+                throw InputError(where + ": " + what +
+                                 " view 'footprint' must be > 0 (or left out)");
             return out;
         };
         pairs.push_back({side("examined"), side("reference")});

@@ -13,20 +13,21 @@ namespace glint {
 
 /// Closed-form rigid fit of point pairs (Umeyama 1991, Eigen::umeyama, no scaling):
 /// reference ≈ T · examined. \throw InputError fewer than 3 pairs, collinear points.
-[[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>& reference);
+[[nodiscard]] Rigid fit_landmarks(const std::vector<Vec3d>& examined,
+                                  const std::vector<Vec3d>& reference);
 
 /// A view of one mesh as `glint pick` frames it (an orthographic view around the mesh's
 /// bounding sphere; registration/ does not frame views, scanner/landmarks.h resolves them).
 struct LandmarkView {
     double azimuth_deg = 0.0;
     double elevation_deg = 0.0;
-    int size = 256;           ///< image width = height, pixels
-    double footprint = 0.0;   ///< mesh units per pixel; 0 = frame the whole mesh
+    int size = 256;          ///< image width = height, pixels
+    double footprint = 0.0;  ///< mesh units per pixel; 0 = frame the whole mesh
 };
 
 /// One side of a landmark pair: a 3D point, or a pixel (centres at +0.5) picked in a view.
 struct LandmarkSide {
-    std::optional<Vec3d> point;   ///< set for a 3D point; empty for a picked pixel
+    std::optional<Vec3d> point;  ///< set for a 3D point; empty for a picked pixel
     LandmarkView view;
     double u = 0.0;
     double v = 0.0;

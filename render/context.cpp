@@ -19,25 +19,31 @@ Backend parse_backend(const std::string& text) {
 
 std::string to_string(Backend backend) {
     switch (backend) {
-    case Backend::Auto: return "auto";
-    case Backend::Vulkan: return "vulkan";
-    case Backend::Embree: return "embree";
+        case Backend::Auto:
+            return "auto";
+        case Backend::Vulkan:
+            return "vulkan";
+        case Backend::Embree:
+            return "embree";
     }
     return "?";
 }
 
 void ContextOptions::validate() const {
     if (!device.empty() && backend == Backend::Embree)
-        throw OptionError("device", "\"" + device + "\"",
-                          "names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
+        throw OptionError(
+            "device", "\"" + device + "\"",
+            "names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
     if (threads < 0) throw OptionError("threads", threads, "expected ≥ 0 (0 = all cores)");
 }
 
 void FrameOptions::validate() const {
     // note: 8×8 = 64 sub-samples per pixel is far beyond any useful footprint averaging and
     // keeps the s× target within device limits for the image sizes glint uses.
-    if (supersample < 1 || supersample > 8) throw OptionError("supersample", supersample, "expected 1..8");
-    if (!(min_coverage >= 0.0f && min_coverage <= 1.0f)) throw OptionError("min_coverage", min_coverage, "expected 0..1");
+    if (supersample < 1 || supersample > 8)
+        throw OptionError("supersample", supersample, "expected 1..8");
+    if (!(min_coverage >= 0.0f && min_coverage <= 1.0f))
+        throw OptionError("min_coverage", min_coverage, "expected 0..1");
 }
 
 namespace detail {
@@ -82,14 +88,17 @@ RenderContext::RenderContext(const ContextOptions& options) : options_(effective
         RenderOptions{.backend = options_.backend, .device = options_.device}, 0, &reason);
     if (options_.backend == Backend::Auto) warnings_.push_back(reason);
     options_.backend = chosen;
-    impl_ = chosen == Backend::Vulkan ? detail::make_vulkan_context(options_, device_name_, device_type_)
-                                      : detail::make_embree_context(options_, device_name_, device_type_);
+    impl_ = chosen == Backend::Vulkan
+                ? detail::make_vulkan_context(options_, device_name_, device_type_)
+                : detail::make_embree_context(options_, device_name_, device_type_);
     ++detail::creation_counters().contexts;
 }
 
 RenderContext::~RenderContext() = default;
 
-std::vector<std::string> RenderContext::validation_messages() const { return impl_->validation_messages(); }
+std::vector<std::string> RenderContext::validation_messages() const {
+    return impl_->validation_messages();
+}
 
 std::shared_ptr<RenderContext> shared_render_context(const ContextOptions& options) {
     options.validate();
@@ -103,7 +112,8 @@ std::shared_ptr<RenderContext> shared_render_context(const ContextOptions& optio
         // A context remembers its resolved backend; Auto matches whatever it resolved to.
         ContextOptions asked = key;
         if (asked.backend == Backend::Auto) asked.backend = c->backend();
-        if (c->options() == asked && c->warnings().empty() == (key.backend != Backend::Auto)) return c;
+        if (c->options() == asked && c->warnings().empty() == (key.backend != Backend::Auto))
+            return c;
     }
     contexts->push_back(std::make_shared<RenderContext>(options));
     return contexts->back();

@@ -81,7 +81,7 @@ struct RenderContextStats {
 
 /// One device (Vulkan or Embree) and what every renderer on it shares. Not copyable.
 class RenderContext {
-public:
+  public:
     /// Resolves Auto, picks and creates the device.
     /// \throw InputError invalid options; DeviceError no usable device (the message lists
     ///        every device and why it was rejected), no Vulkan driver, a failed device call.
@@ -103,7 +103,7 @@ public:
 
     [[nodiscard]] detail::ContextImpl& impl() const { return *impl_; }
 
-private:
+  private:
     ContextOptions options_;
     std::string device_name_;
     std::string device_type_;
@@ -116,6 +116,7 @@ private:
 /// kept to the end of the process. A failed creation is not remembered.
 /// note: environment changes that select drivers (VK_ICD_FILENAMES) after the first call
 /// do not reach a context that already exists; construct a RenderContext for that.
-[[nodiscard]] std::shared_ptr<RenderContext> shared_render_context(const ContextOptions& options = {});
+[[nodiscard]] std::shared_ptr<RenderContext> shared_render_context(
+    const ContextOptions& options = {});
 
 }  // namespace glint

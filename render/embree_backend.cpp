@@ -16,11 +16,11 @@
 
 #include <algorithm>
 #include <atomic>
-#include <numeric>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <string>
@@ -57,7 +57,7 @@ void cull_back_faces(const RTCFilterFunctionNArguments* args) {
 
 /// The Embree device of a context; scenes (one per mesh) are built on it.
 class EmbreeDevice {
-public:
+  public:
     explicit EmbreeDevice(int threads) {
         const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
         device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
@@ -80,14 +80,15 @@ public:
         }
     }
 
-private:
+  private:
     ErrorLog errors_;
     RTCDevice device_ = nullptr;
 };
 
 class EmbreeBackend final : public RenderBackend {
-public:
-    EmbreeBackend(std::shared_ptr<EmbreeDevice> device, const Mesh& mesh, const FrameOptions& options, int threads)
+  public:
+    EmbreeBackend(std::shared_ptr<EmbreeDevice> device, const Mesh& mesh,
+                  const FrameOptions& options, int threads)
         : options_(options), threads_(threads), device_(std::move(device)) {
         if (options.share_mesh) {
             normals_ = mesh.normals;
@@ -122,7 +123,7 @@ public:
     void abandon() noexcept override { pending_.reset(); }
     [[nodiscard]] bool works_in_finish() const override { return true; }
 
-private:
+  private:
     void release() noexcept {
         if (scene_ != nullptr) rtcReleaseScene(scene_);
         scene_ = nullptr;
@@ -136,24 +137,27 @@ private:
         // note: above 500k triangles the compact BVH: on 2M triangles it took 60 MB less (113
         // instead of 173 MB per mesh) for 6 % more time per ray; the frames are the same.
         const bool compact = mesh.triangle_count() > 500000;
-        rtcSetSceneFlags(scene_, compact ? RTCSceneFlags(RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT)
-                                         : RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneFlags(scene_, compact
+                                     ? RTCSceneFlags(RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT)
+                                     : RTC_SCENE_FLAG_ROBUST);
         RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
         // note: Embree reads the triangles in place and a copy of the positions: it reads
         // vertices with 16-byte loads, so the copy has one spare element of capacity after
         // the last vertex.
         positions_.reserve(mesh.positions.size() + 1);
         positions_ = mesh.positions;
-        GLINT_ASSERT(positions_.capacity() > positions_.size(), "no spare position for Embree's 16-byte reads");
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions_.data(), 0,
-                                   3 * sizeof(float), positions_.size());
+        GLINT_ASSERT(positions_.capacity() > positions_.size(),
+                     "no spare position for Embree's 16-byte reads");
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   positions_.data(), 0, 3 * sizeof(float), positions_.size());
         // (Embree only reads a shared index buffer; its API takes it as void*.)
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                   const_cast<Triangle*>(triangles_.data()), 0, 3 * sizeof(std::uint32_t),
-                                   triangles_.size());
+                                   const_cast<Triangle*>(triangles_.data()), 0,
+                                   3 * sizeof(std::uint32_t), triangles_.size());
         if (options_.cull_back_faces) {
             face_normals_.resize(mesh.triangles.size());
-            for (std::size_t t = 0; t < mesh.triangles.size(); ++t) face_normals_[t] = face_normal(mesh, t);
+            for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+                face_normals_[t] = face_normal(mesh, t);
             rtcSetGeometryUserData(geom, face_normals_.data());
             rtcSetGeometryIntersectFilterFunction(geom, cull_back_faces);
         }
@@ -189,7 +193,8 @@ private:
         const double half_w = half_h * aspect;
         const Vec3d dx = right * (2.0 * half_w / sw);
         const Vec3d dy = -up * (2.0 * half_h / sh);
-        const Vec3d corner = right * (-half_w + 0.5 * 2.0 * half_w / sw) + up * (half_h - 0.5 * 2.0 * half_h / sh);
+        const Vec3d corner =
+            right * (-half_w + 0.5 * 2.0 * half_w / sw) + up * (half_h - 0.5 * 2.0 * half_h / sh);
         // Ortho: origin varies, direction = forward. Perspective: origin = eye, direction
         // = forward + offset (component 1 along the viewing axis, so t is the depth).
         Rays r;
@@ -210,14 +215,16 @@ private:
     };
 
     // Output rows [y0, y1) into `dst`, whose row 0 is output row `row0`.
-    void trace_into(const Rays& rays, int y0, int y1, Scratch& scratch, Frame& dst, int row0) const {
+    void trace_into(const Rays& rays, int y0, int y1, Scratch& scratch, Frame& dst,
+                    int row0) const {
         const int s = options_.supersample;
         if (s == 1) {
             // One sample per pixel: hits go straight into the frame.
             trace_band<true>(rays, y0, y1, scratch, dst, row0);
             return;
         }
-        const std::size_t samples = static_cast<std::size_t>((y1 - y0) * s) * static_cast<std::size_t>(rays.sw);
+        const std::size_t samples =
+            static_cast<std::size_t>((y1 - y0) * s) * static_cast<std::size_t>(rays.sw);
         if (scratch.ids.size() < samples) {
             scratch.normal_depth.resize(4 * samples);
             scratch.ids.resize(samples);
@@ -239,7 +246,8 @@ private:
         // is cheap, surface is not).
         const int rows = band_rows();
         const int bands = (cam.height + rows - 1) / rows;
-        const std::size_t samples = static_cast<std::size_t>(rays.sw) * static_cast<std::size_t>(cam.height) *
+        const std::size_t samples = static_cast<std::size_t>(rays.sw) *
+                                    static_cast<std::size_t>(cam.height) *
                                     static_cast<std::size_t>(options_.supersample);
         // note: below ~16k sub-samples one thread is faster than starting another.
         const int threads = samples < 16384 ? 1 : std::min(threads_, bands);
@@ -257,24 +265,29 @@ private:
         check("intersecting rays");
     }
 
-public:
+  public:
     [[nodiscard]] int band_rows() const override { return 4 / std::gcd(4, options_.supersample); }
-    [[nodiscard]] std::unique_ptr<RowScratch> make_row_scratch() const override { return std::make_unique<Scratch>(); }
-    void trace_rows(const View& view, int y0, int y1, RowScratch& scratch, Frame& rows) const override {
+    [[nodiscard]] std::unique_ptr<RowScratch> make_row_scratch() const override {
+        return std::make_unique<Scratch>();
+    }
+    void trace_rows(const View& view, int y0, int y1, RowScratch& scratch,
+                    Frame& rows) const override {
         const Camera& cam = view.camera;
-        if (rows.width != cam.width || rows.height != y1 - y0 || rows.coverage.size() != rows.pixel_count())
+        if (rows.width != cam.width || rows.height != y1 - y0 ||
+            rows.coverage.size() != rows.pixel_count())
             rows = make_empty_frame(cam.width, y1 - y0);
         rows.normal_space = NormalSpace::World;
         trace_into(rays_of(cam), y0, y1, static_cast<Scratch&>(scratch), rows, y0);
         device_->check("intersecting rays");
     }
 
-private:
+  private:
     /// Casts the sub-sample rows [Y0, Y1) (a multiple of 4 high except at the bottom) in 4×4
     /// packets into scratch (row Y0 first), or, with kDirect (s = 1), into `dst`, whose row 0
     /// is sub-sample row `row0`.
     template <bool kDirect>
-    void trace_band(const Rays& rays, int Y0, int Y1, Scratch& scratch, Frame& dst, int row0) const {
+    void trace_band(const Rays& rays, int Y0, int Y1, Scratch& scratch, Frame& dst,
+                    int row0) const {
         const int sw = rays.sw;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
@@ -294,7 +307,8 @@ private:
                     const int X = tx + (k & 3);
                     const int Y = ty + (k >> 2);
                     valid[k] = (X < sw && Y < Y1) ? -1 : 0;
-                    const Eigen::Vector3f v = rays.v00 + static_cast<float>(X) * rays.dx + static_cast<float>(Y) * rays.dy;
+                    const Eigen::Vector3f v = rays.v00 + static_cast<float>(X) * rays.dx +
+                                              static_cast<float>(Y) * rays.dy;
                     const Eigen::Vector3f& org = rays.ortho ? v : rays.fixed;
                     const Eigen::Vector3f& dir = rays.ortho ? rays.fixed : v;
                     packet.ray.org_x[k] = org.x();
@@ -314,10 +328,12 @@ private:
                     const int X = tx + (k & 3);
                     const int Y = ty + (k >> 2);
                     const std::size_t idx = static_cast<std::size_t>(kDirect ? Y - row0 : Y - Y0) *
-                                                static_cast<std::size_t>(sw) + static_cast<std::size_t>(X);
+                                                static_cast<std::size_t>(sw) +
+                                            static_cast<std::size_t>(X);
                     if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
                         if constexpr (kDirect) {
-                            dst.normal[3 * idx] = dst.normal[3 * idx + 1] = dst.normal[3 * idx + 2] = 0.0f;
+                            dst.normal[3 * idx] = dst.normal[3 * idx + 1] =
+                                dst.normal[3 * idx + 2] = 0.0f;
                             dst.primitive_id[idx] = kNoPrimitive;
                             dst.depth[idx] = kNoDepth;
                             dst.coverage[idx] = 0.0f;
@@ -330,7 +346,8 @@ private:
                     const Triangle& tri = triangles_[prim];
                     const float u = packet.hit.u[k];
                     const float v = packet.hit.v[k];
-                    Eigen::Vector3f n = (1.0f - u - v) * normals_[tri[0]] + u * normals_[tri[1]] + v * normals_[tri[2]];
+                    Eigen::Vector3f n = (1.0f - u - v) * normals_[tri[0]] + u * normals_[tri[1]] +
+                                        v * normals_[tri[2]];
                     const float len = n.norm();
                     if (len > 0.0f) n /= len;
                     if constexpr (kDirect) {
@@ -370,26 +387,28 @@ private:
 };
 
 class EmbreeContext final : public ContextImpl {
-public:
+  public:
     explicit EmbreeContext(int threads)
         : threads_(worker_count(threads)), device_(std::make_shared<EmbreeDevice>(threads)) {}
-    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) override {
+    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh,
+                                                const FrameOptions& options) override {
         return std::make_unique<EmbreeBackend>(device_, mesh, options, threads_);
     }
     [[nodiscard]] int threads() const { return threads_; }
 
-private:
+  private:
     int threads_ = 1;
     std::shared_ptr<EmbreeDevice> device_;
 };
 
 }  // namespace
 
-std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options, std::string& device_name,
+std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options,
+                                                 std::string& device_name,
                                                  std::string& device_type) {
     auto context = std::make_unique<EmbreeContext>(options.threads);
-    device_name = std::string("embree ") + RTC_VERSION_STRING + " (CPU, " + std::to_string(context->threads()) +
-                  " threads)";
+    device_name = std::string("embree ") + RTC_VERSION_STRING + " (CPU, " +
+                  std::to_string(context->threads()) + " threads)";
     device_type = "cpu";
     return context;
 }

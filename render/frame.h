@@ -64,7 +64,7 @@ struct FrameRows {
     int height = 0;  ///< rows held
     int y0 = 0;      ///< index of the first row in the whole frame
     NormalSpace normal_space = NormalSpace::World;
-    std::span<const float> normal;               ///< 3 floats per pixel
+    std::span<const float> normal;  ///< 3 floats per pixel
     std::span<const std::uint32_t> primitive_id;
     std::span<const float> depth;
     std::span<const float> coverage;

@@ -19,15 +19,16 @@ void GpuAtlasOptions::validate() const {
         throw OptionError("min_cos_incidence", min_cos_incidence, "expected a cosine in (0, 1]");
     if (!(std::isfinite(framed_radius) && framed_radius > 0.0))
         throw OptionError("framed_radius", framed_radius, "expected a finite length > 0");
-    if (zoom_count < 1 || zoom_count > 256) throw OptionError("zoom_count", zoom_count, "expected 1..256");
+    if (zoom_count < 1 || zoom_count > 256)
+        throw OptionError("zoom_count", zoom_count, "expected 1..256");
 }
 
 const detail::VulkanMesh* GpuAtlas::vulkan_mesh(const Renderer& renderer) {
     return renderer.backend_ ? renderer.backend_->vulkan_mesh() : nullptr;
 }
 
-bool GpuAtlas::supported(const Renderer& reference, const Renderer& examined, const GpuAtlasOptions& options,
-                         std::string* why) {
+bool GpuAtlas::supported(const Renderer& reference, const Renderer& examined,
+                         const GpuAtlasOptions& options, std::string* why) {
     const auto no = [&](std::string reason) {
         if (why != nullptr) *why = std::move(reason);
         return false;
@@ -35,7 +36,8 @@ bool GpuAtlas::supported(const Renderer& reference, const Renderer& examined, co
     const detail::VulkanMesh* ref = vulkan_mesh(reference);
     const detail::VulkanMesh* exa = vulkan_mesh(examined);
     if (ref == nullptr || exa == nullptr) return no("the renderers do not use the Vulkan backend");
-    if (reference.context() != examined.context()) return no("the renderers are on two render contexts");
+    if (reference.context() != examined.context())
+        return no("the renderers are on two render contexts");
     const RenderOptions& r = reference.options();
     const RenderOptions& e = examined.options();
     if (r.normal_space != NormalSpace::World || e.normal_space != NormalSpace::World)
@@ -43,7 +45,8 @@ bool GpuAtlas::supported(const Renderer& reference, const Renderer& examined, co
     if (r.supersample != e.supersample || r.min_coverage != e.min_coverage)
         return no("the renderers resolve their frames differently (supersample, min_coverage)");
     const detail::VulkanDevice& device = *ref->device;
-    if (!device.has_gpu_atlas()) return no("device \"" + device.info().name + "\" " + device.info().gpu_atlas_reason);
+    if (!device.has_gpu_atlas())
+        return no("device \"" + device.info().name + "\" " + device.info().gpu_atlas_reason);
     const VkPhysicalDeviceLimits& limits = device.limits();
     const double vertices = ref->buffers.vertex_count;
     const double zooms = std::max(options.zoom_count, 1);

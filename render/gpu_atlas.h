@@ -79,21 +79,21 @@ struct GpuViewSummary {
     std::size_t reference_only = 0;
     std::size_t examined_only = 0;
     double max_angle_deg = 0.0;
-    double mean_angle_deg = 0.0;       ///< fixed-point sum / compared (step angle_resolution)
+    double mean_angle_deg = 0.0;  ///< fixed-point sum / compared (step angle_resolution)
 };
 
 /// Per-vertex totals of one zoom level: the state of scanner's AtlasAccumulator.
 struct GpuAtlasTotals {
-    std::vector<float> max;               ///< largest value at the vertex's nearest pixels (0: none)
-    std::vector<float> depth_at_max;      ///< signed depth there (NaN: missing surface)
-    std::vector<std::int32_t> max_view;   ///< -1: none
-    std::vector<double> weight;           ///< Σ w
-    std::vector<double> value_sum;        ///< Σ w·value
-    std::vector<double> missing_weight;   ///< Σ w where no examined surface was behind the pixel
-    std::vector<double> depth_sum;        ///< Σ w·signed depth
-    std::vector<double> depth_weight;     ///< Σ w where the depth was finite (= weight − missing)
-    std::vector<std::uint32_t> count;     ///< observations
-    std::vector<float> best_cos;          ///< most frontal cos(incidence) (-2: none)
+    std::vector<float> max;              ///< largest value at the vertex's nearest pixels (0: none)
+    std::vector<float> depth_at_max;     ///< signed depth there (NaN: missing surface)
+    std::vector<std::int32_t> max_view;  ///< -1: none
+    std::vector<double> weight;          ///< Σ w
+    std::vector<double> value_sum;       ///< Σ w·value
+    std::vector<double> missing_weight;  ///< Σ w where no examined surface was behind the pixel
+    std::vector<double> depth_sum;       ///< Σ w·signed depth
+    std::vector<double> depth_weight;    ///< Σ w where the depth was finite (= weight − missing)
+    std::vector<std::uint32_t> count;    ///< observations
+    std::vector<float> best_cos;         ///< most frontal cos(incidence) (-2: none)
     std::vector<std::int32_t> best_view;  ///< -1: none
     double weight_resolution = 0.0;       ///< fixed-point step of weight and missing_weight
     double value_resolution = 0.0;        ///< of value_sum
@@ -118,12 +118,12 @@ using GpuViewConsumer = std::function<void(std::size_t view_index, const GpuView
 namespace detail {
 class GpuAtlasImpl;
 struct VulkanMesh;
-}
+}  // namespace detail
 
 /// The per-vertex accumulators of a sweep on the reference renderer's device. Move-only; the
 /// renderers must outlive it (it draws with their meshes) and stay on one thread with it.
 class GpuAtlas {
-public:
+  public:
     /// Whether the GPU atlas can run for this pair of renderers and options; `why` receives
     /// the reason when it cannot (Embree backend, two contexts, view-space normals, different
     /// supersampling, a device without the features, buffers beyond the device's limits).
@@ -153,7 +153,7 @@ public:
     /// Where the device spent the last run()'s time (benchmarks; see GpuAtlasTimings).
     [[nodiscard]] const GpuAtlasTimings& timings() const;
 
-private:
+  private:
     /// The renderer's device buffers; null for a non-Vulkan (or moved-from) renderer.
     static const detail::VulkanMesh* vulkan_mesh(const Renderer& renderer);
 

@@ -72,7 +72,8 @@ void write_rgba_image(const fs::path& path, const RgbaImage& image,
         // note: PNG stores straight (unassociated) alpha; our colour is not premultiplied.
         spec.attribute("oiio:UnassociatedAlpha", 1);
     }
-    write_buffer(path, spec, image.pixels.data(), ext == ".png" ? png_format(png_bits) : OIIO::TypeDesc::HALF);
+    write_buffer(path, spec, image.pixels.data(),
+                 ext == ".png" ? png_format(png_bits) : OIIO::TypeDesc::HALF);
 }
 
 void write_frame_image(const fs::path& path, const Frame& frame, const View& view,
@@ -105,7 +106,8 @@ void write_frame_image(const fs::path& path, const Frame& frame, const View& vie
         for (int c = 0; c < 4; ++c) px[c] = shaded.pixels[4 * p + static_cast<std::size_t>(c)];
         for (int c = 0; c < 3; ++c) px[4 + c] = frame.normal[3 * p + static_cast<std::size_t>(c)];
         px[7] = frame.depth[p];
-        px[8] = frame.primitive_id[p] == kNoPrimitive ? -1.0f : static_cast<float>(frame.primitive_id[p]);
+        px[8] = frame.primitive_id[p] == kNoPrimitive ? -1.0f
+                                                      : static_cast<float>(frame.primitive_id[p]);
     }
     OIIO::ImageSpec spec(frame.width, frame.height, kChannels, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"R", "G", "B", "A", "N.x", "N.y", "N.z", "Z", "id"};

@@ -25,7 +25,8 @@ void RenderOptions::validate() const {
 }
 
 ContextOptions RenderOptions::context_options() const {
-    return ContextOptions{.backend = backend, .device = device, .validation = validation, .threads = threads};
+    return ContextOptions{
+        .backend = backend, .device = device, .validation = validation, .threads = threads};
 }
 
 FrameOptions RenderOptions::frame_options() const {
@@ -43,8 +44,9 @@ void check_view(const View& view, int supersample) {
     if (c.width < 1 || c.height < 1 || c.width * static_cast<long long>(supersample) > limit ||
         c.height * static_cast<long long>(supersample) > limit) {
         std::ostringstream s;
-        s << "view " << view.index << ": size " << c.width << "x" << c.height << " with supersample "
-          << supersample << ", expected 1.." << limit << " sub-samples per side";
+        s << "view " << view.index << ": size " << c.width << "x" << c.height
+          << " with supersample " << supersample << ", expected 1.." << limit
+          << " sub-samples per side";
         throw InputError(s.str());
     }
     if (!(c.near_plane > 0.0 && c.far_plane > c.near_plane)) {
@@ -88,9 +90,10 @@ Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count
     }
     // note: on CPU-only machines Embree's ray casting beats lavapipe's single-threaded
     // triangle setup at every mesh size we measured (bench/render_bench.cpp).
-    say(triangle_count > 0 ? "auto: no GPU, " + std::to_string(triangle_count) +
-                                 " triangles on the CPU: Embree is faster than lavapipe"
-                           : std::string("auto: no GPU: on the CPU Embree is faster than lavapipe"));
+    say(triangle_count > 0
+            ? "auto: no GPU, " + std::to_string(triangle_count) +
+                  " triangles on the CPU: Embree is faster than lavapipe"
+            : std::string("auto: no GPU: on the CPU Embree is faster than lavapipe"));
     return Backend::Embree;
 }
 
@@ -120,7 +123,8 @@ RenderOptions combined(const ContextOptions& c, const FrameOptions& f) {
 Renderer::Renderer(const Mesh& mesh, const RenderOptions& options)
     : Renderer(own_context(options, mesh), mesh, options.frame_options()) {}
 
-Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, const FrameOptions& options)
+Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
+                   const FrameOptions& options)
     : context_(std::move(context)) {
     if (context_ == nullptr) throw InputError("renderer: no render context (null)");
     options.validate();
@@ -263,10 +267,11 @@ Frame Renderer::render(const View& view) {
     check_view(view, options_.supersample);
     Frame result;
     detail::RenderBackend* const backends[] = {backend_.get()};
-    stream_views(backends, std::span<const View>(&view, 1), [&](std::size_t, std::span<Frame* const> frames) {
-        finish_frame(*frames[0], view, options_);
-        result = std::move(*frames[0]);
-    });
+    stream_views(backends, std::span<const View>(&view, 1),
+                 [&](std::size_t, std::span<Frame* const> frames) {
+                     finish_frame(*frames[0], view, options_);
+                     result = std::move(*frames[0]);
+                 });
     return result;
 }
 
@@ -278,13 +283,15 @@ namespace {
 
 /// body(worker, y0, y1) over the bands of `band` rows of a `height`-row frame, on up to
 /// `threads` workers taking bands from a shared counter (surface is slower than empty sky).
-void for_each_band(int height, int band, int threads, const std::function<void(int, int, int)>& body) {
+void for_each_band(int height, int band, int threads,
+                   const std::function<void(int, int, int)>& body) {
     const int bands = (height + band - 1) / band;
     const int workers = std::clamp(threads, 1, std::max(1, bands));
     std::atomic<int> next{0};
     detail::parallel_for(workers, workers, [&](int t0, int t1) {
         for (int t = t0; t < t1; ++t)
-            for (int b = next++; b < bands; b = next++) body(t, b * band, std::min(height, (b + 1) * band));
+            for (int b = next++; b < bands; b = next++)
+                body(t, b * band, std::min(height, (b + 1) * band));
     });
 }
 
@@ -294,20 +301,24 @@ constexpr int kWholeFrameBand = 8;
 }  // namespace
 
 void render_view_pair_rows(Renderer& first, Renderer& second, std::span<const View> views,
-                           const PairRowsConsumer& rows, const std::function<void(std::size_t)>& done) {
+                           const PairRowsConsumer& rows,
+                           const std::function<void(std::size_t)>& done) {
     GLINT_ASSERT(first.backend_ != nullptr && second.backend_ != nullptr,
                  "render_view_pair_rows on a moved-from Renderer");
-    if (&first == &second) throw InputError("render_view_pair_rows: the two renderers must be distinct");
+    if (&first == &second)
+        throw InputError("render_view_pair_rows: the two renderers must be distinct");
     const int threads = detail::worker_count(first.options_.threads);
     const detail::RenderBackend* a = first.backend_.get();
     const detail::RenderBackend* b = second.backend_.get();
     const int band = a->band_rows();
     if (band == 0 || b->band_rows() != band) {
-        render_view_pairs(first, second, views, [&](std::size_t i, const Frame& fa, const Frame& fb) {
-            for_each_band(fa.height, kWholeFrameBand, threads,
-                          [&](int, int y0, int y1) { rows(i, frame_rows(fa, y0, y1), frame_rows(fb, y0, y1)); });
-            done(i);
-        });
+        render_view_pairs(
+            first, second, views, [&](std::size_t i, const Frame& fa, const Frame& fb) {
+                for_each_band(fa.height, kWholeFrameBand, threads, [&](int, int y0, int y1) {
+                    rows(i, frame_rows(fa, y0, y1), frame_rows(fb, y0, y1));
+                });
+                done(i);
+            });
         return;
     }
     for (const View& v : views) {
@@ -341,8 +352,10 @@ void render_view_pair_rows(Renderer& first, Renderer& second, std::span<const Vi
 
 void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> views,
                        const PairConsumer& consumer) {
-    GLINT_ASSERT(first.backend_ != nullptr && second.backend_ != nullptr, "render_view_pairs on a moved-from Renderer");
-    if (&first == &second) throw InputError("render_view_pairs: the two renderers must be distinct");
+    GLINT_ASSERT(first.backend_ != nullptr && second.backend_ != nullptr,
+                 "render_view_pairs on a moved-from Renderer");
+    if (&first == &second)
+        throw InputError("render_view_pairs: the two renderers must be distinct");
     for (const View& v : views) {
         check_view(v, first.options_.supersample);
         check_view(v, second.options_.supersample);

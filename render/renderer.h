@@ -71,13 +71,13 @@ struct RenderOptions {
 
 /// What a renderer runs on, and anything it noticed on the way (STYLE.md: nothing is lost).
 struct RendererInfo {
-    Backend backend = Backend::Vulkan;         ///< resolved (never Auto)
-    std::string device_name;                   ///< "llvmpipe (LLVM 15.0.6, 256 bits)", "embree 3.13.5 (CPU)"
-    std::string device_type;                   ///< "discrete", "integrated", "virtual", "cpu"
+    Backend backend = Backend::Vulkan;  ///< resolved (never Auto)
+    std::string device_name;  ///< "llvmpipe (LLVM 15.0.6, 256 bits)", "embree 3.13.5 (CPU)"
+    std::string device_type;  ///< "discrete", "integrated", "virtual", "cpu"
     std::size_t triangle_count = 0;
     std::size_t vertex_count = 0;
-    bool computed_normals = false;             ///< the mesh had no normals: angle-weighted ones were computed
-    std::vector<std::string> warnings;         ///< e.g. why Auto chose a backend
+    bool computed_normals = false;  ///< the mesh had no normals: angle-weighted ones were computed
+    std::vector<std::string> warnings;  ///< e.g. why Auto chose a backend
 };
 
 /// Receives each frame as it completes. The frame reference is valid only during the call.
@@ -88,21 +88,24 @@ class RenderBackend;
 }
 
 /// Receives both frames of view `view_index` (valid only during the call).
-using PairConsumer = std::function<void(std::size_t view_index, const Frame& first, const Frame& second)>;
+using PairConsumer =
+    std::function<void(std::size_t view_index, const Frame& first, const Frame& second)>;
 
 /// Receives rows [rows.y0, rows.y0 + rows.height) of both frames of view `view_index` (valid
 /// only during the call). Called on worker threads, concurrently for disjoint bands of rows of
 /// one view; every band of a view is handed on before the next view's first.
-using PairRowsConsumer = std::function<void(std::size_t view_index, const FrameRows& first, const FrameRows& second)>;
+using PairRowsConsumer =
+    std::function<void(std::size_t view_index, const FrameRows& first, const FrameRows& second)>;
 
 /// A mesh uploaded to a device. Move-only. Not thread-safe: use one renderer per thread
 /// (renderers of one context may run on different threads).
 class Renderer {
-public:
+  public:
     /// Uploads the mesh (normals computed when absent) to the context's device.
     /// \throw InputError invalid options, empty mesh, null context.
     /// \throw DeviceError a failed device call.
-    Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh, const FrameOptions& options = {});
+    Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
+             const FrameOptions& options = {});
     /// Convenience: a context of its own (one device per renderer), created from `options`.
     /// \throw as RenderContext's constructor and the constructor above.
     explicit Renderer(const Mesh& mesh, const RenderOptions& options = {});
@@ -131,10 +134,11 @@ public:
     /// renderer's context; empty for Embree or when validation is off.
     [[nodiscard]] std::vector<std::string> validation_messages() const;
 
-private:
+  private:
     friend void render_view_pairs(Renderer&, Renderer&, std::span<const View>, const PairConsumer&);
     friend class GpuAtlas;  // draws with the backends' device buffers (render/gpu_atlas.h)
-    friend void render_view_pair_rows(Renderer&, Renderer&, std::span<const View>, const PairRowsConsumer&,
+    friend void render_view_pair_rows(Renderer&, Renderer&, std::span<const View>,
+                                      const PairRowsConsumer&,
                                       const std::function<void(std::size_t)>&);
     std::shared_ptr<RenderContext> context_;
     std::unique_ptr<detail::RenderBackend> backend_;
@@ -163,18 +167,19 @@ void render_view_pairs(Renderer& first, Renderer& second, std::span<const View> 
 /// RenderOptions::threads. Exceptions (the callbacks' or a device's) stop the run and
 /// propagate; both renderers stay usable.
 void render_view_pair_rows(Renderer& first, Renderer& second, std::span<const View> views,
-                           const PairRowsConsumer& rows, const std::function<void(std::size_t view_index)>& done);
+                           const PairRowsConsumer& rows,
+                           const std::function<void(std::size_t view_index)>& done);
 
 /// One Vulkan physical device as glint sees it.
 struct DeviceInfo {
     std::string name;
-    std::string type;          ///< "discrete", "integrated", "virtual", "cpu", "other"
-    std::string driver;        ///< driver name / info when reported
+    std::string type;    ///< "discrete", "integrated", "virtual", "cpu", "other"
+    std::string driver;  ///< driver name / info when reported
     std::uint32_t api_version = 0;
     std::string api_version_text;  ///< "1.3.230"
     bool is_usable = false;
-    std::string reason;        ///< why it is not usable (missing feature, …); empty if usable
-    bool is_preferred = false; ///< the device a default Vulkan renderer would pick
+    std::string reason;         ///< why it is not usable (missing feature, …); empty if usable
+    bool is_preferred = false;  ///< the device a default Vulkan renderer would pick
     /// Whether compare and back-projection can run on it (render/gpu_atlas.h: 64-bit floats,
     /// integers and buffer atomics, compute on the graphics queue, storage images).
     bool supports_gpu_atlas = false;

@@ -23,12 +23,12 @@ void ViewSpec::validate() const {
     // maxImageDimension2D is ≥ 4096 everywhere, 16384 on lavapipe and desktop GPUs).
     if (width < 1 || width > 16384) throw InputError(field_error("width", width, "1..16384"));
     if (height < 1 || height > 16384) throw InputError(field_error("height", height, "1..16384"));
-    if (!std::isfinite(azimuth_deg)) throw InputError(field_error("azimuth_deg", azimuth_deg, "finite"));
+    if (!std::isfinite(azimuth_deg))
+        throw InputError(field_error("azimuth_deg", azimuth_deg, "finite"));
     if (!std::isfinite(elevation_deg) || elevation_deg < -90.0 || elevation_deg > 90.0) {
         throw InputError(field_error("elevation_deg", elevation_deg, "-90..90"));
     }
-    if (projection == Projection::Perspective &&
-        !(fov_y_rad > 0.0 && fov_y_rad < 3.1)) {
+    if (projection == Projection::Perspective && !(fov_y_rad > 0.0 && fov_y_rad < 3.1)) {
         throw InputError(field_error("fov_y_rad", fov_y_rad, "0 < fov < 3.1 rad"));
     }
     if (zoom != ZoomKind::Fit && !(zoom_value > 0.0 && std::isfinite(zoom_value))) {
@@ -38,8 +38,9 @@ void ViewSpec::validate() const {
         throw InputError(field_error("margin", margin, "> 0"));
     }
     if (zoom == ZoomKind::DistancePixels && projection != Projection::Perspective) {
-        throw InputError("view: zoom in pixels of distance needs a perspective projection "
-                         "(an orthographic camera's footprint does not depend on distance)");
+        throw InputError(
+            "view: zoom in pixels of distance needs a perspective projection "
+            "(an orthographic camera's footprint does not depend on distance)");
     }
     if (!(up.norm() > 0.0)) throw InputError("view: up vector is zero");
 }
@@ -75,18 +76,21 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
     if (spec.projection == Projection::Orthographic) {
         double footprint = 0.0;
         switch (spec.zoom) {
-        case ZoomKind::Fit:
-            footprint = 2.0 * spec.margin * r / std::min(spec.width, spec.height);
-            break;
-        case ZoomKind::Footprint: footprint = spec.zoom_value; break;
-        case ZoomKind::Distance:
-            if (spec.zoom_value <= r) {
-                throw InputError(field_error("distance", spec.zoom_value,
-                                             "> the framed radius (camera outside the mesh)"));
-            }
-            footprint = 2.0 * (spec.zoom_value - r) * tan_half / spec.height;
-            break;
-        case ZoomKind::DistancePixels: break;  // rejected by validate()
+            case ZoomKind::Fit:
+                footprint = 2.0 * spec.margin * r / std::min(spec.width, spec.height);
+                break;
+            case ZoomKind::Footprint:
+                footprint = spec.zoom_value;
+                break;
+            case ZoomKind::Distance:
+                if (spec.zoom_value <= r) {
+                    throw InputError(field_error("distance", spec.zoom_value,
+                                                 "> the framed radius (camera outside the mesh)"));
+                }
+                footprint = 2.0 * (spec.zoom_value - r) * tan_half / spec.height;
+                break;
+            case ZoomKind::DistancePixels:
+                break;  // rejected by validate()
         }
         cam.ortho_half_height = 0.5 * footprint * spec.height;
         // The camera sits outside the sphere; the image plane is at the eye, so the near
@@ -97,25 +101,27 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
         view.footprint = footprint;
     } else {
         switch (spec.zoom) {
-        case ZoomKind::Fit: {
-            const double tan_min = std::min(tan_half, tan_half * aspect);
-            distance = spec.margin * r / std::sin(std::atan(tan_min));
-            break;
-        }
-        case ZoomKind::Footprint:
-            distance = r + spec.zoom_value * spec.height / (2.0 * tan_half);
-            break;
-        case ZoomKind::Distance: distance = spec.zoom_value; break;
-        case ZoomKind::DistancePixels: {
-            // The paper's pixel unit, fixed per mesh: f0 = 2r/h (view.h).
-            const double f0 = 2.0 * r / spec.height;
-            distance = r + spec.zoom_value * f0;
-            break;
-        }
+            case ZoomKind::Fit: {
+                const double tan_min = std::min(tan_half, tan_half * aspect);
+                distance = spec.margin * r / std::sin(std::atan(tan_min));
+                break;
+            }
+            case ZoomKind::Footprint:
+                distance = r + spec.zoom_value * spec.height / (2.0 * tan_half);
+                break;
+            case ZoomKind::Distance:
+                distance = spec.zoom_value;
+                break;
+            case ZoomKind::DistancePixels: {
+                // The paper's pixel unit, fixed per mesh: f0 = 2r/h (view.h).
+                const double f0 = 2.0 * r / spec.height;
+                distance = r + spec.zoom_value * f0;
+                break;
+            }
         }
         if (distance <= r) {
-            throw InputError(field_error("distance", distance,
-                                         "> the framed radius (camera outside the mesh)"));
+            throw InputError(
+                field_error("distance", distance, "> the framed radius (camera outside the mesh)"));
         }
         cam.near_plane = std::max(distance - r, 1e-3 * r) * 0.5;
         cam.far_plane = distance + 2.0 * r;

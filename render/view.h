@@ -18,13 +18,13 @@ namespace glint {
 /// A camera and where it came from in a sweep.
 struct View {
     Camera camera;
-    double azimuth_deg = 0.0;    ///< direction_from_az_el convention (geometry.h)
+    double azimuth_deg = 0.0;  ///< direction_from_az_el convention (geometry.h)
     double elevation_deg = 0.0;
     /// Mesh units per pixel at the nearest surface of the framed sphere (orthographic: at
     /// every depth). Informative; the camera is what renders.
     double footprint = 0.0;
-    int zoom_index = 0;          ///< zoom level within a sweep (0 when not from a sweep)
-    int index = 0;               ///< view id within a sweep
+    int zoom_index = 0;  ///< zoom level within a sweep (0 when not from a sweep)
+    int index = 0;       ///< view id within a sweep
 };
 
 /// How a zoom is given.

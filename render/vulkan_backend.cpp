@@ -44,14 +44,16 @@ namespace {
 constexpr std::size_t kSlots = 2;
 
 class VulkanBackend final : public RenderBackend {
-public:
-    VulkanBackend(std::shared_ptr<VulkanDevice> device, const Mesh& mesh, const FrameOptions& options)
+  public:
+    VulkanBackend(std::shared_ptr<VulkanDevice> device, const Mesh& mesh,
+                  const FrameOptions& options)
         : options_(options), device_(std::move(device)) {
         try {
             create_slots();
             upload(mesh);
             pipeline_ = device_->pipeline(options_.cull_back_faces);
-            vulkan_mesh_ = VulkanMesh{.device = device_, .buffers = mesh_, .cull_back_faces = options_.cull_back_faces};
+            vulkan_mesh_ = VulkanMesh{
+                .device = device_, .buffers = mesh_, .cull_back_faces = options_.cull_back_faces};
         } catch (...) {
             release();  // the destructor does not run for a half-built object
             throw;
@@ -96,8 +98,8 @@ public:
         }
         frame.normal_space = NormalSpace::World;
         resolve_samples(static_cast<const float*>(slot.normal_readback.mapped),
-                        static_cast<const std::uint32_t*>(slot.id_readback.mapped), options_.supersample,
-                        device_->threads(), frame);
+                        static_cast<const std::uint32_t*>(slot.id_readback.mapped),
+                        options_.supersample, device_->threads(), frame);
         return frame;
     }
 
@@ -108,7 +110,7 @@ public:
         next_slot_ = 0;
     }
 
-private:
+  private:
     struct Slot {
         int width = 0;  // target size in sub-samples
         int height = 0;
@@ -168,7 +170,8 @@ private:
 
     void destroy_targets(Slot& slot) noexcept {
         const VkDevice dev = device_->device();
-        if (slot.framebuffer != VK_NULL_HANDLE) vkDestroyFramebuffer(dev, slot.framebuffer, nullptr);
+        if (slot.framebuffer != VK_NULL_HANDLE)
+            vkDestroyFramebuffer(dev, slot.framebuffer, nullptr);
         slot.framebuffer = VK_NULL_HANDLE;
         destroy_image(dev, slot.normal);
         destroy_image(dev, slot.id);
@@ -189,21 +192,27 @@ private:
         const VkDeviceSize idx_bytes = mesh.triangles.size() * sizeof(Triangle);
         mesh_.index_count = static_cast<std::uint32_t>(mesh.triangles.size() * 3);
         mesh_.vertex_count = static_cast<std::uint32_t>(mesh.positions.size());
-        const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        Buffer staging = make_buffer(dev, phys, pos_bytes + nrm_bytes + idx_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, host, 0);
+        const VkMemoryPropertyFlags host =
+            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        Buffer staging = make_buffer(dev, phys, pos_bytes + nrm_bytes + idx_bytes,
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT, host, 0);
         auto* dst = static_cast<unsigned char*>(staging.mapped);
         std::memcpy(dst, mesh.positions.data(), pos_bytes);
         std::memcpy(dst + pos_bytes, mesh.normals.data(), nrm_bytes);
         std::memcpy(dst + pos_bytes + nrm_bytes, mesh.triangles.data(), idx_bytes);
         // Storage too: the GPU atlas's compute passes read the reference mesh (render/gpu_atlas.h).
-        const VkBufferUsageFlags vtx = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+        const VkBufferUsageFlags vtx = VK_BUFFER_USAGE_VERTEX_BUFFER_BIT |
+                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        mesh_buffers_[0] = make_buffer(dev, phys, pos_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
-        mesh_buffers_[1] = make_buffer(dev, phys, nrm_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
-        mesh_buffers_[2] = make_buffer(dev, phys, idx_bytes,
-                                       VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                       VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        mesh_buffers_[0] =
+            make_buffer(dev, phys, pos_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        mesh_buffers_[1] =
+            make_buffer(dev, phys, nrm_bytes, vtx, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        mesh_buffers_[2] =
+            make_buffer(dev, phys, idx_bytes,
+                        VK_BUFFER_USAGE_INDEX_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
         mesh_.positions = mesh_buffers_[0].buffer;
         mesh_.normals = mesh_buffers_[1].buffer;
         mesh_.indices = mesh_buffers_[2].buffer;
@@ -224,8 +233,9 @@ private:
         barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
         barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, 0, 1,
-                             &barrier, 0, nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                             nullptr);
         GLINT_VK_CHECK(vkEndCommandBuffer(cmd));
         device_->submit(cmd, slots_[0].fence);
         GLINT_VK_CHECK(vkWaitForFences(dev, 1, &slots_[0].fence, VK_TRUE, UINT64_MAX));
@@ -244,11 +254,13 @@ private:
                              std::to_string(device_->max_dimension()) + " pixels per side");
         }
         destroy_targets(slot);
-        const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+        const VkImageUsageFlags color =
+            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
         slot.normal = make_image(dev, phys, w, h, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
         slot.id = make_image(dev, phys, w, h, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        slot.depth = make_image(dev, phys, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                VK_IMAGE_ASPECT_DEPTH_BIT);
+        slot.depth =
+            make_image(dev, phys, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                       VK_IMAGE_ASPECT_DEPTH_BIT);
         std::array<VkImageView, 3> views{slot.normal.view, slot.id.view, slot.depth.view};
         VkFramebufferCreateInfo fb{};
         fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
@@ -262,11 +274,12 @@ private:
         const VkDeviceSize pixels = static_cast<VkDeviceSize>(w) * static_cast<VkDeviceSize>(h);
         // Read-back: host-visible and coherent (no flush/invalidate needed), cached when the
         // device offers it (CPU reads of uncached memory are slow on discrete GPUs).
-        const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-        slot.normal_readback = make_buffer(dev, phys, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT, host,
-                                           VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-        slot.id_readback = make_buffer(dev, phys, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, host,
-                                       VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        const VkMemoryPropertyFlags host =
+            VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+        slot.normal_readback = make_buffer(dev, phys, pixels * 16, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                           host, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+        slot.id_readback = make_buffer(dev, phys, pixels * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                       host, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
         slot.width = w;
         slot.height = h;
     }
@@ -278,12 +291,13 @@ private:
         begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         GLINT_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-        record_normal_pass(cmd, device_->render_pass(), slot.framebuffer, slot.width, slot.height, pipeline_,
-                           device_->layout(), mesh_, view);
+        record_normal_pass(cmd, device_->render_pass(), slot.framebuffer, slot.width, slot.height,
+                           pipeline_, device_->layout(), mesh_, view);
 
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        region.imageExtent = {static_cast<std::uint32_t>(slot.width), static_cast<std::uint32_t>(slot.height), 1};
+        region.imageExtent = {static_cast<std::uint32_t>(slot.width),
+                              static_cast<std::uint32_t>(slot.height), 1};
         vkCmdCopyImageToBuffer(cmd, slot.normal.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                                slot.normal_readback.buffer, 1, &region);
         vkCmdCopyImageToBuffer(cmd, slot.id.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -293,8 +307,8 @@ private:
         barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
         barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                             nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                             &barrier, 0, nullptr, 0, nullptr);
         GLINT_VK_CHECK(vkEndCommandBuffer(cmd));
         device_->submit(cmd, slot.fence);
     }
@@ -303,9 +317,9 @@ private:
     std::shared_ptr<VulkanDevice> device_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     std::array<Buffer, 3> mesh_buffers_{};  // positions, normals, indices
-    MeshBuffers mesh_{};                     // their handles and counts
+    MeshBuffers mesh_{};                    // their handles and counts
     VkPipeline pipeline_ = VK_NULL_HANDLE;  // the device's, for this cull mode
-    VulkanMesh vulkan_mesh_;                 // what the GPU atlas draws and reads
+    VulkanMesh vulkan_mesh_;                // what the GPU atlas draws and reads
     std::array<Slot, kSlots> slots_{};
     std::deque<std::size_t> pending_;  // slots in submission order
     std::size_t next_slot_ = 0;
@@ -313,8 +327,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<RenderBackend> make_vulkan_backend(std::shared_ptr<VulkanDevice> device, const Mesh& mesh,
-                                                   const FrameOptions& options) {
+std::unique_ptr<RenderBackend> make_vulkan_backend(std::shared_ptr<VulkanDevice> device,
+                                                   const Mesh& mesh, const FrameOptions& options) {
     return std::make_unique<VulkanBackend>(std::move(device), mesh, options);
 }
 

@@ -19,7 +19,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 void announce(const AnalysisObserver& observer, std::string_view stage) {
     throw_if_cancelled();
@@ -31,9 +33,10 @@ void announce(const AnalysisObserver& observer, std::string_view stage) {
 FitOutcome fit_or_refuse(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
     FitOutcome fit = fit_examined(reference, examined, options);
     if (!fit.converged)
-        throw InputError("registration of the examined mesh onto the reference did not converge (" +
-                         (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
-                         "); the meshes may not overlap: give a fit file or start from landmarks (glint register)");
+        throw InputError(
+            "registration of the examined mesh onto the reference did not converge (" +
+            (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
+            "); the meshes may not overlap: give a fit file or start from landmarks (glint register)");
     return fit;
 }
 
@@ -56,33 +59,42 @@ std::string swap_hint(const Mesh& reference, double exa_area, const AnalysisResu
     const double ref_area = surface_area(reference);
     if (!(exa_area > 1.1 * ref_area)) return "";
     char b[240];
-    std::snprintf(b, sizeof b, "the examined surface is %.0f%% larger than the reference and no region is a loss: "
-                  "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
-                  100.0 * (exa_area / ref_area - 1.0));
+    std::snprintf(
+        b, sizeof b,
+        "the examined surface is %.0f%% larger than the reference and no region is a loss: "
+        "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
+        100.0 * (exa_area / ref_area - 1.0));
     return b;
 }
 
 // The sweep of the fitted pair, per-view exports and progress on the way. Per-view EXRs hold
 // every pixel's comparison, so those sweeps read their frames back.
-void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options, const OutputFolder* folder,
-                const AnalysisObserver& observer, AnalysisResult& result) {
-    const SweepPlan plan = make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
+void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options,
+                const OutputFolder* folder, const AnalysisObserver& observer,
+                AnalysisResult& result) {
+    const SweepPlan plan =
+        make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
     std::optional<ViewExporter> exporter;
     if (folder) exporter.emplace(*folder, options.sweep.metric, options.exports);
     std::size_t done = 0;
     const bool want_exr = exporter && options.exports.write_exr;
     SweepOptions sweep_options = options.sweep;
-    if (want_exr && sweep_options.accumulate == Accumulation::Auto) sweep_options.accumulate = Accumulation::Host;
-    result.sweep = run_sweep(reference, fitted, plan, sweep_options, [&](const PlannedView& v, const DeviationMap& d) {
-        if (exporter && d.width > 0) exporter->add(v, d);
-        if (observer.views) observer.views(++done, plan.views.size());
-    });
+    if (want_exr && sweep_options.accumulate == Accumulation::Auto)
+        sweep_options.accumulate = Accumulation::Host;
+    result.sweep = run_sweep(reference, fitted, plan, sweep_options,
+                             [&](const PlannedView& v, const DeviationMap& d) {
+                                 if (exporter && d.width > 0) exporter->add(v, d);
+                                 if (observer.views) observer.views(++done, plan.views.size());
+                             });
     if (want_exr && result.sweep.on_gpu)
-        result.warnings.push_back("per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
-                                  "no pixel came back; accumulate = auto or host writes them");
-    if (sweep_options.accumulate != options.sweep.accumulate && result.sweep.renderer.backend == Backend::Vulkan)
-        result.sweep.accumulation_note = "per-view EXRs hold every pixel's comparison: frames read back (without "
-                                         "--exr compare stays on the GPU)";
+        result.warnings.push_back(
+            "per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
+            "no pixel came back; accumulate = auto or host writes them");
+    if (sweep_options.accumulate != options.sweep.accumulate &&
+        result.sweep.renderer.backend == Backend::Vulkan)
+        result.sweep.accumulation_note =
+            "per-view EXRs hold every pixel's comparison: frames read back (without "
+            "--exr compare stays on the GPU)";
 }
 
 // One decision per zoom from the atlas and the shape evidence; their warnings named by zoom.
@@ -97,7 +109,8 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
                                         .size = result.size};
         result.decisions.push_back(decide(reference, evidence, options.decision));
         for (const auto& w : result.decisions.back().warnings)
-            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " + w);
+            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " +
+                                      w);
     }
 }
 
@@ -119,7 +132,8 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.unit = result.units.unit;
     if (result.units.examined_scale != 1.0) scale_to_analysis_unit(examined, result.units);
     std::optional<OutputFolder> folder;
-    if (!options.exports.output.empty()) folder.emplace(options.exports.output, options.exports.replace_existing);
+    if (!options.exports.output.empty())
+        folder.emplace(options.exports.output, options.exports.replace_existing);
 
     result.size = bounds(reference).diagonal();
     result.warnings = options.exports.warnings;

@@ -30,9 +30,9 @@ namespace glint {
 
 /// One input of a run, for the report.
 struct InputRecord {
-    std::string role;               ///< "reference", "examined", "fit", "scenario", "calibration"
-    std::filesystem::path path;     ///< empty for a generated mesh
-    std::string description;        ///< e.g. "phantom condyle ico 5"
+    std::string role;            ///< "reference", "examined", "fit", "scenario", "calibration"
+    std::filesystem::path path;  ///< empty for a generated mesh
+    std::string description;     ///< e.g. "phantom condyle ico 5"
     std::size_t vertices = 0;
     std::size_t triangles = 0;
 };
@@ -41,12 +41,13 @@ struct ExportOptions {
     /// The output folder (written complete or not at all, scanner/output_folder.h); empty:
     /// nothing is written.
     std::filesystem::path output;
-    bool write_views = true;        ///< per-view PNG heat maps
-    bool write_exr = false;         ///< per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back)
+    bool write_views = true;  ///< per-view PNG heat maps
+    bool write_exr =
+        false;  ///< per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back)
     /// An existing output folder is replaced (atomically, when the run completes); false:
     /// it is refused before anything is loaded (--force).
     bool replace_existing = false;
-    int mosaic_tile = 128;          ///< mosaic thumbnail size, pixels
+    int mosaic_tile = 128;  ///< mosaic thumbnail size, pixels
     // Provenance recorded in report.json.
     std::string command_line;
     std::vector<InputRecord> inputs;
@@ -77,16 +78,17 @@ struct AnalysisOptions {
 
 struct AnalysisResult {
     FitOutcome fit;
-    std::vector<float> distance;           ///< per reference vertex, signed (negative = loss)
-    std::vector<float> tolerance;          ///< per reference vertex, tessellation tolerance (scanner/fit.h)
-    std::vector<std::uint8_t> at_border;   ///< per reference vertex, closest examined point on a border
+    std::vector<float> distance;   ///< per reference vertex, signed (negative = loss)
+    std::vector<float> tolerance;  ///< per reference vertex, tessellation tolerance (scanner/fit.h)
+    std::vector<std::uint8_t>
+        at_border;  ///< per reference vertex, closest examined point on a border
     SweepResult sweep;
-    std::vector<ZoomDecision> decisions;   ///< one per zoom level
-    double size = 0.0;                     ///< bounding diagonal of the reference (mesh units)
-    std::string unit;                      ///< of every length reported ("" = unknown; scanner/units.h)
-    UnitResolution units;                  ///< how the unit was found, both sizes
-    std::filesystem::path output;          ///< the folder written (empty when none)
-    std::vector<std::string> warnings;     ///< load, unit, fit and decision warnings
+    std::vector<ZoomDecision> decisions;  ///< one per zoom level
+    double size = 0.0;                    ///< bounding diagonal of the reference (mesh units)
+    std::string unit;              ///< of every length reported ("" = unknown; scanner/units.h)
+    UnitResolution units;          ///< how the unit was found, both sizes
+    std::filesystem::path output;  ///< the folder written (empty when none)
+    std::vector<std::string> warnings;  ///< load, unit, fit and decision warnings
     /// Non-empty when REF and EXA look swapped (no region a loss, the examined surface
     /// > 10 % larger): a hint for people, also in warnings.
     std::string swap_hint;
@@ -99,7 +101,8 @@ struct AnalysisResult {
 
 /// Progress of a long analysis; every member may be empty.
 struct AnalysisObserver {
-    std::function<void(std::string_view stage)> stage;  ///< "fit", "distance", "sweep", "decide", "export"
+    std::function<void(std::string_view stage)>
+        stage;  ///< "fit", "distance", "sweep", "decide", "export"
     std::function<void(std::size_t done, std::size_t total)> views;
 };
 
@@ -109,7 +112,8 @@ struct AnalysisObserver {
 /// \throw OptionError invalid options; InputError meshes whose sizes differ by more than
 /// kMaxScaleRatio (unless allowed), a fit that did not converge, surfaces that do not overlap;
 /// IoError, DeviceError; Cancelled (nothing half-written is left).
-[[nodiscard]] AnalysisResult analyse(const Mesh& reference, Mesh examined, const AnalysisOptions& options,
+[[nodiscard]] AnalysisResult analyse(const Mesh& reference, Mesh examined,
+                                     const AnalysisOptions& options,
                                      const AnalysisObserver& observer = {});
 
 }  // namespace glint

@@ -13,7 +13,9 @@ using nlohmann::json;
 
 json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
 
-json path_or_null(const std::filesystem::path& p) { return p.empty() ? json(nullptr) : json(p.string()); }
+json path_or_null(const std::filesystem::path& p) {
+    return p.empty() ? json(nullptr) : json(p.string());
+}
 
 json matrix_json(const Rigid& t) {
     json rows = json::array();
@@ -22,7 +24,8 @@ json matrix_json(const Rigid& t) {
 }
 
 std::string plan_kind(const SweepPlanOptions& p) {
-    return p.kind == SweepPlanOptions::Kind::Rotary ? "rotary" : "sphere:" + std::to_string(p.sphere_views);
+    return p.kind == SweepPlanOptions::Kind::Rotary ? "rotary"
+                                                    : "sphere:" + std::to_string(p.sphere_views);
 }
 
 json fit_json(const FitOptions& f) {
@@ -79,10 +82,12 @@ json decision_json(const DecisionOptions& d) {
 }  // namespace
 
 void ExportOptions::validate() const {
-    if (mosaic_tile < 16 || mosaic_tile > 1024) throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
+    if (mosaic_tile < 16 || mosaic_tile > 1024)
+        throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
     std::error_code ec;
     if (!output.empty() && !replace_existing && std::filesystem::exists(output, ec))
-        throw InputError("output folder \"" + output.string() + "\" exists; give --force to replace it (the new "
+        throw InputError("output folder \"" + output.string() +
+                         "\" exists; give --force to replace it (the new "
                          "results replace it only when the run completes)");
 }
 
@@ -100,13 +105,16 @@ void AnalysisOptions::validate() const {
 }
 
 std::string to_json(const AnalysisOptions& o) {
-    const json j = {{"units", {{"unit", o.units.unit.empty() ? json(nullptr) : json(o.units.unit)},
-                               {"allow_scale_mismatch", o.units.allow_scale_mismatch}}},
+    const json j = {{"units",
+                     {{"unit", o.units.unit.empty() ? json(nullptr) : json(o.units.unit)},
+                      {"allow_scale_mismatch", o.units.allow_scale_mismatch}}},
                     {"registration", fit_json(o.fit)},
                     {"sweep", sweep_json(o.sweep)},
                     {"decision", decision_json(o.decision)},
-                    {"exports", {{"views", o.exports.write_views}, {"exr", o.exports.write_exr},
-                                 {"mosaic_tile", o.exports.mosaic_tile}}}};
+                    {"exports",
+                     {{"views", o.exports.write_views},
+                      {"exr", o.exports.write_exr},
+                      {"mosaic_tile", o.exports.mosaic_tile}}}};
     return j.dump(2);
 }
 

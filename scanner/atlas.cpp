@@ -23,7 +23,8 @@ AtlasAccumulator::AtlasAccumulator(const Mesh& reference, double footprint)
       best_view_(reference.vertex_count(), -1),
       max_view_(reference.vertex_count(), -1) {}
 
-void AtlasAccumulator::observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s, std::int32_t view_index) {
+void AtlasAccumulator::observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s,
+                               std::int32_t view_index) {
     ++count_[v];
     if (s.cos_incidence > best_cos_[v]) {
         best_cos_[v] = s.cos_incidence;
@@ -48,7 +49,8 @@ void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
     add(s, view_index, 0, static_cast<std::uint32_t>(max_.size()));
 }
 
-void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index, std::uint32_t first, std::uint32_t last) {
+void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index, std::uint32_t first,
+                           std::uint32_t last) {
     GLINT_ASSERT(s.triangle < mesh_->triangles.size(), "primitive id beyond the reference mesh");
     const auto& tri = mesh_->triangles[s.triangle];
     // The maximum goes to the vertex whose dual cell holds the pixel (largest weight) only,
@@ -107,8 +109,9 @@ ZoomAtlas AtlasAccumulator::finish() const {
         a.weight[v] = static_cast<float>(weight_[v]);
         a.value_mean[v] = weight_[v] > 0 ? static_cast<float>(sum_[v] / weight_[v]) : 0.0f;
         a.missing[v] = weight_[v] > 0 ? static_cast<float>(missing_weight_[v] / weight_[v]) : 0.0f;
-        a.depth_mean[v] = depth_weight_[v] > 0 ? static_cast<float>(depth_sum_[v] / depth_weight_[v])
-                                               : std::numeric_limits<float>::quiet_NaN();
+        a.depth_mean[v] = depth_weight_[v] > 0
+                              ? static_cast<float>(depth_sum_[v] / depth_weight_[v])
+                              : std::numeric_limits<float>::quiet_NaN();
         a.best_cos[v] = best_view_[v] >= 0 ? best_cos_[v] : 0.0f;
     }
     return a;

@@ -17,17 +17,19 @@ namespace glint {
 
 /// Per-vertex results of one zoom level.
 struct ZoomAtlas {
-    double footprint = 0.0;              ///< mesh units per pixel at this zoom
-    std::vector<float> value_max;        ///< metric: max over the pixels in the vertex's dual cell (0 where unseen)
-    std::vector<float> value_mean;       ///< metric: barycentric-weighted mean (0 where unseen)
-    std::vector<float> depth_at_max;     ///< signed depth difference at the max (neg = dent)
-    std::vector<float> depth_mean;       ///< weighted mean signed depth difference (NaN if none)
-    std::vector<float> missing;          ///< share of the weight where no examined surface was behind the pixel
-    std::vector<float> weight;           ///< sum of barycentric weights (observations)
-    std::vector<std::uint32_t> count;    ///< pixels that touched the vertex
-    std::vector<float> best_cos;         ///< cos(incidence) of the most frontal observation
-    std::vector<std::int32_t> best_view; ///< view index of that observation (-1 = unseen)
-    std::vector<std::int32_t> max_view;  ///< view index where the max was seen (-1 = unseen)
+    double footprint = 0.0;  ///< mesh units per pixel at this zoom
+    std::vector<float>
+        value_max;  ///< metric: max over the pixels in the vertex's dual cell (0 where unseen)
+    std::vector<float> value_mean;    ///< metric: barycentric-weighted mean (0 where unseen)
+    std::vector<float> depth_at_max;  ///< signed depth difference at the max (neg = dent)
+    std::vector<float> depth_mean;    ///< weighted mean signed depth difference (NaN if none)
+    std::vector<float>
+        missing;  ///< share of the weight where no examined surface was behind the pixel
+    std::vector<float> weight;            ///< sum of barycentric weights (observations)
+    std::vector<std::uint32_t> count;     ///< pixels that touched the vertex
+    std::vector<float> best_cos;          ///< cos(incidence) of the most frontal observation
+    std::vector<std::int32_t> best_view;  ///< view index of that observation (-1 = unseen)
+    std::vector<std::int32_t> max_view;   ///< view index where the max was seen (-1 = unseen)
 };
 
 /// One observation: a pixel on a triangle, or (gathering) a single vertex.
@@ -35,21 +37,22 @@ struct AtlasSample {
     std::uint32_t triangle = 0;          ///< add(): the pixel's reference triangle
     std::array<float, 3> barycentric{};  ///< add(): weights of the triangle's vertices, sum 1
     float value = 0.0f;                  ///< the metric's value
-    float signed_depth = 0.0f;           ///< reference depth − examined depth (neg = dent); NaN = none
-    float cos_incidence = 1.0f;          ///< dot(surface normal, direction to the camera)
-    bool valid = true;                   ///< false: the pixel was not compared (edge pixel)
-    bool missing = false;                ///< no examined surface behind the pixel
+    float signed_depth = 0.0f;   ///< reference depth − examined depth (neg = dent); NaN = none
+    float cos_incidence = 1.0f;  ///< dot(surface normal, direction to the camera)
+    bool valid = true;           ///< false: the pixel was not compared (edge pixel)
+    bool missing = false;        ///< no examined surface behind the pixel
 };
 
 /// Accumulates samples of one zoom level (not thread-safe; one per worker, then merge).
 class AtlasAccumulator {
-public:
+  public:
     AtlasAccumulator(const Mesh& reference, double footprint);
     /// Adds one pixel on sample.triangle. The caller has applied the coverage rule.
     void add(const AtlasSample& sample, std::int32_t view_index);
     /// add() for the triangle's corners in [first, last) only: the share of one worker when
     /// the vertices are split between workers (the others add the remaining corners).
-    void add(const AtlasSample& sample, std::int32_t view_index, std::uint32_t first, std::uint32_t last);
+    void add(const AtlasSample& sample, std::int32_t view_index, std::uint32_t first,
+             std::uint32_t last);
     /// Adds one observation of a single vertex (weight 1): the gathering pass, for vertices
     /// that no pixel centre fell on because the pixel is larger than their triangles.
     void add_vertex(std::uint32_t vertex, const AtlasSample& sample, std::int32_t view_index);
@@ -58,8 +61,9 @@ public:
     /// Final per-vertex arrays.
     [[nodiscard]] ZoomAtlas finish() const;
 
-private:
-    void observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s, std::int32_t view_index);
+  private:
+    void observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s,
+                 std::int32_t view_index);
 
     const Mesh* mesh_;
     double footprint_;

@@ -21,7 +21,8 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 // triangle (the pixel centre may fall just outside the triangle its sub-sample hit).
 // cos_incidence is signed: positive when the triangle's front (its winding's normal, the side
 // its vertex normals point to) faces the camera.
-bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<float, 3>& w, double& cos_incidence) {
+bool barycentric(const Mesh& mesh, std::uint32_t t, const Ray& ray, std::array<float, 3>& w,
+                 double& cos_incidence) {
     const auto& tri = mesh.triangles[t];
     const Vec3d a = mesh.positions[tri[0]].cast<double>();
     const Vec3d b = mesh.positions[tri[1]].cast<double>();
@@ -63,8 +64,9 @@ AtlasSample pixel_sample(const DeviationMap& dev, std::size_t px, float missing_
 
 // One worker's vertex range [first, last): the scatter samples that reach its vertices (all
 // bands, pixel order), then the gather of those no sample reached.
-void fold_range(const Mesh& reference, const View& view, std::span<const std::vector<AtlasSample>* const> bands,
-                const ViewMaps& maps, const BackprojectOptions& o, AtlasAccumulator& atlas,
+void fold_range(const Mesh& reference, const View& view,
+                std::span<const std::vector<AtlasSample>* const> bands, const ViewMaps& maps,
+                const BackprojectOptions& o, AtlasAccumulator& atlas,
                 std::vector<std::int32_t>& scattered_in, std::uint32_t first, std::uint32_t last) {
     for (const auto* band : bands)
         for (const AtlasSample& s : *band) {
@@ -114,55 +116,64 @@ void ViewMaps::resize(int width, int height) {
 }
 
 void record_reference_rows(const FrameRows& ref, float min_coverage, ViewMaps& maps) {
-    const std::size_t first = static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
+    const std::size_t first =
+        static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
     for (std::size_t i = 0; i < ref.pixel_count(); ++i) {
         maps.reference_depth[first + i] = ref.depth[i];
-        maps.reference_covered[first + i] = ref.primitive_id[i] != kNoPrimitive && ref.coverage[i] >= min_coverage;
+        maps.reference_covered[first + i] =
+            ref.primitive_id[i] != kNoPrimitive && ref.coverage[i] >= min_coverage;
     }
 }
 
-std::size_t scatter_rows(const Mesh& reference, const View& view, const FrameRows& ref, const ViewMaps& maps,
-                         const BackprojectOptions& o, std::vector<AtlasSample>& samples) {
+std::size_t scatter_rows(const Mesh& reference, const View& view, const FrameRows& ref,
+                         const ViewMaps& maps, const BackprojectOptions& o,
+                         std::vector<AtlasSample>& samples) {
     std::size_t covered = 0;
     for (int r = 0; r < ref.height; ++r) {
         const int y = ref.y0 + r;
         for (int x = 0; x < ref.width; ++x) {
-            const std::size_t i = static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.width) +
-                                  static_cast<std::size_t>(x);
+            const std::size_t i =
+                static_cast<std::size_t>(r) * static_cast<std::size_t>(ref.width) +
+                static_cast<std::size_t>(x);
             if (ref.primitive_id[i] == kNoPrimitive || ref.coverage[i] < o.min_coverage) continue;
             ++covered;
-            const std::size_t px = static_cast<std::size_t>(y) * static_cast<std::size_t>(ref.width) +
-                                   static_cast<std::size_t>(x);
+            const std::size_t px =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(ref.width) +
+                static_cast<std::size_t>(x);
             AtlasSample s = pixel_sample(maps.deviation, px, o.missing_value);
             s.triangle = ref.primitive_id[i];
             double cos_inc = 0.0;
-            if (!barycentric(reference, s.triangle, view.camera.pixel_ray(x + 0.5, y + 0.5), s.barycentric, cos_inc))
+            if (!barycentric(reference, s.triangle, view.camera.pixel_ray(x + 0.5, y + 0.5),
+                             s.barycentric, cos_inc))
                 continue;
             if (cos_inc < o.min_cos_incidence) continue;
             s.cos_incidence = static_cast<float>(cos_inc);
-            GLINT_ASSERT(s.triangle < reference.triangle_count(), "primitive id beyond the reference mesh");
+            GLINT_ASSERT(s.triangle < reference.triangle_count(),
+                         "primitive id beyond the reference mesh");
             samples.push_back(s);
         }
     }
     return covered;
 }
 
-void fold_view(const Mesh& reference, const View& view, std::span<const std::vector<AtlasSample>* const> bands,
-               const ViewMaps& maps, const BackprojectOptions& options, AtlasAccumulator& atlas,
+void fold_view(const Mesh& reference, const View& view,
+               std::span<const std::vector<AtlasSample>* const> bands, const ViewMaps& maps,
+               const BackprojectOptions& options, AtlasAccumulator& atlas,
                BackprojectScratch& scratch, int threads) {
     GLINT_ASSERT(reference.has_normals(), "back-projection needs the reference's vertex normals");
     const auto n = static_cast<std::uint32_t>(reference.vertex_count());
     if (scratch.scattered_in.size() != n) scratch.scattered_in.assign(n, -1);
     // note: one range per worker: each goes through every sample, so more ranges than
     // workers would only repeat that walk.
-    const auto ranges = static_cast<std::uint32_t>(
-        std::clamp(threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()), 1, 64));
+    const auto ranges = static_cast<std::uint32_t>(std::clamp(
+        threads > 0 ? threads : static_cast<int>(std::thread::hardware_concurrency()), 1, 64));
     tbb::task_arena arena(static_cast<int>(ranges));
     arena.execute([&] {
         tbb::parallel_for(std::uint32_t{0}, ranges, [&](std::uint32_t r) {
             const auto first = static_cast<std::uint32_t>(std::uint64_t{n} * r / ranges);
             const auto last = static_cast<std::uint32_t>(std::uint64_t{n} * (r + 1) / ranges);
-            fold_range(reference, view, bands, maps, options, atlas, scratch.scattered_in, first, last);
+            fold_range(reference, view, bands, maps, options, atlas, scratch.scattered_in, first,
+                       last);
         });
     });
 }

@@ -43,9 +43,9 @@ struct BackprojectOptions {
 /// What the back-projection reads of one view, per pixel: the comparison, and the reference
 /// frame's depth and full coverage (the gather's visibility test). Reused across views.
 struct ViewMaps {
-    DeviationMap deviation;                      ///< value (the metric), signed depth, silhouette
-    std::vector<float> reference_depth;          ///< linear depth of the reference pixel
-    std::vector<std::uint8_t> reference_covered; ///< 1: a primitive and at least min_coverage
+    DeviationMap deviation;                       ///< value (the metric), signed depth, silhouette
+    std::vector<float> reference_depth;           ///< linear depth of the reference pixel
+    std::vector<std::uint8_t> reference_covered;  ///< 1: a primitive and at least min_coverage
 
     /// Sizes every map for a width × height view.
     void resize(int width, int height);
@@ -57,7 +57,8 @@ void record_reference_rows(const FrameRows& reference, float min_coverage, ViewM
 /// The scatter samples of a band of reference rows (pixel order), appended to `samples`;
 /// `maps.deviation` must hold the band's values. Returns the band's covered reference pixels.
 std::size_t scatter_rows(const Mesh& reference, const View& view, const FrameRows& reference_rows,
-                         const ViewMaps& maps, const BackprojectOptions& options, std::vector<AtlasSample>& samples);
+                         const ViewMaps& maps, const BackprojectOptions& options,
+                         std::vector<AtlasSample>& samples);
 
 /// Scratch space reused across views (one per accumulator).
 struct BackprojectScratch {
@@ -67,8 +68,9 @@ struct BackprojectScratch {
 /// Adds a view's scatter samples (`bands` in pixel order) to the atlas, then gathers the
 /// vertices no sample reached, on up to `threads` workers (0 = the machine's).
 /// \pre the reference has vertex normals; maps filled for the whole view.
-void fold_view(const Mesh& reference, const View& view, std::span<const std::vector<AtlasSample>* const> bands,
-               const ViewMaps& maps, const BackprojectOptions& options, AtlasAccumulator& atlas,
+void fold_view(const Mesh& reference, const View& view,
+               std::span<const std::vector<AtlasSample>* const> bands, const ViewMaps& maps,
+               const BackprojectOptions& options, AtlasAccumulator& atlas,
                BackprojectScratch& scratch, int threads);
 
 }  // namespace glint

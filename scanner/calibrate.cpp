@@ -17,10 +17,12 @@ void CalibrationOptions::validate() const {
         s << "calibration: " << field << " = " << v << ": " << rule;
         throw InputError(s.str());
     };
-    if (!(threshold_deg > 0 && threshold_deg < 90)) bad("threshold", threshold_deg, "must be in (0, 90) degrees");
+    if (!(threshold_deg > 0 && threshold_deg < 90))
+        bad("threshold", threshold_deg, "must be in (0, 90) degrees");
     if (finest < 0) bad("finest footprint", finest, "must be ≥ 0 (0 = automatic)");
     if (coarsest < 0) bad("coarsest footprint", coarsest, "must be ≥ 0 (0 = automatic)");
-    if (finest > 0 && coarsest > 0 && !(coarsest > finest)) bad("coarsest footprint", coarsest, "must exceed the finest");
+    if (finest > 0 && coarsest > 0 && !(coarsest > finest))
+        bad("coarsest footprint", coarsest, "must exceed the finest");
     if (!(step > 1.05)) bad("step", step, "must be > 1.05");
 }
 
@@ -46,9 +48,11 @@ Calibration calibrate(const Mesh& reference, const Mesh& examined, AnalysisOptio
     c.referential = referential;
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         const auto& zoom = result.sweep.zooms[z];
-        CalibrationRung rung{result.sweep.plan.footprints[z], result.decisions[z].regions.regions.size(), 0.0};
+        CalibrationRung rung{result.sweep.plan.footprints[z],
+                             result.decisions[z].regions.regions.size(), 0.0};
         for (std::size_t v = 0; v < zoom.coverage.seen.size(); ++v)
-            if (zoom.coverage.seen[v]) rung.max_angle_deg = std::max(rung.max_angle_deg, double(zoom.atlas.value_mean[v]));
+            if (zoom.coverage.seen[v])
+                rung.max_angle_deg = std::max(rung.max_angle_deg, double(zoom.atlas.value_mean[v]));
         c.ladder.push_back(rung);
     }
     // The finest rung from which the deformation stays hidden at every coarser rung.
@@ -63,13 +67,16 @@ Calibration calibrate(const Mesh& reference, const Mesh& examined, AnalysisOptio
 std::string to_json(const Calibration& c) {
     nlohmann::json ladder = nlohmann::json::array();
     for (const auto& r : c.ladder)
-        ladder.push_back({{"footprint", r.footprint}, {"regions", r.regions}, {"max_mean_angle_deg", r.max_angle_deg}});
-    const nlohmann::json j = {{"glint_calibration", 1},
-                              {"found", c.found},
-                              {"footprint", c.found ? nlohmann::json(c.footprint) : nlohmann::json(nullptr)},
-                              {"threshold_deg", c.threshold_deg},
-                              {"referential", c.referential},
-                              {"ladder", ladder}};
+        ladder.push_back({{"footprint", r.footprint},
+                          {"regions", r.regions},
+                          {"max_mean_angle_deg", r.max_angle_deg}});
+    const nlohmann::json j = {
+        {"glint_calibration", 1},
+        {"found", c.found},
+        {"footprint", c.found ? nlohmann::json(c.footprint) : nlohmann::json(nullptr)},
+        {"threshold_deg", c.threshold_deg},
+        {"referential", c.referential},
+        {"ladder", ladder}};
     return j.dump(2) + "\n";
 }
 
@@ -83,21 +90,24 @@ Calibration read_calibration(const std::filesystem::path& path) {
         throw InputError("calibration \"" + path.string() + "\": not valid JSON: " + e.what());
     }
     if (!j.contains("glint_calibration"))
-        throw InputError("calibration \"" + path.string() + "\": not a glint calibration (written by glint calibrate)");
+        throw InputError("calibration \"" + path.string() +
+                         "\": not a glint calibration (written by glint calibrate)");
     Calibration c;
     // note: a value of the wrong type or a missing key is bad input, not an internal error
     // (found by fuzz/fuzz_calibration).
     try {
         c.found = j.value("found", false);
         if (!c.found || !j["footprint"].is_number())
-            throw InputError("calibration \"" + path.string() +
-                             "\": found no footprint that hides the referential deformation; widen the ladder");
+            throw InputError(
+                "calibration \"" + path.string() +
+                "\": found no footprint that hides the referential deformation; widen the ladder");
         c.footprint = j["footprint"].get<double>();
         c.threshold_deg = j.at("threshold_deg").get<double>();
         c.referential = j.value("referential", "");
     } catch (const nlohmann::json::exception& e) {
-        throw InputError("calibration \"" + path.string() + "\": " + e.what() +
-                         ", expected found (bool), footprint and threshold_deg (numbers), referential (text)");
+        throw InputError(
+            "calibration \"" + path.string() + "\": " + e.what() +
+            ", expected found (bool), footprint and threshold_deg (numbers), referential (text)");
     }
     return c;
 }

@@ -30,18 +30,19 @@ struct CalibrationRung {
 };
 
 struct Calibration {
-    bool found = false;          ///< false: the deformation shows even at the coarsest rung
-    double footprint = 0.0;      ///< the finest footprint at which the referential case shows nothing
+    bool found = false;      ///< false: the deformation shows even at the coarsest rung
+    double footprint = 0.0;  ///< the finest footprint at which the referential case shows nothing
     double threshold_deg = 0.0;
-    std::string referential;     ///< description of the referential case
+    std::string referential;  ///< description of the referential case
     std::vector<CalibrationRung> ladder;
 };
 
 /// Analyses the referential case (fitted as `analysis.fit` says) at every rung of the
 /// ladder in one sweep, with the calibration's threshold given. \throw InputError invalid
 /// options; the analysis' errors.
-[[nodiscard]] Calibration calibrate(const Mesh& reference, const Mesh& examined, AnalysisOptions analysis,
-                                    const CalibrationOptions& options, const std::string& referential);
+[[nodiscard]] Calibration calibrate(const Mesh& reference, const Mesh& examined,
+                                    AnalysisOptions analysis, const CalibrationOptions& options,
+                                    const std::string& referential);
 
 [[nodiscard]] std::string to_json(const Calibration& calibration);
 

@@ -23,12 +23,17 @@ FrameView frame_view(const Frame& f) {
     return {f.width, f.height, f.normal, f.primitive_id, f.depth, f.coverage};
 }
 
-FrameView frame_view(const FrameRows& r) { return {r.width, r.height, r.normal, r.primitive_id, r.depth, r.coverage}; }
+FrameView frame_view(const FrameRows& r) {
+    return {r.width, r.height, r.normal, r.primitive_id, r.depth, r.coverage};
+}
 
 void compare_pixels(const FrameView& ref, const FrameView& exa, const CompareOptions& options,
-                    std::span<float> angle_deg, std::span<float> signed_depth, std::span<std::uint8_t> silhouette) {
-    const std::size_t n = static_cast<std::size_t>(ref.width) * static_cast<std::size_t>(ref.height);
-    GLINT_ASSERT(ref.normal.size() == 3 * n && exa.normal.size() == 3 * n, "normal planes of wrong size");
+                    std::span<float> angle_deg, std::span<float> signed_depth,
+                    std::span<std::uint8_t> silhouette) {
+    const std::size_t n =
+        static_cast<std::size_t>(ref.width) * static_cast<std::size_t>(ref.height);
+    GLINT_ASSERT(ref.normal.size() == 3 * n && exa.normal.size() == 3 * n,
+                 "normal planes of wrong size");
     GLINT_ASSERT(angle_deg.size() == n && signed_depth.size() == n && silhouette.size() == n,
                  "deviation maps of wrong size");
     for (std::size_t i = 0; i < n; ++i) {
@@ -45,12 +50,16 @@ void compare_pixels(const FrameView& ref, const FrameView& exa, const CompareOpt
                 silhouette[i] = static_cast<std::uint8_t>(Silhouette::ExaminedOnly);
             continue;
         }
-        if (!covered(ref, i, options.min_coverage) || !covered(exa, i, options.min_coverage)) continue;
-        const double dot = ref.normal[3 * i] * exa.normal[3 * i] + ref.normal[3 * i + 1] * exa.normal[3 * i + 1] +
+        if (!covered(ref, i, options.min_coverage) || !covered(exa, i, options.min_coverage))
+            continue;
+        const double dot = ref.normal[3 * i] * exa.normal[3 * i] +
+                           ref.normal[3 * i + 1] * exa.normal[3 * i + 1] +
                            ref.normal[3 * i + 2] * exa.normal[3 * i + 2];
-        const double na = std::sqrt(ref.normal[3 * i] * ref.normal[3 * i] + ref.normal[3 * i + 1] * ref.normal[3 * i + 1] +
+        const double na = std::sqrt(ref.normal[3 * i] * ref.normal[3 * i] +
+                                    ref.normal[3 * i + 1] * ref.normal[3 * i + 1] +
                                     ref.normal[3 * i + 2] * ref.normal[3 * i + 2]);
-        const double nb = std::sqrt(exa.normal[3 * i] * exa.normal[3 * i] + exa.normal[3 * i + 1] * exa.normal[3 * i + 1] +
+        const double nb = std::sqrt(exa.normal[3 * i] * exa.normal[3 * i] +
+                                    exa.normal[3 * i + 1] * exa.normal[3 * i + 1] +
                                     exa.normal[3 * i + 2] * exa.normal[3 * i + 2]);
         if (!(na > 0 && nb > 0)) continue;
         const double c = std::clamp(dot / (na * nb), -1.0, 1.0);
@@ -66,8 +75,10 @@ void summarise(DeviationMap& d) {
     d.max_angle_deg = 0.0;
     double sum = 0.0;
     for (std::size_t i = 0; i < d.angle_deg.size(); ++i) {
-        if (d.silhouette[i] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly)) ++d.reference_only;
-        if (d.silhouette[i] == static_cast<std::uint8_t>(Silhouette::ExaminedOnly)) ++d.examined_only;
+        if (d.silhouette[i] == static_cast<std::uint8_t>(Silhouette::ReferenceOnly))
+            ++d.reference_only;
+        if (d.silhouette[i] == static_cast<std::uint8_t>(Silhouette::ExaminedOnly))
+            ++d.examined_only;
         const float angle = d.angle_deg[i];
         if (std::isnan(angle)) continue;
         ++d.compared;
@@ -77,12 +88,14 @@ void summarise(DeviationMap& d) {
     d.mean_angle_deg = d.compared ? sum / static_cast<double>(d.compared) : 0.0;
 }
 
-DeviationMap compare_frames(const FrameView& ref, const FrameView& exa, const CompareOptions& options) {
+DeviationMap compare_frames(const FrameView& ref, const FrameView& exa,
+                            const CompareOptions& options) {
     if (ref.width != exa.width || ref.height != exa.height)
         throw InputError("frames differ in size: reference " + std::to_string(ref.width) + "x" +
-                         std::to_string(ref.height) + ", examined " + std::to_string(exa.width) + "x" +
-                         std::to_string(exa.height));
-    const std::size_t n = static_cast<std::size_t>(ref.width) * static_cast<std::size_t>(ref.height);
+                         std::to_string(ref.height) + ", examined " + std::to_string(exa.width) +
+                         "x" + std::to_string(exa.height));
+    const std::size_t n =
+        static_cast<std::size_t>(ref.width) * static_cast<std::size_t>(ref.height);
     DeviationMap d;
     d.width = ref.width;
     d.height = ref.height;

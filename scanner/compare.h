@@ -22,10 +22,10 @@ namespace glint {
 struct FrameView {
     int width = 0;
     int height = 0;
-    std::span<const float> normal;               ///< 3 floats per pixel, unit where covered
-    std::span<const std::uint32_t> primitive;    ///< triangle id, kNoPrimitive where none
-    std::span<const float> depth;                ///< linear depth, mesh units
-    std::span<const float> coverage;             ///< 0…1 share of the pixel's sub-samples hit
+    std::span<const float> normal;             ///< 3 floats per pixel, unit where covered
+    std::span<const std::uint32_t> primitive;  ///< triangle id, kNoPrimitive where none
+    std::span<const float> depth;              ///< linear depth, mesh units
+    std::span<const float> coverage;           ///< 0…1 share of the pixel's sub-samples hit
 };
 
 enum class Silhouette : std::uint8_t { Same = 0, ReferenceOnly = 1, ExaminedOnly = 2 };
@@ -39,9 +39,9 @@ struct CompareOptions {
 struct DeviationMap {
     int width = 0;
     int height = 0;
-    std::vector<float> angle_deg;       ///< NaN where not compared
-    std::vector<float> signed_depth;    ///< NaN where not compared
-    std::vector<float> value;           ///< the sweep's metric (scanner/metric.h); NaN where not compared
+    std::vector<float> angle_deg;     ///< NaN where not compared
+    std::vector<float> signed_depth;  ///< NaN where not compared
+    std::vector<float> value;  ///< the sweep's metric (scanner/metric.h); NaN where not compared
     std::vector<std::uint8_t> silhouette;  ///< Silhouette per pixel
     std::size_t compared = 0;
     std::size_t reference_only = 0;
@@ -63,8 +63,9 @@ struct DeviationMap {
 /// compare_frames' per-pixel rule for every pixel of two views of one size, written into the
 /// spans (one entry per pixel): what a sweep runs on each band of rows as it is rendered.
 /// \pre the views have one size and the spans their pixel count.
-void compare_pixels(const FrameView& reference, const FrameView& examined, const CompareOptions& options,
-                    std::span<float> angle_deg, std::span<float> signed_depth, std::span<std::uint8_t> silhouette);
+void compare_pixels(const FrameView& reference, const FrameView& examined,
+                    const CompareOptions& options, std::span<float> angle_deg,
+                    std::span<float> signed_depth, std::span<std::uint8_t> silhouette);
 
 /// The counts and the largest and mean angle of a map (DeviationMap's statistics) from its
 /// per-pixel values, summed in pixel order.

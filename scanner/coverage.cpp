@@ -9,7 +9,8 @@ namespace glint {
 
 Coverage coverage_of(const Mesh& reference, const ZoomAtlas& atlas, const std::optional<Roi>& roi) {
     const std::size_t n = reference.vertex_count();
-    GLINT_ASSERT(atlas.weight.size() == n && atlas.count.size() == n, "atlas does not match the mesh");
+    GLINT_ASSERT(atlas.weight.size() == n && atlas.count.size() == n,
+                 "atlas does not match the mesh");
     const auto areas = vertex_areas(reference);
     Coverage c;
     c.seen.assign(n, 0);
@@ -26,7 +27,8 @@ Coverage coverage_of(const Mesh& reference, const ZoomAtlas& atlas, const std::o
     return c;
 }
 
-UnseenSummary unseen_patches(const Mesh& reference, const std::vector<std::uint8_t>& seen, const std::optional<Roi>& roi) {
+UnseenSummary unseen_patches(const Mesh& reference, const std::vector<std::uint8_t>& seen,
+                             const std::optional<Roi>& roi) {
     const std::size_t n = reference.vertex_count();
     std::vector<std::uint8_t> unseen(n, 0);
     for (std::size_t v = 0; v < n; ++v)
@@ -42,7 +44,8 @@ UnseenSummary unseen_patches(const Mesh& reference, const std::vector<std::uint8
         auto& p = s.patches[static_cast<std::size_t>(patch[v])];
         ++p.vertices;
         p.area += areas[v];
-        weighted[static_cast<std::size_t>(patch[v])] += areas[v] * reference.positions[v].cast<double>();
+        weighted[static_cast<std::size_t>(patch[v])] +=
+            areas[v] * reference.positions[v].cast<double>();
         ++s.vertices;
         s.area += areas[v];
     }

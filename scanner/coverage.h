@@ -19,14 +19,15 @@
 namespace glint {
 
 struct Coverage {
-    std::vector<std::uint8_t> seen;   ///< per vertex
-    double seen_area = 0.0;           ///< mesh units²
-    double asked_area = 0.0;          ///< mesh units²
-    double fraction = 0.0;            ///< seen / asked (0 when nothing was asked)
+    std::vector<std::uint8_t> seen;  ///< per vertex
+    double seen_area = 0.0;          ///< mesh units²
+    double asked_area = 0.0;         ///< mesh units²
+    double fraction = 0.0;           ///< seen / asked (0 when nothing was asked)
 };
 
 /// \pre atlas arrays sized as the mesh; a mask ROI already read.
-[[nodiscard]] Coverage coverage_of(const Mesh& reference, const ZoomAtlas& atlas, const std::optional<Roi>& roi);
+[[nodiscard]] Coverage coverage_of(const Mesh& reference, const ZoomAtlas& atlas,
+                                   const std::optional<Roi>& roi);
 
 /// A connected patch of unseen vertices.
 struct UnseenPatch {
@@ -42,7 +43,8 @@ struct UnseenSummary {
 };
 
 /// Unseen vertices (inside the ROI when there is one) grouped into patches through edges.
-[[nodiscard]] UnseenSummary unseen_patches(const Mesh& reference, const std::vector<std::uint8_t>& seen,
+[[nodiscard]] UnseenSummary unseen_patches(const Mesh& reference,
+                                           const std::vector<std::uint8_t>& seen,
                                            const std::optional<Roi>& roi);
 
 }  // namespace glint

@@ -55,15 +55,15 @@ struct DecisionOptions {
     DecisionRule rule = DecisionRule::Fused;
     /// Normal evidence: the threshold given (metric units: degrees for angle); else the floor.
     std::optional<double> threshold;
-    double noise_k = 6.0;               ///< normal floor: median + k·1.4826·MAD …
-    double min_threshold = 2.0;         ///< … never below this (metric units; see README)
+    double noise_k = 6.0;        ///< normal floor: median + k·1.4826·MAD …
+    double min_threshold = 2.0;  ///< … never below this (metric units; see README)
     /// A normal floor above this (degrees; scaled to the metric by its colour range) is
     /// implausible: most of the surface would then differ. It is capped and reported.
     double max_plausible_threshold_deg = 20.0;
     /// Shape evidence: the floor given (mesh units); else estimated.
     std::optional<double> shape_threshold;
-    double shape_k = 6.0;               ///< shape floor: median + k·1.4826·MAD of |shape excess| …
-    double shape_low_k = 3.0;           ///< lower (hysteresis) floor: median + k_low·1.4826·MAD
+    double shape_k = 6.0;      ///< shape floor: median + k·1.4826·MAD of |shape excess| …
+    double shape_low_k = 3.0;  ///< lower (hysteresis) floor: median + k_low·1.4826·MAD
     /// … never below this share of the bounding diagonal (the distance's numerical noise).
     double min_shape_fraction = 1e-5;
     /// A shape floor above this share of the bounding diagonal is implausible (capped, reported).
@@ -80,10 +80,11 @@ struct DecisionOptions {
 
 /// A floor and how it was obtained.
 struct Floor {
-    double value = 0.0;        ///< the threshold used (metric units, or mesh units for shape)
-    double low = 0.0;          ///< lower level (k = shape_low_k): shape growth; normal corroboration in the fused rule
+    double value = 0.0;  ///< the threshold used (metric units, or mesh units for shape)
+    double low =
+        0.0;  ///< lower level (k = shape_low_k): shape growth; normal corroboration in the fused rule
     double median = 0.0;
-    double mad = 0.0;          ///< raw median absolute deviation
+    double mad = 0.0;  ///< raw median absolute deviation
     double k = 0.0;
     double minimum = 0.0;
     bool given = false;        ///< set by the user, not estimated
@@ -93,28 +94,32 @@ struct Floor {
 };
 
 /// Robust floor of values[i] over use[i] != 0 (see file comment), capped at `plausible_max`.
-[[nodiscard]] Floor robust_floor(const std::vector<float>& values, const std::vector<std::uint8_t>& use, double k,
-                                 double minimum, double plausible_max);
+[[nodiscard]] Floor robust_floor(const std::vector<float>& values,
+                                 const std::vector<std::uint8_t>& use, double k, double minimum,
+                                 double plausible_max);
 
 /// What the decision read.
 struct DecisionEvidence {
-    const ZoomAtlas* atlas = nullptr;          ///< normal evidence and view of the maxima
-    const Coverage* coverage = nullptr;        ///< seen mask
-    const std::vector<float>* distance = nullptr;  ///< shape evidence (may be null: normal rule only)
-    const std::vector<float>* tolerance = nullptr; ///< tessellation tolerance of the distance (may be null)
-    const std::vector<std::uint8_t>* at_border = nullptr;  ///< closest examined point on a border (may be null)
+    const ZoomAtlas* atlas = nullptr;    ///< normal evidence and view of the maxima
+    const Coverage* coverage = nullptr;  ///< seen mask
+    const std::vector<float>* distance =
+        nullptr;  ///< shape evidence (may be null: normal rule only)
+    const std::vector<float>* tolerance =
+        nullptr;  ///< tessellation tolerance of the distance (may be null)
+    const std::vector<std::uint8_t>* at_border =
+        nullptr;  ///< closest examined point on a border (may be null)
     Metric metric = Metric::AngleDeg;
-    double size = 1.0;                         ///< bounding diagonal of the reference (mesh units)
+    double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
 };
 
 struct ZoomDecision {
     DecisionRule rule = DecisionRule::Normal;
-    std::string rule_text;                ///< one line stating the rule applied
+    std::string rule_text;  ///< one line stating the rule applied
     Floor normal;
-    Floor shape;                          ///< unset (rule empty) for the normal rule
+    Floor shape;  ///< unset (rule empty) for the normal rule
     RegionResult regions;
-    std::vector<std::size_t> histogram;   ///< normal evidence of seen vertices (metric's bins)
-    std::vector<std::string> warnings;    ///< implausible floors, fallbacks
+    std::vector<std::size_t> histogram;  ///< normal evidence of seen vertices (metric's bins)
+    std::vector<std::string> warnings;   ///< implausible floors, fallbacks
 };
 
 /// Applies the rule to one zoom level. \throw InputError invalid options.

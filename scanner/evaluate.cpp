@@ -7,7 +7,8 @@
 namespace glint {
 
 DetectionScore score_detection(const Mesh& reference, const std::vector<std::int32_t>& detected,
-                               const std::vector<std::uint8_t>& truth, const std::vector<Region>& regions) {
+                               const std::vector<std::uint8_t>& truth,
+                               const std::vector<Region>& regions) {
     const std::size_t n = reference.vertex_count();
     GLINT_ASSERT(detected.size() == n && truth.size() == n, "score inputs do not match the mesh");
     DetectionScore s;

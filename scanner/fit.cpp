@@ -18,15 +18,18 @@ namespace glint {
 namespace {
 
 // The starting pose from landmark pairs (points kept, picked pixels resolved).
-Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::filesystem::path& file) {
+Rigid landmark_start(const Mesh& reference, const Mesh& examined,
+                     const std::filesystem::path& file) {
     const std::vector<LandmarkPair> pairs = read_landmarks(file.string());
     const std::string source = "landmarks \"" + file.string() + "\"";
     // Indexes only when some side is a picked pixel (building one costs a BVH).
-    const bool has_pixels = std::any_of(pairs.begin(), pairs.end(),
-                                        [](const LandmarkPair& p) { return !p.examined.point || !p.reference.point; });
+    const bool has_pixels = std::any_of(pairs.begin(), pairs.end(), [](const LandmarkPair& p) {
+        return !p.examined.point || !p.reference.point;
+    });
     ResolvedLandmarks points;
     if (has_pixels) {
-        points = resolve_landmarks(pairs, ClosestPointIndex(reference), ClosestPointIndex(examined), source);
+        points = resolve_landmarks(pairs, ClosestPointIndex(reference), ClosestPointIndex(examined),
+                                   source);
     } else {
         for (const auto& p : pairs) {
             points.examined.push_back(*p.examined.point);
@@ -40,7 +43,8 @@ Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::fil
     }
 }
 
-FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+FitOutcome register_examined(const Mesh& reference, const Mesh& examined,
+                             const FitOptions& options) {
     RegistrationOptions o = options.registration;
     RegistrationSources sources;
     if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
@@ -59,7 +63,8 @@ FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const 
     out.converged = r.converged;
     out.json = to_json(r, o, sources);
     out.registration = r;
-    if (!r.converged) out.warnings.push_back("registration did not converge: " + r.termination_detail);
+    if (!r.converged)
+        out.warnings.push_back("registration did not converge: " + r.termination_detail);
     return out;
 }
 
@@ -75,10 +80,14 @@ FitMode parse_fit_mode(const std::string& text) {
 
 std::string to_string(FitMode mode) {
     switch (mode) {
-        case FitMode::Identity: return "identity";
-        case FitMode::File: return "file";
-        case FitMode::Register: return "register";
-        case FitMode::Truth: return "truth";
+        case FitMode::Identity:
+            return "identity";
+        case FitMode::File:
+            return "file";
+        case FitMode::Register:
+            return "register";
+        case FitMode::Truth:
+            return "truth";
     }
     return "?";
 }
@@ -101,8 +110,9 @@ void FitOptions::validate() const {
                           "landmarks and an initial pose \"" + init_file.string() +
                               "\" both set the starting pose: give one of them");
     if ((!landmarks_file.empty() || !init_file.empty()) && mode != FitMode::Register)
-        throw OptionError("registration.mode", to_string(mode),
-                          "landmarks and an initial pose start a registration (mode register, --register)");
+        throw OptionError(
+            "registration.mode", to_string(mode),
+            "landmarks and an initial pose start a registration (mode register, --register)");
 }
 
 FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
@@ -111,8 +121,10 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
     out.mode = options.mode;
     switch (options.mode) {
         case FitMode::Identity:
-            out.json = R"({"mode": "identity", "note": "the meshes were taken as already aligned"})";
-            out.warnings.push_back("no fit requested (--fit or --register): the meshes are taken as already aligned");
+            out.json =
+                R"({"mode": "identity", "note": "the meshes were taken as already aligned"})";
+            out.warnings.push_back(
+                "no fit requested (--fit or --register): the meshes are taken as already aligned");
             return out;
         case FitMode::Truth: {
             out.reference_from_examined = options.truth;
@@ -129,7 +141,8 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             out.reference_from_examined = read_fit(options.fit_file.string());
             out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
             return out;
-        case FitMode::Register: return register_examined(reference, examined, options);
+        case FitMode::Register:
+            return register_examined(reference, examined, options);
     }
     return out;
 }
@@ -137,7 +150,8 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
 std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_examined) {
     const ClosestPointIndex index(fitted_examined);
     std::vector<Vec3d> points(reference.vertex_count());
-    for (std::size_t v = 0; v < points.size(); ++v) points[v] = reference.positions[v].cast<double>();
+    for (std::size_t v = 0; v < points.size(); ++v)
+        points[v] = reference.positions[v].cast<double>();
     const auto d = signed_distances(index, points);
     // A reference vertex outside the examined surface (positive) means the examined surface
     // lies inside: a loss. Negate so that negative = loss, as everywhere in the atlas.
@@ -156,7 +170,8 @@ struct LocalShape {
 };
 
 LocalShape local_shape(const Mesh& m) {
-    LocalShape out{std::vector<float>(m.vertex_count(), 0.0f), std::vector<float>(m.vertex_count(), 0.0f)};
+    LocalShape out{std::vector<float>(m.vertex_count(), 0.0f),
+                   std::vector<float>(m.vertex_count(), 0.0f)};
     // note: the largest angle is the arc cosine of the smallest cosine (acos decreases): one
     // acos per vertex instead of one per corner, the same value.
     std::vector<float> min_cos(m.vertex_count(), 1.0f);
@@ -215,30 +230,33 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) 
     // ClosestPoint is 112 bytes, 112 MB at 1M vertices on top of the index at this stage's
     // peak (issue 13: peak memory at 2M triangles). Chunks of 512 neighbouring vertices keep
     // the BVH nodes they visit in cache (as ClosestPointIndex::closest does).
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 512), [&](const tbb::blocked_range<std::size_t>& range) {
-        for (std::size_t v = range.begin(); v != range.end(); ++v) {
-            const ClosestPoint c = index.closest(reference.positions[v].cast<double>());
-            // A reference vertex outside the examined surface (positive) means the examined
-            // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
-            const auto& t = exa.triangles[c.triangle];
-            e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
-            // The examined triangle's size decides how far it can cut a corner of the reference
-            // (its vertices lie on the surface, its interior does not); the sharper of the two
-            // surfaces there decides how much it turns.
-            float h = 0.0f, theta = ref_shape.sharpness[v];
-            for (const auto corner : t) {
-                h = std::max(h, exa_shape.edge[corner]);
-                theta = std::max(theta, exa_shape.sharpness[corner]);
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 512),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t v = range.begin(); v != range.end(); ++v) {
+                const ClosestPoint c = index.closest(reference.positions[v].cast<double>());
+                // A reference vertex outside the examined surface (positive) means the examined
+                // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
+                const auto& t = exa.triangles[c.triangle];
+                e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
+                // The examined triangle's size decides how far it can cut a corner of the reference
+                // (its vertices lie on the surface, its interior does not); the sharper of the two
+                // surfaces there decides how much it turns.
+                float h = 0.0f, theta = ref_shape.sharpness[v];
+                for (const auto corner : t) {
+                    h = std::max(h, exa_shape.edge[corner]);
+                    theta = std::max(theta, exa_shape.sharpness[corner]);
+                }
+                e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
+                // On the border: every corner the closest point depends on is a border vertex.
+                // note: 1e-9 separates a true zero barycentric weight from rounding.
+                bool on_border = c.feature != ClosestFeature::Face;
+                for (std::size_t k = 0; k < 3 && on_border; ++k)
+                    if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]])
+                        on_border = false;
+                e.at_border[v] = on_border ? 1 : 0;
             }
-            e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
-            // On the border: every corner the closest point depends on is a border vertex.
-            // note: 1e-9 separates a true zero barycentric weight from rounding.
-            bool on_border = c.feature != ClosestFeature::Face;
-            for (std::size_t k = 0; k < 3 && on_border; ++k)
-                if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]]) on_border = false;
-            e.at_border[v] = on_border ? 1 : 0;
-        }
-    });
+        });
     return e;
 }
 

@@ -27,7 +27,7 @@ enum class FitMode {
 
 struct FitOptions {
     FitMode mode = FitMode::Identity;
-    std::filesystem::path fit_file;        ///< File
+    std::filesystem::path fit_file;  ///< File
     /// Register: loss, samples, iterations, symmetric, coarse, ROI (a mask ROI is read by
     /// fit_examined from its file), seed, … (registration/icp.h).
     RegistrationOptions registration;
@@ -43,7 +43,7 @@ struct FitOutcome {
     Rigid reference_from_examined = Rigid::Identity();
     FitMode mode = FitMode::Identity;
     std::optional<RegistrationResult> registration;  ///< Register (and Truth, as a stub)
-    std::string json;            ///< the fit's evidence as JSON text (fit.json / report.json)
+    std::string json;  ///< the fit's evidence as JSON text (fit.json / report.json)
     bool converged = true;
     std::vector<std::string> warnings;
 };
@@ -51,11 +51,13 @@ struct FitOutcome {
 /// Fits `examined` onto `reference`: reads the fit file, the landmarks (resolving picked
 /// pixels) or the initial pose, and a mask ROI, then registers.
 /// \throw InputError bad options or files (naming them); the registration's own errors.
-[[nodiscard]] FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options);
+[[nodiscard]] FitOutcome fit_examined(const Mesh& reference, const Mesh& examined,
+                                      const FitOptions& options);
 
 /// Per reference vertex: signed distance to the (fitted) examined surface, negative where the
 /// examined surface lies inside the reference (loss, dent), positive outside (gain, bump).
-[[nodiscard]] std::vector<float> signed_distances(const Mesh& reference, const Mesh& fitted_examined);
+[[nodiscard]] std::vector<float> signed_distances(const Mesh& reference,
+                                                  const Mesh& fitted_examined);
 
 /// The shape evidence the decision reads, per reference vertex.
 ///
@@ -78,9 +80,10 @@ struct FitOutcome {
 inline constexpr double kTessellationTolerance = 0.5;
 
 struct ShapeEvidence {
-    std::vector<float> distance;        ///< signed distance, mesh units (negative = loss)
-    std::vector<float> tolerance;       ///< tessellation tolerance, mesh units (see above)
-    std::vector<std::uint8_t> at_border;  ///< 1: the closest examined point lies on its border (a hole, a cut)
+    std::vector<float> distance;   ///< signed distance, mesh units (negative = loss)
+    std::vector<float> tolerance;  ///< tessellation tolerance, mesh units (see above)
+    std::vector<std::uint8_t>
+        at_border;  ///< 1: the closest examined point lies on its border (a hole, a cut)
 };
 
 /// \pre both meshes have vertex normals (loaded meshes do).

@@ -17,7 +17,8 @@ namespace {
 // closest examined point lies on a border of the examined mesh while the distance is beyond
 // the shape floor (a hole or a cut edge, not a surface that moved).
 // note: 0.5 — the majority of the observation weight, the same rule as RegionOptions.
-std::vector<std::uint8_t> missing_mask(const DecisionEvidence& e, const std::vector<float>& excess, const Floor& shape) {
+std::vector<std::uint8_t> missing_mask(const DecisionEvidence& e, const std::vector<float>& excess,
+                                       const Floor& shape) {
     const std::size_t n = excess.size();
     std::vector<std::uint8_t> m(n, 0);
     for (std::size_t v = 0; v < n; ++v) {
@@ -82,23 +83,29 @@ Adjacency adjacency(const Mesh& mesh) {
 
 // One extent grown through the distance field (step 3).
 struct Extent {
-    Reach reach;                         // how far it grew
-    float max_normal = 0.0f;             // largest normal evidence inside
+    Reach reach;              // how far it grew
+    float max_normal = 0.0f;  // largest normal evidence inside
     std::vector<std::uint32_t> vertices;
 };
 
 class Grower {
-public:
+  public:
     Grower(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
            const std::vector<float>& signed_distance)
-        : adj_(adjacency(mesh)), e_(e), missing_(missing), distance_(signed_distance),
-          owner_(signed_distance.size(), -1), stamp_(signed_distance.size(), -1) {
-        if (e.tolerance && e.tolerance->size() == signed_distance.size()) smooth_tolerance(*e.tolerance);
+        : adj_(adjacency(mesh)),
+          e_(e),
+          missing_(missing),
+          distance_(signed_distance),
+          owner_(signed_distance.size(), -1),
+          stamp_(signed_distance.size(), -1) {
+        if (e.tolerance && e.tolerance->size() == signed_distance.size())
+            smooth_tolerance(*e.tolerance);
     }
 
     // Grows from `seeds` with `reach`. Returns the extent it touched that was grown before
     // (a stronger one, the caller merges), or -1 with the vertices in `out`.
-    std::int32_t grow(const std::vector<std::uint32_t>& seeds, const Reach& reach, std::int32_t id, Extent& out) {
+    std::int32_t grow(const std::vector<std::uint32_t>& seeds, const Reach& reach, std::int32_t id,
+                      Extent& out) {
         ++pass_;
         std::vector<std::uint32_t> stack;
         for (const auto s : seeds) {
@@ -129,7 +136,7 @@ public:
         for (const auto u : x.vertices) owner_[u] = id;
     }
 
-private:
+  private:
     // A share of the local tessellation tolerance: where a coarse tessellation lies
     // systematically off a curved surface (a chord across a crease), the offset is not a change
     // of shape and must not carry a region along.
@@ -145,7 +152,8 @@ private:
         std::vector<float> ring;
         for (std::size_t v = 0; v < t.size(); ++v) {
             ring.assign(1, t[v]);
-            for (std::uint32_t i = adj_.offset[v]; i < adj_.offset[v + 1]; ++i) ring.push_back(t[adj_.index[i]]);
+            for (std::uint32_t i = adj_.offset[v]; i < adj_.offset[v + 1]; ++i)
+                ring.push_back(t[adj_.index[i]]);
             const auto mid = ring.begin() + static_cast<std::ptrdiff_t>(ring.size() / 2);
             std::nth_element(ring.begin(), mid, ring.end());
             tolerance_[v] = *mid;
@@ -175,8 +183,9 @@ private:
 // a smooth dent does not.
 void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::uint8_t>& missing,
           const std::vector<std::int32_t>& group, const std::vector<Group>& groups,
-          const std::vector<float>& signed_distance, const std::vector<float>& signed_excess, const Floor& normal,
-          const Floor& shape, double grow_fraction, std::vector<std::uint8_t>& damaged) {
+          const std::vector<float>& signed_distance, const std::vector<float>& signed_excess,
+          const Floor& normal, const Floor& shape, double grow_fraction,
+          std::vector<std::uint8_t>& damaged) {
     std::vector<std::vector<std::uint32_t>> seeds(groups.size());
     for (std::size_t v = 0; v < group.size(); ++v)
         if (group[v] >= 0 && signed_excess[v] >= shape.value)
@@ -184,8 +193,9 @@ void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::ui
     std::vector<std::size_t> order;
     for (std::size_t g = 0; g < groups.size(); ++g)
         if (groups[g].peak_excess >= shape.value && !seeds[g].empty()) order.push_back(g);
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return groups[a].peak_distance > groups[b].peak_distance; });
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return groups[a].peak_distance > groups[b].peak_distance;
+    });
     Grower grower(mesh, e, missing, signed_distance);
     std::vector<Extent> extents;
     Extent x;
@@ -208,7 +218,8 @@ void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::ui
         x = Extent{};
     }
     for (auto& ex : extents) {
-        for (const auto u : ex.vertices) ex.max_normal = std::max(ex.max_normal, e.atlas->value_mean[u]);
+        for (const auto u : ex.vertices)
+            ex.max_normal = std::max(ex.max_normal, e.atlas->value_mean[u]);
         if (ex.max_normal >= normal.low)
             for (const auto u : ex.vertices) damaged[u] = 1;
     }
@@ -216,8 +227,8 @@ void grow(const Mesh& mesh, const DecisionEvidence& e, const std::vector<std::ui
 
 // Steps 2–4 for one sign of the shape change (+1 gain, −1 loss).
 void one_sign(const Mesh& mesh, const DecisionEvidence& e, const std::vector<float>& excess,
-              const std::vector<std::uint8_t>& missing, float sign, const Floor& normal, const Floor& shape,
-              const DecisionOptions& o, std::vector<std::uint8_t>& damaged) {
+              const std::vector<std::uint8_t>& missing, float sign, const Floor& normal,
+              const Floor& shape, const DecisionOptions& o, std::vector<std::uint8_t>& damaged) {
     const std::size_t n = excess.size();
     std::vector<float> signed_excess(n), signed_distance(n);
     std::vector<std::uint8_t> candidate(n, 0);
@@ -236,14 +247,17 @@ void one_sign(const Mesh& mesh, const DecisionEvidence& e, const std::vector<flo
         g.peak_distance = std::max(g.peak_distance, signed_distance[v]);
         g.max_normal = std::max(g.max_normal, e.atlas->value_mean[v]);
     }
-    grow(mesh, e, missing, group, groups, signed_distance, signed_excess, normal, shape, o.grow_fraction, damaged);
+    grow(mesh, e, missing, group, groups, signed_distance, signed_excess, normal, shape,
+         o.grow_fraction, damaged);
 }
 
 }  // namespace
 
-std::vector<std::uint8_t> fused_mask(const Mesh& reference, const DecisionEvidence& e, const std::vector<float>& excess,
-                                     const Floor& normal, const Floor& shape, const DecisionOptions& o) {
-    GLINT_ASSERT(e.distance && e.distance->size() == excess.size(), "fused rule without shape evidence");
+std::vector<std::uint8_t> fused_mask(const Mesh& reference, const DecisionEvidence& e,
+                                     const std::vector<float>& excess, const Floor& normal,
+                                     const Floor& shape, const DecisionOptions& o) {
+    GLINT_ASSERT(e.distance && e.distance->size() == excess.size(),
+                 "fused rule without shape evidence");
     const std::size_t n = excess.size();
     std::vector<std::uint8_t> damaged(n, 0);
     const auto missing = missing_mask(e, excess, shape);
@@ -256,8 +270,8 @@ std::vector<std::uint8_t> fused_mask(const Mesh& reference, const DecisionEviden
     return damaged;
 }
 
-void describe_evidence(RegionResult& regions, const DecisionEvidence& e, const std::vector<float>& excess,
-                       const Floor& normal, const Floor& shape) {
+void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
+                       const std::vector<float>& excess, const Floor& normal, const Floor& shape) {
     std::vector<float> peak(regions.regions.size() + 1, 0.0f);
     for (std::size_t v = 0; v < excess.size(); ++v) {
         const auto id = static_cast<std::size_t>(regions.region_of_vertex[v]);
@@ -267,14 +281,17 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e, const s
     for (auto& r : regions.regions) {
         char text[256];
         if (r.kind == RegionKind::MissingSurface)
-            std::snprintf(text, sizeof text, "no examined surface on %.0f%% of it; %s %.2f%s ≥ floor %.2f%s",
-                          100.0 * r.missing_fraction, std::string(m.name).c_str(), r.max_value,
-                          std::string(m.symbol).c_str(), normal.value, std::string(m.symbol).c_str());
+            std::snprintf(
+                text, sizeof text, "no examined surface on %.0f%% of it; %s %.2f%s ≥ floor %.2f%s",
+                100.0 * r.missing_fraction, std::string(m.name).c_str(), r.max_value,
+                std::string(m.symbol).c_str(), normal.value, std::string(m.symbol).c_str());
         else
-            std::snprintf(text, sizeof text, "shape change %+.3g beyond tessellation (floor %.3g) and %s %.2f%s (floor %.2f%s)",
-                          static_cast<double>(peak[static_cast<std::size_t>(r.id)]), shape.value,
-                          std::string(m.name).c_str(), r.max_value, std::string(m.symbol).c_str(), normal.value,
-                          std::string(m.symbol).c_str());
+            std::snprintf(
+                text, sizeof text,
+                "shape change %+.3g beyond tessellation (floor %.3g) and %s %.2f%s (floor %.2f%s)",
+                static_cast<double>(peak[static_cast<std::size_t>(r.id)]), shape.value,
+                std::string(m.name).c_str(), r.max_value, std::string(m.symbol).c_str(),
+                normal.value, std::string(m.symbol).c_str());
         r.evidence = text;
     }
 }

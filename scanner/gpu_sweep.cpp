@@ -21,9 +21,12 @@ Accumulation parse_accumulation(const std::string& text) {
 
 std::string to_string(Accumulation accumulation) {
     switch (accumulation) {
-    case Accumulation::Auto: return "auto";
-    case Accumulation::Gpu: return "gpu";
-    case Accumulation::Host: return "host";
+        case Accumulation::Auto:
+            return "auto";
+        case Accumulation::Gpu:
+            return "gpu";
+        case Accumulation::Host:
+            return "host";
     }
     return "?";
 }
@@ -32,7 +35,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 GpuAtlasOptions atlas_options(const SweepPlan& plan, const SweepOptions& options) {
     return GpuAtlasOptions{
@@ -59,8 +64,9 @@ ZoomAtlas zoom_atlas(GpuAtlasTotals&& t, double footprint) {
         a.weight[v] = static_cast<float>(w);
         a.value_mean[v] = w > 0 ? static_cast<float>(t.value_sum[v] / w) : 0.0f;
         a.missing[v] = w > 0 ? static_cast<float>(t.missing_weight[v] / w) : 0.0f;
-        a.depth_mean[v] = t.depth_weight[v] > 0 ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
-                                                 : std::numeric_limits<float>::quiet_NaN();
+        a.depth_mean[v] = t.depth_weight[v] > 0
+                              ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
+                              : std::numeric_limits<float>::quiet_NaN();
         a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
     }
     a.value_max = std::move(t.max);
@@ -73,14 +79,16 @@ ZoomAtlas zoom_atlas(GpuAtlasTotals&& t, double footprint) {
 
 }  // namespace
 
-bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Renderer& examined_renderer,
-                      const SweepPlan& plan, const SweepOptions& options, const ViewObserver& observer,
+bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer,
+                      Renderer& examined_renderer, const SweepPlan& plan,
+                      const SweepOptions& options, const ViewObserver& observer,
                       SweepResult& result) {
     if (options.accumulate == Accumulation::Host) return false;
     const GpuAtlasOptions atlas_opts = atlas_options(plan, options);
     std::string why;
     if (!GpuAtlas::supported(reference_renderer, examined_renderer, atlas_opts, &why)) {
-        if (options.accumulate == Accumulation::Gpu) throw DeviceError("sweep: accumulate = gpu, but " + why);
+        if (options.accumulate == Accumulation::Gpu)
+            throw DeviceError("sweep: accumulate = gpu, but " + why);
         result.accumulation_note = "compare and back-projection on the CPU: " + why;
         return false;
     }
@@ -108,7 +116,8 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Rende
     const auto t_read = Clock::now();
     std::vector<GpuAtlasTotals> totals = atlas.read_totals();
     GLINT_ASSERT(totals.size() == plan.footprints.size(), "one atlas per zoom");
-    GLINT_ASSERT(totals.empty() || totals[0].max.size() == reference.vertex_count(), "atlas does not match the mesh");
+    GLINT_ASSERT(totals.empty() || totals[0].max.size() == reference.vertex_count(),
+                 "atlas does not match the mesh");
     for (std::size_t z = 0; z < totals.size(); ++z) {
         SweepZoom zoom;
         zoom.atlas = zoom_atlas(std::move(totals[z]), plan.footprints[z]);

@@ -22,8 +22,9 @@ namespace glint {
 /// when accumulate is Auto) for the caller to run the read-back path.
 /// \throw DeviceError accumulate = Gpu and the GPU path cannot run; InputError as run_sweep
 /// (no view overlaps); whatever the observer throws.
-bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer, Renderer& examined_renderer,
-                      const SweepPlan& plan, const SweepOptions& options, const ViewObserver& observer,
+bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer,
+                      Renderer& examined_renderer, const SweepPlan& plan,
+                      const SweepOptions& options, const ViewObserver& observer,
                       SweepResult& result);
 
 }  // namespace glint

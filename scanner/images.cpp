@@ -9,9 +9,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 namespace glint {
 
@@ -42,28 +42,33 @@ ImageBuf colour_image(const ScalarImage& image, const ColorScale& scale) {
     const double span = scale.high > scale.low ? scale.high - scale.low : 1.0;
     for (std::size_t i = 0; i < scaled.size(); ++i) {
         const float v = image.values[i];
-        scaled[i] = std::isnan(v) ? 0.0f
-                                  : static_cast<float>(std::clamp((v - scale.low) / span, 0.0, 1.0));
+        scaled[i] =
+            std::isnan(v) ? 0.0f : static_cast<float>(std::clamp((v - scale.low) / span, 0.0, 1.0));
     }
-    norm.set_pixels(ROI(0, image.width, 0, image.height, 0, 1, 0, 1), TypeDesc::FLOAT, scaled.data());
+    norm.set_pixels(ROI(0, image.width, 0, image.height, 0, 1, 0, 1), TypeDesc::FLOAT,
+                    scaled.data());
     const auto knots = detail::diverging_knots();
-    ImageBuf rgb = scale.map == "diverging"
-                       ? IBA::color_map(norm, 0, 9, 3, OIIO::cspan<float>(knots.data(), knots.size()))
-                       : IBA::color_map(norm, 0, scale.map);
+    ImageBuf rgb =
+        scale.map == "diverging"
+            ? IBA::color_map(norm, 0, 9, 3, OIIO::cspan<float>(knots.data(), knots.size()))
+            : IBA::color_map(norm, 0, scale.map);
     if (rgb.has_error()) throw IoError("colour map '" + scale.map + "': " + rgb.geterror());
     // Grey where there is no data (patched in a plain buffer: per-pixel setpixel is slow).
     const ROI all(0, image.width, 0, image.height, 0, 1, 0, 3);
     std::vector<float> px(image.values.size() * 3);
     rgb.get_pixels(all, TypeDesc::FLOAT, px.data());
     for (std::size_t i = 0; i < image.values.size(); ++i)
-        if (std::isnan(image.values[i])) px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = scale.no_data_grey;
+        if (std::isnan(image.values[i]))
+            px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = scale.no_data_grey;
     rgb.set_pixels(all, TypeDesc::FLOAT, px.data());
     return rgb;
 }
 
 // A vertical colour bar (high at the top) of the given size.
 ImageBuf colour_bar(int width, int height, const ColorScale& scale) {
-    ScalarImage ramp{width, height, std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+    ScalarImage ramp{
+        width, height,
+        std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             ramp.values[static_cast<std::size_t>(y * width + x)] = static_cast<float>(
@@ -89,16 +94,18 @@ std::vector<Rgb8> colorize(const std::vector<float>& values, const ColorScale& s
     rgb.get_pixels(ROI(0, row.width, 0, 1, 0, 1, 0, 3), TypeDesc::FLOAT, px.data());
     for (std::size_t i = 0; i < values.size(); ++i)
         for (std::size_t c = 0; c < 3; ++c)
-            out[i][c] = static_cast<std::uint8_t>(std::lround(std::clamp(px[3 * i + c], 0.0f, 1.0f) * 255.0f));
+            out[i][c] = static_cast<std::uint8_t>(
+                std::lround(std::clamp(px[3 * i + c], 0.0f, 1.0f) * 255.0f));
     return out;
 }
 
 void write_heatmap_png(const ScalarImage& image, const ColorScale& scale, const std::string& title,
                        const fs::path& path) {
-    GLINT_ASSERT(image.values.size() == static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height),
+    GLINT_ASSERT(image.values.size() ==
+                     static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height),
                  "heat map size does not match its values");
-    constexpr int kTitle = 24;   // px reserved for the title line
-    constexpr int kBar = 80;     // px reserved on the right: bar + numbers
+    constexpr int kTitle = 24;  // px reserved for the title line
+    constexpr int kBar = 80;    // px reserved on the right: bar + numbers
     // note: coarse zooms give tiny frames; they are enlarged by an integer factor with
     // nearest-neighbour sampling (pixels stay visible as blocks) so the picture and its
     // title stay readable.
@@ -106,7 +113,8 @@ void write_heatmap_png(const ScalarImage& image, const ColorScale& scale, const 
     const int factor = std::max(1, (kMinWidth + image.width - 1) / std::max(1, image.width));
     ImageBuf picture = colour_image(image, scale);
     if (factor > 1)
-        picture = IBA::resample(picture, false, ROI(0, image.width * factor, 0, image.height * factor, 0, 1, 0, 3));
+        picture = IBA::resample(picture, false,
+                                ROI(0, image.width * factor, 0, image.height * factor, 0, 1, 0, 3));
     const int pw = image.width * factor;
     const int ph = image.height * factor;
     ImageBuf sheet(ImageSpec(pw + kBar, std::max(ph + kTitle, 120), 3, TypeDesc::FLOAT));
@@ -125,7 +133,8 @@ void write_exr_channels(const fs::path& path, int width, int height,
                         const std::vector<std::string>& names,
                         const std::vector<const std::vector<float>*>& channels,
                         const std::vector<std::pair<std::string, std::string>>& metadata) {
-    GLINT_ASSERT(names.size() == channels.size() && !names.empty(), "EXR channels and names differ");
+    GLINT_ASSERT(names.size() == channels.size() && !names.empty(),
+                 "EXR channels and names differ");
     const int nc = static_cast<int>(names.size());
     ImageSpec spec(width, height, nc, TypeDesc::FLOAT);
     spec.channelnames = names;
@@ -135,7 +144,8 @@ void write_exr_channels(const fs::path& path, int width, int height,
     std::vector<float> interleaved(n * static_cast<std::size_t>(nc));
     for (std::size_t c = 0; c < channels.size(); ++c) {
         GLINT_ASSERT(channels[c]->size() == n, "EXR channel size mismatch");
-        for (std::size_t i = 0; i < n; ++i) interleaved[i * channels.size() + c] = (*channels[c])[i];
+        for (std::size_t i = 0; i < n; ++i)
+            interleaved[i * channels.size() + c] = (*channels[c])[i];
     }
     buf.set_pixels(ROI(0, width, 0, height, 0, 1, 0, nc), TypeDesc::FLOAT, interleaved.data());
     write_atomically_to_path(path, [&](const fs::path& temp) {

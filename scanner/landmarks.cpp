@@ -18,18 +18,20 @@ View pick_view(const Mesh& mesh, const LandmarkView& view) {
     return make_view(mesh, spec);
 }
 
-ResolvedLandmarks resolve_landmarks(const std::vector<LandmarkPair>& pairs, const ClosestPointIndex& reference,
+ResolvedLandmarks resolve_landmarks(const std::vector<LandmarkPair>& pairs,
+                                    const ClosestPointIndex& reference,
                                     const ClosestPointIndex& examined, const std::string& source) {
     ResolvedLandmarks out;
-    auto resolve = [&](const LandmarkSide& side, const ClosestPointIndex& index, std::size_t pair, const char* name) {
+    auto resolve = [&](const LandmarkSide& side, const ClosestPointIndex& index, std::size_t pair,
+                       const char* name) {
         if (side.point) return *side.point;
         const View view = pick_view(index.mesh(), side.view);
         const RayHit hit = pick(index, view.camera, side.u, side.v);
         if (!hit.hit) {
             std::ostringstream s;
-            s << source << ": pair " << pair + 1 << ": the " << name << " pixel (" << side.u << ", " << side.v
-              << ") of the view azimuth " << side.view.azimuth_deg << "°, elevation " << side.view.elevation_deg
-              << "°, size " << side.view.size << " shows no surface";
+            s << source << ": pair " << pair + 1 << ": the " << name << " pixel (" << side.u << ", "
+              << side.v << ") of the view azimuth " << side.view.azimuth_deg << "°, elevation "
+              << side.view.elevation_deg << "°, size " << side.view.size << " shows no surface";
             throw InputError(s.str());
         }
         return hit.point;

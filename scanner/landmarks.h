@@ -29,6 +29,7 @@ struct ResolvedLandmarks {
 /// \throw InputError naming `source`, the pair and the side when a pixel shows no surface.
 [[nodiscard]] ResolvedLandmarks resolve_landmarks(const std::vector<LandmarkPair>& pairs,
                                                   const ClosestPointIndex& reference,
-                                                  const ClosestPointIndex& examined, const std::string& source);
+                                                  const ClosestPointIndex& examined,
+                                                  const std::string& source);
 
 }  // namespace glint

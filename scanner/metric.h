@@ -26,11 +26,11 @@ enum class Metric {
 
 struct MetricDescriptor {
     Metric id = Metric::AngleDeg;
-    std::string_view name;        ///< "angle": option value, atlas scalar and report key prefix
-    std::string_view unit;        ///< "deg": report keys and CSV headers ("angle_deg")
-    std::string_view symbol;      ///< "°": after numbers printed for people
-    std::string_view title;       ///< "angle deviation": picture titles
-    std::string_view description; ///< one line for --help and the report
+    std::string_view name;         ///< "angle": option value, atlas scalar and report key prefix
+    std::string_view unit;         ///< "deg": report keys and CSV headers ("angle_deg")
+    std::string_view symbol;       ///< "°": after numbers printed for people
+    std::string_view title;        ///< "angle deviation": picture titles
+    std::string_view description;  ///< one line for --help and the report
     /// Value of a reference pixel with no examined surface behind it (surface missing).
     float missing_value = 90.0f;
     double max_value = 180.0;     ///< largest possible value (thresholds must lie in (0, max])
@@ -40,8 +40,8 @@ struct MetricDescriptor {
     /// Per-pixel values where the comparison found an angle (NaN elsewhere), written into
     /// `value`; both frames (or bands of rows of them) and both spans one size. Pixel by
     /// pixel, so a sweep computes it band by band.
-    void (*compute)(const FrameView& reference, const FrameView& examined, std::span<const float> angle_deg,
-                    std::span<float> value) = nullptr;
+    void (*compute)(const FrameView& reference, const FrameView& examined,
+                    std::span<const float> angle_deg, std::span<float> value) = nullptr;
 };
 
 /// Every metric glint knows, the primary first.

@@ -12,7 +12,7 @@
 namespace glint {
 
 class OutputFolder {
-public:
+  public:
     /// `replace_existing`: an existing target folder is replaced on commit(); otherwise
     /// InputError names it (the CLI's --force). \throw IoError when the parent folder does
     /// not exist or is not writable; \throw InputError when the target exists and is not a
@@ -29,7 +29,7 @@ public:
     /// Moves the staging folder into place. \throw IoError.
     void commit();
 
-private:
+  private:
     std::filesystem::path target_;
     std::filesystem::path staging_;
     bool committed_ = false;

@@ -20,7 +20,8 @@ std::vector<float> vertex_distances(const Mesh& reference, const Mesh& surface) 
     return out;
 }
 
-PairTruth distance_truth(const Mesh& reference, const Mesh& damaged_examined, const std::vector<std::int32_t>& footprint,
+PairTruth distance_truth(const Mesh& reference, const Mesh& damaged_examined,
+                         const std::vector<std::int32_t>& footprint,
                          const std::vector<DamageSpec>& damages) {
     const std::size_t n = reference.vertex_count();
     GLINT_ASSERT(footprint.size() == n, "footprint does not match the reference");
@@ -54,7 +55,8 @@ RegionTally tally_regions(const std::vector<std::int32_t>& region_of_vertex, con
             true_regions.insert(r);
             detected.insert(d);
         }
-        if (!true_distance.empty() && true_distance[v] < min_true_distance) ++t.close_region_vertices;
+        if (!true_distance.empty() && true_distance[v] < min_true_distance)
+            ++t.close_region_vertices;
     }
     t.regions = regions.size();
     t.false_regions = truth ? regions.size() - true_regions.size() : 0;
@@ -63,8 +65,10 @@ RegionTally tally_regions(const std::vector<std::int32_t>& region_of_vertex, con
     return t;
 }
 
-BaselineResult distance_baseline(const Mesh& reference, const std::vector<float>& distance, double threshold) {
-    GLINT_ASSERT(distance.size() == reference.vertex_count(), "distance does not match the reference");
+BaselineResult distance_baseline(const Mesh& reference, const std::vector<float>& distance,
+                                 double threshold) {
+    GLINT_ASSERT(distance.size() == reference.vertex_count(),
+                 "distance does not match the reference");
     BaselineResult b;
     b.threshold = threshold;
     std::vector<std::uint8_t> mask(distance.size());
@@ -72,7 +76,8 @@ BaselineResult distance_baseline(const Mesh& reference, const std::vector<float>
     std::vector<std::int32_t> component;
     b.regions = masked_components(reference, mask, component);
     b.region_of_vertex.resize(component.size());
-    for (std::size_t v = 0; v < component.size(); ++v) b.region_of_vertex[v] = component[v] + 1;  // −1 → 0
+    for (std::size_t v = 0; v < component.size(); ++v)
+        b.region_of_vertex[v] = component[v] + 1;  // −1 → 0
     return b;
 }
 

@@ -35,17 +35,19 @@ struct PairTruth {
 /// How the regions of a decision (or of a baseline mask) meet the truth, region by region.
 struct RegionTally {
     std::size_t regions = 0;
-    std::size_t false_regions = 0;          ///< regions holding no damaged vertex
-    std::size_t damages = 0;                ///< damages with at least one damaged vertex
-    std::size_t damages_detected = 0;       ///< of those, touched by a region
+    std::size_t false_regions = 0;     ///< regions holding no damaged vertex
+    std::size_t damages = 0;           ///< damages with at least one damaged vertex
+    std::size_t damages_detected = 0;  ///< of those, touched by a region
     /// Region vertices whose true distance is below `min_true_distance` (pairs without labels).
     std::size_t close_region_vertices = 0;
 };
 
 /// `region_of_vertex[v]`: region id (0 = none). `truth` may be empty (then only
 /// close_region_vertices is meaningful); `true_distance` may be empty.
-[[nodiscard]] RegionTally tally_regions(const std::vector<std::int32_t>& region_of_vertex, const PairTruth* truth,
-                                        const std::vector<float>& true_distance, double min_true_distance);
+[[nodiscard]] RegionTally tally_regions(const std::vector<std::int32_t>& region_of_vertex,
+                                        const PairTruth* truth,
+                                        const std::vector<float>& true_distance,
+                                        double min_true_distance);
 
 /// What a user of a plain distance threshold gets (CloudCompare's C2M / Open3D's distance
 /// thresholded at 10 % of the depth): |distance| > threshold, connected components of the
@@ -55,7 +57,8 @@ struct BaselineResult {
     std::vector<std::int32_t> region_of_vertex;
     std::size_t regions = 0;
 };
-[[nodiscard]] BaselineResult distance_baseline(const Mesh& reference, const std::vector<float>& distance,
+[[nodiscard]] BaselineResult distance_baseline(const Mesh& reference,
+                                               const std::vector<float>& distance,
                                                double threshold);
 
 }  // namespace glint

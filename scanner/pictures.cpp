@@ -4,8 +4,8 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "render/renderer.h"
-#include "scanner/detail/canvas.h"
 #include "scanner/detail/atlas_overview.h"
+#include "scanner/detail/canvas.h"
 #include "scanner/detail/legend.h"
 #include "scanner/detail/picture_batches.h"
 #include "scanner/detail/surface_paint.h"
@@ -26,11 +26,11 @@ namespace IBA = OIIO::ImageBufAlgo;
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr int kViewMin = 384;         // px: per-view pictures are at least this large …
-constexpr int kViewMax = 512;         // … and at most this (rendered at that size, never resized)
-constexpr int kRowLabel = 58;         // px: mosaic row headings
-constexpr int kColLabel = 18;         // px: mosaic column headings
-constexpr int kGap = 2;               // px between mosaic tiles
+constexpr int kViewMin = 384;  // px: per-view pictures are at least this large …
+constexpr int kViewMax = 512;  // … and at most this (rendered at that size, never resized)
+constexpr int kRowLabel = 58;  // px: mosaic row headings
+constexpr int kColLabel = 18;  // px: mosaic column headings
+constexpr int kGap = 2;        // px between mosaic tiles
 // One ray per pixel: pictures are drawn at the size they are shown (384-512 px per view), where
 // a 2×2 footprint only smooths the silhouette's steps. note: with 2×2 the 60 per-view pictures
 // of a default sweep cost 35 M rays, more than the sweep's own two meshes (2 × 16 M); at 1×1
@@ -54,16 +54,19 @@ struct ZoomContent {
     detail::LegendContent legend;
 };
 
-detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z, const ShapeScale& scale) {
+detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
+                                 const ShapeScale& scale) {
     const auto& d = result.decisions[z];
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string u = unit_or_units(result);
-    detail::LegendContent c{.limit = scale.limit, .limit_source = scale.source,
-                            .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0, .unit = u,
+    detail::LegendContent c{.limit = scale.limit,
+                            .limit_source = scale.source,
+                            .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0,
+                            .unit = u,
                             .roi = result.sweep.plan.options.roi.has_value()};
     char b[160];
-    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value, std::string(m.unit).c_str(),
-                  to_string(d.rule).c_str());
+    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value,
+                  std::string(m.unit).c_str(), to_string(d.rule).c_str());
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
@@ -90,11 +93,16 @@ View resized(const View& v, int size) {
 }
 
 class PictureWriter {
-public:
+  public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options)
-        : reference_(reference), result_(result), options_(options), scale_(shape_scale(result)),
+        : reference_(reference),
+          result_(result),
+          options_(options),
+          scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),
-          renderer_(shared_render_context(ContextOptions{.backend = Backend::Embree, .threads = threads_}), reference,
+          renderer_(shared_render_context(
+                        ContextOptions{.backend = Backend::Embree, .threads = threads_}),
+                    reference,
                     FrameOptions{.supersample = kPictureSupersample, .share_mesh = true}) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
@@ -110,7 +118,8 @@ public:
                 if (k < d.regions.regions.size()) {
                     any = true;
                     const int v = d.regions.regions[k].best_view;
-                    if (v >= 0 && static_cast<std::size_t>(v) < result.sweep.plan.views.size() && best_.size() < kMaxBestViews)
+                    if (v >= 0 && static_cast<std::size_t>(v) < result.sweep.plan.views.size() &&
+                        best_.size() < kMaxBestViews)
                         best_.insert(v);
                 }
             if (!any) break;
@@ -123,16 +132,21 @@ public:
         std::string name = "the reference";
         for (const auto& in : options_.inputs)
             if (in.role == "reference" && !in.path.empty()) name = in.path.filename().string();
-        return detail::atlas_overview_png(renderer_, {.mesh = &reference_, .fields = &zooms_[0].fields,
-                                                      .legend = &zooms_[0].legend, .limit = scale_.limit,
-                                                      .regions = &result_.decisions[0].regions.regions,
-                                                      .plan = &result_.sweep.plan,
-                                                      .coverage = result_.sweep.zooms[0].coverage.fraction,
-                                                      .name = name, .unit = unit_or_units(result_)});
+        return detail::atlas_overview_png(renderer_,
+                                          {.mesh = &reference_,
+                                           .fields = &zooms_[0].fields,
+                                           .legend = &zooms_[0].legend,
+                                           .limit = scale_.limit,
+                                           .regions = &result_.decisions[0].regions.regions,
+                                           .plan = &result_.sweep.plan,
+                                           .coverage = result_.sweep.zooms[0].coverage.fraction,
+                                           .name = name,
+                                           .unit = unit_or_units(result_)});
     }
 
-private:
-    ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame, const ImageBuf& blank);
+  private:
+    ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
+                          const ImageBuf& blank);
 
     const Mesh& reference_;
     const AnalysisResult& result_;
@@ -146,18 +160,22 @@ private:
 };
 
 // `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
-ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame, const ImageBuf& blank) {
+ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
+                                     const ImageBuf& blank) {
     const View& v = pv.view;
     const auto z = static_cast<std::size_t>(v.zoom_index);
-    const auto painted = detail::paint_surface(reference_, frame, shown, zooms_[z].fields, {.limit = scale_.limit});
+    const auto painted =
+        detail::paint_surface(reference_, frame, shown, zooms_[z].fields, {.limit = scale_.limit});
     char title[200];
-    std::snprintf(title, sizeof title, "view %d: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)",
-                  v.index, v.azimuth_deg, v.elevation_deg, v.zoom_index,
+    std::snprintf(title, sizeof title,
+                  "view %d: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)", v.index,
+                  v.azimuth_deg, v.elevation_deg, v.zoom_index,
                   detail::format_number(v.footprint).c_str(), unit_or_units(result_).c_str());
     ImageBuf sheet = blank;
     detail::draw_title(sheet, title);
     IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, painted.image);
-    detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, painted.anchors, 14, 30);
+    detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, painted.anchors, 14,
+                                30);
     return sheet;
 }
 
@@ -173,8 +191,9 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
         const auto z = static_cast<std::size_t>(pv.view.zoom_index);
         shown.push_back(resized(pv.view, std::clamp(plan.sizes[z], kViewMin, kViewMax)));
         if (!blank.count(z))
-            blank.emplace(z, detail::framed_sheet(shown.back().camera.width, shown.back().camera.height, "",
-                                                  zooms_[z].legend));
+            blank.emplace(
+                z, detail::framed_sheet(shown.back().camera.width, shown.back().camera.height, "",
+                                        zooms_[z].legend));
     }
     // Painted and encoded on every worker; the best views' PNGs kept for the report page.
     std::vector<std::string> kept(detail::batch_size(threads_));
@@ -185,7 +204,8 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
             const ImageBuf& sheet = blank.at(static_cast<std::size_t>(pv.view.zoom_index));
             std::string png = detail::encode_png(view_picture(pv, shown[k], frame, sheet));
             if (options_.write_views)
-                write_file_atomically(folder.file(fs::path("views") / (view_file_stem(pv.view) + ".png")), png);
+                write_file_atomically(
+                    folder.file(fs::path("views") / (view_file_stem(pv.view) + ".png")), png);
             kept[slot] = best_.count(pv.view.index) ? std::move(png) : std::string();
         },
         [&](std::size_t slot, std::size_t k) {
@@ -207,16 +227,18 @@ std::string PictureWriter::mosaic(std::size_t z) {
     const int grid_w = kRowLabel + plan.columns * (t + kGap);
     const int grid_h = kColLabel + plan.rows * (t + kGap);
     char title[220];
-    std::snprintf(title, sizeof title, "signed shape change, zoom %zu (%s %s/px): %zu views, %zu region(s)", z,
-                  detail::format_number(plan.footprints[z]).c_str(), unit_or_units(result_).c_str(), members.size(),
-                  result_.decisions[z].regions.regions.size());
+    std::snprintf(title, sizeof title,
+                  "signed shape change, zoom %zu (%s %s/px): %zu views, %zu region(s)", z,
+                  detail::format_number(plan.footprints[z]).c_str(), unit_or_units(result_).c_str(),
+                  members.size(), result_.decisions[z].regions.regions.size());
     ImageBuf sheet = detail::framed_sheet(grid_w, grid_h, title, zooms_[z].legend);
     std::vector<detail::PaintedSurface> painted(detail::batch_size(threads_));
     detail::render_in_batches(
         renderer_, shown, threads_,
         [&](std::size_t slot, std::size_t k, const Frame& frame) {
-            painted[slot] = detail::paint_surface(reference_, frame, shown[k], zooms_[z].fields,
-                                                  {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
+            painted[slot] = detail::paint_surface(
+                reference_, frame, shown[k], zooms_[z].fields,
+                {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
         },
         [&](std::size_t slot, std::size_t k) {
             const PlannedView& pv = *members[k];
@@ -224,12 +246,14 @@ std::string PictureWriter::mosaic(std::size_t z) {
             const int col = rotary ? pv.step : pv.step % plan.columns;
             const int row = rotary ? pv.ring : pv.step / plan.columns;
             const int x = kRowLabel + col * (t + kGap) + (t - tile.width) / 2;
-            const int y = detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - tile.height) / 2;
+            const int y =
+                detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - tile.height) / 2;
             IBA::paste(sheet, x, y, 0, 0, painted[slot].image);
             detail::draw_region_numbers(sheet, x, y, tile.width, painted[slot].anchors, 10, 4);
             if (!rotary) {
                 char label[48];
-                std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg, pv.view.elevation_deg);
+                std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg,
+                              pv.view.elevation_deg);
                 detail::draw_text(sheet, x + 3, y + 11, label, 10, detail::kText);
             }
         });
@@ -237,13 +261,16 @@ std::string PictureWriter::mosaic(std::size_t z) {
         for (int c = 0; c < plan.columns; ++c) {
             char b[32];
             std::snprintf(b, sizeof b, "az %.0f", c * plan.options.azimuth_step_deg);
-            detail::draw_text(sheet, kRowLabel + c * (t + kGap) + t / 2, detail::kTitleHeight + 13, b, 11, detail::kText,
-                              IBA::TextAlignX::Center);
+            detail::draw_text(sheet, kRowLabel + c * (t + kGap) + t / 2, detail::kTitleHeight + 13,
+                              b, 11, detail::kText, IBA::TextAlignX::Center);
         }
         for (std::size_t r = 0; r < plan.options.elevations_deg.size(); ++r) {
             char b[32];
             std::snprintf(b, sizeof b, "el %+.0f", plan.options.elevations_deg[r]);
-            detail::draw_text(sheet, 4, detail::kTitleHeight + kColLabel + static_cast<int>(r) * (t + kGap) + t / 2 + 4, b, 11);
+            detail::draw_text(
+                sheet, 4,
+                detail::kTitleHeight + kColLabel + static_cast<int>(r) * (t + kGap) + t / 2 + 4, b,
+                11);
         }
     }
     return detail::encode_png(sheet);
@@ -260,7 +287,8 @@ ShapeScale shape_scale(const AnalysisResult& result) {
     std::vector<double> peaks;
     if (!result.decisions.empty())
         for (const auto& r : result.decisions[0].regions.regions)
-            if (r.kind != RegionKind::MissingSurface && std::isfinite(r.peak_depth)) peaks.push_back(std::abs(r.peak_depth));
+            if (r.kind != RegionKind::MissingSurface && std::isfinite(r.peak_depth))
+                peaks.push_back(std::abs(r.peak_depth));
     if (!peaks.empty()) {
         std::sort(peaks.begin(), peaks.end());
         const std::size_t m = peaks.size() / 2;
@@ -268,9 +296,11 @@ ShapeScale shape_scale(const AnalysisResult& result) {
         s.source = peaks.size() == 1 ? "region peak" : "median region peak";
     } else {
         std::vector<float> mag;
-        const auto* seen = result.sweep.zooms.empty() ? nullptr : &result.sweep.zooms[0].coverage.seen;
+        const auto* seen =
+            result.sweep.zooms.empty() ? nullptr : &result.sweep.zooms[0].coverage.seen;
         for (std::size_t v = 0; v < result.distance.size(); ++v)
-            if (std::isfinite(result.distance[v]) && (!seen || (*seen)[v])) mag.push_back(std::abs(result.distance[v]));
+            if (std::isfinite(result.distance[v]) && (!seen || (*seen)[v]))
+                mag.push_back(std::abs(result.distance[v]));
         if (!mag.empty()) {
             const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(mag.size() - 1));
             std::nth_element(mag.begin(), mag.begin() + k, mag.end());
@@ -294,19 +324,22 @@ ShapeScale shape_scale(const AnalysisResult& result) {
 
 std::string view_file_stem(const View& v) {
     char name[96];
-    std::snprintf(name, sizeof name, "z%d_az%05.1f_el%+05.1f", v.zoom_index, v.azimuth_deg, v.elevation_deg);
+    std::snprintf(name, sizeof name, "z%d_az%05.1f_el%+05.1f", v.zoom_index, v.azimuth_deg,
+                  v.elevation_deg);
     return name;
 }
 
-PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
-                             const ExportOptions& options) {
+PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
+                             const AnalysisResult& result, const ExportOptions& options) {
     PictureOutput out;
-    if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size()) return out;
+    if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size())
+        return out;
     PictureWriter writer(reference, result, options);
     writer.write_views(folder, out);
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         out.mosaics.push_back(writer.mosaic(z));
-        write_file_atomically(folder.file("mosaic_z" + std::to_string(z) + ".png"), out.mosaics.back());
+        write_file_atomically(folder.file("mosaic_z" + std::to_string(z) + ".png"),
+                              out.mosaics.back());
     }
     write_file_atomically(folder.file("atlas.png"), writer.atlas_overview());
     return out;

@@ -28,9 +28,9 @@ namespace glint {
 
 /// The colour range of the signed shape change every picture and the atlas colours use.
 struct ShapeScale {
-    double limit = 1.0;   ///< colour range ±limit, mesh units (> 0)
-    std::string source;   ///< how it was chosen, for the legend
-    double floor = 0.0;   ///< zoom 0's shape floor (0 when the rule has none)
+    double limit = 1.0;  ///< colour range ±limit, mesh units (> 0)
+    std::string source;  ///< how it was chosen, for the legend
+    double floor = 0.0;  ///< zoom 0's shape floor (0 when the rule has none)
 };
 
 /// The range: the median |peak depth| of zoom 0's dent and bump regions (the peak of a single
@@ -52,6 +52,7 @@ inline constexpr std::size_t kMaxBestViews = 24;
 
 /// Writes the pictures above into the folder. \throw IoError, DeviceError (rendering).
 [[nodiscard]] PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
-                                           const AnalysisResult& result, const ExportOptions& options);
+                                           const AnalysisResult& result,
+                                           const ExportOptions& options);
 
 }  // namespace glint

@@ -17,13 +17,16 @@ void SweepPlanOptions::validate() const {
         if (elevations_deg.empty())
             throw OptionError("elevations", "[]", "no elevation rings: the plan would be empty");
         for (double e : elevations_deg)
-            if (!(e >= -90 && e <= 90)) throw OptionError("elevations", e, "each elevation must be in [-90, 90] degrees");
+            if (!(e >= -90 && e <= 90))
+                throw OptionError("elevations", e, "each elevation must be in [-90, 90] degrees");
     } else if (sphere_views < 1) {
         throw OptionError("plan", "sphere:" + std::to_string(sphere_views), "needs N ≥ 1 views");
     }
     for (double f : footprints)
-        if (!(f > 0) || !std::isfinite(f)) throw OptionError("zoom", f, "each zoom footprint must be > 0 mesh units per pixel");
-    if (size < 8 || size > max_size) throw OptionError("size", size, "must be in [8, " + std::to_string(max_size) + "] pixels");
+        if (!(f > 0) || !std::isfinite(f))
+            throw OptionError("zoom", f, "each zoom footprint must be > 0 mesh units per pixel");
+    if (size < 8 || size > max_size)
+        throw OptionError("size", size, "must be in [8, " + std::to_string(max_size) + "] pixels");
     if (!(margin >= 1.0)) throw OptionError("margin", margin, "must be ≥ 1");
 }
 
@@ -37,7 +40,8 @@ void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {
         const auto v = parse_number_list(text.substr(7), "plan '" + text + "'");
         // note: 100000 views bound a plan well beyond any sweep (and keep the cast defined).
         if (v.size() != 1 || !(v[0] >= 1 && v[0] <= 100000) || v[0] != std::floor(v[0]))
-            throw InputError("plan '" + text + "': expected sphere:N with N an integer from 1 to 100000");
+            throw InputError("plan '" + text +
+                             "': expected sphere:N with N an integer from 1 to 100000");
         options.sphere_views = static_cast<int>(v[0]);
         return;
     }
@@ -61,22 +65,26 @@ std::vector<std::uint32_t> framed_vertices(const Mesh& reference, const SweepPla
     }
     const Roi& roi = *options.roi;
     if (roi.shape == Roi::Shape::VertexMask && roi.vertex_mask.size() != reference.vertex_count())
-        throw InputError("ROI " + to_string(roi) + ": the mask has " + std::to_string(roi.vertex_mask.size()) +
-                         " entries, the reference has " + std::to_string(reference.vertex_count()) + " vertices");
+        throw InputError("ROI " + to_string(roi) + ": the mask has " +
+                         std::to_string(roi.vertex_mask.size()) + " entries, the reference has " +
+                         std::to_string(reference.vertex_count()) + " vertices");
     for (std::size_t v = 0; v < reference.vertex_count(); ++v)
-        if (roi.contains(v, reference.positions[v].cast<double>())) framed.push_back(static_cast<std::uint32_t>(v));
-    if (framed.empty()) throw InputError("ROI " + to_string(roi) + " contains no vertex of the reference mesh");
+        if (roi.contains(v, reference.positions[v].cast<double>()))
+            framed.push_back(static_cast<std::uint32_t>(v));
+    if (framed.empty())
+        throw InputError("ROI " + to_string(roi) + " contains no vertex of the reference mesh");
     return framed;
 }
 
 // Centre and radius of the framed sphere.
-void frame(const Mesh& reference, const SweepPlanOptions& options, const std::vector<std::uint32_t>& framed,
-           SweepPlan& plan) {
+void frame(const Mesh& reference, const SweepPlanOptions& options,
+           const std::vector<std::uint32_t>& framed, SweepPlan& plan) {
     Bounds box;
     for (auto v : framed) box.extend(reference.positions[v]);
     plan.target = box.center().cast<double>();
     double r = 0.0;
-    for (auto v : framed) r = std::max(r, (reference.positions[v].cast<double>() - plan.target).norm());
+    for (auto v : framed)
+        r = std::max(r, (reference.positions[v].cast<double>() - plan.target).norm());
     if (!(r > 0) && options.roi) {
         // A single vertex in the ROI: frame the ROI shape itself.
         const auto& roi = *options.roi;
@@ -92,21 +100,24 @@ void frame(const Mesh& reference, const SweepPlanOptions& options, const std::ve
 
 // Footprints and the image size that frames the sphere at each.
 void zoom_levels(const SweepPlanOptions& options, SweepPlan& plan) {
-    plan.footprints = options.footprints.empty() ? std::vector<double>{2.0 * plan.radius / options.size} : options.footprints;
+    plan.footprints = options.footprints.empty()
+                          ? std::vector<double>{2.0 * plan.radius / options.size}
+                          : options.footprints;
     for (double f : plan.footprints) {
         const double size = std::ceil(2.0 * plan.radius / f);
         if (size > options.max_size) {
             std::ostringstream s;
-            s << "sweep plan: zoom footprint " << f << " needs " << size << " px to frame a radius of " << plan.radius
-              << " (max size " << options.max_size << "): choose a coarser zoom, a larger max size, or an ROI";
+            s << "sweep plan: zoom footprint " << f << " needs " << size
+              << " px to frame a radius of " << plan.radius << " (max size " << options.max_size
+              << "): choose a coarser zoom, a larger max size, or an ROI";
             throw InputError(s.str());
         }
         // note: below 4 px across, the framed part is a dot: no view would compare anything.
         if (size < 4.0) {
             std::ostringstream s;
-            s << "sweep plan: zoom footprint " << f << " frames a radius of " << plan.radius << " in only " << size
-              << " px, expected at least 4 px across (a footprint ≤ " << 2.0 * plan.radius / 4.0
-              << "): choose a finer zoom";
+            s << "sweep plan: zoom footprint " << f << " frames a radius of " << plan.radius
+              << " in only " << size << " px, expected at least 4 px across (a footprint ≤ "
+              << 2.0 * plan.radius / 4.0 << "): choose a finer zoom";
             throw InputError(s.str());
         }
         plan.sizes.push_back(std::max(8, static_cast<int>(size)));
@@ -116,10 +127,12 @@ void zoom_levels(const SweepPlanOptions& options, SweepPlan& plan) {
 std::vector<Direction> directions(const SweepPlanOptions& options, SweepPlan& plan) {
     std::vector<Direction> dirs;
     if (options.kind == SweepPlanOptions::Kind::Rotary) {
-        const int steps = std::max(1, static_cast<int>(std::round(360.0 / options.azimuth_step_deg)));
+        const int steps =
+            std::max(1, static_cast<int>(std::round(360.0 / options.azimuth_step_deg)));
         for (std::size_t ring = 0; ring < options.elevations_deg.size(); ++ring)
             for (int s = 0; s < steps; ++s)
-                dirs.push_back({s * options.azimuth_step_deg, options.elevations_deg[ring], static_cast<int>(ring), s});
+                dirs.push_back({s * options.azimuth_step_deg, options.elevations_deg[ring],
+                                static_cast<int>(ring), s});
         plan.columns = steps;
         plan.rows = static_cast<int>(options.elevations_deg.size());
         return dirs;
@@ -130,7 +143,8 @@ std::vector<Direction> directions(const SweepPlanOptions& options, SweepPlan& pl
     for (int i = 0; i < n; ++i) {
         const double z = 1.0 - (2.0 * i + 1.0) / n;
         const double lon = std::fmod(golden * i, 2.0 * std::numbers::pi);
-        dirs.push_back({lon * 180.0 / std::numbers::pi, std::asin(z) * 180.0 / std::numbers::pi, 0, i});
+        dirs.push_back(
+            {lon * 180.0 / std::numbers::pi, std::asin(z) * 180.0 / std::numbers::pi, 0, i});
     }
     plan.columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
     plan.rows = (n + plan.columns - 1) / plan.columns;
@@ -165,7 +179,8 @@ PlannedView planned_view(const SweepPlan& plan, const Direction& d, std::size_t 
     const Vec3d dir = direction_from_az_el(d.az, d.el);
     Camera& cam = v.view.camera;
     cam.projection = Projection::Orthographic;
-    cam.world_from_camera = look_at(plan.target + 3.0 * plan.radius * dir, plan.target, Vec3d::UnitZ());
+    cam.world_from_camera =
+        look_at(plan.target + 3.0 * plan.radius * dir, plan.target, Vec3d::UnitZ());
     cam.width = cam.height = plan.sizes[zoom];
     cam.ortho_half_height = 0.5 * plan.sizes[zoom] * plan.footprints[zoom];
     cam.near_plane = 1.0 * plan.radius;  // the framed sphere spans 2R..4R from the eye

@@ -25,15 +25,15 @@ namespace glint {
 
 struct SweepPlanOptions {
     enum class Kind { Rotary, Sphere } kind = Kind::Rotary;
-    double azimuth_step_deg = 30.0;                          ///< rotary: 0 < step ≤ 360
-    std::vector<double> elevations_deg{-60, -30, 0, 30, 60}; ///< rotary: each in [-90, 90]
-    int sphere_views = 64;                                   ///< sphere: N ≥ 1
+    double azimuth_step_deg = 30.0;                           ///< rotary: 0 < step ≤ 360
+    std::vector<double> elevations_deg{-60, -30, 0, 30, 60};  ///< rotary: each in [-90, 90]
+    int sphere_views = 64;                                    ///< sphere: N ≥ 1
     /// Footprints in mesh units per pixel, finest first is not required. Empty: one level
     /// framing the sphere in `size` pixels.
     std::vector<double> footprints;
-    int size = 256;            ///< image size (square) of the level framing the whole sphere
-    int max_size = 4096;       ///< larger images are refused (choose an ROI or a coarser zoom)
-    double margin = 1.05;      ///< framed radius = margin × bounding radius
+    int size = 256;        ///< image size (square) of the level framing the whole sphere
+    int max_size = 4096;   ///< larger images are refused (choose an ROI or a coarser zoom)
+    double margin = 1.05;  ///< framed radius = margin × bounding radius
     /// Analyse only this part of the reference (mesh/roi.h); a vertex mask must be read.
     std::optional<Roi> roi;
 
@@ -43,20 +43,20 @@ struct SweepPlanOptions {
 
 /// One view of the plan.
 struct PlannedView {
-    View view;                 ///< camera, azimuth / elevation, footprint, zoom and view index
-    int ring = 0;              ///< rotary: elevation ring index (mosaic row); sphere: 0
-    int step = 0;              ///< rotary: azimuth step (mosaic column); sphere: the view id
+    View view;     ///< camera, azimuth / elevation, footprint, zoom and view index
+    int ring = 0;  ///< rotary: elevation ring index (mosaic row); sphere: 0
+    int step = 0;  ///< rotary: azimuth step (mosaic column); sphere: the view id
 };
 
 struct SweepPlan {
     SweepPlanOptions options;
-    Vec3d target{0, 0, 0};     ///< framed sphere centre
-    double radius = 0.0;       ///< framed sphere radius (with margin)
+    Vec3d target{0, 0, 0};           ///< framed sphere centre
+    double radius = 0.0;             ///< framed sphere radius (with margin)
     std::vector<double> footprints;  ///< per zoom level, as used
     std::vector<int> sizes;          ///< image size per zoom level
     std::vector<PlannedView> views;
-    int columns = 1;           ///< mosaic layout (rotary: azimuth steps)
-    int rows = 1;              ///< mosaic layout (rotary: elevation rings)
+    int columns = 1;               ///< mosaic layout (rotary: azimuth steps)
+    int rows = 1;                  ///< mosaic layout (rotary: elevation rings)
     std::size_t roi_vertices = 0;  ///< vertices inside the ROI (0 without ROI)
 };
 

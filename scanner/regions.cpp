@@ -10,9 +10,12 @@ namespace glint {
 
 std::string to_string(RegionKind kind) {
     switch (kind) {
-        case RegionKind::Dent: return "dent";
-        case RegionKind::Bump: return "bump";
-        case RegionKind::MissingSurface: return "missing surface";
+        case RegionKind::Dent:
+            return "dent";
+        case RegionKind::Bump:
+            return "bump";
+        case RegionKind::MissingSurface:
+            return "missing surface";
     }
     return "?";
 }
@@ -68,14 +71,15 @@ std::size_t fill_enclosed_holes(const Mesh& mesh, const std::vector<std::uint8_t
 struct Accumulated {
     Region r;
     double value_area = 0.0;
-    double shape_area = 0.0;       // area with a known shape change
+    double shape_area = 0.0;  // area with a known shape change
     double missing_area = 0.0;
     double best_value = -1.0;
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
 };
 
-void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area, const RegionFields& f) {
+void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
+                const RegionFields& f) {
     const double value = (*f.value)[v];
     g.vertices.push_back(static_cast<std::uint32_t>(v));
     g.r.area += area;
@@ -107,8 +111,9 @@ void finish(Accumulated& g, const RegionOptions& options) {
 
 }  // namespace
 
-RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged, const std::vector<std::uint8_t>& seen,
-                          const RegionFields& fields, const RegionOptions& options) {
+RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
+                          const std::vector<std::uint8_t>& seen, const RegionFields& fields,
+                          const RegionOptions& options) {
     const std::size_t n = mesh.vertex_count();
     GLINT_ASSERT(fields.value && fields.value->size() == n, "value field does not match the mesh");
     GLINT_ASSERT(seen.size() == n && damaged.size() == n, "masks do not match the mesh");
@@ -124,7 +129,8 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged, c
     const auto areas = vertex_areas(mesh);
     std::vector<Accumulated> groups(count);
     for (std::size_t v = 0; v < n; ++v)
-        if (group[v] >= 0) accumulate(groups[static_cast<std::size_t>(group[v])], mesh, v, areas[v], fields);
+        if (group[v] >= 0)
+            accumulate(groups[static_cast<std::size_t>(group[v])], mesh, v, areas[v], fields);
     std::vector<Accumulated*> kept;
     for (auto& g : groups) {
         if (g.vertices.size() < options.min_vertices) {
@@ -134,7 +140,9 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged, c
         finish(g, options);
         kept.push_back(&g);
     }
-    std::stable_sort(kept.begin(), kept.end(), [](const Accumulated* a, const Accumulated* b) { return a->r.area > b->r.area; });
+    std::stable_sort(kept.begin(), kept.end(), [](const Accumulated* a, const Accumulated* b) {
+        return a->r.area > b->r.area;
+    });
     result.region_of_vertex.assign(n, 0);
     for (std::size_t i = 0; i < kept.size(); ++i) {
         kept[i]->r.id = static_cast<std::int32_t>(i + 1);

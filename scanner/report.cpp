@@ -10,8 +10,8 @@
 #include "scanner/pictures.h"
 #include "scanner/report_html.h"
 
-#include <nlohmann/json.hpp>
 #include <openssl/evp.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -38,25 +38,27 @@ json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 std::string zoom_suffix(std::size_t z) { return "_z" + std::to_string(z); }
 
-json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m, double peak_value) {
+json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m,
+                 double peak_value) {
     const std::string u = "_" + std::string(m.unit);
     const std::string nu = "_" + std::string(m.name) + u;
-    json j = {{"id", r.id},
-              {"kind", to_string(r.kind)},
-              {"vertices", r.vertex_count},
-              {"area", r.area},
-              {"max" + u, r.max_value},  // kept for readers: the largest per-vertex mean (max_mean_…)
-              {"mean" + u, r.mean_value},
-              {"max_mean" + nu, r.max_value},
-              {"mean" + nu, r.mean_value},
-              {"max" + nu, number(peak_value)},
-              {"peak_depth", number(r.peak_depth)},
-              {"mean_depth", number(r.mean_depth)},
-              {"volume", number(r.volume)},
-              {"missing_fraction", r.missing_fraction},
-              {"centroid", vec_json(r.centroid)},
-              {"evidence", r.evidence},
-              {"best_view", r.best_view}};
+    json j = {
+        {"id", r.id},
+        {"kind", to_string(r.kind)},
+        {"vertices", r.vertex_count},
+        {"area", r.area},
+        {"max" + u, r.max_value},  // kept for readers: the largest per-vertex mean (max_mean_…)
+        {"mean" + u, r.mean_value},
+        {"max_mean" + nu, r.max_value},
+        {"mean" + nu, r.mean_value},
+        {"max" + nu, number(peak_value)},
+        {"peak_depth", number(r.peak_depth)},
+        {"mean_depth", number(r.mean_depth)},
+        {"volume", number(r.volume)},
+        {"missing_fraction", r.missing_fraction},
+        {"centroid", vec_json(r.centroid)},
+        {"evidence", r.evidence},
+        {"best_view", r.best_view}};
     if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {
         const auto& v = plan.views[static_cast<std::size_t>(r.best_view)].view;
         j["best_view_azimuth_deg"] = v.azimuth_deg;
@@ -76,7 +78,8 @@ std::vector<double> region_peak_values(const AnalysisResult& result, std::size_t
         const auto id = d.regions.region_of_vertex[v];
         if (id <= 0 || static_cast<std::size_t>(id) >= peak.size() || !seen[v]) continue;
         double& p = peak[static_cast<std::size_t>(id)];
-        p = std::isnan(p) ? atlas.value_max[v] : std::max(p, static_cast<double>(atlas.value_max[v]));
+        p = std::isnan(p) ? atlas.value_max[v]
+                          : std::max(p, static_cast<double>(atlas.value_max[v]));
     }
     return peak;
 }
@@ -86,14 +89,21 @@ json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& pla
     json list = json::array();
     for (const auto& p : u.patches) {
         if (list.size() >= 50) break;
-        list.push_back({{"vertices", p.vertices}, {"area", p.area}, {"centroid", vec_json(p.centroid)}});
+        list.push_back(
+            {{"vertices", p.vertices}, {"area", p.area}, {"centroid", vec_json(p.centroid)}});
     }
-    return {{"vertices", u.vertices}, {"area", u.area}, {"patches", u.patches.size()}, {"largest_patches", list}};
+    return {{"vertices", u.vertices},
+            {"area", u.area},
+            {"patches", u.patches.size()},
+            {"largest_patches", list}};
 }
 
 json floor_json(const Floor& f) {
-    return {{"value", f.value}, {"low", f.low}, {"median", f.median}, {"mad", f.mad}, {"k", f.k}, {"minimum", f.minimum},
-            {"given", f.given}, {"implausible", f.implausible}, {"rule", f.rule}, {"note", f.note}};
+    return {{"value", f.value},   {"low", f.low},
+            {"median", f.median}, {"mad", f.mad},
+            {"k", f.k},           {"minimum", f.minimum},
+            {"given", f.given},   {"implausible", f.implausible},
+            {"rule", f.rule},     {"note", f.note}};
 }
 
 json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
@@ -120,10 +130,12 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
               {"filled_vertices", d.regions.filled_vertices},
               {"dropped_small_groups", d.regions.dropped_small},
               {"regions", regions},
-              {"histogram", {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
-                             {"bin_width", m.histogram_bin}, {"unit", std::string(m.unit)},
-                             {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
-                             {"counts", d.histogram}}},
+              {"histogram",
+               {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
+                {"bin_width", m.histogram_bin},
+                {"unit", std::string(m.unit)},
+                {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
+                {"counts", d.histogram}}},
               {"warnings", d.warnings}};
     return j;
 }
@@ -143,18 +155,25 @@ json inputs_json(const std::vector<InputRecord>& inputs) {
 }
 
 json plan_json(const SweepPlan& plan) {
-    return {{"footprints", plan.footprints}, {"image_sizes", plan.sizes}, {"target", vec_json(plan.target)},
-            {"radius", plan.radius}, {"roi_vertices", plan.roi_vertices}, {"views", plan.views.size()}};
+    return {{"footprints", plan.footprints},     {"image_sizes", plan.sizes},
+            {"target", vec_json(plan.target)},   {"radius", plan.radius},
+            {"roi_vertices", plan.roi_vertices}, {"views", plan.views.size()}};
 }
 
 json views_json(const SweepResult& s) {
     json views = json::array();
     for (const auto& v : s.views) {
         const View& pv = s.plan.views[static_cast<std::size_t>(v.index)].view;
-        views.push_back({{"index", v.index}, {"azimuth_deg", pv.azimuth_deg}, {"elevation_deg", pv.elevation_deg},
-                         {"zoom", pv.zoom_index}, {"reference_pixels", v.reference_pixels}, {"compared", v.compared},
-                         {"reference_only", v.reference_only}, {"examined_only", v.examined_only},
-                         {"max_angle_deg", v.max_angle_deg}, {"mean_angle_deg", v.mean_angle_deg}});
+        views.push_back({{"index", v.index},
+                         {"azimuth_deg", pv.azimuth_deg},
+                         {"elevation_deg", pv.elevation_deg},
+                         {"zoom", pv.zoom_index},
+                         {"reference_pixels", v.reference_pixels},
+                         {"compared", v.compared},
+                         {"reference_only", v.reference_only},
+                         {"examined_only", v.examined_only},
+                         {"max_angle_deg", v.max_angle_deg},
+                         {"mean_angle_deg", v.mean_angle_deg}});
     }
     return views;
 }
@@ -162,12 +181,18 @@ json views_json(const SweepResult& s) {
 // What every length in this report is measured in, and how that was found.
 json units_json(const AnalysisResult& r) {
     const std::string u = r.unit.empty() ? "units" : r.unit;
-    return {{"length", u}, {"area", u + "²"}, {"volume", u + "³"},
+    return {{"length", u},
+            {"area", u + "²"},
+            {"volume", u + "³"},
             {"known", !r.unit.empty()},
-            {"note", r.unit.empty() ? "unknown: the files state no unit and none was given (--unit, scenario key unit)"
-                                    : "every length, area and volume in this report (depths, distances, footprints, "
-                                      "centroids, sizes) is in " + r.unit},
-            {"reference_size", r.units.reference_size}, {"examined_size", r.units.examined_size},
+            {"note",
+             r.unit.empty()
+                 ? "unknown: the files state no unit and none was given (--unit, scenario key unit)"
+                 : "every length, area and volume in this report (depths, distances, footprints, "
+                   "centroids, sizes) is in " +
+                       r.unit},
+            {"reference_size", r.units.reference_size},
+            {"examined_size", r.units.examined_size},
             {"examined_scale", r.units.examined_scale}};
 }
 
@@ -189,7 +214,8 @@ std::string sha256_file(const fs::path& path) {
     EVP_DigestFinal_ex(ctx, digest, &len);
     EVP_MD_CTX_free(ctx);
     std::ostringstream hex;
-    for (unsigned int i = 0; i < len; ++i) hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
+    for (unsigned int i = 0; i < len; ++i)
+        hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
     return hex.str();
 }
 
@@ -236,26 +262,37 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
         std::vector<float> shown(result.distance);
         for (std::size_t v = 0; v < n; ++v)
             if (!result.sweep.zooms[0].coverage.seen[v]) shown[v] = kNaN;
-        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit, .high = shape.limit, .map = "diverging",
+        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit,
+                                                  .high = shape.limit,
+                                                  .map = "diverging",
                                                   .no_data_grey = 0.6f});
     }
     return atlas;
 }
 
-std::string report_json(const Mesh& reference, const AnalysisResult& result, const AnalysisOptions& options) {
+std::string report_json(const Mesh& reference, const AnalysisResult& result,
+                        const AnalysisOptions& options) {
     const auto& s = result.sweep;
     const MetricDescriptor& m = describe(s.options.metric);
     json zooms = json::array();
-    for (std::size_t z = 0; z < s.zooms.size(); ++z) zooms.push_back(zoom_json(reference, result, z));
+    for (std::size_t z = 0; z < s.zooms.size(); ++z)
+        zooms.push_back(zoom_json(reference, result, z));
     json report = {
         {"glint_version", kVersion},
         {"command_line", options.exports.command_line},
         {"inputs", inputs_json(options.exports.inputs)},
-        {"device", {{"backend", to_string(s.renderer.backend)}, {"name", s.renderer.device_name},
-                    {"type", s.renderer.device_type}, {"warnings", s.renderer.warnings},
-                    {"compare_on", s.on_gpu ? "gpu" : "cpu"}, {"compare_note", s.accumulation_note}}},
+        {"device",
+         {{"backend", to_string(s.renderer.backend)},
+          {"name", s.renderer.device_name},
+          {"type", s.renderer.device_type},
+          {"warnings", s.renderer.warnings},
+          {"compare_on", s.on_gpu ? "gpu" : "cpu"},
+          {"compare_note", s.accumulation_note}}},
         {"analysis", json::parse(to_json(options))},
-        {"metric", {{"name", std::string(m.name)}, {"unit", std::string(m.unit)}, {"description", std::string(m.description)}}},
+        {"metric",
+         {{"name", std::string(m.name)},
+          {"unit", std::string(m.unit)},
+          {"description", std::string(m.description)}}},
         {"plan", plan_json(s.plan)},
         {"size", result.size},
         {"unit", result.unit.empty() ? json(nullptr) : json(result.unit)},
@@ -263,9 +300,14 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result, con
         {"fit", result.fit.json.empty() ? json(nullptr) : json::parse(result.fit.json)},
         {"zooms", zooms},
         {"views", views_json(s)},
-        {"timings_s", {{"fit", result.fit_seconds}, {"distance", result.distance_seconds}, {"render", s.render_seconds},
-                       {"compare_and_atlas", s.compare_seconds}, {"sweep_total", s.total_seconds},
-                       {"decision", result.decision_seconds}, {"total", result.total_seconds}}},
+        {"timings_s",
+         {{"fit", result.fit_seconds},
+          {"distance", result.distance_seconds},
+          {"render", s.render_seconds},
+          {"compare_and_atlas", s.compare_seconds},
+          {"sweep_total", s.total_seconds},
+          {"decision", result.decision_seconds},
+          {"total", result.total_seconds}}},
         {"warnings", result.warnings},
     };
     return report.dump(2) + "\n";
@@ -274,14 +316,15 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result, con
 std::string regions_csv(const AnalysisResult& result) {
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string nu = std::string(m.name) + "_" + std::string(m.unit);
-    const std::string l = unit_suffix(result.unit), a2 = unit_suffix(result.unit, 2), v3 = unit_suffix(result.unit, 3);
+    const std::string l = unit_suffix(result.unit), a2 = unit_suffix(result.unit, 2),
+                      v3 = unit_suffix(result.unit, 3);
     std::ostringstream csv;
     // max_<metric>: the strongest pixel deviation seen in the region; max_mean_<metric>: the
     // largest per-vertex mean (the field regions are grown on); mean_<metric>: area-weighted.
-    csv << "zoom,footprint" << l << "_per_px,region,kind,vertices,area" << a2 << ",max_" << nu << ",max_mean_" << nu
-        << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l << ",volume" << v3
-        << ",missing_fraction,centroid_x" << l << ",centroid_y" << l << ",centroid_z" << l
-        << ",best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
+    csv << "zoom,footprint" << l << "_per_px,region,kind,vertices,area" << a2 << ",max_" << nu
+        << ",max_mean_" << nu << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l
+        << ",volume" << v3 << ",missing_fraction,centroid_x" << l << ",centroid_y" << l
+        << ",centroid_z" << l << ",best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
     const auto& plan = result.sweep.plan;
     for (std::size_t z = 0; z < result.decisions.size(); ++z) {
         const std::vector<double> peaks = region_peak_values(result, z);
@@ -292,12 +335,13 @@ std::string regions_csv(const AnalysisResult& result) {
                 el = plan.views[static_cast<std::size_t>(r.best_view)].view.elevation_deg;
             }
             char row[700];
-            std::snprintf(row, sizeof row,
-                          "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
-                          plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
-                          peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, r.peak_depth, r.mean_depth,
-                          r.volume, r.missing_fraction, r.centroid.x(), r.centroid.y(), r.centroid.z(), r.best_view, az,
-                          el);
+            std::snprintf(
+                row, sizeof row,
+                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
+                z, plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
+                peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, r.peak_depth,
+                r.mean_depth, r.volume, r.missing_fraction, r.centroid.x(), r.centroid.y(),
+                r.centroid.z(), r.best_view, az, el);
             csv << row;
         }
     }
@@ -311,7 +355,8 @@ void write_outputs(const OutputFolder& folder, const Mesh& reference, const Anal
         // files are written.
         Mesh atlas = make_atlas_mesh(reference, result);
         for (const auto& [name, values] : options.exports.extra_scalars) {
-            GLINT_ASSERT(values.size() == reference.vertex_count(), "extra atlas scalar '" + name + "' has the wrong length");
+            GLINT_ASSERT(values.size() == reference.vertex_count(),
+                         "extra atlas scalar '" + name + "' has the wrong length");
             atlas.set_scalar(name, values);
         }
         WriteOptions viewers;
@@ -325,7 +370,8 @@ void write_outputs(const OutputFolder& folder, const Mesh& reference, const Anal
     const std::string json_text = report_json(reference, result, options);
     write_file_atomically(folder.file("report.json"), json_text);
     const PictureOutput pictures = write_pictures(folder, reference, result, options.exports);
-    write_file_atomically(folder.file("report.html"), report_html(reference, result, json_text, pictures));
+    write_file_atomically(folder.file("report.html"),
+                          report_html(reference, result, json_text, pictures));
 }
 
 }  // namespace glint

@@ -42,7 +42,7 @@ inline constexpr std::size_t kReportPageTriangles = 250000;
 
 /// Replaces every @NAME@ (capitals, digits, _) of `page_template` by values[NAME], in one pass:
 /// inserted text is never scanned again. \throw std::logic_error for a name without a value.
-[[nodiscard]] std::string fill_template(std::string_view page_template,
-                                        const std::vector<std::pair<std::string, std::string>>& values);
+[[nodiscard]] std::string fill_template(
+    std::string_view page_template, const std::vector<std::pair<std::string, std::string>>& values);
 
 }  // namespace glint

@@ -29,39 +29,57 @@ void parse_key(TableReader& r, const std::string& key, const char* expected, Par
 }
 
 void read_registration(TableReader& r, const fs::path& dir, FitOptions& f) {
-    parse_key(r, "mode", "a string (register, truth, identity, file)", [&](const std::string& v) { f.mode = parse_fit_mode(v); });
-    parse_key(r, "loss", "a string (cauchy, huber, tukey, none)", [&](const std::string& v) { f.registration.loss = parse_loss(v); });
+    parse_key(r, "mode", "a string (register, truth, identity, file)",
+              [&](const std::string& v) { f.mode = parse_fit_mode(v); });
+    parse_key(r, "loss", "a string (cauchy, huber, tukey, none)",
+              [&](const std::string& v) { f.registration.loss = parse_loss(v); });
     parse_key(r, "roi", "a string (sphere:x,y,z,r, box:… or mask:FILE)", [&](const std::string& v) {
         Roi roi = parse_roi(v);
-        if (roi.shape == Roi::Shape::VertexMask) roi.mask_file = local_path(dir, roi.mask_file.string());
+        if (roi.shape == Roi::Shape::VertexMask)
+            roi.mask_file = local_path(dir, roi.mask_file.string());
         f.registration.roi = roi;
     });
     if (auto v = r.optional<bool>("symmetric", "a boolean")) f.registration.symmetric = *v;
     if (auto v = r.optional<bool>("coarse", "a boolean")) f.registration.coarse = *v;
-    if (auto v = r.optional<std::int64_t>("samples", "an integer")) f.registration.samples = static_cast<int>(*v);
-    if (auto v = r.optional<std::int64_t>("max_iterations", "an integer")) f.registration.max_iterations = static_cast<int>(*v);
-    if (auto v = r.optional<std::string>("fit", "a string (a fit.json path)")) f.fit_file = local_path(dir, *v);
-    if (auto v = r.optional<std::string>("landmarks", "a string (a landmarks JSON path)")) f.landmarks_file = local_path(dir, *v);
-    if (auto v = r.optional<std::string>("init", "a string (a fit.json path)")) f.init_file = local_path(dir, *v);
+    if (auto v = r.optional<std::int64_t>("samples", "an integer"))
+        f.registration.samples = static_cast<int>(*v);
+    if (auto v = r.optional<std::int64_t>("max_iterations", "an integer"))
+        f.registration.max_iterations = static_cast<int>(*v);
+    if (auto v = r.optional<std::string>("fit", "a string (a fit.json path)"))
+        f.fit_file = local_path(dir, *v);
+    if (auto v = r.optional<std::string>("landmarks", "a string (a landmarks JSON path)"))
+        f.landmarks_file = local_path(dir, *v);
+    if (auto v = r.optional<std::string>("init", "a string (a fit.json path)"))
+        f.init_file = local_path(dir, *v);
 }
 
 void read_sweep(TableReader& r, const fs::path& dir, SweepOptions& s) {
-    parse_key(r, "plan", "a string (rotary or sphere:N)", [&](const std::string& v) { parse_plan_kind(v, s.plan); });
-    parse_key(r, "backend", "a string (auto, vulkan, embree)", [&](const std::string& v) { s.render.backend = parse_backend(v); });
-    parse_key(r, "metric", "a string (angle or rgb)", [&](const std::string& v) { s.metric = parse_metric(v); });
-    parse_key(r, "accumulate", "a string (auto, gpu, host)", [&](const std::string& v) { s.accumulate = parse_accumulation(v); });
+    parse_key(r, "plan", "a string (rotary or sphere:N)",
+              [&](const std::string& v) { parse_plan_kind(v, s.plan); });
+    parse_key(r, "backend", "a string (auto, vulkan, embree)",
+              [&](const std::string& v) { s.render.backend = parse_backend(v); });
+    parse_key(r, "metric", "a string (angle or rgb)",
+              [&](const std::string& v) { s.metric = parse_metric(v); });
+    parse_key(r, "accumulate", "a string (auto, gpu, host)",
+              [&](const std::string& v) { s.accumulate = parse_accumulation(v); });
     parse_key(r, "roi", "a string (sphere:x,y,z,r, box:… or mask:FILE)", [&](const std::string& v) {
         Roi roi = parse_roi(v);
-        if (roi.shape == Roi::Shape::VertexMask) roi.mask_file = local_path(dir, roi.mask_file.string());
+        if (roi.shape == Roi::Shape::VertexMask)
+            roi.mask_file = local_path(dir, roi.mask_file.string());
         s.plan.roi = roi;
     });
-    if (auto v = r.optional<std::string>("device", "a string (Vulkan device name)")) s.render.device = *v;
-    if (auto v = r.optional<double>("azimuth_step", "a number (degrees)")) s.plan.azimuth_step_deg = *v;
+    if (auto v = r.optional<std::string>("device", "a string (Vulkan device name)"))
+        s.render.device = *v;
+    if (auto v = r.optional<double>("azimuth_step", "a number (degrees)"))
+        s.plan.azimuth_step_deg = *v;
     if (auto v = r.numbers("elevations", 1, 64)) s.plan.elevations_deg = *v;
     if (auto v = r.numbers("zoom", 1, 16)) s.plan.footprints = *v;
-    if (auto v = r.optional<std::int64_t>("size", "an integer (pixels)")) s.plan.size = static_cast<int>(*v);
-    if (auto v = r.optional<std::int64_t>("supersample", "an integer")) s.render.supersample = static_cast<int>(*v);
-    if (auto v = r.optional<double>("max_incidence", "a number (degrees)")) s.max_incidence_deg = *v;
+    if (auto v = r.optional<std::int64_t>("size", "an integer (pixels)"))
+        s.plan.size = static_cast<int>(*v);
+    if (auto v = r.optional<std::int64_t>("supersample", "an integer"))
+        s.render.supersample = static_cast<int>(*v);
+    if (auto v = r.optional<double>("max_incidence", "a number (degrees)"))
+        s.max_incidence_deg = *v;
 }
 
 void read_threshold(TableReader& r, DecisionOptions& d) {
@@ -73,13 +91,17 @@ void read_threshold(TableReader& r, DecisionOptions& d) {
 }
 
 void read_decision(TableReader& r, DecisionOptions& d) {
-    parse_key(r, "rule", "a string (fused or normal)", [&](const std::string& v) { d.rule = parse_decision_rule(v); });
-    if (auto v = r.optional<double>("shape_threshold", "a number (mesh units)")) d.shape_threshold = *v;
+    parse_key(r, "rule", "a string (fused or normal)",
+              [&](const std::string& v) { d.rule = parse_decision_rule(v); });
+    if (auto v = r.optional<double>("shape_threshold", "a number (mesh units)"))
+        d.shape_threshold = *v;
     if (auto v = r.optional<double>("shape_k", "a number")) d.shape_k = *v;
     if (auto v = r.optional<double>("shape_low_k", "a number")) d.shape_low_k = *v;
     if (auto v = r.optional<double>("grow_fraction", "a number in (0, 1)")) d.grow_fraction = *v;
-    if (auto v = r.optional<double>("max_plausible_deg", "a number")) d.max_plausible_threshold_deg = *v;
-    if (auto v = r.optional<double>("max_plausible_shape_fraction", "a number")) d.max_plausible_shape_fraction = *v;
+    if (auto v = r.optional<double>("max_plausible_deg", "a number"))
+        d.max_plausible_threshold_deg = *v;
+    if (auto v = r.optional<double>("max_plausible_shape_fraction", "a number"))
+        d.max_plausible_shape_fraction = *v;
     if (auto v = r.optional<bool>("fill_holes", "a boolean")) d.fill_holes = *v;
 }
 
@@ -98,7 +120,9 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
         const toml::node* node = top.get(key);
         if (!node) return;
         const auto* t = node->as_table();
-        if (!t) top.fail(node, key, "expected a section [" + key + "], found " + TableReader::type_name(*node));
+        if (!t)
+            top.fail(node, key,
+                     "expected a section [" + key + "], found " + TableReader::type_name(*node));
         TableReader r(*t, top.file(), key);
         read(r);
         r.finish();
@@ -109,13 +133,15 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
     section("decision", [&](TableReader& r) { read_decision(r, options.decision); });
 }
 
-void validate_analysis_sections(const toml::table& root, const std::string& file, const AnalysisOptions& options) {
+void validate_analysis_sections(const toml::table& root, const std::string& file,
+                                const AnalysisOptions& options) {
     try {
         options.validate();
     } catch (const OptionError& e) {
         std::ostringstream s;
         s << "scenario \"" << file << "\"";
-        if (const auto node = root.at_path(e.key())) s << " line " << node.node()->source().begin.line;
+        if (const auto node = root.at_path(e.key()))
+            s << " line " << node.node()->source().begin.line;
         s << ": " << e.what();
         throw InputError(s.str());
     }

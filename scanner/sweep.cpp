@@ -20,7 +20,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 }  // namespace
 
@@ -43,13 +45,18 @@ namespace {
 // then its fold into the atlas (on the calling thread, in view order). Bands are known by
 // their first row; a worker writes only its band's rows of the maps and its band's entries.
 class ViewStream {
-public:
-    ViewStream(const Mesh& reference, const SweepPlan& plan, const SweepOptions& options, int threads)
-        : reference_(reference), plan_(plan), options_(options), threads_(threads),
-          backproject_{.min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
-                       .min_coverage = options.compare.min_coverage,
-                       .missing_value = describe(options.metric).missing_value,
-                       .framed_radius = plan.radius} {
+  public:
+    ViewStream(const Mesh& reference, const SweepPlan& plan, const SweepOptions& options,
+               int threads)
+        : reference_(reference),
+          plan_(plan),
+          options_(options),
+          threads_(threads),
+          backproject_{
+              .min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
+              .min_coverage = options.compare.min_coverage,
+              .missing_value = describe(options.metric).missing_value,
+              .framed_radius = plan.radius} {
         for (double f : plan.footprints) atlases_.emplace_back(reference, f);
         prepare(0);
     }
@@ -57,7 +64,8 @@ public:
     // A band of both frames of the view prepared (any worker; bands concurrently).
     void rows(const FrameRows& ref, const FrameRows& exa) {
         const auto t0 = Clock::now();
-        const std::size_t first = static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
+        const std::size_t first =
+            static_cast<std::size_t>(ref.y0) * static_cast<std::size_t>(ref.width);
         const std::size_t n = ref.pixel_count();
         DeviationMap& d = maps_.deviation;
         const FrameView rv = frame_view(ref), ev = frame_view(exa);
@@ -68,7 +76,8 @@ public:
         record_reference_rows(ref, options_.compare.min_coverage, maps_);
         const auto band = static_cast<std::size_t>(ref.y0);
         samples_[band].clear();
-        covered_[band] = scatter_rows(reference_, view_->view, ref, maps_, backproject_, samples_[band]);
+        covered_[band] =
+            scatter_rows(reference_, view_->view, ref, maps_, backproject_, samples_[band]);
         is_band_[band] = 1;
         worker_seconds_.fetch_add(seconds_since(t0), std::memory_order_relaxed);
     }
@@ -106,7 +115,7 @@ public:
     /// Seconds the workers spent comparing and scattering, summed over them.
     [[nodiscard]] double worker_seconds() const { return worker_seconds_.load(); }
 
-private:
+  private:
     // Maps and band entries sized for view i (storage kept across views).
     void prepare(std::size_t i) {
         view_ = &plan_.views[i];
@@ -125,11 +134,11 @@ private:
     BackprojectOptions backproject_;
     std::vector<AtlasAccumulator> atlases_;
     BackprojectScratch scratch_;
-    const PlannedView* view_ = nullptr;             // the view whose bands arrive
+    const PlannedView* view_ = nullptr;  // the view whose bands arrive
     ViewMaps maps_;
     std::vector<std::vector<AtlasSample>> samples_;  // per band, by its first row
-    std::vector<std::size_t> covered_;              // per band: covered reference pixels
-    std::vector<std::uint8_t> is_band_;             // 1 at the first row of each band seen
+    std::vector<std::size_t> covered_;               // per band: covered reference pixels
+    std::vector<std::uint8_t> is_band_;              // 1 at the first row of each band seen
     std::atomic<double> worker_seconds_{0.0};
 };
 
@@ -139,17 +148,19 @@ void require_overlap(const std::vector<ViewSummary>& views) {
     std::size_t compared = 0;
     for (const auto& v : views) compared += v.compared;
     if (compared == 0)
-        throw InputError("sweep: the reference and the fitted examined surface do not overlap in any of the " +
-                         std::to_string(views.size()) +
-                         " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+        throw InputError(
+            "sweep: the reference and the fitted examined surface do not overlap in any of the " +
+            std::to_string(views.size()) +
+            " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
 }
 
-SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan, const SweepOptions& options,
-                      const ViewObserver& observer) {
+SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,
+                      const SweepOptions& options, const ViewObserver& observer) {
     const auto t_start = Clock::now();
     options.validate();
     if (plan.views.empty()) throw InputError("sweep plan has no views");
-    if (!reference.has_normals()) throw InputError("sweep: the reference mesh has no vertex normals");
+    if (!reference.has_normals())
+        throw InputError("sweep: the reference mesh has no vertex normals");
     SweepResult result;
     result.plan = plan;
     result.options = options;
@@ -164,13 +175,15 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     result.renderer = ref_renderer->info();
     // Compare and back-project on the GPU when the options and the device allow it
     // (scanner/gpu_sweep.h); the streamed path below is the reference it is tested against.
-    if (run_sweep_on_gpu(reference, *ref_renderer, *exa_renderer, plan, options, observer, result)) {
+    if (run_sweep_on_gpu(reference, *ref_renderer, *exa_renderer, plan, options, observer,
+                         result)) {
         result.total_seconds = seconds_since(t_start);
         return result;
     }
 
-    const int threads = std::max(1, options.render.threads > 0 ? options.render.threads
-                                                               : static_cast<int>(std::thread::hardware_concurrency()));
+    const int threads = std::max(1, options.render.threads > 0
+                                        ? options.render.threads
+                                        : static_cast<int>(std::thread::hardware_concurrency()));
     ViewStream stream(reference, plan, options, threads);
     std::vector<View> views;
     views.reserve(plan.views.size());
@@ -190,7 +203,8 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     const double views_seconds = seconds_since(t_views);
     exa_renderer.reset();  // the scenes go before the atlases are finished (peak memory)
     ref_renderer.reset();
-    result.compare_seconds = std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
+    result.compare_seconds =
+        std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
     result.render_seconds = views_seconds - result.compare_seconds;
     require_overlap(result.views);
     for (const auto& a : stream.atlases()) {

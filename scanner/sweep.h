@@ -49,7 +49,7 @@ struct SweepOptions {
     /// Backend, device, supersample (footprint averaging: s×s sub-samples per pixel).
     RenderOptions render{.supersample = 2};
     CompareOptions compare;
-    double max_incidence_deg = 75.0;     ///< coverage rule (scanner/backproject.h)
+    double max_incidence_deg = 75.0;  ///< coverage rule (scanner/backproject.h)
     /// Compare and back-projection on the GPU (Auto, with Vulkan) or the CPU. The GPU path
     /// gives the same atlas within render/gpu_atlas.h's tolerances; its observer sees no frames.
     Accumulation accumulate = Accumulation::Auto;
@@ -61,7 +61,7 @@ struct SweepOptions {
 /// What one view showed (the view itself is SweepPlan::views[index]).
 struct ViewSummary {
     int index = 0;
-    std::size_t reference_pixels = 0;   ///< fully covered in the reference frame
+    std::size_t reference_pixels = 0;  ///< fully covered in the reference frame
     std::size_t compared = 0;
     std::size_t reference_only = 0;
     std::size_t examined_only = 0;
@@ -109,7 +109,8 @@ void require_overlap(const std::vector<ViewSummary>& views);
 /// must already be in reference coordinates (fitted).
 /// \throw InputError invalid options, an empty plan, a reference without normals, surfaces
 /// that overlap in no view; DeviceError renderer trouble; Cancelled.
-[[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,
-                                    const SweepOptions& options, const ViewObserver& observer = {});
+[[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined,
+                                    const SweepPlan& plan, const SweepOptions& options,
+                                    const ViewObserver& observer = {});
 
 }  // namespace glint

@@ -31,11 +31,11 @@ struct UnitOptions {
 };
 
 struct UnitResolution {
-    std::string unit;                    ///< of the analysis ("" = unknown)
-    double examined_scale = 1.0;         ///< multiply the examined positions by this (files in two units)
-    double reference_size = 0.0;         ///< bounding-box diagonal, analysis unit
-    double examined_size = 0.0;          ///< after examined_scale
-    std::vector<std::string> warnings;   ///< unit conflicts, conversions, a mismatch allowed
+    std::string unit;             ///< of the analysis ("" = unknown)
+    double examined_scale = 1.0;  ///< multiply the examined positions by this (files in two units)
+    double reference_size = 0.0;  ///< bounding-box diagonal, analysis unit
+    double examined_size = 0.0;   ///< after examined_scale
+    std::vector<std::string> warnings;  ///< unit conflicts, conversions, a mismatch allowed
 };
 
 /// The analysis unit of two meshes and the scale that brings the examined into it: a stated
@@ -43,7 +43,8 @@ struct UnitResolution {
 /// into the reference's unit (a warning says so); else the unit one file states.
 /// \throw InputError when the sizes differ by more than kMaxScaleRatio and the options do not
 /// allow it (the message names both sizes and the likely cause).
-[[nodiscard]] UnitResolution resolve_units(const Mesh& reference, const Mesh& examined, const UnitOptions& options);
+[[nodiscard]] UnitResolution resolve_units(const Mesh& reference, const Mesh& examined,
+                                           const UnitOptions& options);
 
 /// Brings the examined mesh into the analysis unit: positions × units.examined_scale (nothing
 /// to do at 1).

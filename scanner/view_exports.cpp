@@ -28,9 +28,11 @@ void ViewExporter::add(const PlannedView& pv, const DeviationMap& dev) {
         names.push_back(std::string(metric_->name) + "_" + std::string(metric_->unit));
         channels.push_back(&dev.value);
     }
-    write_exr_channels(folder_->file(fs::path("views") / (view_file_stem(v) + ".exr")), dev.width, dev.height, names,
-                       channels,
-                       {{"azimuth_deg", az}, {"elevation_deg", el}, {"footprint", fp},
+    write_exr_channels(folder_->file(fs::path("views") / (view_file_stem(v) + ".exr")), dev.width,
+                       dev.height, names, channels,
+                       {{"azimuth_deg", az},
+                        {"elevation_deg", el},
+                        {"footprint", fp},
                         {"metric", std::string(metric_->name)},
                         {"silhouette_codes", "0 same, 1 reference only, 2 examined only"}});
 }

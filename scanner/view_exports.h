@@ -14,14 +14,14 @@
 namespace glint {
 
 class ViewExporter {
-public:
+  public:
     ViewExporter(const OutputFolder& folder, Metric metric, const ExportOptions& options);
     ViewExporter(const ViewExporter&) = delete;
     ViewExporter& operator=(const ViewExporter&) = delete;
     /// Writes the view's EXR when ExportOptions::write_exr (a ViewObserver's work). \throw IoError.
     void add(const PlannedView& view, const DeviationMap& deviation);
 
-private:
+  private:
     const OutputFolder* folder_;
     const MetricDescriptor* metric_;
     ExportOptions options_;

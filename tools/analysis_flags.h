@@ -15,7 +15,8 @@ namespace glint::cli {
 /// --max-iterations, --no-coarse. `roi_flag` names the ROI flag ("--fit-roi" for sweep,
 /// "--roi" for register); `with_mode` adds --fit and --register (a command that always
 /// registers leaves them out).
-void add_fit_flags(CLI::App& command, FitOptions& fit, const std::string& roi_flag, bool with_mode = true);
+void add_fit_flags(CLI::App& command, FitOptions& fit, const std::string& roi_flag,
+                   bool with_mode = true);
 
 /// The sweep and the decision: --plan, --azimuth-step, --elevations, --zoom, --roi, --size,
 /// --supersample, --metric, --backend, --device, --max-incidence, --rule, --threshold-deg,

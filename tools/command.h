@@ -21,8 +21,8 @@ inline constexpr int kExitInterrupted = 130;  ///< SIGINT / SIGTERM (128 + SIGIN
 
 /// Flags every subcommand shares (set on the top-level app, read by commands).
 struct GlobalFlags {
-    bool quiet = false;  ///< no progress bars or chatter on stderr
-    bool json = false;   ///< machine-readable JSON on stdout instead of tables
+    bool quiet = false;        ///< no progress bars or chatter on stderr
+    bool json = false;         ///< machine-readable JSON on stdout instead of tables
     std::string command_line;  ///< argv joined by spaces (recorded in reports)
 };
 GlobalFlags& global_flags();

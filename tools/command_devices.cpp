@@ -23,13 +23,19 @@ void run() {
     std::string reason;
     const Backend chosen = resolve_backend(RenderOptions{}, 1'000'000, &reason);
     if (global_flags().json) {
-        nlohmann::json out = {{"devices", nlohmann::json::array()}, {"auto_backend", to_string(chosen)},
+        nlohmann::json out = {{"devices", nlohmann::json::array()},
+                              {"auto_backend", to_string(chosen)},
                               {"auto_reason", reason}};
         for (const auto& d : devices) {
-            out["devices"].push_back({{"name", d.name}, {"type", d.type}, {"driver", d.driver},
-                                      {"api_version", d.api_version_text}, {"usable", d.is_usable},
-                                      {"reason", d.reason}, {"preferred", d.is_preferred},
-                                      {"gpu_atlas", d.supports_gpu_atlas}, {"gpu_atlas_reason", d.gpu_atlas_reason}});
+            out["devices"].push_back({{"name", d.name},
+                                      {"type", d.type},
+                                      {"driver", d.driver},
+                                      {"api_version", d.api_version_text},
+                                      {"usable", d.is_usable},
+                                      {"reason", d.reason},
+                                      {"preferred", d.is_preferred},
+                                      {"gpu_atlas", d.supports_gpu_atlas},
+                                      {"gpu_atlas_reason", d.gpu_atlas_reason}});
         }
         if (!vulkan_error.empty()) out["vulkan_error"] = vulkan_error;
         std::cout << out.dump(2) << '\n';
@@ -37,11 +43,12 @@ void run() {
         if (!vulkan_error.empty()) std::cout << "Vulkan: " << vulkan_error << '\n';
         for (const auto& d : devices) {
             std::cout << (d.is_preferred ? "* " : "  ") << d.name << " [" << d.type << ", Vulkan "
-                      << d.api_version_text << (d.driver.empty() ? "" : ", " + d.driver) << "]: "
-                      << (d.is_usable ? "usable" : "not usable, " + d.reason)
-                      << (!d.is_usable           ? ""
-                          : d.supports_gpu_atlas ? "; compares on the device"
-                                                 : "; compares on the CPU (" + d.gpu_atlas_reason + ")")
+                      << d.api_version_text << (d.driver.empty() ? "" : ", " + d.driver)
+                      << "]: " << (d.is_usable ? "usable" : "not usable, " + d.reason)
+                      << (!d.is_usable ? ""
+                          : d.supports_gpu_atlas
+                              ? "; compares on the device"
+                              : "; compares on the CPU (" + d.gpu_atlas_reason + ")")
                       << '\n';
         }
         std::cout << "embree (CPU): usable\n";
@@ -51,7 +58,8 @@ void run() {
 }
 
 void setup(CLI::App& app) {
-    auto* cmd = app.add_subcommand("devices", "List Vulkan devices, why any is unusable, and the auto backend");
+    auto* cmd = app.add_subcommand(
+        "devices", "List Vulkan devices, why any is unusable, and the auto backend");
     cmd->callback([] { run(); });
 }
 

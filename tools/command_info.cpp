@@ -28,9 +28,10 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
         {"unit", loaded.mesh.unit},
         {"vertices", v.vertices},
         {"triangles", v.triangles},
-        {"bounds", {{"min", {v.bounds.min.x(), v.bounds.min.y(), v.bounds.min.z()}},
-                    {"max", {v.bounds.max.x(), v.bounds.max.y(), v.bounds.max.z()}},
-                    {"extent", {extent.x(), extent.y(), extent.z()}}}},
+        {"bounds",
+         {{"min", {v.bounds.min.x(), v.bounds.min.y(), v.bounds.min.z()}},
+          {"max", {v.bounds.max.x(), v.bounds.max.y(), v.bounds.max.z()}},
+          {"extent", {extent.x(), extent.y(), extent.z()}}}},
         {"area", v.area},
         {"closed", v.is_closed},
         {"boundary_edges", v.boundary_edges},
@@ -39,14 +40,15 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
         {"scalars", scalar_names},
         {"has_labels", !loaded.mesh.labels.empty()},
         {"has_colors", !loaded.mesh.colors.empty()},
-        {"repairs", {{"file_vertices", r.file_vertices},
-                     {"file_triangles", r.file_triangles},
-                     {"welded_vertices", r.welded_vertices},
-                     {"importer_corner_vertices", r.importer_corner_vertices},
-                     {"degenerate_triangles", r.degenerate_triangles},
-                     {"duplicate_triangles", r.duplicate_triangles},
-                     {"unused_vertices", r.unused_vertices},
-                     {"split_polygons", r.split_polygons}}},
+        {"repairs",
+         {{"file_vertices", r.file_vertices},
+          {"file_triangles", r.file_triangles},
+          {"welded_vertices", r.welded_vertices},
+          {"importer_corner_vertices", r.importer_corner_vertices},
+          {"degenerate_triangles", r.degenerate_triangles},
+          {"duplicate_triangles", r.duplicate_triangles},
+          {"unused_vertices", r.unused_vertices},
+          {"split_polygons", r.split_polygons}}},
         {"findings", v.findings},
         {"warnings", r.warnings},
     };
@@ -57,12 +59,16 @@ void print_text(const nlohmann::json& j) {
     const std::string unit = j["unit"].get<std::string>();
     std::cout << j["path"].get<std::string>() << '\n'
               << "  format      " << j["format"].get<std::string>() << ", unit "
-              << (unit.empty() ? "unknown (the file states none; give --unit to sweep/register/run)" : unit) << '\n'
-              << "  vertices    " << num(j["vertices"]) << "   triangles " << num(j["triangles"]) << '\n';
+              << (unit.empty() ? "unknown (the file states none; give --unit to sweep/register/run)"
+                               : unit)
+              << '\n'
+              << "  vertices    " << num(j["vertices"]) << "   triangles " << num(j["triangles"])
+              << '\n';
     const auto& e = j["bounds"]["extent"];
     char line[160];
-    std::snprintf(line, sizeof line, "  extent      %.4g x %.4g x %s   area %s\n", e[0].get<double>(),
-                  e[1].get<double>(), with_unit(e[2].get<double>(), unit).c_str(),
+    std::snprintf(line, sizeof line, "  extent      %.4g x %.4g x %s   area %s\n",
+                  e[0].get<double>(), e[1].get<double>(),
+                  with_unit(e[2].get<double>(), unit).c_str(),
                   with_unit(j["area"].get<double>(), unit, 2, "%.6g").c_str());
     std::cout << line;
     std::cout << "  topology    " << (j["closed"].get<bool>() ? "closed" : "open") << ", "
@@ -71,23 +77,27 @@ void print_text(const nlohmann::json& j) {
     const auto& r = j["repairs"];
     if (r["importer_corner_vertices"].get<std::size_t>() > 0)
         std::cout << "  OBJ         the importer made one vertex per face corner ("
-                  << num(r["importer_corner_vertices"]) << "), merged back to the file's " << num(r["file_vertices"])
-                  << " vertices (v lines)\n";
+                  << num(r["importer_corner_vertices"]) << "), merged back to the file's "
+                  << num(r["file_vertices"]) << " vertices (v lines)\n";
     std::cout << "  repairs     welded " << num(r["welded_vertices"]) << " vertices, dropped "
               << num(r["degenerate_triangles"]) << " degenerate + " << num(r["duplicate_triangles"])
-              << " duplicate triangles and " << num(r["unused_vertices"]) << " unused vertices, split "
-              << num(r["split_polygons"]) << " polygons\n";
+              << " duplicate triangles and " << num(r["unused_vertices"])
+              << " unused vertices, split " << num(r["split_polygons"]) << " polygons\n";
     if (!j["scalars"].empty()) std::cout << "  scalars     " << j["scalars"].dump() << '\n';
-    for (const auto& f : j["findings"]) std::cout << "  finding     " << f.get<std::string>() << '\n';
-    for (const auto& w : j["warnings"]) std::cout << "  warning     " << w.get<std::string>() << '\n';
+    for (const auto& f : j["findings"])
+        std::cout << "  finding     " << f.get<std::string>() << '\n';
+    for (const auto& w : j["warnings"])
+        std::cout << "  warning     " << w.get<std::string>() << '\n';
 }
 
 nlohmann::json volume_json(const Volume& v) {
     const VolumeGeometry& g = v.geometry;
     const auto range = v.range();
     nlohmann::json direction = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) direction.push_back({g.direction(r, 0), g.direction(r, 1), g.direction(r, 2)});
-    const Vec3d far = g.physical_from_index(Vec3d(double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1)));
+    for (int r = 0; r < 3; ++r)
+        direction.push_back({g.direction(r, 0), g.direction(r, 1), g.direction(r, 2)});
+    const Vec3d far = g.physical_from_index(
+        Vec3d(double(g.size[0] - 1), double(g.size[1] - 1), double(g.size[2] - 1)));
     return {{"path", v.path.string()},
             {"format", v.format},
             {"stored_type", v.stored_type},
@@ -101,16 +111,19 @@ nlohmann::json volume_json(const Volume& v) {
 
 void print_volume(const nlohmann::json& j) {
     const auto& d = j["direction"];
-    std::printf("%s\n  format      %s volume, %s voxels\n  size        %zu x %zu x %zu\n"
-                "  spacing     %.6g x %.6g x %.6g mm\n  origin      (%.6g, %.6g, %.6g) mm\n"
-                "  direction   [%.4g %.4g %.4g; %.4g %.4g %.4g; %.4g %.4g %.4g]\n  range       %.6g … %.6g\n",
-                j["path"].get<std::string>().c_str(), j["format"].get<std::string>().c_str(),
-                j["stored_type"].get<std::string>().c_str(), j["size"][0].get<std::size_t>(), j["size"][1].get<std::size_t>(),
-                j["size"][2].get<std::size_t>(), j["spacing_mm"][0].get<double>(), j["spacing_mm"][1].get<double>(),
-                j["spacing_mm"][2].get<double>(), j["origin_mm"][0].get<double>(), j["origin_mm"][1].get<double>(),
-                j["origin_mm"][2].get<double>(), d[0][0].get<double>(), d[0][1].get<double>(), d[0][2].get<double>(),
-                d[1][0].get<double>(), d[1][1].get<double>(), d[1][2].get<double>(), d[2][0].get<double>(),
-                d[2][1].get<double>(), d[2][2].get<double>(), j["range"][0].get<double>(), j["range"][1].get<double>());
+    std::printf(
+        "%s\n  format      %s volume, %s voxels\n  size        %zu x %zu x %zu\n"
+        "  spacing     %.6g x %.6g x %.6g mm\n  origin      (%.6g, %.6g, %.6g) mm\n"
+        "  direction   [%.4g %.4g %.4g; %.4g %.4g %.4g; %.4g %.4g %.4g]\n  range       %.6g … %.6g\n",
+        j["path"].get<std::string>().c_str(), j["format"].get<std::string>().c_str(),
+        j["stored_type"].get<std::string>().c_str(), j["size"][0].get<std::size_t>(),
+        j["size"][1].get<std::size_t>(), j["size"][2].get<std::size_t>(),
+        j["spacing_mm"][0].get<double>(), j["spacing_mm"][1].get<double>(),
+        j["spacing_mm"][2].get<double>(), j["origin_mm"][0].get<double>(),
+        j["origin_mm"][1].get<double>(), j["origin_mm"][2].get<double>(), d[0][0].get<double>(),
+        d[0][1].get<double>(), d[0][2].get<double>(), d[1][0].get<double>(), d[1][1].get<double>(),
+        d[1][2].get<double>(), d[2][0].get<double>(), d[2][1].get<double>(), d[2][2].get<double>(),
+        j["range"][0].get<double>(), j["range"][1].get<double>());
 }
 
 // A volume: its geometry and range; with --iso also the surface, as for a mesh.
@@ -136,12 +149,15 @@ nlohmann::json volume_info(const std::string& path, const SurfaceOptions& surfac
 }
 
 void setup(CLI::App& app) {
-    auto* cmd = app.add_subcommand("info", "Counts, bounds, unit, repairs and validation findings of mesh files; geometry and range of volumes");
+    auto* cmd = app.add_subcommand(
+        "info",
+        "Counts, bounds, unit, repairs and validation findings of mesh files; geometry and range of volumes");
     static std::vector<std::string> paths;
     static SurfaceOptions surface;
-    cmd->add_option("MESH", paths,
-                    "Mesh files (PLY, STL, OBJ, OFF, glTF/GLB, VTK legacy) or volumes (.mhd .mha .nii .nii.gz .nrrd "
-                    ".nhdr, a DICOM folder)")
+    cmd->add_option(
+           "MESH", paths,
+           "Mesh files (PLY, STL, OBJ, OFF, glTF/GLB, VTK legacy) or volumes (.mhd .mha .nii .nii.gz .nrrd "
+           ".nhdr, a DICOM folder)")
         ->required();
     add_surface_flags(*cmd, surface);
     cmd->callback([] {
@@ -152,7 +168,9 @@ void setup(CLI::App& app) {
                 continue;
             }
             if (surface.iso || surface.any())
-                throw InputError("mesh \"" + path + "\": surface options (--iso, …) apply to volumes, this is a mesh file");
+                throw InputError(
+                    "mesh \"" + path +
+                    "\": surface options (--iso, …) apply to volumes, this is a mesh file");
             const LoadedMesh loaded = load_mesh(path);
             const ValidationReport v = validate_mesh(loaded.mesh, path);
             all.push_back(to_json(loaded, v));

@@ -42,7 +42,9 @@ void run(const PhantomArgs& a) {
     if (!a.size.empty()) {
         if (a.size.size() == 1) options.radii = Vec3d::Constant(a.size[0]);
         else if (a.size.size() == 3) options.radii = {a.size[0], a.size[1], a.size[2]};
-        else throw InputError("--size: expected 1 or 3 numbers, found " + std::to_string(a.size.size()));
+        else
+            throw InputError("--size: expected 1 or 3 numbers, found " +
+                             std::to_string(a.size.size()));
     }
     Mesh mesh = make_phantom(options);
     std::vector<DamageSpec> specs;
@@ -84,17 +86,21 @@ void run(const PhantomArgs& a) {
 
 void setup(CLI::App& app) {
     static PhantomArgs args;
-    auto* cmd = app.add_subcommand("phantom", "Write a procedural surface (sphere, ellipsoid, torus, condyle) "
-                                              "with optional damage and pose, and its ground truth");
+    auto* cmd = app.add_subcommand("phantom",
+                                   "Write a procedural surface (sphere, ellipsoid, torus, condyle) "
+                                   "with optional damage and pose, and its ground truth");
     cmd->add_option("KIND", args.kind, "sphere | ellipsoid | torus | condyle")->required();
     cmd->add_option("--resolution", args.resolution, "uv: latitude rings; ico: subdivision level")
         ->capture_default_str();
     cmd->add_option("--scheme", args.scheme, "Tessellation: uv | ico")->capture_default_str();
-    cmd->add_option("--size", args.size, "Radius, or three semi-axes (torus: major minor); mesh units (mm)")
+    cmd->add_option("--size", args.size,
+                    "Radius, or three semi-axes (torus: major minor); mesh units (mm)")
         ->expected(1, 3);
-    cmd->add_option("--damage", args.damages, "Damage spec, repeatable (see README: dent:center=x,y,z;radius=R;depth=D)");
+    cmd->add_option("--damage", args.damages,
+                    "Damage spec, repeatable (see README: dent:center=x,y,z;radius=R;depth=D)");
     cmd->add_option("--pose", args.pose, "Rigid pose 'rx,ry,rz,tx,ty,tz' (degrees, mesh units)");
-    cmd->add_option("-o,--output", args.output, "Output mesh (.ply or .vtk); a .json sidecar is written beside it")
+    cmd->add_option("-o,--output", args.output,
+                    "Output mesh (.ply or .vtk); a .json sidecar is written beside it")
         ->required();
     cmd->callback([] { run(args); });
 }

@@ -31,13 +31,14 @@ struct RegisterArgs {
 };
 
 void print_result(const RegistrationResult& r, const std::string& output, const std::string& unit) {
-    std::printf("%s after %d iterations (%s start): rotation %.6f°, translation (%.6g, %.6g, %.6g) %s, RMS %s, "
-                "inliers %.1f%%, overlap %.1f%%; wrote %s\n",
-                r.converged ? "converged" : "did NOT converge", r.iterations, r.coarse.c_str(),
-                rotation_angle_deg(r.reference_from_examined), r.reference_from_examined.translation().x(),
-                r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(),
-                unit.empty() ? "units" : unit.c_str(), with_unit(r.rms, unit).c_str(), 100 * r.inlier_fraction,
-                100 * r.overlap, output.c_str());
+    std::printf(
+        "%s after %d iterations (%s start): rotation %.6f°, translation (%.6g, %.6g, %.6g) %s, RMS %s, "
+        "inliers %.1f%%, overlap %.1f%%; wrote %s\n",
+        r.converged ? "converged" : "did NOT converge", r.iterations, r.coarse.c_str(),
+        rotation_angle_deg(r.reference_from_examined), r.reference_from_examined.translation().x(),
+        r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(),
+        unit.empty() ? "units" : unit.c_str(), with_unit(r.rms, unit).c_str(),
+        100 * r.inlier_fraction, 100 * r.overlap, output.c_str());
     if (!r.converged) std::printf("  %s\n", r.termination_detail.c_str());
 }
 
@@ -53,7 +54,8 @@ void run(RegisterArgs& a) {
     const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.units);
     scale_to_analysis_unit(exa.mesh, units);
     if (!global_flags().quiet)
-        for (const auto& w : units.warnings) std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
+        for (const auto& w : units.warnings)
+            std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
     write_file_atomically(a.output, outcome.json);
@@ -69,13 +71,15 @@ void run(RegisterArgs& a) {
 
 void setup(CLI::App& app) {
     static RegisterArgs a;
-    auto* cmd = app.add_subcommand("register", "Fit the examined mesh onto the reference (robust ICP)");
+    auto* cmd =
+        app.add_subcommand("register", "Fit the examined mesh onto the reference (robust ICP)");
     cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
     cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
     add_surface_flags(*cmd, a.surface);
     add_fit_flags(*cmd, a.fit, "--roi", false);
-    cmd->add_option("--roi-mask", a.roi_mask, "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
-                                               "non-zero label (or scalar); the same as --roi mask:FILE[:SCALAR]")
+    cmd->add_option("--roi-mask", a.roi_mask,
+                    "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
+                    "non-zero label (or scalar); the same as --roi mask:FILE[:SCALAR]")
         ->excludes("--roi");
     add_unit_flags(*cmd, a.units);
     cmd->add_option("-o,--output", a.output, "fit.json")->required();

@@ -57,7 +57,8 @@ std::pair<int, int> parse_size(const std::string& text) {
     std::istringstream s(text);
     if (!(s >> w)) throw InputError("--size \"" + text + "\": expected W or WxH");
     if (s >> x) {
-        if ((x != 'x' && x != 'X') || !(s >> h)) throw InputError("--size \"" + text + "\": expected W or WxH");
+        if ((x != 'x' && x != 'X') || !(s >> h))
+            throw InputError("--size \"" + text + "\": expected W or WxH");
     } else {
         h = w;
     }
@@ -74,7 +75,8 @@ ViewSpec parse_view_item(const std::string& item, const ViewSpec& base, const st
     bool has_az = false;
     while (std::getline(s, kv, ',')) {
         const auto eq = kv.find('=');
-        if (eq == std::string::npos) throw InputError(where + ": \"" + kv + "\", expected key=value");
+        if (eq == std::string::npos)
+            throw InputError(where + ": \"" + kv + "\", expected key=value");
         const std::string key = kv.substr(0, eq);
         double value = 0.0;
         try {
@@ -141,7 +143,9 @@ void run(const RenderArgs& a) {
         std::istringstream s(a.views);
         std::string item;
         while (std::getline(s, item, ';')) {
-            if (!item.empty()) specs.push_back(parse_view_item(item, base, "--views item " + std::to_string(specs.size() + 1)));
+            if (!item.empty())
+                specs.push_back(parse_view_item(
+                    item, base, "--views item " + std::to_string(specs.size() + 1)));
         }
     }
     if (!a.views_file.empty()) {
@@ -156,7 +160,8 @@ void run(const RenderArgs& a) {
             line.erase(0, line.find_first_not_of(" \t\r"));
             line.erase(line.find_last_not_of(" \t\r") + 1);
             if (line.empty()) continue;
-            specs.push_back(parse_view_item(line, base, a.views_file + ":" + std::to_string(line_no)));
+            specs.push_back(
+                parse_view_item(line, base, a.views_file + ":" + std::to_string(line_no)));
         }
     }
     if (specs.empty()) specs.push_back(base);
@@ -205,7 +210,8 @@ void run(const RenderArgs& a) {
         progress.update(i + 1);
     });
     progress.finish();
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (global_flags().json) {
         nlohmann::json report = {{"backend", to_string(info.backend)},
                                  {"device", info.device_name},
@@ -218,40 +224,55 @@ void run(const RenderArgs& a) {
     } else if (!global_flags().quiet) {
         for (const auto& w : info.warnings) std::cerr << "glint: note: " << w << '\n';
         for (const auto& f : written) {
-            std::cout << "wrote " << f["path"].get<std::string>() << " (az " << f["azimuth_deg"].get<double>()
-                      << "°, el " << f["elevation_deg"].get<double>() << "°, footprint "
-                      << f["footprint"].get<double>() << ", " << f["covered_pixels"].get<std::size_t>()
-                      << " px covered)\n";
+            std::cout << "wrote " << f["path"].get<std::string>() << " (az "
+                      << f["azimuth_deg"].get<double>() << "°, el "
+                      << f["elevation_deg"].get<double>() << "°, footprint "
+                      << f["footprint"].get<double>() << ", "
+                      << f["covered_pixels"].get<std::size_t>() << " px covered)\n";
         }
-        std::cout << views.size() << " view(s) in " << seconds << " s on " << info.device_name << " ("
-                  << to_string(info.backend) << ")\n";
+        std::cout << views.size() << " view(s) in " << seconds << " s on " << info.device_name
+                  << " (" << to_string(info.backend) << ")\n";
     }
 }
 
 void setup(CLI::App& app) {
     static RenderArgs args;
-    auto* cmd = app.add_subcommand("render", "Render normal-colour frames of a mesh (EXR numbers, PNG for eyes)");
+    auto* cmd = app.add_subcommand(
+        "render", "Render normal-colour frames of a mesh (EXR numbers, PNG for eyes)");
     cmd->add_option("MESH", args.mesh, "Mesh file (PLY, STL, OBJ, OFF, glTF, VTK)")->required();
-    cmd->add_option("--azimuth", args.azimuth, "Azimuth, degrees (about +z from +x)")->capture_default_str();
-    cmd->add_option("--elevation", args.elevation, "Elevation, degrees (-90..90)")->capture_default_str();
-    cmd->add_option("--footprint", args.footprint, "Zoom: mesh units per pixel at the nearest surface");
-    cmd->add_option("--distance", args.distance, "Zoom: camera distance from the mesh centre, mesh units");
-    cmd->add_option("--distance-px", args.distance_px,
-                    "Zoom (perspective): distance to the nearest surface in pixels of the fit footprint");
+    cmd->add_option("--azimuth", args.azimuth, "Azimuth, degrees (about +z from +x)")
+        ->capture_default_str();
+    cmd->add_option("--elevation", args.elevation, "Elevation, degrees (-90..90)")
+        ->capture_default_str();
+    cmd->add_option("--footprint", args.footprint,
+                    "Zoom: mesh units per pixel at the nearest surface");
+    cmd->add_option("--distance", args.distance,
+                    "Zoom: camera distance from the mesh centre, mesh units");
+    cmd->add_option(
+        "--distance-px", args.distance_px,
+        "Zoom (perspective): distance to the nearest surface in pixels of the fit footprint");
     cmd->add_option("--size", args.size, "Image size W or WxH")->capture_default_str();
-    cmd->add_option("--projection", args.projection, "orthographic | perspective")->capture_default_str();
-    cmd->add_option("--fov", args.fov_deg, "Perspective vertical field of view, degrees")->capture_default_str();
-    cmd->add_option("--mode", args.mode, "normal | reflection | zebra | paper8 | depth")->capture_default_str();
-    cmd->add_option("--supersample", args.supersample, "s: s×s sub-samples per pixel (1..8)")->capture_default_str();
+    cmd->add_option("--projection", args.projection, "orthographic | perspective")
+        ->capture_default_str();
+    cmd->add_option("--fov", args.fov_deg, "Perspective vertical field of view, degrees")
+        ->capture_default_str();
+    cmd->add_option("--mode", args.mode, "normal | reflection | zebra | paper8 | depth")
+        ->capture_default_str();
+    cmd->add_option("--supersample", args.supersample, "s: s×s sub-samples per pixel (1..8)")
+        ->capture_default_str();
     cmd->add_option("--backend", args.backend, "auto | vulkan | embree")->capture_default_str();
-    cmd->add_option("--device", args.device, "Vulkan device name (substring); default GLINT_DEVICE or the best");
+    cmd->add_option("--device", args.device,
+                    "Vulkan device name (substring); default GLINT_DEVICE or the best");
     cmd->add_option("--normal-space", args.normal_space, "world | view")->capture_default_str();
-    cmd->add_option("--min-coverage", args.min_coverage, "Mask pixels covered less than this share (0..1)")
+    cmd->add_option("--min-coverage", args.min_coverage,
+                    "Mask pixels covered less than this share (0..1)")
         ->capture_default_str();
     cmd->add_flag("--cull", args.cull, "Cull back faces (closed meshes only)");
     cmd->add_option("--png-bits", args.png_bits, "PNG bit depth: 8 or 16")->capture_default_str();
-    cmd->add_option("--views", args.views, "Several views: \"az=0,el=0;az=90,el=30[,fp=F|dist=D]\"");
-    cmd->add_option("--views-file", args.views_file, "A file with one view a line: az=…,el=…[,fp=…|dist=…]");
+    cmd->add_option("--views", args.views,
+                    "Several views: \"az=0,el=0;az=90,el=30[,fp=F|dist=D]\"");
+    cmd->add_option("--views-file", args.views_file,
+                    "A file with one view a line: az=…,el=…[,fp=…|dist=…]");
     cmd->add_option("-o,--output", args.output,
                     "Output .exr or .png; with several views {i} is replaced by the view number "
                     "(else _NNN is appended)")

@@ -43,19 +43,22 @@ fs::path data_root_of(const RunArgs& a) {
 
 // Files named on the command line, folders expanded to their *.toml (sorted). In a folder,
 // scenarios tagged "full" run only with --full.
-std::vector<fs::path> expand(const RunArgs& a, const fs::path& data_root, std::vector<Scenario>& loaded) {
+std::vector<fs::path> expand(const RunArgs& a, const fs::path& data_root,
+                             std::vector<Scenario>& loaded) {
     std::vector<fs::path> files;
     for (const auto& s : a.scenarios) {
         const fs::path p(s);
         if (fs::is_directory(p)) {
             std::vector<fs::path> in_dir;
             for (const auto& e : fs::recursive_directory_iterator(p))
-                if (e.is_regular_file() && e.path().extension() == ".toml") in_dir.push_back(e.path());
+                if (e.is_regular_file() && e.path().extension() == ".toml")
+                    in_dir.push_back(e.path());
             std::sort(in_dir.begin(), in_dir.end());
             if (in_dir.empty()) throw InputError("folder \"" + s + "\" holds no .toml scenario");
             for (auto& f : in_dir) {
                 Scenario sc = load_scenario(f, data_root);
-                const bool is_full = std::find(sc.tags.begin(), sc.tags.end(), "full") != sc.tags.end();
+                const bool is_full =
+                    std::find(sc.tags.begin(), sc.tags.end(), "full") != sc.tags.end();
                 if (is_full && !a.full) continue;
                 files.push_back(f);
                 loaded.push_back(std::move(sc));
@@ -76,27 +79,48 @@ std::string opt(const std::optional<double>& v, const char* f = "%.3f") {
 }
 
 nlohmann::json outcome_json(const ScenarioOutcome& o) {
-    nlohmann::json j = {{"scenario", o.name}, {"file", o.file.string()}, {"skipped", o.skipped},
-                        {"skip_reason", o.skip_reason}, {"passed", o.passed()}, {"failures", o.failures},
-                        {"views", o.views}, {"regions", o.regions}, {"largest_kind", o.largest_kind},
-                        {"coverage", o.coverage}, {"threshold_deg", o.threshold_deg}, {"fit", o.fit_mode},
-                        {"seconds", o.seconds}, {"output", o.output.string()}};
+    nlohmann::json j = {{"scenario", o.name},
+                        {"file", o.file.string()},
+                        {"skipped", o.skipped},
+                        {"skip_reason", o.skip_reason},
+                        {"passed", o.passed()},
+                        {"failures", o.failures},
+                        {"views", o.views},
+                        {"regions", o.regions},
+                        {"largest_kind", o.largest_kind},
+                        {"coverage", o.coverage},
+                        {"threshold_deg", o.threshold_deg},
+                        {"fit", o.fit_mode},
+                        {"seconds", o.seconds},
+                        {"output", o.output.string()}};
     if (o.score)
-        j["score"] = {{"precision", o.score->precision}, {"recall", o.score->recall}, {"f1", o.score->f1},
-                      {"iou", o.score->iou}, {"true_positive", o.score->true_positive},
-                      {"false_positive", o.score->false_positive}, {"false_negative", o.score->false_negative},
-                      {"truth_vertices", o.score->truth_vertices},
-                      {"centroid_error", o.score->centroid_error ? nlohmann::json(*o.score->centroid_error) : nlohmann::json()}};
-    if (o.pose) j["pose_error"] = {{"rotation_deg", o.pose->rotation_deg}, {"translation", o.pose->translation}};
+        j["score"] = {
+            {"precision", o.score->precision},
+            {"recall", o.score->recall},
+            {"f1", o.score->f1},
+            {"iou", o.score->iou},
+            {"true_positive", o.score->true_positive},
+            {"false_positive", o.score->false_positive},
+            {"false_negative", o.score->false_negative},
+            {"truth_vertices", o.score->truth_vertices},
+            {"centroid_error", o.score->centroid_error ? nlohmann::json(*o.score->centroid_error)
+                                                       : nlohmann::json()}};
+    if (o.pose)
+        j["pose_error"] = {{"rotation_deg", o.pose->rotation_deg},
+                           {"translation", o.pose->translation}};
     auto tally_json = [](const RegionTally& t) {
-        return nlohmann::json{{"regions", t.regions}, {"false_regions", t.false_regions}, {"damages", t.damages},
+        return nlohmann::json{{"regions", t.regions},
+                              {"false_regions", t.false_regions},
+                              {"damages", t.damages},
                               {"damages_detected", t.damages_detected},
                               {"close_region_vertices", t.close_region_vertices}};
     };
     if (o.tally) j["tally"] = tally_json(*o.tally);
     if (o.baseline)
-        j["baseline_distance"] = {{"threshold", o.baseline->threshold}, {"precision", o.baseline->score.precision},
-                                  {"recall", o.baseline->score.recall}, {"f1", o.baseline->score.f1},
+        j["baseline_distance"] = {{"threshold", o.baseline->threshold},
+                                  {"precision", o.baseline->score.precision},
+                                  {"recall", o.baseline->score.recall},
+                                  {"f1", o.baseline->score.f1},
                                   {"tally", tally_json(o.baseline->tally)}};
     return j;
 }
@@ -114,7 +138,8 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         for (const auto& sc : scenarios)
             if (std::error_code e; fs::exists(fs::path(a.output) / sc.name, e))
                 throw InputError("output folder \"" + (fs::path(a.output) / sc.name).string() +
-                                 "\" exists (an earlier run of scenario " + sc.name + "); give --force to replace it");
+                                 "\" exists (an earlier run of scenario " + sc.name +
+                                 "); give --force to replace it");
     std::error_code ec;
     fs::create_directories(a.output, ec);
     if (ec) throw IoError("output folder \"" + a.output + "\": " + ec.message());
@@ -143,16 +168,20 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
             o.failures.push_back(std::string("error: ") + e.what());
             if (!first_error) {
                 const std::string where = "scenario \"" + sc.file.string() + "\": ";
-                if (dynamic_cast<const InputError*>(&e)) first_error = std::make_exception_ptr(InputError(where + e.what()));
-                else if (dynamic_cast<const DeviceError*>(&e)) first_error = std::make_exception_ptr(DeviceError(where + e.what()));
+                if (dynamic_cast<const InputError*>(&e))
+                    first_error = std::make_exception_ptr(InputError(where + e.what()));
+                else if (dynamic_cast<const DeviceError*>(&e))
+                    first_error = std::make_exception_ptr(DeviceError(where + e.what()));
                 else first_error = std::make_exception_ptr(IoError(where + e.what()));
             }
         }
         bar.finish();
         if (!global_flags().quiet && !global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
-            else std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n", o.name.c_str(), o.regions,
-                             100 * o.coverage, o.seconds, o.output.string().c_str(), o.passed() ? "" : " (expectations failed)");
+            else
+                std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n",
+                            o.name.c_str(), o.regions, 100 * o.coverage, o.seconds,
+                            o.output.string().c_str(), o.passed() ? "" : " (expectations failed)");
             for (const auto& f : o.failures) std::printf("  %s\n", f.c_str());
         }
         outcomes.push_back(std::move(o));
@@ -164,8 +193,9 @@ void check(const std::vector<ScenarioOutcome>& outcomes) {
     if (first_error) std::rethrow_exception(first_error);
     std::size_t failed = 0;
     for (const auto& o : outcomes) failed += !o.skipped && !o.passed();
-    if (failed) throw CheckFailed(std::to_string(failed) + " of " + std::to_string(outcomes.size()) +
-                                  " scenario(s) did not meet their [expect]");
+    if (failed)
+        throw CheckFailed(std::to_string(failed) + " of " + std::to_string(outcomes.size()) +
+                          " scenario(s) did not meet their [expect]");
 }
 
 void run_command(const RunArgs& a) {
@@ -194,9 +224,11 @@ void eval_command(const RunArgs& a) {
            "baseline_threshold,baseline_f1,baseline_regions,baseline_false_regions\n";
     std::ostringstream table;
     char line[512];
-    std::snprintf(line, sizeof line, "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s %5s %5s %5s %6s %5s\n",
-                  "scenario", "status", "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU", "centroid", "rot°",
-                  "transl", "s", "false", "found", "close", "b.F1", "b.reg");
+    std::snprintf(
+        line, sizeof line,
+        "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s %5s %5s %5s %6s %5s\n",
+        "scenario", "status", "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU",
+        "centroid", "rot°", "transl", "s", "false", "found", "close", "b.F1", "b.reg");
     table << line;
     for (const auto& o : outcomes) {
         all.push_back(outcome_json(o));
@@ -210,8 +242,10 @@ void eval_command(const RunArgs& a) {
         const auto f1 = s([](const DetectionScore& d) { return d.f1; });
         const auto iou = s([](const DetectionScore& d) { return d.iou; });
         const std::optional<double> cen = o.score ? o.score->centroid_error : std::nullopt;
-        const std::optional<double> rot = o.pose ? std::optional<double>(o.pose->rotation_deg) : std::nullopt;
-        const std::optional<double> tr = o.pose ? std::optional<double>(o.pose->translation) : std::nullopt;
+        const std::optional<double> rot =
+            o.pose ? std::optional<double>(o.pose->rotation_deg) : std::nullopt;
+        const std::optional<double> tr =
+            o.pose ? std::optional<double>(o.pose->translation) : std::nullopt;
         const auto tally = [&](auto getter) -> std::optional<double> {
             if (!o.tally) return std::nullopt;
             return static_cast<double>(getter(*o.tally));
@@ -219,43 +253,60 @@ void eval_command(const RunArgs& a) {
         const auto false_regions = tally([](const RegionTally& t) { return t.false_regions; });
         const auto close = tally([](const RegionTally& t) { return t.close_region_vertices; });
         const std::string found =
-            o.tally && o.tally->damages ? std::to_string(o.tally->damages_detected) + "/" + std::to_string(o.tally->damages) : "-";
-        const std::optional<double> bf1 = o.baseline ? std::optional<double>(o.baseline->score.f1) : std::nullopt;
+            o.tally && o.tally->damages
+                ? std::to_string(o.tally->damages_detected) + "/" + std::to_string(o.tally->damages)
+                : "-";
+        const std::optional<double> bf1 =
+            o.baseline ? std::optional<double>(o.baseline->score.f1) : std::nullopt;
         const std::optional<double> breg =
-            o.baseline ? std::optional<double>(static_cast<double>(o.baseline->tally.regions)) : std::nullopt;
-        std::snprintf(line, sizeof line, "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
-                      o.name.substr(0, 34).c_str(), status.c_str(), o.regions, o.largest_kind.substr(0, 4).c_str(),
-                      o.coverage, o.threshold_deg, opt(prec).c_str(), opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(),
-                      opt(cen, "%.3g").c_str(), opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
-                      opt(false_regions, "%.0f").c_str(), found.c_str(), opt(close, "%.0f").c_str(), opt(bf1).c_str(),
-                      opt(breg, "%.0f").c_str());
+            o.baseline ? std::optional<double>(static_cast<double>(o.baseline->tally.regions))
+                       : std::nullopt;
+        std::snprintf(
+            line, sizeof line,
+            "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
+            o.name.substr(0, 34).c_str(), status.c_str(), o.regions,
+            o.largest_kind.substr(0, 4).c_str(), o.coverage, o.threshold_deg, opt(prec).c_str(),
+            opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(), opt(cen, "%.3g").c_str(),
+            opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
+            opt(false_regions, "%.0f").c_str(), found.c_str(), opt(close, "%.0f").c_str(),
+            opt(bf1).c_str(), opt(breg, "%.0f").c_str());
         table << line;
         for (const auto& f : o.failures) table << "    " << f << '\n';
         if (o.skipped) table << "    " << o.skip_reason << '\n';
-        csv << o.name << ',' << status << ',' << o.regions << ',' << o.largest_kind << ',' << o.coverage << ','
-            << o.threshold_deg << ',' << opt(prec, "%.6f") << ',' << opt(rec, "%.6f") << ',' << opt(f1, "%.6f") << ','
-            << opt(iou, "%.6f") << ',' << opt(cen, "%.6g") << ',' << opt(rot, "%.6g") << ',' << opt(tr, "%.6g") << ','
-            << o.seconds << ',' << opt(false_regions, "%.0f") << ',' << (o.tally ? std::to_string(o.tally->damages) : "-")
-            << ',' << (o.tally ? std::to_string(o.tally->damages_detected) : "-") << ',' << opt(close, "%.0f") << ','
-            << (o.baseline ? std::to_string(o.baseline->threshold) : "-") << ',' << opt(bf1, "%.6f") << ','
-            << opt(breg, "%.0f") << ','
+        csv << o.name << ',' << status << ',' << o.regions << ',' << o.largest_kind << ','
+            << o.coverage << ',' << o.threshold_deg << ',' << opt(prec, "%.6f") << ','
+            << opt(rec, "%.6f") << ',' << opt(f1, "%.6f") << ',' << opt(iou, "%.6f") << ','
+            << opt(cen, "%.6g") << ',' << opt(rot, "%.6g") << ',' << opt(tr, "%.6g") << ','
+            << o.seconds << ',' << opt(false_regions, "%.0f") << ','
+            << (o.tally ? std::to_string(o.tally->damages) : "-") << ','
+            << (o.tally ? std::to_string(o.tally->damages_detected) : "-") << ','
+            << opt(close, "%.0f") << ','
+            << (o.baseline ? std::to_string(o.baseline->threshold) : "-") << ',' << opt(bf1, "%.6f")
+            << ',' << opt(breg, "%.0f") << ','
             << (o.baseline ? std::to_string(o.baseline->tally.false_regions) : "-") << '\n';
     }
     write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
     write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());
     if (global_flags().json) std::cout << all.dump(2) << '\n';
-    else if (!global_flags().quiet) std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
+    else if (!global_flags().quiet)
+        std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
     check(outcomes);
 }
 
 void add_common(CLI::App* cmd, RunArgs& a) {
-    cmd->add_option("SCENARIO", a.scenarios, "Scenario files (.toml) or folders of them")->required();
-    cmd->add_option("-o,--output", a.output, "Folder for the atlases (one sub-folder per scenario)")->capture_default_str();
-    cmd->add_option("--data-root", a.data_root, "Where scenario mesh paths not found beside the scenario are looked up "
-                                                "(default: $GLINT_DATA)");
+    cmd->add_option("SCENARIO", a.scenarios, "Scenario files (.toml) or folders of them")
+        ->required();
+    cmd->add_option("-o,--output", a.output, "Folder for the atlases (one sub-folder per scenario)")
+        ->capture_default_str();
+    cmd->add_option("--data-root", a.data_root,
+                    "Where scenario mesh paths not found beside the scenario are looked up "
+                    "(default: $GLINT_DATA)");
     cmd->add_flag("--views", a.views, "Also write per-view heat maps (PNG + EXR)");
-    cmd->add_flag("--full", a.full, "Folders: include scenarios tagged 'full' (longer than the CI suite)");
-    cmd->add_flag("--force", a.force, "Replace existing atlas folders of these scenarios (each once its run completes)");
+    cmd->add_flag("--full", a.full,
+                  "Folders: include scenarios tagged 'full' (longer than the CI suite)");
+    cmd->add_flag(
+        "--force", a.force,
+        "Replace existing atlas folders of these scenarios (each once its run completes)");
     add_unit_flags(*cmd, a.units);
 }
 
@@ -266,8 +317,9 @@ void setup(CLI::App& app) {
     add_common(run, run_args);
     add_print_options_flag(*run, run_args.print);
     run->callback([] { run_command(run_args); });
-    auto* eval = app.add_subcommand("eval", "Run scenarios and score them against their ground truth; "
-                                            "exit 1 when an [expect] fails");
+    auto* eval = app.add_subcommand("eval",
+                                    "Run scenarios and score them against their ground truth; "
+                                    "exit 1 when an [expect] fails");
     add_common(eval, eval_args);
     eval->callback([] { eval_command(eval_args); });
 }

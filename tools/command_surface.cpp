@@ -20,7 +20,8 @@ struct SurfaceArgs {
     std::string output;
 };
 
-nlohmann::json to_json(const SurfaceReport& r, const std::string& volume, const std::string& output) {
+nlohmann::json to_json(const SurfaceReport& r, const std::string& volume,
+                       const std::string& output) {
     return {{"volume", volume},
             {"output", output},
             {"voxels", r.voxels},
@@ -55,8 +56,10 @@ void run(const SurfaceArgs& a) {
 
 void setup(CLI::App& app) {
     static SurfaceArgs a;
-    auto* cmd = app.add_subcommand("surface", "Extract an iso-surface (e.g. bone) from a CT volume, in physical mm");
-    cmd->add_option("VOLUME", a.volume, "Volume: .mhd/.raw, .mha, .nii, .nii.gz, .nrrd, .nhdr or a DICOM series folder")
+    auto* cmd = app.add_subcommand(
+        "surface", "Extract an iso-surface (e.g. bone) from a CT volume, in physical mm");
+    cmd->add_option("VOLUME", a.volume,
+                    "Volume: .mhd/.raw, .mha, .nii, .nii.gz, .nrrd, .nhdr or a DICOM series folder")
         ->required();
     add_surface_flags(*cmd, a.options, "--roi");
     cmd->add_option("-o,--output", a.output, "Surface mesh to write (.ply, .stl, .obj, .vtk)");

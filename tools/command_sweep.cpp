@@ -9,9 +9,9 @@
 #include "tools/analysis_flags.h"
 #include "tools/command.h"
 #include "tools/memory.h"
+#include "tools/progress.h"
 #include "tools/surface_flags.h"
 #include "volume/load.h"
-#include "tools/progress.h"
 
 #include <cstdio>
 #include <filesystem>
@@ -45,26 +45,31 @@ void print_summary(const AnalysisResult& r) {
     const std::string& u = r.unit;
     std::printf("unit %s; reference %s across, examined %s\n",
                 u.empty() ? "unknown (the files state none; --unit states it)" : u.c_str(),
-                with_unit(r.units.reference_size, u).c_str(), with_unit(r.units.examined_size, u).c_str());
+                with_unit(r.units.reference_size, u).c_str(),
+                with_unit(r.units.examined_size, u).c_str());
     for (std::size_t z = 0; z < r.decisions.size(); ++z) {
         const auto& d = r.decisions[z];
-        std::printf("zoom %zu: footprint %s/px (%d px), coverage %.1f%%, normal floor %.2f%s (%s), %zu region(s)\n", z,
-                    with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
-                    100.0 * r.sweep.zooms[z].coverage.fraction, d.normal.value, sym.c_str(),
-                    d.normal.given ? "given" : "noise floor", d.regions.regions.size());
+        std::printf(
+            "zoom %zu: footprint %s/px (%d px), coverage %.1f%%, normal floor %.2f%s (%s), %zu region(s)\n",
+            z, with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
+            100.0 * r.sweep.zooms[z].coverage.fraction, d.normal.value, sym.c_str(),
+            d.normal.given ? "given" : "noise floor", d.regions.regions.size());
         for (const auto& g : d.regions.regions)
-            std::printf("  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "
-                        "centroid (%.3f, %.3f, %.3f) %s\n",
-                        g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
-                        with_unit(g.peak_depth, u, 1, "%+.4g").c_str(), g.max_value, sym.c_str(), g.mean_value,
-                        sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(), u.empty() ? "units" : u.c_str());
+            std::printf(
+                "  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "
+                "centroid (%.3f, %.3f, %.3f) %s\n",
+                g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
+                with_unit(g.peak_depth, u, 1, "%+.4g").c_str(), g.max_value, sym.c_str(),
+                g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(),
+                u.empty() ? "units" : u.c_str());
     }
     for (const auto& w : r.units.warnings) std::printf("note: %s\n", w.c_str());
     if (!r.swap_hint.empty()) std::printf("warning: %s\n", r.swap_hint.c_str());
-    std::printf("%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
-                r.sweep.views.size(), r.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
-                r.sweep.renderer.device_name.c_str(), r.output.string().c_str(),
-                (r.output / "report.html").string().c_str());
+    std::printf(
+        "%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
+        r.sweep.views.size(), r.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
+        r.sweep.renderer.device_name.c_str(), r.output.string().c_str(),
+        (r.output / "report.html").string().c_str());
 }
 
 void run(SweepArgs& a) {
@@ -88,9 +93,13 @@ void run(SweepArgs& a) {
     }
     auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
     ExportOptions& e = options.exports;
-    auto described = [](const LoadedSurface& s) { return s.surface ? "surface of a volume: " + describe(*s.surface) : ""; };
-    e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(), ref.mesh.triangle_count()});
-    e.inputs.push_back({"examined", a.examined, described(exa), exa.mesh.vertex_count(), exa.mesh.triangle_count()});
+    auto described = [](const LoadedSurface& s) {
+        return s.surface ? "surface of a volume: " + describe(*s.surface) : "";
+    };
+    e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(),
+                        ref.mesh.triangle_count()});
+    e.inputs.push_back({"examined", a.examined, described(exa), exa.mesh.vertex_count(),
+                        exa.mesh.triangle_count()});
     if (!options.fit.fit_file.empty()) e.inputs.push_back({"fit", options.fit.fit_file, "", 0, 0});
     if (!a.calibration.empty()) e.inputs.push_back({"calibration", a.calibration, "", 0, 0});
     for (const auto* r : {&ref.report, &exa.report})
@@ -111,23 +120,29 @@ void run(SweepArgs& a) {
 
 void setup(CLI::App& app) {
     static SweepArgs a;
-    auto* cmd = app.add_subcommand("sweep", "Fit, sweep the virtual rotary scanner, compare and write the damage atlas");
+    auto* cmd = app.add_subcommand(
+        "sweep", "Fit, sweep the virtual rotary scanner, compare and write the damage atlas");
     cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
     cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
     add_surface_flags(*cmd, a.surface);
     add_fit_flags(*cmd, a.options.fit, "--fit-roi");
     add_sweep_flags(*cmd, a.options);
     cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");
-    auto* exr = cmd->add_flag("--exr", a.exr,
-                              "Also write per-view EXR files with every pixel's comparison (a GPU sweep then reads "
-                              "its frames back)");
-    cmd->add_flag("--no-exr", a.no_exr, "No per-view EXR files (the default; kept for scripts)")->excludes(exr);
-    cmd->add_option("--calibration", a.calibration, "calibration.json from glint calibrate: its zoom and threshold")
+    auto* exr = cmd->add_flag(
+        "--exr", a.exr,
+        "Also write per-view EXR files with every pixel's comparison (a GPU sweep then reads "
+        "its frames back)");
+    cmd->add_flag("--no-exr", a.no_exr, "No per-view EXR files (the default; kept for scripts)")
+        ->excludes(exr);
+    cmd->add_option("--calibration", a.calibration,
+                    "calibration.json from glint calibrate: its zoom and threshold")
         ->excludes("--zoom")
         ->excludes("--threshold-deg");
     add_unit_flags(*cmd, a.options.units);
-    cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")->required();
-    cmd->add_flag("--force", a.force, "Replace an existing output folder (only once the new results are complete)");
+    cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")
+        ->required();
+    cmd->add_flag("--force", a.force,
+                  "Replace an existing output folder (only once the new results are complete)");
     add_print_options_flag(*cmd, a.print);
     cmd->callback([] { run(a); });
 }

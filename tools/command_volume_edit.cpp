@@ -35,12 +35,13 @@ std::vector<double> numbers(const std::string& text, const char* flag, std::size
             out.push_back(std::stod(item, &used));
             if (used != item.size()) throw std::invalid_argument(item);
         } catch (const std::exception&) {
-            throw InputError(std::string(flag) + " \"" + text + "\": \"" + item + "\" is not a number");
+            throw InputError(std::string(flag) + " \"" + text + "\": \"" + item +
+                             "\" is not a number");
         }
     }
     if (out.size() != count)
-        throw InputError(std::string(flag) + " \"" + text + "\": expected " + std::to_string(count) + " numbers, found " +
-                         std::to_string(out.size()));
+        throw InputError(std::string(flag) + " \"" + text + "\": expected " +
+                         std::to_string(count) + " numbers, found " + std::to_string(out.size()));
     return out;
 }
 
@@ -53,26 +54,35 @@ void run(const EditArgs& a) {
     for (const auto& e : a.erode) {
         const auto v = numbers(e, "--erode", 4);
         if (!(v[3] > 0)) throw InputError("--erode \"" + e + "\": radius must be > 0 mm");
-        edit.erosions.push_back({Vec3d(v[0], v[1], v[2]), v[3], static_cast<float>(a.erode_to.value_or(lowest))});
+        edit.erosions.push_back(
+            {Vec3d(v[0], v[1], v[2]), v[3], static_cast<float>(a.erode_to.value_or(lowest))});
     }
     const Volume out = edit_volume(input, edit);
     write_volume(out, a.output);
     const std::string truth = a.output + ".json";
     write_file_atomically(truth, edit_json(edit));
-    if (!global_flags().quiet) std::printf("wrote %s and %s (ground truth)\n", a.output.c_str(), truth.c_str());
+    if (!global_flags().quiet)
+        std::printf("wrote %s and %s (ground truth)\n", a.output.c_str(), truth.c_str());
 }
 
 void setup(CLI::App& app) {
     static EditArgs a;
-    auto* cmd = app.add_subcommand("volume-edit", "Resample a volume under a known rigid motion with local erosions "
-                                                  "(a longitudinal pair with ground truth)");
-    cmd->add_option("IN", a.input, "Volume (.mhd .mha .nii .nii.gz .nrrd .nhdr or a DICOM folder)")->required();
-    cmd->add_option("-o,--output", a.output, "Edited volume (.mha .mhd .nii .nii.gz .nrrd .nhdr); truth in OUTPUT.json")
+    auto* cmd =
+        app.add_subcommand("volume-edit",
+                           "Resample a volume under a known rigid motion with local erosions "
+                           "(a longitudinal pair with ground truth)");
+    cmd->add_option("IN", a.input, "Volume (.mhd .mha .nii .nii.gz .nrrd .nhdr or a DICOM folder)")
         ->required();
-    cmd->add_option("--erode", a.erode, "x,y,z,r (mm, before the motion): lower values inside this ball; repeatable");
+    cmd->add_option("-o,--output", a.output,
+                    "Edited volume (.mha .mhd .nii .nii.gz .nrrd .nhdr); truth in OUTPUT.json")
+        ->required();
+    cmd->add_option("--erode", a.erode,
+                    "x,y,z,r (mm, before the motion): lower values inside this ball; repeatable");
     cmd->add_option_function<double>(
-        "--erode-to", [](double v) { a.erode_to = v; }, "Value eroded material takes (default: the volume's lowest)");
-    cmd->add_option("--pose", a.pose, "Rigid motion rx,ry,rz,tx,ty,tz (degrees, mm) about --pivot")->capture_default_str();
+        "--erode-to", [](double v) { a.erode_to = v; },
+        "Value eroded material takes (default: the volume's lowest)");
+    cmd->add_option("--pose", a.pose, "Rigid motion rx,ry,rz,tx,ty,tz (degrees, mm) about --pivot")
+        ->capture_default_str();
     cmd->add_option("--pivot", a.pivot, "Centre of the rotation x,y,z (mm)")->capture_default_str();
     cmd->callback([] { run(a); });
 }

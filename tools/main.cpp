@@ -77,7 +77,8 @@ using namespace glint::cli;
 int fail(int code, const std::string& kind, const std::string& message) {
     std::cerr << "glint: " << kind << ": " << message << '\n';
     if (global_flags().json)
-        std::cout << nlohmann::json{{"error", message}, {"kind", kind}, {"exit_code", code}}.dump() << '\n';
+        std::cout << nlohmann::json{{"error", message}, {"kind", kind}, {"exit_code", code}}.dump()
+                  << '\n';
     return code;
 }
 
@@ -107,12 +108,14 @@ std::string check_command_word(CLI::App& app, int argc, char** argv) {
 
 // CLI11's own errors ("EXA is required") in glint's one-line form, naming the command.
 int parse_failure(CLI::App& app, const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e) == 0 ? kExitOk : kExitBadInput;  // --help, --version
+    if (e.get_exit_code() == 0)
+        return app.exit(e) == 0 ? kExitOk : kExitBadInput;  // --help, --version
     const auto parsed = app.get_subcommands();
     if (parsed.empty()) {
         if (dynamic_cast<const CLI::RequiredError*>(&e))
-            return fail(kExitBadInput, "error", "a command is required; commands: " + command_list(app) +
-                                                    " (glint --help)");
+            return fail(
+                kExitBadInput, "error",
+                "a command is required; commands: " + command_list(app) + " (glint --help)");
         return fail(kExitBadInput, "error", std::string(e.what()) + " (glint --help)");
     }
     const std::string name = parsed.front()->get_name();
@@ -153,7 +156,8 @@ int main(int argc, char** argv) {
     app.fallthrough();
     auto& flags = global_flags();
     app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
-    app.add_flag("--json", flags.json, "Machine-readable JSON on stdout (errors too: {\"error\": …})");
+    app.add_flag("--json", flags.json,
+                 "Machine-readable JSON on stdout (errors too: {\"error\": …})");
     // note: a global option (fallthrough lets it follow any subcommand); it sets the budget
     // of every mesh load, scenarios' included, before any command runs.
     app.add_option_function<std::uint64_t>(

@@ -3,9 +3,9 @@
 #include "mesh/cancel.h"
 #include "tools/command.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
-#include <unistd.h>
 
 namespace glint::cli {
 
@@ -38,16 +38,19 @@ void ProgressBar::finish() {
 }
 
 void ProgressBar::draw(std::size_t done, bool final) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     const double rate = elapsed > 0 ? static_cast<double>(done) / elapsed : 0.0;
     const double eta = rate > 0 && done < total_ ? static_cast<double>(total_ - done) / rate : 0.0;
     constexpr int kWidth = 30;
-    const int filled = total_ ? static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total_)) : kWidth;
+    const int filled =
+        total_ ? static_cast<int>(kWidth * static_cast<double>(done) / static_cast<double>(total_))
+               : kWidth;
     char bar[kWidth + 1];
     for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
     bar[kWidth] = '\0';
-    std::fprintf(stderr, "\r%s [%s] %zu/%zu  %.1f/s  %s %.0fs ", label_.c_str(), bar, done, total_, rate,
-                 final ? "took" : "eta", final ? elapsed : eta);
+    std::fprintf(stderr, "\r%s [%s] %zu/%zu  %.1f/s  %s %.0fs ", label_.c_str(), bar, done, total_,
+                 rate, final ? "took" : "eta", final ? elapsed : eta);
     std::fflush(stderr);
 }
 

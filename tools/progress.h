@@ -8,7 +8,7 @@
 namespace glint::cli {
 
 class ProgressBar {
-public:
+  public:
     ProgressBar(std::string label, std::size_t total);
     ~ProgressBar();
     /// Sets the number of items done; redraws at most ~10 times a second.
@@ -18,7 +18,7 @@ public:
     /// Completes the line.
     void finish();
 
-private:
+  private:
     void draw(std::size_t done, bool final);
     std::string label_;
     std::size_t total_;

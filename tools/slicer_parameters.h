@@ -13,17 +13,19 @@ namespace glint::cli {
 /// boolean as --longflag alone, when true); an index parameter positionally; an output
 /// parameter with neither is a return parameter (written to --returnparameterfile).
 struct SlicerParameter {
-    std::string tag;   ///< integer, double, boolean, string, string-enumeration, double-vector, geometry, table, image
-    std::string name;  ///< unique; also the key in the return parameter file
+    std::string
+        tag;  ///< integer, double, boolean, string, string-enumeration, double-vector, geometry, table, image
+    std::string name;      ///< unique; also the key in the return parameter file
     std::string longflag;  ///< without dashes; empty for index and return parameters
     int index = -1;        ///< position among the index parameters; -1: not one
-    std::string channel;   ///< "input" or "output" (files and return values); empty for plain values
+    std::string channel;  ///< "input" or "output" (files and return values); empty for plain values
     std::string label;
     std::string description;
-    std::string default_value;          ///< empty: none
-    std::string type;                   ///< the type attribute (geometry "model", image "vector"); empty: none
-    std::string file_extensions;        ///< the fileExtensions attribute; the first is what Slicer writes/reads
-    std::vector<std::string> elements;  ///< enumerations
+    std::string default_value;  ///< empty: none
+    std::string type;  ///< the type attribute (geometry "model", image "vector"); empty: none
+    std::string
+        file_extensions;  ///< the fileExtensions attribute; the first is what Slicer writes/reads
+    std::vector<std::string> elements;                 ///< enumerations
     std::optional<std::array<double, 3>> constraints;  ///< minimum, maximum, step
 };
 

@@ -18,6 +18,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,7 +27,6 @@
 #include <optional>
 #include <string>
 #include <system_error>
-#include <unistd.h>
 #include <utility>
 #include <vector>
 
@@ -51,7 +51,8 @@ SlicerCall parse(int argc, char** argv) {
     SlicerCall call;
     CLI::App app{"glint as a 3D Slicer module (glint --xml prints its description)", "glint"};
     app.add_flag("--xml", call.xml, "Print the Slicer Execution Model description");
-    app.add_option("--returnparameterfile", call.return_file, "Write the return parameters (name = value) here");
+    app.add_option("--returnparameterfile", call.return_file,
+                   "Write the return parameters (name = value) here");
     app.add_option("--processinformationaddress", call.process_address,
                    "Slicer's shared-library modules only; ignored");
     bool echo = false;
@@ -63,15 +64,15 @@ SlicerCall parse(int argc, char** argv) {
             if (p.longflag.empty()) continue;
             if (p.tag == "boolean")
                 app.add_flag("--" + p.longflag, call.booleans[p.name], p.description);
-            else
-                app.add_option("--" + p.longflag, call.values[p.name], p.description);
+            else app.add_option("--" + p.longflag, call.values[p.name], p.description);
         }
     app.add_option("ARGS", call.positional, "reference, examined, atlas (the index parameters)")
         ->expected(0, positional_count);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        throw InputError(std::string("Slicer module: ") + e.what() + " (glint --xml describes the parameters)");
+        throw InputError(std::string("Slicer module: ") + e.what() +
+                         " (glint --xml describes the parameters)");
     }
     // Only the flags given stay (CLI11 leaves an empty string for the others).
     for (auto it = call.values.begin(); it != call.values.end();)
@@ -95,7 +96,8 @@ double number_of(const SlicerCall& c, const std::string& name) {
 int integer_of(const SlicerCall& c, const std::string& name) {
     const double v = number_of(c, name);
     if (v != std::floor(v) || std::fabs(v) > 1e9)
-        throw InputError("Slicer module: --" + name + " \"" + c.values.at(name) + "\": expected an integer");
+        throw InputError("Slicer module: --" + name + " \"" + c.values.at(name) +
+                         "\": expected an integer");
     return static_cast<int>(v);
 }
 
@@ -105,7 +107,8 @@ std::vector<double> numbers_of(const SlicerCall& c, const std::string& name) {
     std::string text = c.values.at(name);
     for (std::size_t start = 0;;) {
         const std::size_t comma = text.find(',', start);
-        one.values[name] = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        one.values[name] =
+            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
         out.push_back(number_of(one, name));
         if (comma == std::string::npos) break;
         start = comma + 1;
@@ -120,7 +123,8 @@ AnalysisOptions options_from(const SlicerCall& c) {
     auto has = [&](const char* name) { return c.values.count(name) != 0; };
     o.fit.mode = c.booleans.at("register") ? FitMode::Register : FitMode::Identity;
     if (has("loss")) o.fit.registration.loss = parse_loss(c.values.at("loss"));
-    if (has("fitRoi") && !c.values.at("fitRoi").empty()) o.fit.registration.roi = parse_roi(c.values.at("fitRoi"));
+    if (has("fitRoi") && !c.values.at("fitRoi").empty())
+        o.fit.registration.roi = parse_roi(c.values.at("fitRoi"));
     if (has("size")) o.sweep.plan.size = integer_of(c, "size");
     if (has("azimuthStep")) o.sweep.plan.azimuth_step_deg = number_of(c, "azimuthStep");
     if (has("elevations")) o.sweep.plan.elevations_deg = numbers_of(c, "elevations");
@@ -129,11 +133,13 @@ AnalysisOptions options_from(const SlicerCall& c) {
     if (has("metric")) o.sweep.metric = parse_metric(c.values.at("metric"));
     if (has("backend")) o.sweep.render.backend = parse_backend(c.values.at("backend"));
     if (has("rule")) o.decision.rule = parse_decision_rule(c.values.at("rule"));
-    if (has("thresholdDeg") && number_of(c, "thresholdDeg") != 0.0) o.decision.threshold = number_of(c, "thresholdDeg");
+    if (has("thresholdDeg") && number_of(c, "thresholdDeg") != 0.0)
+        o.decision.threshold = number_of(c, "thresholdDeg");
     if (has("shapeThreshold") && number_of(c, "shapeThreshold") != 0.0)
         o.decision.shape_threshold = number_of(c, "shapeThreshold");
     if (has("minRegionVertices"))
-        o.decision.min_region_vertices = static_cast<std::size_t>(integer_of(c, "minRegionVertices"));
+        o.decision.min_region_vertices =
+            static_cast<std::size_t>(integer_of(c, "minRegionVertices"));
     if (has("unit") && c.values.at("unit") != "auto") o.units.unit = c.values.at("unit");
     o.exports.write_views = false;
     o.exports.write_exr = false;
@@ -142,7 +148,7 @@ AnalysisOptions options_from(const SlicerCall& c) {
 
 // Slicer reads the last of each tag it finds on stdout; every line is flushed at once.
 class SlicerProgress {
-public:
+  public:
     SlicerProgress() : start_(std::chrono::steady_clock::now()) {
         std::printf(
             "<filter-start><filter-name>glint sweep</filter-name><filter-comment>loading</filter-comment>"
@@ -157,20 +163,24 @@ public:
         if (it != at.end()) progress(it->second, name);
     }
     void views(std::size_t done, std::size_t total) {
-        if (total > 0) progress(0.3 + 0.6 * static_cast<double>(done) / static_cast<double>(total), "sweep");
+        if (total > 0)
+            progress(0.3 + 0.6 * static_cast<double>(done) / static_cast<double>(total), "sweep");
     }
     void finish() {
         progress(1.0, "done");
-        const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-        std::printf("<filter-end><filter-name>glint sweep</filter-name><filter-time>%.2f</filter-time></filter-end>\n",
-                    s);
+        const double s =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        std::printf(
+            "<filter-end><filter-name>glint sweep</filter-name><filter-time>%.2f</filter-time></filter-end>\n",
+            s);
         std::fflush(stdout);
     }
 
-private:
+  private:
     void progress(double fraction, std::string_view comment) {
-        std::printf("<filter-progress>%.4f</filter-progress>\n<filter-comment>%.*s</filter-comment>\n", fraction,
-                    static_cast<int>(comment.size()), comment.data());
+        std::printf(
+            "<filter-progress>%.4f</filter-progress>\n<filter-comment>%.*s</filter-comment>\n",
+            fraction, static_cast<int>(comment.size()), comment.data());
         std::fflush(stdout);
     }
     std::chrono::steady_clock::time_point start_;
@@ -201,11 +211,12 @@ std::string return_parameters(const AnalysisResult& r) {
     }
     const double rms = r.fit.registration ? r.fit.registration->rms : 0.0;
     char b[640];
-    std::snprintf(b, sizeof b,
-                  "regionCount = %zu\nlargestRegionArea = %.9g\npeakDepth = %.9g\nvolumeLost = %.9g\nvolumeGained = "
-                  "%.9g\ncoverage = %.6g\nfitRotationDeg = %.9g\nfitRms = %.9g\nlengthUnit = %s\n",
-                  count, largest, peak, lost, gained, coverage, rotation_angle_deg(r.fit.reference_from_examined), rms,
-                  r.unit.c_str());
+    std::snprintf(
+        b, sizeof b,
+        "regionCount = %zu\nlargestRegionArea = %.9g\npeakDepth = %.9g\nvolumeLost = %.9g\nvolumeGained = "
+        "%.9g\ncoverage = %.6g\nfitRotationDeg = %.9g\nfitRms = %.9g\nlengthUnit = %s\n",
+        count, largest, peak, lost, gained, coverage,
+        rotation_angle_deg(r.fit.reference_from_examined), rms, r.unit.c_str());
     return b;
 }
 
@@ -214,7 +225,9 @@ void deliver(const fs::path& folder, const char* name, const std::string& to) {
     if (to.empty()) return;
     std::error_code ec;
     fs::rename(folder / name, to, ec);
-    if (ec) throw IoError("Slicer module: cannot move " + (folder / name).string() + " to " + to + ": " + ec.message());
+    if (ec)
+        throw IoError("Slicer module: cannot move " + (folder / name).string() + " to " + to +
+                      ": " + ec.message());
 }
 
 }  // namespace
@@ -227,16 +240,17 @@ void run_slicer_module(int argc, char** argv) {
     }
     AnalysisOptions options = options_from(call);
     const fs::path atlas = call.positional[2];
-    ScratchFolder scratch{atlas.parent_path() /
-                          (".glint-slicer-" + std::to_string(::getpid()) + "-" + atlas.filename().string())};
+    ScratchFolder scratch{atlas.parent_path() / (".glint-slicer-" + std::to_string(::getpid()) +
+                                                 "-" + atlas.filename().string())};
     options.exports.output = scratch.path;
     options.exports.command_line = global_flags().command_line;
     options.validate();
     SlicerProgress progress;
     const LoadedSurface ref = load_surface(call.positional[0], {});
     LoadedSurface exa = load_surface(call.positional[1], {});
-    options.exports.inputs = {{"reference", call.positional[0], "", ref.mesh.vertex_count(), ref.mesh.triangle_count()},
-                              {"examined", call.positional[1], "", exa.mesh.vertex_count(), exa.mesh.triangle_count()}};
+    options.exports.inputs = {
+        {"reference", call.positional[0], "", ref.mesh.vertex_count(), ref.mesh.triangle_count()},
+        {"examined", call.positional[1], "", exa.mesh.vertex_count(), exa.mesh.triangle_count()}};
     AnalysisObserver observer;
     observer.stage = [&](std::string_view s) {
         give_back_free_memory();
@@ -245,9 +259,12 @@ void run_slicer_module(int argc, char** argv) {
     observer.views = [&](std::size_t done, std::size_t total) { progress.views(done, total); };
     const AnalysisResult result = analyse(ref.mesh, std::move(exa.mesh), options, observer);
     deliver(result.output, "atlas.vtp", atlas.string());
-    if (call.values.count("regions") != 0) deliver(result.output, "regions.csv", call.values.at("regions"));
-    if (call.values.count("mosaic") != 0) deliver(result.output, "mosaic_z0.png", call.values.at("mosaic"));
-    if (!call.return_file.empty()) write_file_atomically(call.return_file, return_parameters(result));
+    if (call.values.count("regions") != 0)
+        deliver(result.output, "regions.csv", call.values.at("regions"));
+    if (call.values.count("mosaic") != 0)
+        deliver(result.output, "mosaic_z0.png", call.values.at("mosaic"));
+    if (!call.return_file.empty())
+        write_file_atomically(call.return_file, return_parameters(result));
     progress.finish();
     for (const auto& w : result.warnings) std::printf("warning: %s\n", w.c_str());
 }

@@ -35,30 +35,36 @@ void add_surface_flags(CLI::App& cmd, SurfaceOptions& o, const std::string& roi_
            "--seed", [&o](const std::string& v) { o.seed = parse_point(v, "--seed"); },
            "Volumes: keep only the connected surface nearest x,y,z (mm)")
         ->excludes("--largest");
-    cmd.add_option("--smooth", o.smooth_iterations, "Volumes: windowed-sinc smoothing iterations (0: none; 10-20 is light)")
+    cmd.add_option("--smooth", o.smooth_iterations,
+                   "Volumes: windowed-sinc smoothing iterations (0: none; 10-20 is light)")
         ->capture_default_str();
-    cmd.add_option("--passband", o.passband, "Volumes: windowed-sinc pass band (0, 2), lower smooths more")
+    cmd.add_option("--passband", o.passband,
+                   "Volumes: windowed-sinc pass band (0, 2), lower smooths more")
         ->capture_default_str();
-    cmd.add_option("--edge", o.edge_mm, "Volumes: decimate to this mean edge length, mm (0: keep every triangle)")
+    cmd.add_option("--edge", o.edge_mm,
+                   "Volumes: decimate to this mean edge length, mm (0: keep every triangle)")
         ->capture_default_str();
-    cmd.add_option("--tolerance", o.tolerance_mm,
-                   "Volumes: decimation moves the surface at most this far, mm (0: a quarter of the smallest spacing)")
+    cmd.add_option(
+           "--tolerance", o.tolerance_mm,
+           "Volumes: decimation moves the surface at most this far, mm (0: a quarter of the smallest spacing)")
         ->capture_default_str();
 }
 
 std::string describe(const SurfaceReport& r) {
     char line[320];
-    std::snprintf(line, sizeof line,
-                  "%zu x %zu x %zu voxels of %.4g x %.4g x %.4g mm, iso %.6g (data %.6g … %.6g): %zu triangles, %zu of "
-                  "%zu component(s), %.2f s",
-                  r.voxels[0], r.voxels[1], r.voxels[2], r.spacing.x(), r.spacing.y(), r.spacing.z(), r.iso,
-                  static_cast<double>(r.range[0]), static_cast<double>(r.range[1]), r.triangles, r.components_kept,
-                  r.components_found, r.seconds);
+    std::snprintf(
+        line, sizeof line,
+        "%zu x %zu x %zu voxels of %.4g x %.4g x %.4g mm, iso %.6g (data %.6g … %.6g): %zu triangles, %zu of "
+        "%zu component(s), %.2f s",
+        r.voxels[0], r.voxels[1], r.voxels[2], r.spacing.x(), r.spacing.y(), r.spacing.z(), r.iso,
+        static_cast<double>(r.range[0]), static_cast<double>(r.range[1]), r.triangles,
+        r.components_kept, r.components_found, r.seconds);
     return line;
 }
 
-std::pair<LoadedSurface, LoadedSurface> load_pair(const std::string& reference, const std::string& examined,
-                                                const SurfaceOptions& surface) {
+std::pair<LoadedSurface, LoadedSurface> load_pair(const std::string& reference,
+                                                  const std::string& examined,
+                                                  const SurfaceOptions& surface) {
     if (is_volume_path(reference) || is_volume_path(examined))
         return {load_surface(reference, surface), load_surface(examined, surface)};
     LoadedSurface exa;

@@ -58,7 +58,8 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
         throw_if_cancelled();
         for (std::size_t j = 0; j < g.size[1]; ++j)
             for (std::size_t i = 0; i < g.size[0]; ++i) {
-                const Vec3d p = original_from_moved * g.physical_from_index(Vec3d(double(i), double(j), double(k)));
+                const Vec3d p = original_from_moved *
+                                g.physical_from_index(Vec3d(double(i), double(j), double(k)));
                 float value = sample(in, g.index_from_physical(p), background);
                 for (const Erosion& e : edit.erosions) {
                     const double d = (p - e.center).norm() - e.radius;
@@ -77,15 +78,16 @@ std::string edit_json(const VolumeEdit& edit) {
     s << "{\n  \"moved_from_original\": [";
     for (int r = 0; r < 4; ++r) {
         char row[128];
-        std::snprintf(row, sizeof row, "%s[%.12g, %.12g, %.12g, %.12g]", r ? ", " : "", m(r, 0), m(r, 1), m(r, 2), m(r, 3));
+        std::snprintf(row, sizeof row, "%s[%.12g, %.12g, %.12g, %.12g]", r ? ", " : "", m(r, 0),
+                      m(r, 1), m(r, 2), m(r, 3));
         s << row;
     }
     s << "],\n  \"erosions\": [";
     for (std::size_t n = 0; n < edit.erosions.size(); ++n) {
         const Erosion& e = edit.erosions[n];
         s << (n ? ", " : "") << "{\"center_original\": " << vec(e.center)
-          << ", \"center_moved\": " << vec(edit.moved_from_original * e.center) << ", \"radius\": " << e.radius
-          << ", \"value\": " << e.value << "}";
+          << ", \"center_moved\": " << vec(edit.moved_from_original * e.center)
+          << ", \"radius\": " << e.radius << ", \"value\": " << e.value << "}";
     }
     s << "]\n}\n";
     return s.str();

@@ -24,12 +24,13 @@ detail::RawVolume to_raw(const Volume& v) {
     for (int d = 0; d < 3; ++d) {
         r.spacing[static_cast<std::size_t>(d)] = g.spacing[d];
         r.origin[static_cast<std::size_t>(d)] = g.origin[d];
-        for (int c = 0; c < 3; ++c) r.direction[static_cast<std::size_t>(3 * d + c)] = g.direction(d, c);
+        for (int c = 0; c < 3; ++c)
+            r.direction[static_cast<std::size_t>(3 * d + c)] = g.direction(d, c);
     }
     r.voxels = v.voxels;
     if (r.voxels.size() != g.voxel_count())
-        throw InputError("volume: " + std::to_string(r.voxels.size()) + " voxels, the geometry needs " +
-                         std::to_string(g.voxel_count()));
+        throw InputError("volume: " + std::to_string(r.voxels.size()) +
+                         " voxels, the geometry needs " + std::to_string(g.voxel_count()));
     return r;
 }
 
@@ -67,28 +68,36 @@ Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     for (int d = 0; d < 3; ++d) {
         g.spacing[d] = raw.spacing[static_cast<std::size_t>(d)];
         g.origin[d] = raw.origin[static_cast<std::size_t>(d)];
-        for (int c = 0; c < 3; ++c) g.direction(d, c) = raw.direction[static_cast<std::size_t>(3 * d + c)];
+        for (int c = 0; c < 3; ++c)
+            g.direction(d, c) = raw.direction[static_cast<std::size_t>(3 * d + c)];
     }
     if (!(g.spacing.array() > 0).all())
-        throw InputError(quoted(path) + ": spacing (" + std::to_string(g.spacing.x()) + ", " + std::to_string(g.spacing.y()) +
-                         ", " + std::to_string(g.spacing.z()) + ") mm, expected every spacing > 0");
+        throw InputError(quoted(path) + ": spacing (" + std::to_string(g.spacing.x()) + ", " +
+                         std::to_string(g.spacing.y()) + ", " + std::to_string(g.spacing.z()) +
+                         ") mm, expected every spacing > 0");
     if (std::abs(std::abs(g.direction.determinant()) - 1.0) > 1e-3)
         throw InputError(quoted(path) + ": direction matrix is not orthonormal (determinant " +
-                         std::to_string(g.direction.determinant()) + "), expected direction cosines");
+                         std::to_string(g.direction.determinant()) +
+                         "), expected direction cosines");
     v.voxels = std::move(raw.voxels);
     for (std::size_t n = 0; n < v.voxels.size(); ++n)
         if (!std::isfinite(v.voxels[n]))
-            throw InputError(quoted(path) + ": voxel " + std::to_string(n) + " is not finite, expected finite values");
+            throw InputError(quoted(path) + ": voxel " + std::to_string(n) +
+                             " is not finite, expected finite values");
     return v;
 }
 
 void write_volume(const Volume& volume, const fs::path& path) {
     const std::string format = detail::volume_format(path);
     if (format.empty() || format == "dicom")
-        throw InputError(quoted(path) + ": cannot write this extension, expected .mha .mhd .nii .nii.gz .nrrd .nhdr");
+        throw InputError(
+            quoted(path) +
+            ": cannot write this extension, expected .mha .mhd .nii .nii.gz .nrrd .nhdr");
     const detail::RawVolume raw = to_raw(volume);
     const std::string name = path.filename().string();
-    auto has_suffix = [&](const std::string& s) { return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0; };
+    auto has_suffix = [&](const std::string& s) {
+        return name.size() >= s.size() && name.compare(name.size() - s.size(), s.size(), s) == 0;
+    };
     if (has_suffix(".mhd") || has_suffix(".nhdr")) {
         // note: a header names its data file, so the pair is written under its final names
         // (not atomically).
@@ -107,9 +116,11 @@ void write_volume(const Volume& volume, const fs::path& path) {
 
 void write_dicom_series(const Volume& volume, const fs::path& folder) {
     std::error_code ec;
-    if (fs::exists(folder, ec)) throw IoError("DICOM folder \"" + folder.string() + "\": exists already");
+    if (fs::exists(folder, ec))
+        throw IoError("DICOM folder \"" + folder.string() + "\": exists already");
     fs::create_directories(folder, ec);
-    if (ec) throw IoError("DICOM folder \"" + folder.string() + "\": cannot create: " + ec.message());
+    if (ec)
+        throw IoError("DICOM folder \"" + folder.string() + "\": cannot create: " + ec.message());
     detail::itk_write_dicom(to_raw(volume), folder);
 }
 

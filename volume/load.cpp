@@ -6,13 +6,15 @@
 
 namespace glint {
 
-LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceOptions& surface, const LoadOptions& options) {
+LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceOptions& surface,
+                           const LoadOptions& options) {
     LoadedSurface out;
     if (!is_volume_path(path)) {
         if (surface.iso || surface.any())
-            throw InputError("mesh \"" + path.string() +
-                             "\": surface options (iso, surface ROI, largest, seed, smooth, edge) apply to volumes, "
-                             "this is a mesh file");
+            throw InputError(
+                "mesh \"" + path.string() +
+                "\": surface options (iso, surface ROI, largest, seed, smooth, edge) apply to volumes, "
+                "this is a mesh file");
         LoadedMesh m = load_mesh(path, options);
         out.mesh = std::move(m.mesh);
         out.report = std::move(m.report);
@@ -22,8 +24,10 @@ LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceOptio
     if (!surface.iso) {
         const auto range = volume.range();
         char text[96];
-        std::snprintf(text, sizeof text, "%.6g … %.6g", static_cast<double>(range[0]), static_cast<double>(range[1]));
-        throw InputError("volume \"" + path.string() + "\": a volume needs --iso VALUE (scenario key iso) to give a " +
+        std::snprintf(text, sizeof text, "%.6g … %.6g", static_cast<double>(range[0]),
+                      static_cast<double>(range[1]));
+        throw InputError("volume \"" + path.string() +
+                         "\": a volume needs --iso VALUE (scenario key iso) to give a " +
                          "surface; its data range is " + text);
     }
     ExtractedSurface s = extract_surface(volume, surface);

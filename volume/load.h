@@ -13,7 +13,7 @@ namespace glint {
 
 struct LoadedSurface {
     Mesh mesh;
-    LoadReport report;                     ///< for a volume: path, format "volume-<format>", notes as warnings
+    LoadReport report;  ///< for a volume: path, format "volume-<format>", notes as warnings
     std::optional<SurfaceReport> surface;  ///< set when the surface came from a volume
     std::optional<VolumeGeometry> geometry;
 };
@@ -22,7 +22,8 @@ struct LoadedSurface {
 /// \throw InputError a volume without an iso value (the message gives the data range and asks
 /// for --iso), surface options given for a mesh file, and whatever load_mesh, read_volume and
 /// extract_surface throw.
-[[nodiscard]] LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceOptions& surface,
+[[nodiscard]] LoadedSurface load_surface(const std::filesystem::path& path,
+                                         const SurfaceOptions& surface,
                                          const LoadOptions& options = {});
 
 }  // namespace glint

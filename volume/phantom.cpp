@@ -27,10 +27,12 @@ Volume make_ellipsoid_volume(const EllipsoidVolumeOptions& o) {
                 const double d = ellipsoid_signed_distance(p, o.center, o.radii);
                 // The normal direction, for the voxel's extent along it: Σ |axis · n|.
                 const Vec3d q = (p - o.center).cwiseQuotient(o.radii);
-                const Vec3d n = q.norm() > 0 ? Vec3d(q.cwiseQuotient(o.radii).normalized()) : Vec3d::UnitX();
+                const Vec3d n =
+                    q.norm() > 0 ? Vec3d(q.cwiseQuotient(o.radii).normalized()) : Vec3d::UnitX();
                 const double extent = (axes.transpose() * n).cwiseAbs().sum();
                 const double inside = std::clamp(0.5 - d / (2.0 * extent), 0.0, 1.0);
-                v.voxels[g.offset(i, j, k)] = static_cast<float>(o.outside + (o.inside - o.outside) * inside);
+                v.voxels[g.offset(i, j, k)] =
+                    static_cast<float>(o.outside + (o.inside - o.outside) * inside);
             }
     return v;
 }

@@ -7,11 +7,11 @@
 namespace glint {
 
 struct EllipsoidVolumeOptions {
-    VolumeGeometry grid;          ///< the voxel grid (size, spacing, origin, direction)
-    Vec3d center{0, 0, 0};        ///< physical, mm
-    Vec3d radii{10, 8, 6};        ///< semi-axes along physical x, y, z, mm
-    float inside = 1000.0f;       ///< value deep inside
-    float outside = 0.0f;         ///< value far outside
+    VolumeGeometry grid;     ///< the voxel grid (size, spacing, origin, direction)
+    Vec3d center{0, 0, 0};   ///< physical, mm
+    Vec3d radii{10, 8, 6};   ///< semi-axes along physical x, y, z, mm
+    float inside = 1000.0f;  ///< value deep inside
+    float outside = 0.0f;    ///< value far outside
 };
 
 /// Samples the ellipsoid with partial volume: a voxel's value blends inside and outside by a
@@ -22,6 +22,7 @@ struct EllipsoidVolumeOptions {
 
 /// First-order signed distance from p to the ellipsoid surface (negative inside), mm: F/|∇F|
 /// with F = |((p - c) / r)| - 1; exact on a sphere, O(d²·curvature) off it.
-[[nodiscard]] double ellipsoid_signed_distance(const Vec3d& p, const Vec3d& center, const Vec3d& radii);
+[[nodiscard]] double ellipsoid_signed_distance(const Vec3d& p, const Vec3d& center,
+                                               const Vec3d& radii);
 
 }  // namespace glint

@@ -30,22 +30,28 @@ std::string num(double x) {
 
 // Voxel bounds [lo, hi] (inclusive) holding the ROI, one voxel of margin so that the contour
 // reaches the ROI's boundary; the whole volume without a ROI.
-std::array<std::array<std::size_t, 3>, 2> crop_bounds(const VolumeGeometry& g, const std::optional<Roi>& roi) {
+std::array<std::array<std::size_t, 3>, 2> crop_bounds(const VolumeGeometry& g,
+                                                      const std::optional<Roi>& roi) {
     std::array<std::array<std::size_t, 3>, 2> out{};
-    for (int d = 0; d < 3; ++d) out[1][static_cast<std::size_t>(d)] = g.size[static_cast<std::size_t>(d)] - 1;
+    for (int d = 0; d < 3; ++d)
+        out[1][static_cast<std::size_t>(d)] = g.size[static_cast<std::size_t>(d)] - 1;
     if (!roi) return out;
-    const Vec3d lo = roi->shape == Roi::Shape::Sphere ? Vec3d(roi->center.array() - roi->radius) : roi->min;
-    const Vec3d hi = roi->shape == Roi::Shape::Sphere ? Vec3d(roi->center.array() + roi->radius) : roi->max;
+    const Vec3d lo =
+        roi->shape == Roi::Shape::Sphere ? Vec3d(roi->center.array() - roi->radius) : roi->min;
+    const Vec3d hi =
+        roi->shape == Roi::Shape::Sphere ? Vec3d(roi->center.array() + roi->radius) : roi->max;
     Vec3d ilo = Vec3d::Constant(1e300), ihi = Vec3d::Constant(-1e300);
     for (int c = 0; c < 8; ++c) {
-        const Vec3d corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(), (c & 4) ? hi.z() : lo.z());
+        const Vec3d corner((c & 1) ? hi.x() : lo.x(), (c & 2) ? hi.y() : lo.y(),
+                           (c & 4) ? hi.z() : lo.z());
         const Vec3d i = g.index_from_physical(corner);
         ilo = ilo.cwiseMin(i);
         ihi = ihi.cwiseMax(i);
     }
     for (std::size_t d = 0; d < 3; ++d) {
         const double n = static_cast<double>(g.size[d] - 1);
-        const double a = std::floor(ilo[static_cast<Eigen::Index>(d)]) - 1, b = std::ceil(ihi[static_cast<Eigen::Index>(d)]) + 1;
+        const double a = std::floor(ilo[static_cast<Eigen::Index>(d)]) - 1,
+                     b = std::ceil(ihi[static_cast<Eigen::Index>(d)]) + 1;
         if (b < 0 || a > n) return {{{1, 1, 1}, {0, 0, 0}}};  // empty: lo > hi
         out[0][d] = static_cast<std::size_t>(std::max(0.0, a));
         out[1][d] = static_cast<std::size_t>(std::min(n, b));
@@ -70,8 +76,9 @@ void decimate(Mesh& mesh, const SurfaceOptions& o, double tolerance_mm, SurfaceR
     std::vector<unsigned> indices(3 * mesh.triangle_count()), out(indices.size());
     std::copy_n(&mesh.triangles[0][0], indices.size(), indices.data());
     float error = 0.0f;
-    const std::size_t kept = meshopt_simplify(out.data(), indices.data(), indices.size(), xyz, nv, sizeof(Vec3f), 3 * target,
-                                              static_cast<float>(tolerance_mm / scale), meshopt_SimplifyLockBorder, &error);
+    const std::size_t kept = meshopt_simplify(
+        out.data(), indices.data(), indices.size(), xyz, nv, sizeof(Vec3f), 3 * target,
+        static_cast<float>(tolerance_mm / scale), meshopt_SimplifyLockBorder, &error);
     report.decimation_error_mm = static_cast<double>(error * scale);
     mesh.triangles.resize(kept / 3);
     std::copy_n(out.data(), kept, &mesh.triangles[0][0]);
@@ -87,8 +94,9 @@ void decimate(Mesh& mesh, const SurfaceOptions& o, double tolerance_mm, SurfaceR
             v = remap[v];
         }
     mesh.positions = std::move(positions);
-    report.notes.push_back("decimation to " + num(o.edge_mm) + " mm edges within " + num(tolerance_mm) +
-                           " mm (estimated error " + num(report.decimation_error_mm) + " mm)");
+    report.notes.push_back("decimation to " + num(o.edge_mm) + " mm edges within " +
+                           num(tolerance_mm) + " mm (estimated error " +
+                           num(report.decimation_error_mm) + " mm)");
 }
 
 }  // namespace
@@ -97,18 +105,24 @@ void SurfaceOptions::validate() const {
     if (!iso) throw OptionError("iso", "(none)", "an iso value is required");
     if (!std::isfinite(*iso)) throw OptionError("iso", *iso, "must be finite");
     if (roi && roi->shape == Roi::Shape::VertexMask)
-        throw OptionError("surface_roi", to_string(*roi), "a volume takes a sphere: or box: ROI, not a mask");
+        throw OptionError("surface_roi", to_string(*roi),
+                          "a volume takes a sphere: or box: ROI, not a mask");
     if (roi && roi->shape == Roi::Shape::Sphere && !(roi->radius > 0))
         throw OptionError("surface_roi", to_string(*roi), "radius must be > 0");
     if (roi && roi->shape == Roi::Shape::Box && (roi->min.array() >= roi->max.array()).any())
-        throw OptionError("surface_roi", to_string(*roi), "box min must be below max on every axis");
+        throw OptionError("surface_roi", to_string(*roi),
+                          "box min must be below max on every axis");
     if (largest && seed) throw OptionError("largest", "true", "give largest or seed, not both");
-    if (seed && !seed->allFinite()) throw OptionError("seed", "(non-finite)", "must be a finite point");
+    if (seed && !seed->allFinite())
+        throw OptionError("seed", "(non-finite)", "must be a finite point");
     if (smooth_iterations < 0 || smooth_iterations > 1000)
         throw OptionError("smooth", smooth_iterations, "must be 0…1000 iterations");
-    if (!(passband > 0 && passband < 2)) throw OptionError("passband", passband, "must be in (0, 2)");
-    if (!(edge_mm >= 0) || !std::isfinite(edge_mm)) throw OptionError("edge", edge_mm, "must be ≥ 0 mm");
-    if (!(tolerance_mm >= 0) || !std::isfinite(tolerance_mm)) throw OptionError("tolerance", tolerance_mm, "must be ≥ 0 mm");
+    if (!(passband > 0 && passband < 2))
+        throw OptionError("passband", passband, "must be in (0, 2)");
+    if (!(edge_mm >= 0) || !std::isfinite(edge_mm))
+        throw OptionError("edge", edge_mm, "must be ≥ 0 mm");
+    if (!(tolerance_mm >= 0) || !std::isfinite(tolerance_mm))
+        throw OptionError("tolerance", tolerance_mm, "must be ≥ 0 mm");
 }
 
 bool SurfaceOptions::any() const {
@@ -126,39 +140,46 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
     r.iso = *o.iso;
     r.range = volume.range();
     if (!(r.iso > r.range[0] && r.iso < r.range[1]))
-        throw InputError(quoted(volume) + ": iso " + num(r.iso) + " is outside the data range " + num(r.range[0]) + " … " +
-                         num(r.range[1]) + "; give an iso value between them");
+        throw InputError(quoted(volume) + ": iso " + num(r.iso) + " is outside the data range " +
+                         num(r.range[0]) + " … " + num(r.range[1]) +
+                         "; give an iso value between them");
     const auto crop = crop_bounds(g, o.roi);
     for (std::size_t d = 0; d < 3; ++d) {
         if (crop[0][d] >= crop[1][d])
-            throw InputError(quoted(volume) + ": the surface ROI " + to_string(*o.roi) + " holds no voxel of the volume");
+            throw InputError(quoted(volume) + ": the surface ROI " + to_string(*o.roi) +
+                             " holds no voxel of the volume");
         r.cropped[d] = crop[1][d] - crop[0][d] + 1;
     }
     detail::VtkSurface s = detail::contour(volume, crop, r.iso);
     const std::string where = o.roi ? " inside the ROI " + to_string(*o.roi) : "";
     if (s.triangle_count() == 0)
-        throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" + where);
+        throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" +
+                         where);
     s.to_physical(g);
     if (o.roi) {
         s.keep_inside(*o.roi);
-        if (s.triangle_count() == 0) throw InputError(quoted(volume) + ": no triangle of the surface lies" + where);
+        if (s.triangle_count() == 0)
+            throw InputError(quoted(volume) + ": no triangle of the surface lies" + where);
     }
     r.contour_triangles = s.triangle_count();
     if (o.largest || o.seed) {
         r.components_found = s.keep_component(o.seed);
-        r.notes.push_back(o.seed ? "kept the component nearest the seed" : "kept the largest component");
+        r.notes.push_back(o.seed ? "kept the component nearest the seed"
+                                 : "kept the largest component");
     }
     if (o.smooth_iterations > 0) {
         s.smooth(o.smooth_iterations, o.passband);
-        r.notes.push_back("windowed-sinc smoothing, " + std::to_string(o.smooth_iterations) + " iterations, pass band " +
-                          num(o.passband));
+        r.notes.push_back("windowed-sinc smoothing, " + std::to_string(o.smooth_iterations) +
+                          " iterations, pass band " + num(o.passband));
     }
     out.mesh = s.to_mesh(g.direction.determinant() < 0);
     if (o.edge_mm > 0) {
         const double tolerance = o.tolerance_mm > 0 ? o.tolerance_mm : 0.25 * g.spacing.minCoeff();
         decimate(out.mesh, o, tolerance, r);
     }
-    if (out.mesh.triangles.empty()) throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" + where);
+    if (out.mesh.triangles.empty())
+        throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" +
+                         where);
     out.mesh.unit = "mm";
     compute_vertex_normals(out.mesh);
     std::vector<std::uint32_t> component;

@@ -22,13 +22,14 @@
 namespace glint {
 
 struct SurfaceOptions {
-    std::optional<double> iso;     ///< iso value in voxel units (CT: HU or the scanner's units); required
-    std::optional<Roi> roi;        ///< sphere or box in physical coordinates (mm): only what lies inside
-    bool largest = false;          ///< keep only the largest connected component
-    std::optional<Vec3d> seed;     ///< keep only the component nearest this physical point (mm)
-    int smooth_iterations = 0;     ///< windowed-sinc iterations (0: no smoothing; 10–20 is light)
-    double passband = 0.1;         ///< windowed-sinc pass band (0, 2): lower smooths more
-    double edge_mm = 0.0;          ///< target mean edge length (mm) after decimation; 0: no decimation
+    std::optional<double>
+        iso;                 ///< iso value in voxel units (CT: HU or the scanner's units); required
+    std::optional<Roi> roi;  ///< sphere or box in physical coordinates (mm): only what lies inside
+    bool largest = false;    ///< keep only the largest connected component
+    std::optional<Vec3d> seed;  ///< keep only the component nearest this physical point (mm)
+    int smooth_iterations = 0;  ///< windowed-sinc iterations (0: no smoothing; 10–20 is light)
+    double passband = 0.1;      ///< windowed-sinc pass band (0, 2): lower smooths more
+    double edge_mm = 0.0;       ///< target mean edge length (mm) after decimation; 0: no decimation
     /// Largest distance (mm) decimation may move the surface; 0: a quarter of the smallest spacing.
     double tolerance_mm = 0.0;
 
@@ -44,15 +45,15 @@ struct SurfaceReport {
     std::array<std::size_t, 3> cropped{0, 0, 0};  ///< size of the part contoured (the ROI's voxels)
     Vec3d spacing{1, 1, 1};
     double iso = 0.0;
-    std::array<float, 2> range{0.0f, 0.0f};       ///< data range of the volume
-    std::size_t components_found = 0;             ///< connected components before selection
+    std::array<float, 2> range{0.0f, 0.0f};  ///< data range of the volume
+    std::size_t components_found = 0;        ///< connected components before selection
     std::size_t components_kept = 0;
-    std::size_t contour_triangles = 0;            ///< straight from flying edges (after the ROI)
-    std::size_t triangles = 0;                    ///< in the result
+    std::size_t contour_triangles = 0;  ///< straight from flying edges (after the ROI)
+    std::size_t triangles = 0;          ///< in the result
     std::size_t vertices = 0;
-    double decimation_error_mm = 0.0;             ///< meshoptimizer's error estimate (0: none)
+    double decimation_error_mm = 0.0;  ///< meshoptimizer's error estimate (0: none)
     double seconds = 0.0;
-    std::vector<std::string> notes;               ///< what was done, in words
+    std::vector<std::string> notes;  ///< what was done, in words
 };
 
 struct ExtractedSurface {

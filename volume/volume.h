@@ -22,9 +22,9 @@ namespace glint {
 
 /// Where the voxels of a volume sit in physical space.
 struct VolumeGeometry {
-    std::array<std::size_t, 3> size{0, 0, 0};          ///< voxels along i, j, k
-    Vec3d spacing{1, 1, 1};                            ///< mm between voxel centres along i, j, k
-    Vec3d origin{0, 0, 0};                             ///< physical position of voxel (0, 0, 0), mm
+    std::array<std::size_t, 3> size{0, 0, 0};  ///< voxels along i, j, k
+    Vec3d spacing{1, 1, 1};                    ///< mm between voxel centres along i, j, k
+    Vec3d origin{0, 0, 0};                     ///< physical position of voxel (0, 0, 0), mm
     Eigen::Matrix3d direction = Eigen::Matrix3d::Identity();  ///< columns: unit axes i, j, k
 
     /// p = origin + direction · diag(spacing) · index (index may be fractional).
@@ -65,7 +65,8 @@ inline constexpr std::size_t kDefaultMaxVoxels = 2'000'000'000;
 /// non-finite voxels; every message is one line naming the file.
 /// A header declaring more than `max_voxels` voxels, or more voxel bytes than its file can
 /// hold (compressed: at zlib's best ratio), is refused before anything is allocated.
-[[nodiscard]] Volume read_volume(const std::filesystem::path& path, std::size_t max_voxels = kDefaultMaxVoxels);
+[[nodiscard]] Volume read_volume(const std::filesystem::path& path,
+                                 std::size_t max_voxels = kDefaultMaxVoxels);
 
 /// Writes a volume; the format follows the extension (.mha, .mhd (+ .raw beside it), .nii,
 /// .nii.gz, .nrrd, .nhdr (+ .raw.gz beside it)). Single-file formats are written atomically.

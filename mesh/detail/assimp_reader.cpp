@@ -3,9 +3,9 @@
 #include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -50,7 +50,8 @@ struct Collector {
             for (unsigned m = 0; m < node->mNumMeshes; ++m)
                 if (node->mMeshes[m] < scene->mNumMeshes)
                     add_mesh(scene->mMeshes[node->mMeshes[m]], world, normal_matrix);
-            for (unsigned c = node->mNumChildren; c-- > 0;) stack.emplace_back(node->mChildren[c], world);
+            for (unsigned c = node->mNumChildren; c-- > 0;)
+                stack.emplace_back(node->mChildren[c], world);
         }
     }
 
@@ -91,8 +92,8 @@ struct Collector {
             // note: aiProcess_Triangulate leaves only triangles among faces with >= 3 corners;
             // fan-split anyway so a file assimp did not triangulate cannot lose faces.
             if (face.mNumIndices > 3)
-                check_triangle_budget(mesh.triangles.size() + face.mNumIndices - 2, max_triangles, source,
-                                      "the scene's polygons split into at least");
+                check_triangle_budget(mesh.triangles.size() + face.mNumIndices - 2, max_triangles,
+                                      source, "the scene's polygons split into at least");
             for (unsigned k = 2; k < face.mNumIndices; ++k)
                 mesh.triangles.push_back({base + face.mIndices[0], base + face.mIndices[k - 1],
                                           base + face.mIndices[k]});
@@ -142,7 +143,8 @@ Mesh read_assimp(const std::filesystem::path& path, const std::string& source, L
     c.source = source;
     c.max_triangles = options.max_triangles;
     c.add_nodes(scene->mRootNode);
-    if (c.normals_missing || c.mesh.normals.size() != c.mesh.positions.size()) c.mesh.normals.clear();
+    if (c.normals_missing || c.mesh.normals.size() != c.mesh.positions.size())
+        c.mesh.normals.clear();
     if (c.colors_seen) c.mesh.colors.resize(c.mesh.positions.size(), Rgb8{0, 0, 0});
     if (c.skipped_primitives > 0)
         report.warnings.push_back(std::to_string(c.skipped_primitives) +

@@ -22,13 +22,17 @@ enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 std::size_t size_of(Type t) {
     switch (t) {
         case Type::Int8:
-        case Type::UInt8: return 1;
+        case Type::UInt8:
+            return 1;
         case Type::Int16:
-        case Type::UInt16: return 2;
+        case Type::UInt16:
+            return 2;
         case Type::Int32:
         case Type::UInt32:
-        case Type::Float32: return 4;
-        case Type::Float64: return 8;
+        case Type::Float32:
+            return 4;
+        case Type::Float64:
+            return 8;
     }
     return 0;
 }
@@ -80,14 +84,22 @@ T load(const char* p) {
 template <bool Swap>
 double load_value(const char* p, Type t) {
     switch (t) {
-        case Type::Int8: return load<std::int8_t, Swap>(p);
-        case Type::UInt8: return load<std::uint8_t, Swap>(p);
-        case Type::Int16: return load<std::int16_t, Swap>(p);
-        case Type::UInt16: return load<std::uint16_t, Swap>(p);
-        case Type::Int32: return load<std::int32_t, Swap>(p);
-        case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return static_cast<double>(load<float, Swap>(p));
-        case Type::Float64: return load<double, Swap>(p);
+        case Type::Int8:
+            return load<std::int8_t, Swap>(p);
+        case Type::UInt8:
+            return load<std::uint8_t, Swap>(p);
+        case Type::Int16:
+            return load<std::int16_t, Swap>(p);
+        case Type::UInt16:
+            return load<std::uint16_t, Swap>(p);
+        case Type::Int32:
+            return load<std::int32_t, Swap>(p);
+        case Type::UInt32:
+            return load<std::uint32_t, Swap>(p);
+        case Type::Float32:
+            return static_cast<double>(load<float, Swap>(p));
+        case Type::Float64:
+            return load<double, Swap>(p);
     }
     return 0.0;
 }
@@ -96,14 +108,22 @@ double load_value(const char* p, Type t) {
 template <bool Swap>
 std::int64_t load_int(const char* p, Type t) {
     switch (t) {
-        case Type::Int8: return load<std::int8_t, Swap>(p);
-        case Type::UInt8: return load<std::uint8_t, Swap>(p);
-        case Type::Int16: return load<std::int16_t, Swap>(p);
-        case Type::UInt16: return load<std::uint16_t, Swap>(p);
-        case Type::Int32: return load<std::int32_t, Swap>(p);
-        case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return clamp_to<std::int64_t>(load<float, Swap>(p));
-        case Type::Float64: return clamp_to<std::int64_t>(load<double, Swap>(p));
+        case Type::Int8:
+            return load<std::int8_t, Swap>(p);
+        case Type::UInt8:
+            return load<std::uint8_t, Swap>(p);
+        case Type::Int16:
+            return load<std::int16_t, Swap>(p);
+        case Type::UInt16:
+            return load<std::uint16_t, Swap>(p);
+        case Type::Int32:
+            return load<std::int32_t, Swap>(p);
+        case Type::UInt32:
+            return load<std::uint32_t, Swap>(p);
+        case Type::Float32:
+            return clamp_to<std::int64_t>(load<float, Swap>(p));
+        case Type::Float64:
+            return clamp_to<std::int64_t>(load<double, Swap>(p));
     }
     return 0;
 }
@@ -120,21 +140,42 @@ struct Builder {
 
     void store(std::size_t v, const Property& p, double value) {
         switch (p.target) {
-            case Target::X: mesh.positions[v].x() = static_cast<float>(value); break;
-            case Target::Y: mesh.positions[v].y() = static_cast<float>(value); break;
-            case Target::Z: mesh.positions[v].z() = static_cast<float>(value); break;
-            case Target::Nx: mesh.normals[v].x() = static_cast<float>(value); break;
-            case Target::Ny: mesh.normals[v].y() = static_cast<float>(value); break;
-            case Target::Nz: mesh.normals[v].z() = static_cast<float>(value); break;
-            case Target::Red: mesh.colors[v][0] = color_byte(p.type, value); break;
-            case Target::Green: mesh.colors[v][1] = color_byte(p.type, value); break;
-            case Target::Blue: mesh.colors[v][2] = color_byte(p.type, value); break;
-            case Target::Label: mesh.labels[v] = clamp_to<std::int32_t>(value); break;
+            case Target::X:
+                mesh.positions[v].x() = static_cast<float>(value);
+                break;
+            case Target::Y:
+                mesh.positions[v].y() = static_cast<float>(value);
+                break;
+            case Target::Z:
+                mesh.positions[v].z() = static_cast<float>(value);
+                break;
+            case Target::Nx:
+                mesh.normals[v].x() = static_cast<float>(value);
+                break;
+            case Target::Ny:
+                mesh.normals[v].y() = static_cast<float>(value);
+                break;
+            case Target::Nz:
+                mesh.normals[v].z() = static_cast<float>(value);
+                break;
+            case Target::Red:
+                mesh.colors[v][0] = color_byte(p.type, value);
+                break;
+            case Target::Green:
+                mesh.colors[v][1] = color_byte(p.type, value);
+                break;
+            case Target::Blue:
+                mesh.colors[v][2] = color_byte(p.type, value);
+                break;
+            case Target::Label:
+                mesh.labels[v] = clamp_to<std::int32_t>(value);
+                break;
             case Target::Scalar:
                 mesh.scalars[p.scalar_index].values[v] = static_cast<float>(value);
                 break;
             case Target::Ignore:
-            case Target::FaceIndices: break;
+            case Target::FaceIndices:
+                break;
         }
     }
 
@@ -146,7 +187,7 @@ struct Builder {
 };
 
 class PlyParser {
-public:
+  public:
     PlyParser(std::span<const char> data, const std::string& source, LoadReport& report,
               std::uint64_t max_triangles)
         : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
@@ -160,16 +201,22 @@ public:
             const bool is_vertex = static_cast<std::ptrdiff_t>(e) == vertex_element_;
             const bool is_face = static_cast<std::ptrdiff_t>(e) == face_element_;
             switch (encoding_) {
-                case Encoding::Ascii: read_ascii(el, is_vertex, is_face); break;
-                case Encoding::BinaryLe: read_binary<false>(el, is_vertex, is_face); break;
-                case Encoding::BinaryBe: read_binary<true>(el, is_vertex, is_face); break;
+                case Encoding::Ascii:
+                    read_ascii(el, is_vertex, is_face);
+                    break;
+                case Encoding::BinaryLe:
+                    read_binary<false>(el, is_vertex, is_face);
+                    break;
+                case Encoding::BinaryBe:
+                    read_binary<true>(el, is_vertex, is_face);
+                    break;
             }
         }
         finish();
         return std::move(b_.mesh);
     }
 
-private:
+  private:
     [[noreturn]] void fail(const std::string& what) const {
         throw InputError(quoted(source_) + ": " + what);
     }
@@ -182,7 +229,8 @@ private:
     [[nodiscard]] std::uint64_t min_item_bytes(const Element& el) const {
         if (encoding_ == Encoding::Ascii) return 2 * el.properties.size();
         std::uint64_t bytes = 0;
-        for (const auto& p : el.properties) bytes += p.is_list ? size_of(p.count_type) : size_of(p.type);
+        for (const auto& p : el.properties)
+            bytes += p.is_list ? size_of(p.count_type) : size_of(p.type);
         return bytes;
     }
 
@@ -191,8 +239,9 @@ private:
     // note: the last ASCII value of the file may lack its separator, hence one byte of slack.
     void check_element_fits(const Element& el) const {
         const std::uint64_t left = data_.size() - std::min(body_, data_.size());
-        check_count_fits(el.count, min_item_bytes(el), left + (encoding_ == Encoding::Ascii ? 1 : 0),
-                         source_, "PLY element \"" + el.name + "\"");
+        check_count_fits(el.count, min_item_bytes(el),
+                         left + (encoding_ == Encoding::Ascii ? 1 : 0), source_,
+                         "PLY element \"" + el.name + "\"");
     }
 
     // ---- header -------------------------------------------------------------------------
@@ -207,7 +256,8 @@ private:
             return true;
         };
         std::string_view line;
-        if (!next_header_line(line) || line != "ply") fail("does not start with \"ply\", not a PLY file");
+        if (!next_header_line(line) || line != "ply")
+            fail("does not start with \"ply\", not a PLY file");
         while (true) {
             if (!next_header_line(line)) fail("PLY header has no end_header line");
             const auto words = split_words(line);
@@ -229,10 +279,12 @@ private:
                 if (words.size() != 3) fail_line(line_no, "expected \"element NAME COUNT\"");
                 Element el;
                 el.name = std::string(words[1]);
-                const auto r = std::from_chars(words[2].data(), words[2].data() + words[2].size(), el.count);
+                const auto r =
+                    std::from_chars(words[2].data(), words[2].data() + words[2].size(), el.count);
                 if (r.ec != std::errc() || r.ptr != words[2].data() + words[2].size())
                     fail_line(line_no, "element \"" + el.name + "\" has count \"" +
-                                           std::string(words[2]) + "\", expected a non-negative integer");
+                                           std::string(words[2]) +
+                                           "\", expected a non-negative integer");
                 elements_.push_back(std::move(el));
             } else if (key == "property") {
                 if (elements_.empty()) fail_line(line_no, "property before any element");
@@ -252,15 +304,18 @@ private:
                     elements_.back().is_fixed_size = false;
                 } else if (words.size() == 3) {
                     const auto t = parse_type(words[1]);
-                    if (!t) fail_line(line_no, "unknown property type \"" + std::string(words[1]) + "\"");
+                    if (!t)
+                        fail_line(line_no,
+                                  "unknown property type \"" + std::string(words[1]) + "\"");
                     p.type = *t;
                     p.name = std::string(words[2]);
                     p.offset = elements_.back().stride;
                     elements_.back().stride += size_of(*t);
                 } else {
-                    fail_line(line_no, "expected \"property TYPE NAME\" or \"property list "
-                                       "COUNT_TYPE INDEX_TYPE NAME\", found \"" +
-                                           std::string(line) + "\"");
+                    fail_line(line_no,
+                              "expected \"property TYPE NAME\" or \"property list "
+                              "COUNT_TYPE INDEX_TYPE NAME\", found \"" +
+                                  std::string(line) + "\"");
                 }
                 elements_.back().properties.push_back(std::move(p));
             } else {
@@ -335,9 +390,11 @@ private:
             b_.mesh.colors.assign(n, Rgb8{0, 0, 0});
         } else if (rgb != 0) {
             for (auto& p : v.properties)
-                if (p.target == Target::Red || p.target == Target::Green || p.target == Target::Blue)
+                if (p.target == Target::Red || p.target == Target::Green ||
+                    p.target == Target::Blue)
                     p.target = Target::Ignore;
-            report_.warnings.push_back("incomplete vertex colour (not all of red, green, blue) ignored");
+            report_.warnings.push_back(
+                "incomplete vertex colour (not all of red, green, blue) ignored");
         }
         if (b_.has_labels) b_.mesh.labels.assign(n, 0);
 
@@ -345,7 +402,8 @@ private:
             Element& f = elements_[static_cast<std::size_t>(face_element_)];
             bool found = false;
             for (auto& p : f.properties) {
-                if (!found && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+                if (!found && p.is_list &&
+                    (p.name == "vertex_indices" || p.name == "vertex_index")) {
                     if (!is_integer(p.type))
                         fail("PLY face list \"" + p.name + "\" has a non-integer index type");
                     p.target = Target::FaceIndices;
@@ -376,8 +434,9 @@ private:
         }
         if (n > 3) ++b_.split_polygons;
         if (b_.mesh.triangles.size() + static_cast<std::uint64_t>(n - 2) > max_triangles_)
-            check_triangle_budget(b_.mesh.triangles.size() + static_cast<std::uint64_t>(n - 2), max_triangles_,
-                                  source_, "PLY face " + std::to_string(face_id) + " brings the mesh to");
+            check_triangle_budget(b_.mesh.triangles.size() + static_cast<std::uint64_t>(n - 2),
+                                  max_triangles_, source_,
+                                  "PLY face " + std::to_string(face_id) + " brings the mesh to");
         const auto nv = static_cast<std::int64_t>(b_.vertex_count);
         auto checked = [&](std::int64_t k) {
             const std::int64_t i = index(k);
@@ -420,7 +479,10 @@ private:
                 int float_xyz_found = 0;
                 for (const auto& p : el.properties) {
                     if (p.target == Target::Ignore) continue;
-                    const int axis = p.target == Target::X ? 0 : p.target == Target::Y ? 1 : p.target == Target::Z ? 2 : -1;
+                    const int axis = p.target == Target::X   ? 0
+                                     : p.target == Target::Y ? 1
+                                     : p.target == Target::Z ? 2
+                                                             : -1;
                     if (axis >= 0 && p.type == Type::Float32) {
                         float_xyz[axis] = p.offset;
                         ++float_xyz_found;
@@ -437,9 +499,11 @@ private:
                 for (std::size_t v = 0; v < el.count; ++v, base += el.stride) {
                     poll_cancel(v);
                     if (float_xyz_found == 3)
-                        out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]), load<float, Swap>(base + float_xyz[1]),
+                        out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]),
+                                       load<float, Swap>(base + float_xyz[1]),
                                        load<float, Swap>(base + float_xyz[2]));
-                    for (const Property* p : rest) b_.store(v, *p, load_value<Swap>(base + p->offset, p->type));
+                    for (const Property* p : rest)
+                        b_.store(v, *p, load_value<Swap>(base + p->offset, p->type));
                 }
             }
             body_ += static_cast<std::size_t>(el.count) * el.stride;
@@ -453,7 +517,8 @@ private:
                     const std::size_t s = size_of(p.type);
                     if (size - pos < s) fail_truncated(el, item);
                     if (is_vertex && p.target != Target::Ignore)
-                        b_.store(static_cast<std::size_t>(item), p, load_value<Swap>(begin + pos, p.type));
+                        b_.store(static_cast<std::size_t>(item), p,
+                                 load_value<Swap>(begin + pos, p.type));
                     pos += s;
                     continue;
                 }
@@ -462,7 +527,8 @@ private:
                 const std::int64_t n = load_int<Swap>(begin + pos, p.count_type);
                 pos += cs;
                 const std::size_t is = size_of(p.type);
-                if (n < 0 || static_cast<std::uint64_t>(n) > (size - pos) / is) fail_truncated(el, item);
+                if (n < 0 || static_cast<std::uint64_t>(n) > (size - pos) / is)
+                    fail_truncated(el, item);
                 if (is_face && p.target == Target::FaceIndices) {
                     const char* at = begin + pos;
                     const Type t = p.type;
@@ -547,7 +613,8 @@ private:
                 if (!(count >= 0) || count != std::floor(count) || count > 1e6)
                     fail_line(line_, "PLY element \"" + el.name + "\" " + std::to_string(item) +
                                          ": list \"" + p.name + "\" has count " +
-                                         std::to_string(count) + ", expected a small non-negative integer");
+                                         std::to_string(count) +
+                                         ", expected a small non-negative integer");
                 const auto n = static_cast<std::int64_t>(count);
                 const bool keep = is_face && p.target == Target::FaceIndices;
                 if (keep) corners.clear();
@@ -561,7 +628,8 @@ private:
                     }
                 }
                 if (keep)
-                    add_face(item, n, [&](std::int64_t k) { return corners[static_cast<std::size_t>(k)]; });
+                    add_face(item, n,
+                             [&](std::int64_t k) { return corners[static_cast<std::size_t>(k)]; });
             }
         }
     }

@@ -27,8 +27,9 @@ T load_bytes(const char* p) {
         std::memcpy(&v, p, 1);
         return v;
     } else {
-        using U = std::conditional_t<sizeof(T) == 2, std::uint16_t,
-                                     std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
+        using U =
+            std::conditional_t<sizeof(T) == 2, std::uint16_t,
+                               std::conditional_t<sizeof(T) == 4, std::uint32_t, std::uint64_t>>;
         U u;
         std::memcpy(&u, p, sizeof(U));
         if constexpr (Swap) {

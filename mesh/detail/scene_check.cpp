@@ -21,7 +21,9 @@ using nlohmann::json;
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
-std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) { return a > UINT64_MAX - b ? UINT64_MAX : a + b; }
+std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) {
+    return a > UINT64_MAX - b ? UINT64_MAX : a + b;
+}
 
 // Deepest object/array nesting, outside strings; stops counting past the limit.
 void check_json_depth(std::span<const char> text, const std::string& source) {
@@ -37,8 +39,8 @@ void check_json_depth(std::span<const char> text, const std::string& source) {
         } else if (c == '{' || c == '[') {
             if (++depth > kMaxJsonDepth)
                 throw InputError(quoted(source) + ": glTF JSON nests objects/arrays deeper than " +
-                                 std::to_string(kMaxJsonDepth) + " levels (at byte " + std::to_string(i) +
-                                 "), more than the limit");
+                                 std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                                 std::to_string(i) + "), more than the limit");
         } else if (c == '}' || c == ']') {
             --depth;
         }
@@ -103,26 +105,32 @@ std::vector<std::uint64_t> mesh_triangles(const json& doc, const std::string& so
         const auto prims = elements(member(*meshes[m], "primitives"));
         for (std::size_t p = 0; p < prims.size(); ++p) {
             const json* prim = prims[p];
-            const std::string where = quoted(source) + ": glTF mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+            const std::string where = quoted(source) + ": glTF mesh " + std::to_string(m) +
+                                      " primitive " + std::to_string(p);
             const json& mode_json = member(*prim, "mode");
             if (!mode_json.is_null() && !mode_json.is_number_unsigned())
-                throw InputError(where + ": mode is not a number, expected 0 (points) or 4, 5, 6 (triangles)");
-            const std::uint64_t mode = mode_json.is_number_unsigned() ? mode_json.get<std::uint64_t>() : 4;
+                throw InputError(
+                    where + ": mode is not a number, expected 0 (points) or 4, 5, 6 (triangles)");
+            const std::uint64_t mode =
+                mode_json.is_number_unsigned() ? mode_json.get<std::uint64_t>() : 4;
             if (mode != 0 && (mode < 4 || mode > 6))
-                throw InputError(where + ": mode " + std::to_string(mode) + (mode <= 3 ? " (lines)" : "") +
-                                 ", expected 0 (points) or 4, 5, 6 (triangles): glint reads surfaces");
-            if (accessor_ids.index(member(member(*prim, "attributes"), "POSITION")) == std::string::npos)
+                throw InputError(
+                    where + ": mode " + std::to_string(mode) + (mode <= 3 ? " (lines)" : "") +
+                    ", expected 0 (points) or 4, 5, 6 (triangles): glint reads surfaces");
+            if (accessor_ids.index(member(member(*prim, "attributes"), "POSITION")) ==
+                std::string::npos)
                 throw InputError(where + ": no POSITION accessor, expected vertex positions");
             const json& indices = member(*prim, "indices");
-            const std::uint64_t n = indices.is_null() ? count_of(member(member(*prim, "attributes"), "POSITION"))
-                                                      : count_of(indices);
+            const std::uint64_t n = indices.is_null()
+                                        ? count_of(member(member(*prim, "attributes"), "POSITION"))
+                                        : count_of(indices);
             // note: assimp sizes a strip or fan of n < 3 vertices as n − 2 faces (a fuzz_glb
             // allocation of 2^64 bytes from an index accessor of count 0).
             const std::uint64_t needed = mode == 0 ? 1 : 3;
             if (n < needed)
                 throw InputError(where + ": draws " + std::to_string(n) + " vertices (" +
-                                 (indices.is_null() ? "POSITION" : "indices") + " accessor count), expected at least " +
-                                 std::to_string(needed));
+                                 (indices.is_null() ? "POSITION" : "indices") +
+                                 " accessor count), expected at least " + std::to_string(needed));
             if (mode == 4) triangles = add_sat(triangles, n / 3);
             else if ((mode == 5 || mode == 6) && n > 2) triangles = add_sat(triangles, n - 2);
         }
@@ -160,7 +168,7 @@ std::vector<Node> read_nodes(const json& doc, const std::string& source) {
             const std::size_t m = mesh_ids.index(ref);
             if (m != std::string::npos) node.own_triangles = add_sat(node.own_triangles, tris[m]);
         };
-        add_mesh(member(*n, "mesh"));                                    // glTF 2.0
+        add_mesh(member(*n, "mesh"));                                       // glTF 2.0
         for (const json* m : elements(member(*n, "meshes"))) add_mesh(*m);  // glTF 1.0
     }
     for (const Node& node : nodes)
@@ -181,8 +189,9 @@ void walk(std::vector<Node>& nodes, std::size_t root, const std::string& source)
         if (next < node.children.size()) {
             const std::size_t c = node.children[next++];
             if (nodes[c].state == 1)
-                throw InputError(quoted(source) + ": glTF node " + std::to_string(c) +
-                                 " is its own ancestor (the node graph has a cycle), expected a tree");
+                throw InputError(
+                    quoted(source) + ": glTF node " + std::to_string(c) +
+                    " is its own ancestor (the node graph has a cycle), expected a tree");
             if (nodes[c].state == 0) {
                 nodes[c].state = 1;
                 stack.emplace_back(c, 0);
@@ -218,7 +227,8 @@ std::vector<std::size_t> scene_roots(const json& doc, const std::vector<Node>& n
 
 }  // namespace
 
-void check_gltf_json(std::span<const char> text, const std::string& source, std::uint64_t max_triangles) {
+void check_gltf_json(std::span<const char> text, const std::string& source,
+                     std::uint64_t max_triangles) {
     check_json_depth(text, source);
     json doc;
     try {
@@ -231,11 +241,13 @@ void check_gltf_json(std::span<const char> text, const std::string& source, std:
     // any other file it hands to every importer it has, by content (a fuzz_glb finding: an
     // 18-byte non-glTF file overran a buffer in one of them), so such a file stops here.
     const json* asset = doc.contains("asset") ? &doc["asset"] : nullptr;
-    const json* version = asset && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
+    const json* version =
+        asset && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
     if (!version || !version->is_string() || version->get<std::string>().empty() ||
         (version->get<std::string>()[0] != '1' && version->get<std::string>()[0] != '2'))
         throw InputError(quoted(source) + ": glTF JSON has " +
-                         (version ? "asset.version " + printable(version->dump().substr(0, 40)) : std::string("no asset.version")) +
+                         (version ? "asset.version " + printable(version->dump().substr(0, 40))
+                                  : std::string("no asset.version")) +
                          ", expected \"1.0\" or \"2.0\"");
     std::vector<Node> nodes = read_nodes(doc, source);
     std::uint64_t instances = 0, triangles = 0;
@@ -251,25 +263,31 @@ void check_gltf_json(std::span<const char> text, const std::string& source, std:
         triangles = add_sat(triangles, r.triangles);
     }
     if (instances > kMaxGltfInstances)
-        throw InputError(quoted(source) + ": glTF node graph expands to " +
-                         (instances == UINT64_MAX ? std::string("over 2^64") : std::to_string(instances)) +
-                         " node instances (a node shared by several parents is copied for each), "
-                         "more than the limit " + std::to_string(kMaxGltfInstances));
+        throw InputError(
+            quoted(source) + ": glTF node graph expands to " +
+            (instances == UINT64_MAX ? std::string("over 2^64") : std::to_string(instances)) +
+            " node instances (a node shared by several parents is copied for each), "
+            "more than the limit " +
+            std::to_string(kMaxGltfInstances));
     check_triangle_budget(triangles, max_triangles, source, "glTF scene instances add up to");
 }
 
 namespace {
 
-std::uint32_t le32(std::span<const char> data, std::size_t at) { return load_bytes<std::uint32_t, false>(data.data() + at); }
+std::uint32_t le32(std::span<const char> data, std::size_t at) {
+    return load_bytes<std::uint32_t, false>(data.data() + at);
+}
 
 // The JSON of a GLB: version 2 has a 12-byte header then chunks (length, type "JSON", data),
 // version 1 a 20-byte header with the content length at 12; both put the JSON at byte 20.
 void check_glb(std::span<const char> data, const std::string& source, std::uint64_t max_triangles) {
-    if (data.size() < 20) throw InputError(quoted(source) + ": GLB is " + std::to_string(data.size()) +
-                                           " bytes, shorter than its 20-byte header");
+    if (data.size() < 20)
+        throw InputError(quoted(source) + ": GLB is " + std::to_string(data.size()) +
+                         " bytes, shorter than its 20-byte header");
     const std::uint32_t version = le32(data, 4);
     if (version != 1 && version != 2)
-        throw InputError(quoted(source) + ": GLB version " + std::to_string(version) + ", expected 1 or 2");
+        throw InputError(quoted(source) + ": GLB version " + std::to_string(version) +
+                         ", expected 1 or 2");
     const std::size_t start = 20;
     const std::uint64_t length = le32(data, 12);  // both versions: JSON length at 12, data at 20
     if (version == 2 && le32(data, 16) != 0x4E4F534Au)
@@ -287,7 +305,7 @@ void check_glb(std::span<const char> data, const std::string& source, std::uint6
 // the counts, and a number is the run of digits at the cursor read into 32 bits (it wraps and
 // stops at the first non-digit; no digit reads 0).
 class OffHeaderCursor {
-public:
+  public:
     explicit OffHeaderCursor(std::span<const char> data) : data_(data) {}
     char at(std::size_t k = 0) const { return pos_ + k < data_.size() ? data_[pos_ + k] : '\0'; }
     std::size_t pos() const { return pos_; }
@@ -303,11 +321,12 @@ public:
     }
     std::uint32_t number() {
         std::uint32_t value = 0;
-        while (at() >= '0' && at() <= '9') value = value * 10u + static_cast<std::uint32_t>(at() - '0'), ++pos_;
+        while (at() >= '0' && at() <= '9')
+            value = value * 10u + static_cast<std::uint32_t>(at() - '0'), ++pos_;
         return value;
     }
 
-private:
+  private:
     void skip_blanks() {
         while (at() == ' ' || at() == '\t' || at() == '\r' || at() == '\n') ++pos_;
     }
@@ -384,8 +403,9 @@ void check_off(std::span<const char> data, const std::string& source) {
             const auto w = words[k];
             const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[k]);
             if (r.ec != std::errc() || r.ptr != w.data() + w.size())
-                throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") + " count is \"" +
-                                 printable(w) + "\", expected a non-negative integer");
+                throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") +
+                                 " count is \"" + printable(w) +
+                                 "\", expected a non-negative integer");
         }
         const std::uint64_t left = data.size() - std::min(pos, data.size()) + 1;
         check_count_fits(counts[0], 6, left, source, "OFF vertex list");  // "0 0 0\n"
@@ -393,8 +413,10 @@ void check_off(std::span<const char> data, const std::string& source) {
     }
     if (const auto assimp = assimp_off_counts(data)) {
         const std::uint64_t left = data.size() - assimp->header_end + 1;
-        check_count_fits(assimp->vertices, 6, left, source, "OFF vertex list (as assimp reads the header)");
-        check_count_fits(assimp->faces, 2, left, source, "OFF face list (as assimp reads the header)");
+        check_count_fits(assimp->vertices, 6, left, source,
+                         "OFF vertex list (as assimp reads the header)");
+        check_count_fits(assimp->faces, 2, left, source,
+                         "OFF face list (as assimp reads the header)");
     }
 }
 
@@ -405,7 +427,8 @@ void check_obj(std::span<const char> data, const std::string& source, std::uint6
     std::string_view line;
     while (next_line(data, pos, line)) {
         poll_cancel(++lines);
-        while (!line.empty() && (line.front() == ' ' || line.front() == '\t')) line.remove_prefix(1);
+        while (!line.empty() && (line.front() == ' ' || line.front() == '\t'))
+            line.remove_prefix(1);
         if (line.size() > 1 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) ++faces;
     }
     check_triangle_budget(faces, max_triangles, source, "OBJ has face lines for at least");
@@ -413,14 +436,15 @@ void check_obj(std::span<const char> data, const std::string& source, std::uint6
 
 }  // namespace
 
-void check_before_assimp(std::span<const char> data, const std::string& ext, const std::string& source,
-                         std::uint64_t max_triangles) {
+void check_before_assimp(std::span<const char> data, const std::string& ext,
+                         const std::string& source, std::uint64_t max_triangles) {
     const bool glb_magic = data.size() >= 4 && std::memcmp(data.data(), "glTF", 4) == 0;
     if (glb_magic) check_glb(data, source, max_triangles);
     else if (ext == ".glb")
-        throw InputError(quoted(source) + ": a .glb file that does not start with \"glTF\" (found \"" +
-                         printable(std::string_view(data.data(), std::min<std::size_t>(data.size(), 4))) +
-                         "\"), expected a binary glTF");
+        throw InputError(
+            quoted(source) + ": a .glb file that does not start with \"glTF\" (found \"" +
+            printable(std::string_view(data.data(), std::min<std::size_t>(data.size(), 4))) +
+            "\"), expected a binary glTF");
     else if (ext == ".gltf") check_gltf_json(data, source, max_triangles);
     else if (ext == ".off") check_off(data, source);
     else if (ext == ".obj") check_obj(data, source, max_triangles);

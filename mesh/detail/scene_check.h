@@ -14,9 +14,9 @@
 
 namespace glint::detail {
 
-inline constexpr int kMaxGltfNodeDepth = 64;                  ///< node nesting levels
-inline constexpr std::uint64_t kMaxGltfInstances = 100'000;   ///< node instances after expansion
-inline constexpr int kMaxJsonDepth = 128;                     ///< JSON object/array nesting
+inline constexpr int kMaxGltfNodeDepth = 64;                 ///< node nesting levels
+inline constexpr std::uint64_t kMaxGltfInstances = 100'000;  ///< node instances after expansion
+inline constexpr int kMaxJsonDepth = 128;                    ///< JSON object/array nesting
 
 /// Dispatches on the extension (".gltf", ".glb", ".off", ".obj", lower case) and the GLB
 /// signature; other formats pass unchecked.

@@ -21,14 +21,15 @@ constexpr std::size_t kFacetBytes = 50;   ///< normal + 3 corners (12 floats) + 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
 std::string_view trim_left(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' ||
-                          s.front() == '\n'))
+    while (!s.empty() &&
+           (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' || s.front() == '\n'))
         s.remove_prefix(1);
     return s;
 }
 
 bool starts_with_solid(std::span<const char> data) {
-    const std::string_view s = trim_left(std::string_view(data.data(), std::min<std::size_t>(data.size(), 512)));
+    const std::string_view s =
+        trim_left(std::string_view(data.data(), std::min<std::size_t>(data.size(), 512)));
     return s.size() >= 5 && s.substr(0, 5) == "solid";
 }
 
@@ -53,7 +54,8 @@ Mesh read_binary(std::span<const char> data, const std::string& source, LoadRepo
                  std::uint64_t max_triangles) {
     if (data.size() < kHeaderBytes)
         throw InputError(quoted(source) + ": binary STL needs at least " +
-                         std::to_string(kHeaderBytes) + " bytes (header and facet count), the file has " +
+                         std::to_string(kHeaderBytes) +
+                         " bytes (header and facet count), the file has " +
                          std::to_string(data.size()) + " bytes");
     const std::uint64_t n = facet_count(data);
     const std::uint64_t expected = kHeaderBytes + kFacetBytes * n;
@@ -89,7 +91,7 @@ Mesh read_binary(std::span<const char> data, const std::string& source, LoadRepo
 }
 
 class AsciiStl {
-public:
+  public:
     AsciiStl(std::span<const char> data, const std::string& source, LoadReport& report,
              std::uint64_t max_triangles)
         : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
@@ -123,8 +125,10 @@ public:
                     const std::string_view t = w[static_cast<std::size_t>(k) + 1];
                     float x = 0.0f;
                     const auto r = std::from_chars(t.data(), t.data() + t.size(), x);
-                    if (r.ec == std::errc::result_out_of_range) x = t.front() == '-' ? -HUGE_VALF : HUGE_VALF;
-                    else if (r.ec != std::errc() || r.ptr != t.data() + t.size()) fail(line, "\"vertex X Y Z\" with numbers");
+                    if (r.ec == std::errc::result_out_of_range)
+                        x = t.front() == '-' ? -HUGE_VALF : HUGE_VALF;
+                    else if (r.ec != std::errc() || r.ptr != t.data() + t.size())
+                        fail(line, "\"vertex X Y Z\" with numbers");
                     v[k] = x;
                 }
                 if (!v.allFinite())
@@ -142,23 +146,24 @@ public:
             } else if (iequals(key, "endsolid") && state == State::InSolid) {
                 state = State::Outside;
             } else {
-                static constexpr const char* kExpected[] = {"\"solid\"", "\"facet\" or \"endsolid\"",
-                                                            "\"outer loop\"", "\"vertex\" or \"endloop\"",
-                                                            "\"endfacet\""};
+                static constexpr const char* kExpected[] = {
+                    "\"solid\"", "\"facet\" or \"endsolid\"", "\"outer loop\"",
+                    "\"vertex\" or \"endloop\"", "\"endfacet\""};
                 fail(line, kExpected[static_cast<int>(state)]);
             }
         }
         if (state == State::InFacet || state == State::InLoop || state == State::LoopDone)
             throw InputError(quoted(source_) + ": ASCII STL ends inside facet " +
-                             std::to_string(facet) + " (begun at line " + std::to_string(facet_line) +
-                             "): the file is truncated");
-        if (state == State::InSolid) report_.warnings.push_back("ASCII STL has no final \"endsolid\" line");
+                             std::to_string(facet) + " (begun at line " +
+                             std::to_string(facet_line) + "): the file is truncated");
+        if (state == State::InSolid)
+            report_.warnings.push_back("ASCII STL has no final \"endsolid\" line");
         report_.file_vertices = mesh_.positions.size();
         report_.file_triangles = mesh_.triangles.size();
         return std::move(mesh_);
     }
 
-private:
+  private:
     [[noreturn]] void fail(std::string_view line, const std::string& expected) const {
         const std::string text = printable(line, 80);
         throw InputError(quoted(source_) + ": line " + std::to_string(line_no_) + ": expected " +
@@ -168,8 +173,8 @@ private:
     void add_facet(const std::vector<Vec3f>& corners, std::size_t facet, std::size_t facet_line) {
         if (corners.size() < 3)
             throw InputError(quoted(source_) + ": facet " + std::to_string(facet) + " (line " +
-                             std::to_string(facet_line) + ") has " + std::to_string(corners.size()) +
-                             " vertices, expected 3");
+                             std::to_string(facet_line) + ") has " +
+                             std::to_string(corners.size()) + " vertices, expected 3");
         if (corners.size() > 3) ++report_.split_polygons;
         check_triangle_budget(mesh_.triangles.size() + corners.size() - 2, max_triangles_, source_,
                               "ASCII STL facet " + std::to_string(facet) + " brings the mesh to");

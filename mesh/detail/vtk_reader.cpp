@@ -17,7 +17,20 @@ namespace glint::detail {
 
 namespace {
 
-enum class Type { Bit, Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64, Float32, Float64, String };
+enum class Type {
+    Bit,
+    Int8,
+    UInt8,
+    Int16,
+    UInt16,
+    Int32,
+    UInt32,
+    Int64,
+    UInt64,
+    Float32,
+    Float64,
+    String
+};
 
 std::optional<Type> parse_type(std::string_view s) {
     std::string t(s);
@@ -42,17 +55,22 @@ std::optional<Type> parse_type(std::string_view s) {
 std::size_t size_of(Type t) {
     switch (t) {
         case Type::Int8:
-        case Type::UInt8: return 1;
+        case Type::UInt8:
+            return 1;
         case Type::Int16:
-        case Type::UInt16: return 2;
+        case Type::UInt16:
+            return 2;
         case Type::Int32:
         case Type::UInt32:
-        case Type::Float32: return 4;
+        case Type::Float32:
+            return 4;
         case Type::Int64:
         case Type::UInt64:
-        case Type::Float64: return 8;
+        case Type::Float64:
+            return 8;
         case Type::Bit:
-        case Type::String: return 0;
+        case Type::String:
+            return 0;
     }
     return 0;
 }
@@ -72,18 +90,29 @@ T load_be(const char* p) {
 
 double load_value(const char* p, Type t) {
     switch (t) {
-        case Type::Int8: return load_be<std::int8_t>(p);
-        case Type::UInt8: return load_be<std::uint8_t>(p);
-        case Type::Int16: return load_be<std::int16_t>(p);
-        case Type::UInt16: return load_be<std::uint16_t>(p);
-        case Type::Int32: return load_be<std::int32_t>(p);
-        case Type::UInt32: return load_be<std::uint32_t>(p);
-        case Type::Int64: return static_cast<double>(load_be<std::int64_t>(p));
-        case Type::UInt64: return static_cast<double>(load_be<std::uint64_t>(p));
-        case Type::Float32: return static_cast<double>(load_be<float>(p));
-        case Type::Float64: return load_be<double>(p);
+        case Type::Int8:
+            return load_be<std::int8_t>(p);
+        case Type::UInt8:
+            return load_be<std::uint8_t>(p);
+        case Type::Int16:
+            return load_be<std::int16_t>(p);
+        case Type::UInt16:
+            return load_be<std::uint16_t>(p);
+        case Type::Int32:
+            return load_be<std::int32_t>(p);
+        case Type::UInt32:
+            return load_be<std::uint32_t>(p);
+        case Type::Int64:
+            return static_cast<double>(load_be<std::int64_t>(p));
+        case Type::UInt64:
+            return static_cast<double>(load_be<std::uint64_t>(p));
+        case Type::Float32:
+            return static_cast<double>(load_be<float>(p));
+        case Type::Float64:
+            return load_be<double>(p);
         case Type::Bit:
-        case Type::String: return 0.0;
+        case Type::String:
+            return 0.0;
     }
     return 0.0;
 }
@@ -93,7 +122,7 @@ std::string quoted(const std::string& source) { return "mesh \"" + source + "\""
 std::vector<std::string_view> split(std::string_view line) { return split_words(line); }
 
 class VtkParser {
-public:
+  public:
     VtkParser(std::span<const char> data, const std::string& source, LoadReport& report,
               std::uint64_t max_triangles)
         : data_(data), source_(source), report_(report), max_triangles_(max_triangles) {}
@@ -121,14 +150,16 @@ public:
         report_.file_vertices = mesh_.positions.size();
         report_.file_triangles = mesh_.triangles.size();
         for (const auto& [what, count] : skipped_cells_)
-            report_.warnings.push_back("VTK " + what + " (" + std::to_string(count) + " cells) skipped");
+            report_.warnings.push_back("VTK " + what + " (" + std::to_string(count) +
+                                       " cells) skipped");
         if (strips_ > 0)
-            report_.warnings.push_back(std::to_string(strips_) + " triangle strips converted into " +
+            report_.warnings.push_back(std::to_string(strips_) +
+                                       " triangle strips converted into " +
                                        std::to_string(strip_triangles_) + " triangles");
         return std::move(mesh_);
     }
 
-private:
+  private:
     enum class Section { None, Point, Cell };
     enum class CellKind { Polygons, Strips, Vertices, Lines };
 
@@ -136,7 +167,11 @@ private:
 
     std::string where(std::size_t at) const {
         if (!binary_) {
-            const auto line = 1 + std::count(data_.begin(), data_.begin() + static_cast<std::ptrdiff_t>(std::min(at, data_.size())), '\n');
+            const auto line =
+                1 +
+                std::count(data_.begin(),
+                           data_.begin() + static_cast<std::ptrdiff_t>(std::min(at, data_.size())),
+                           '\n');
             return "line " + std::to_string(line);
         }
         return "byte " + std::to_string(at);
@@ -167,16 +202,19 @@ private:
 
     std::string_view token() {
         const char* d = data_.data();
-        while (pos_ < data_.size() && (d[pos_] == ' ' || d[pos_] == '\t' || d[pos_] == '\r' || d[pos_] == '\n'))
+        while (pos_ < data_.size() &&
+               (d[pos_] == ' ' || d[pos_] == '\t' || d[pos_] == '\r' || d[pos_] == '\n'))
             ++pos_;
         const std::size_t start = pos_;
-        while (pos_ < data_.size() && d[pos_] != ' ' && d[pos_] != '\t' && d[pos_] != '\r' && d[pos_] != '\n')
+        while (pos_ < data_.size() && d[pos_] != ' ' && d[pos_] != '\t' && d[pos_] != '\r' &&
+               d[pos_] != '\n')
             ++pos_;
         return {d + start, pos_ - start};
     }
 
     std::uint64_t count_word(std::size_t i, const char* what) const {
-        if (i >= words_.size()) fail(std::string("expected ") + what + " after \"" + std::string(words_[0]) + "\"");
+        if (i >= words_.size())
+            fail(std::string("expected ") + what + " after \"" + std::string(words_[0]) + "\"");
         std::uint64_t n = 0;
         const auto w = words_[i];
         const auto r = std::from_chars(w.data(), w.data() + w.size(), n);
@@ -187,7 +225,8 @@ private:
     }
 
     Type type_word(std::size_t i) const {
-        if (i >= words_.size()) fail("expected a data type after \"" + std::string(words_[0]) + "\"");
+        if (i >= words_.size())
+            fail("expected a data type after \"" + std::string(words_[0]) + "\"");
         const auto t = parse_type(words_[i]);
         if (!t) fail("unknown VTK data type \"" + printable(words_[i]) + "\"");
         return *t;
@@ -229,7 +268,8 @@ private:
                 if (t.empty()) truncated(what, i, count);
                 double v = 0.0;
                 const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
-                if (r.ec == std::errc::result_out_of_range) v = t.front() == '-' ? -HUGE_VAL : HUGE_VAL;
+                if (r.ec == std::errc::result_out_of_range)
+                    v = t.front() == '-' ? -HUGE_VAL : HUGE_VAL;
                 else if (r.ec != std::errc() || r.ptr != t.data() + t.size()) {
                     line_start_ = static_cast<std::size_t>(t.data() - data_.data());
                     fail(what + ": value " + std::to_string(i) + " of " + std::to_string(count) +
@@ -265,8 +305,8 @@ private:
     }
 
     [[noreturn]] void truncated(const std::string& what, std::uint64_t got, std::uint64_t count) {
-        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what + " ends after " +
-                         std::to_string(got) + " of " + std::to_string(count) +
+        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what +
+                         " ends after " + std::to_string(got) + " of " + std::to_string(count) +
                          " values: the file is truncated");
     }
 
@@ -316,7 +356,8 @@ private:
         float* out = mesh_.positions.empty() ? nullptr : mesh_.positions[0].data();
         // note: Vec3f is three packed floats (Eigen fixed-size, no padding) so index 3v+k works.
         static_assert(sizeof(Vec3f) == 3 * sizeof(float));
-        read_values(mul(3, n), t, "POINTS", [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+        read_values(mul(3, n), t, "POINTS",
+                    [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
         has_points_ = true;
         point_count_ = static_cast<std::size_t>(n);
     }
@@ -325,9 +366,8 @@ private:
         if (!is_integer(t)) fail(what + " must have an integer type");
         guard_count(count, t, what);
         std::vector<std::int64_t> out(static_cast<std::size_t>(count));
-        read_values(count, t, what, [&](std::size_t i, double v) {
-            out[i] = clamp_to<std::int64_t>(v);
-        });
+        read_values(count, t, what,
+                    [&](std::size_t i, double v) { out[i] = clamp_to<std::int64_t>(v); });
         return out;
     }
 
@@ -352,7 +392,8 @@ private:
             }
             words_ = w;
             if (!iequals(words_[0], "CONNECTIVITY"))
-                fail("expected CONNECTIVITY after " + what + " OFFSETS, found \"" + printable(line) + "\"");
+                fail("expected CONNECTIVITY after " + what + " OFFSETS, found \"" +
+                     printable(line) + "\"");
             conn = read_ints(size, type_word(1), what + " CONNECTIVITY");
             if (!offsets.empty() && offsets.back() != static_cast<std::int64_t>(conn.size()))
                 fail(what + " OFFSETS end at " + std::to_string(offsets.back()) +
@@ -361,8 +402,8 @@ private:
         } else {
             const auto flat = read_ints(size, Type::Int32, what);
             if (n > flat.size())
-                fail(what + " declares " + std::to_string(n) + " cells in only " + std::to_string(size) +
-                     " numbers");
+                fail(what + " declares " + std::to_string(n) + " cells in only " +
+                     std::to_string(size) + " numbers");
             offsets.reserve(static_cast<std::size_t>(n) + 1);
             conn.reserve(flat.size());
             offsets.push_back(0);
@@ -370,20 +411,23 @@ private:
             for (std::uint64_t c = 0; c < n; ++c) {
                 poll_cancel(c);
                 if (i >= flat.size())
-                    fail(what + " declares " + std::to_string(n) + " cells in " + std::to_string(size) +
-                         " numbers, but the numbers end at cell " + std::to_string(c));
+                    fail(what + " declares " + std::to_string(n) + " cells in " +
+                         std::to_string(size) + " numbers, but the numbers end at cell " +
+                         std::to_string(c));
                 const std::int64_t k = flat[i++];
                 if (k < 0 || static_cast<std::uint64_t>(k) > flat.size() - i)
                     fail(what + " cell " + std::to_string(c) + " has " + std::to_string(k) +
-                         " points, more than the " + std::to_string(flat.size() - i) + " numbers left");
-                conn.insert(conn.end(), flat.begin() + static_cast<std::ptrdiff_t>(i),
-                            flat.begin() + static_cast<std::ptrdiff_t>(i + static_cast<std::size_t>(k)));
+                         " points, more than the " + std::to_string(flat.size() - i) +
+                         " numbers left");
+                conn.insert(
+                    conn.end(), flat.begin() + static_cast<std::ptrdiff_t>(i),
+                    flat.begin() + static_cast<std::ptrdiff_t>(i + static_cast<std::size_t>(k)));
                 i += static_cast<std::size_t>(k);
                 offsets.push_back(static_cast<std::int64_t>(conn.size()));
             }
             if (i != flat.size())
-                fail(what + " declares size " + std::to_string(size) + " but its " + std::to_string(n) +
-                     " cells use " + std::to_string(i) + " numbers");
+                fail(what + " declares size " + std::to_string(size) + " but its " +
+                     std::to_string(n) + " cells use " + std::to_string(i) + " numbers");
         }
         const std::size_t cells = offsets.size() - 1;
         cell_count_ += cells;
@@ -401,7 +445,8 @@ private:
             poll_cancel(c);
             const auto b = static_cast<std::size_t>(offsets[c]);
             const auto e = static_cast<std::size_t>(offsets[c + 1]);
-            if (e < b || e > conn.size()) fail(what + " OFFSETS are not increasing at cell " + std::to_string(c));
+            if (e < b || e > conn.size())
+                fail(what + " OFFSETS are not increasing at cell " + std::to_string(c));
             const std::size_t k = e - b;
             if (k >= 3 && mesh_.triangles.size() + k - 2 > max_triangles_)
                 check_triangle_budget(mesh_.triangles.size() + k - 2, max_triangles_, source_,
@@ -458,7 +503,8 @@ private:
     std::string attribute_name() const {
         std::string name = words_.size() > 1 ? std::string(words_[1]) : std::string();
         // note: VTK legacy writers encode spaces in names as %20.
-        for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;) name.replace(i, 3, " ");
+        for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;)
+            name.replace(i, 3, " ");
         return name;
     }
 
@@ -508,7 +554,8 @@ private:
                 guard_count(mul(3, n), t, what);
                 mesh_.normals.assign(n, Vec3f::Zero());
                 float* out = n ? mesh_.normals[0].data() : nullptr;
-                read_values(mul(3, n), t, what, [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
+                read_values(mul(3, n), t, what,
+                            [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
             } else {
                 skip_values(mul(3, n), t, what);
             }
@@ -526,13 +573,14 @@ private:
     }
 
     // One data array of `tuples` × `comps` values: a point scalar when kept and 1-component.
-    void read_array(const std::string& name, Type t, std::uint64_t comps, std::uint64_t tuples, bool keep,
-                    const std::string& what) {
+    void read_array(const std::string& name, Type t, std::uint64_t comps, std::uint64_t tuples,
+                    bool keep, const std::string& what) {
         const bool as_field = keep && comps == 1 && tuples == point_count_ && t != Type::String;
         if (!as_field) {
             if (keep && t != Type::String)
-                report_.warnings.push_back("VTK point array \"" + name + "\" with " + std::to_string(comps) +
-                                           " components skipped (only 1-component arrays are kept)");
+                report_.warnings.push_back(
+                    "VTK point array \"" + name + "\" with " + std::to_string(comps) +
+                    " components skipped (only 1-component arrays are kept)");
             skip_values(mul(comps, tuples), t, what);
             return;
         }
@@ -544,7 +592,8 @@ private:
             return;
         }
         std::vector<float> values(static_cast<std::size_t>(tuples));
-        read_values(tuples, t, what, [&](std::size_t i, double v) { values[i] = static_cast<float>(v); });
+        read_values(tuples, t, what,
+                    [&](std::size_t i, double v) { values[i] = static_cast<float>(v); });
         if (auto* existing = mesh_.find_scalar(name)) existing->values = std::move(values);
         else mesh_.scalars.push_back({name, std::move(values)});
     }
@@ -565,9 +614,11 @@ private:
             if (iequals(words_[0], "NULL_ARRAY")) continue;
             if (words_.size() != 4)
                 fail("FIELD \"" + field_name + "\" array " + std::to_string(a) +
-                     ": expected \"NAME COMPONENTS TUPLES TYPE\", found \"" + printable(line) + "\"");
+                     ": expected \"NAME COMPONENTS TUPLES TYPE\", found \"" + printable(line) +
+                     "\"");
             std::string name(words_[0]);
-            for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;) name.replace(i, 3, " ");
+            for (std::size_t i = 0; (i = name.find("%20", i)) != std::string::npos;)
+                name.replace(i, 3, " ");
             const std::uint64_t comps = count_word(1, "component count");
             const std::uint64_t tuples = count_word(2, "tuple count");
             const Type t = type_word(3);
@@ -595,7 +646,7 @@ private:
     Mesh mesh_;
     bool binary_ = false;
     std::size_t pos_ = 0;
-    std::size_t line_start_ = 0;  ///< start of the current header line (for messages)
+    std::size_t line_start_ = 0;    ///< start of the current header line (for messages)
     std::uint64_t lines_read_ = 0;  ///< for polling cancellation
     std::vector<std::string_view> words_;
     bool has_points_ = false;

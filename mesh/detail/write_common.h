@@ -22,7 +22,7 @@ void check_sizes(const Mesh& mesh, const std::filesystem::path& path);
 /// writer holds 1 MiB of its file in memory, not the whole of it (hundreds of MB for an atlas
 /// of 2M triangles). flush() at the end.
 class StreamBuffer {
-public:
+  public:
     explicit StreamBuffer(std::ostream& stream) : stream_(stream) { text_.reserve(kChunk + 4096); }
     StreamBuffer& operator+=(std::string_view s) {
         text_ += s;
@@ -42,7 +42,7 @@ public:
         text_.clear();
     }
 
-private:
+  private:
     static constexpr std::size_t kChunk = std::size_t{1} << 20;
     void spill() {
         if (text_.size() >= kChunk) flush();

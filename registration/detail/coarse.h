@@ -10,8 +10,9 @@
 namespace glint::detail {
 
 /// See glint::coarse_align; `samples` are the examined samples of the fine fit.
-[[nodiscard]] CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPointIndex& examined,
-                                           const std::vector<Sample>& samples, const RegistrationOptions& options,
-                                           double diagonal);
+[[nodiscard]] CoarseAlignment coarse_align(const ClosestPointIndex& reference,
+                                           const ClosestPointIndex& examined,
+                                           const std::vector<Sample>& samples,
+                                           const RegistrationOptions& options, double diagonal);
 
 }  // namespace glint::detail

@@ -26,7 +26,8 @@ std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t se
     out.reserve(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i) {
         const double pick = u01(rng) * total;
-        const auto t = static_cast<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
+        const auto t = static_cast<std::size_t>(
+            std::lower_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin());
         const auto& tri = mesh.triangles[std::min(t, areas.size() - 1)];
         // Uniform point in a triangle: (1 − √r1, √r1(1 − r2), √r1 r2).
         const double r1 = std::sqrt(u01(rng)), r2 = u01(rng);
@@ -77,17 +78,22 @@ struct PlaneToPoint {
         T rp[3], rn[3];
         ceres::AngleAxisRotatePoint(x, pt, rp);
         ceres::AngleAxisRotatePoint(x, nt, rn);
-        r[0] = rn[0] * (T(q.x()) - rp[0] - x[3]) + rn[1] * (T(q.y()) - rp[1] - x[4]) + rn[2] * (T(q.z()) - rp[2] - x[5]);
+        r[0] = rn[0] * (T(q.x()) - rp[0] - x[3]) + rn[1] * (T(q.y()) - rp[1] - x[4]) +
+               rn[2] * (T(q.z()) - rp[2] - x[5]);
         return true;
     }
 };
 
 ceres::LossFunction* make_loss(RobustLoss loss, double scale) {
     switch (loss) {
-        case RobustLoss::None: return nullptr;
-        case RobustLoss::Huber: return new ceres::HuberLoss(scale);
-        case RobustLoss::Cauchy: return new ceres::CauchyLoss(scale);
-        case RobustLoss::Tukey: return new ceres::TukeyLoss(scale);
+        case RobustLoss::None:
+            return nullptr;
+        case RobustLoss::Huber:
+            return new ceres::HuberLoss(scale);
+        case RobustLoss::Cauchy:
+            return new ceres::CauchyLoss(scale);
+        case RobustLoss::Tukey:
+            return new ceres::TukeyLoss(scale);
     }
     return nullptr;
 }
@@ -115,8 +121,9 @@ bool in_roi(const ClosestPoint& c, const Mesh& ref, const std::optional<Roi>& ro
 }  // namespace
 
 // Pairs of the examined samples at pose T with the reference, after rejection.
-std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
-                        const RegistrationOptions& o, double max_distance) {
+std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t,
+                        const ClosestPointIndex& reference, const RegistrationOptions& o,
+                        double max_distance) {
     std::vector<Vec3d> moved(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) moved[i] = t * samples[i].point;
     const auto cps = reference.closest(moved, max_distance);
@@ -165,8 +172,9 @@ struct IcpEvidence {
 // as not overlapping; a pair is accepted within `gate` with compatible normals.
 // note: the gate is absolute (a share of the size), not a multiple of the residuals' spread:
 // a fit of unrelated surfaces has a wide spread, and a relative gate would call it overlap.
-IcpEvidence evaluate(const std::vector<Sample>& samples, const Rigid& t, const ClosestPointIndex& reference,
-                  const RegistrationOptions& o, double gate) {
+IcpEvidence evaluate(const std::vector<Sample>& samples, const Rigid& t,
+                     const ClosestPointIndex& reference, const RegistrationOptions& o,
+                     double gate) {
     std::vector<Vec3d> moved(samples.size());
     for (std::size_t i = 0; i < samples.size(); ++i) moved[i] = t * samples[i].point;
     const auto cps = reference.closest(moved);
@@ -201,8 +209,9 @@ struct StepSolution {
 };
 
 StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample>& ref_samples,
-                        const ClosestPointIndex* examined, const Rigid& t, const RegistrationOptions& o, double scale,
-                        double max_distance, int threads) {
+                        const ClosestPointIndex* examined, const Rigid& t,
+                        const RegistrationOptions& o, double scale, double max_distance,
+                        int threads) {
     double x[6] = {0, 0, 0, 0, 0, 0};
     // note: one loss function for every residual (the problem does not own it): a loss per
     // residual was one allocation and one free per pair and iteration, for the same function.
@@ -211,8 +220,9 @@ StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     ceres::Problem problem(problem_options);
     for (const auto& p : pairs)
-        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
-                                 loss.get(), x);
+        problem.AddResidualBlock(
+            new ceres::AutoDiffCostFunction<PointToPlane, 1, 6>(new PointToPlane{p.p, p.q, p.n}),
+            loss.get(), x);
     if (o.symmetric && examined) {
         const Rigid inv = t.inverse();
         std::vector<Vec3d> back(ref_samples.size());
@@ -223,15 +233,16 @@ StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample
             const Vec3d pw = t * cps[i].point;
             const Vec3d nw = t.linear() * cps[i].normal;
             if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
-            problem.AddResidualBlock(
-                new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(new PlaneToPoint{pw, ref_samples[i].point, nw}),
-                loss.get(), x);
+            problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PlaneToPoint, 1, 6>(
+                                         new PlaneToPoint{pw, ref_samples[i].point, nw}),
+                                     loss.get(), x);
         }
     }
     ceres::Solver::Options so;
     so.linear_solver_type = ceres::DENSE_QR;
     so.max_num_iterations = o.inner_iterations;
-    so.num_threads = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    so.num_threads =
+        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     so.logging_type = ceres::SILENT;
     so.minimizer_progress_to_stdout = false;
     StepSolution out;
@@ -249,22 +260,22 @@ bool finished(const IcpIteration& log, bool annealed, const std::optional<double
         res.converged = true;
         res.termination = "parameter change";
         std::ostringstream why;
-        why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step << " below "
-            << o.rotation_tolerance_deg << "° and " << o.translation_tolerance << " × size after " << log.iteration
-            << " iterations";
+        why << "parameter change: step " << log.rotation_step_deg << "° / " << log.translation_step
+            << " below " << o.rotation_tolerance_deg << "° and " << o.translation_tolerance
+            << " × size after " << log.iteration << " iterations";
         res.termination_detail = why.str();
         return true;
     }
     if (annealed && previous_cost) {
         // note: the denominator's floor keeps 0/0 (a perfect fit) from reading as a change.
-        const double change =
-            std::abs(log.cost - *previous_cost) / std::max(*previous_cost, std::numeric_limits<double>::min());
+        const double change = std::abs(log.cost - *previous_cost) /
+                              std::max(*previous_cost, std::numeric_limits<double>::min());
         if (change < o.cost_tolerance) {
             res.converged = true;
             res.termination = "cost change";
             std::ostringstream why;
-            why << "cost change: relative change " << change << " below " << o.cost_tolerance << " after "
-                << log.iteration << " iterations";
+            why << "cost change: relative change " << change << " below " << o.cost_tolerance
+                << " after " << log.iteration << " iterations";
             res.termination_detail = why.str();
             return true;
         }
@@ -274,8 +285,8 @@ bool finished(const IcpIteration& log, bool annealed, const std::optional<double
 
 // The evidence at the pose returned (not at the one before the last step); too little
 // overlap turns a converged run into "low overlap".
-void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& reference, const RegistrationOptions& o,
-                   double diagonal, IcpRun& run) {
+void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& reference,
+                   const RegistrationOptions& o, double diagonal, IcpRun& run) {
     RegistrationResult& res = run.result;
     const IcpEvidence e = evaluate(samples, run.t, reference, o, o.overlap_distance * diagonal);
     res.rms = e.rms;
@@ -286,8 +297,8 @@ void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& 
         res.termination = "low overlap";
         std::ostringstream why;
         why << "low overlap: " << e.overlap << " of the samples lie within " << o.overlap_distance
-            << " × size of a compatible reference surface at the final pose, below min overlap " << o.min_overlap
-            << " (ICP: " << res.termination_detail << ")";
+            << " × size of a compatible reference surface at the final pose, below min overlap "
+            << o.min_overlap << " (ICP: " << res.termination_detail << ")";
         res.termination_detail = why.str();
     }
 }
@@ -295,13 +306,15 @@ void judge_overlap(const std::vector<Sample>& samples, const ClosestPointIndex& 
 }  // namespace
 
 IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
-               const ClosestPointIndex& reference, const ClosestPointIndex* examined, const Rigid& start,
-               const RegistrationOptions& o, int max_iterations, double diagonal, int solver_threads) {
+               const ClosestPointIndex& reference, const ClosestPointIndex* examined,
+               const Rigid& start, const RegistrationOptions& o, int max_iterations,
+               double diagonal, int solver_threads) {
     IcpRun run;
     run.t = start;
     RegistrationResult& res = run.result;
     res.termination = "max iterations";
-    res.termination_detail = "max iterations: " + std::to_string(max_iterations) + " iterations without convergence";
+    res.termination_detail =
+        "max iterations: " + std::to_string(max_iterations) + " iterations without convergence";
     // note: 1e-9 of the size keeps the loss scale positive on noise-free synthetic pairs.
     const double sigma_floor = 1e-9 * diagonal;
     double max_distance = std::numeric_limits<double>::infinity();
@@ -313,7 +326,8 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         if (pairs.size() < std::max<std::size_t>(6, samples.size() / 33)) {
             res.termination = "no overlap";
             res.termination_detail = "no overlap: " + std::to_string(pairs.size()) + " of " +
-                                     std::to_string(samples.size()) + " samples found a compatible reference surface";
+                                     std::to_string(samples.size()) +
+                                     " samples found a compatible reference surface";
             res.converged = false;
             res.iterations = it;
             return run;
@@ -325,7 +339,8 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         const double scale = anneal * sigma;
         // Far outliers (beyond 20σ, or the initial spread) do not enter the next matching.
         max_distance = std::max(20.0 * sigma, 1e-6 * diagonal);
-        const StepSolution solved = solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance, solver_threads);
+        const StepSolution solved =
+            solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance, solver_threads);
         run.t = solved.step * run.t;
         IcpIteration log;
         log.iteration = it + 1;

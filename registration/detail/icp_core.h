@@ -38,8 +38,8 @@ struct Pair {
 /// Pairs of the examined samples at pose `t` with the reference, after rejection (distance,
 /// normal compatibility, ROI).
 [[nodiscard]] std::vector<Pair> match(const std::vector<Sample>& samples, const Rigid& t,
-                                      const ClosestPointIndex& reference, const RegistrationOptions& o,
-                                      double max_distance);
+                                      const ClosestPointIndex& reference,
+                                      const RegistrationOptions& o, double max_distance);
 
 /// An ICP run: the pose reached and its result (evidence, log, termination).
 struct IcpRun {
@@ -51,7 +51,8 @@ struct IcpRun {
 /// `examined` are used only for the symmetric variant. `diagonal` is the larger bounding
 /// diagonal (scales the tolerances). `solver_threads`: Ceres' threads per step (0 = the
 /// machine's; 1 when several runs go in parallel).
-[[nodiscard]] IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& ref_samples,
+[[nodiscard]] IcpRun run_icp(const std::vector<Sample>& samples,
+                             const std::vector<Sample>& ref_samples,
                              const ClosestPointIndex& reference, const ClosestPointIndex* examined,
                              const Rigid& start, const RegistrationOptions& o, int max_iterations,
                              double diagonal, int solver_threads = 0);

@@ -23,7 +23,7 @@ struct VulkanMesh;
 ///   submit(v0) submit(v1) finish()→frame 0 submit(v2) finish()→frame 1 …
 /// with at most max_in_flight() views submitted and not finished.
 class RenderBackend {
-public:
+  public:
     virtual ~RenderBackend() = default;
     [[nodiscard]] virtual std::size_t max_in_flight() const = 0;
     /// Starts rendering a view (size already checked against the options).
@@ -52,23 +52,27 @@ public:
     /// Traces and resolves output rows [y0, y1) of `view` (y0 a multiple of band_rows()) into
     /// `rows`, a frame of width × (y1 − y0) pixels whose row 0 is row y0 (world normals,
     /// unmasked, bitwise as finish() gives them). Thread-safe for distinct scratch and rows.
-    virtual void trace_rows(const View& view, int y0, int y1, RowScratch& scratch, Frame& rows) const;
+    virtual void trace_rows(const View& view, int y0, int y1, RowScratch& scratch,
+                            Frame& rows) const;
 };
 
 /// The device half of a RenderContext.
 class ContextImpl {
-public:
+  public:
     virtual ~ContextImpl() = default;
     /// Uploads a mesh (with normals) for frames rendered with `options` (culling final).
-    virtual std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) = 0;
+    virtual std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh,
+                                                        const FrameOptions& options) = 0;
     [[nodiscard]] virtual std::vector<std::string> validation_messages() const { return {}; }
 };
 
 /// Creates the Vulkan device of a context; fills device_name / device_type.
-std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options, std::string& device_name,
+std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options,
+                                                 std::string& device_name,
                                                  std::string& device_type);
 /// Creates the Embree device of a context; fills device_name / device_type.
-std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options, std::string& device_name,
+std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options,
+                                                 std::string& device_name,
                                                  std::string& device_type);
 
 /// Process-wide creation counts (render_context_stats()).
@@ -93,6 +97,7 @@ void resolve_samples(const float* normal_depth, const std::uint32_t* ids, int s,
                      Frame& frame);
 
 /// Resolves output rows [y0, y1) of `frame`; the buffers start at sub-sample row y0·s.
-void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, int y0, int y1, Frame& frame);
+void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, int y0, int y1,
+                  Frame& frame);
 
 }  // namespace glint::detail

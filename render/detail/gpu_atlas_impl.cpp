@@ -17,13 +17,14 @@ namespace {
 constexpr VkMemoryPropertyFlags kHostMemory =
     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
 constexpr VkMemoryPropertyFlags kDeviceMemory = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
-constexpr VkBufferUsageFlags kStorage =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                        VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 }  // namespace
 
-GpuAtlasImpl::GpuAtlasImpl(const VulkanMesh& reference, const VulkanMesh& examined, const FrameOptions& frame,
-                           const GpuAtlasOptions& options)
+GpuAtlasImpl::GpuAtlasImpl(const VulkanMesh& reference, const VulkanMesh& examined,
+                           const FrameOptions& frame, const GpuAtlasOptions& options)
     : reference_(reference),
       examined_(examined),
       device_(reference.device),
@@ -65,8 +66,10 @@ void GpuAtlasImpl::create_shared() {
     GLINT_VK_CHECK(vkCreateDescriptorPool(dev, &dp, nullptr, &descriptor_pool_));
     const VkDeviceSize vertices = reference_.buffers.vertex_count;
     const auto zooms = static_cast<VkDeviceSize>(options_.zoom_count);
-    sums_ = make_buffer(dev, phys, zooms * GLINT_SUM_FIELDS * vertices * 8, kStorage, kDeviceMemory, 0);
-    words_ = make_buffer(dev, phys, zooms * GLINT_WORD_FIELDS * vertices * 4, kStorage, kDeviceMemory, 0);
+    sums_ =
+        make_buffer(dev, phys, zooms * GLINT_SUM_FIELDS * vertices * 8, kStorage, kDeviceMemory, 0);
+    words_ = make_buffer(dev, phys, zooms * GLINT_WORD_FIELDS * vertices * 4, kStorage,
+                         kDeviceMemory, 0);
     scratch_key_ = make_buffer(dev, phys, vertices * 8, kStorage, kDeviceMemory, 0);
     scratch_cos_ = make_buffer(dev, phys, vertices * 4, kStorage, kDeviceMemory, 0);
 }
@@ -83,10 +86,11 @@ void GpuAtlasImpl::create_slot(Slot& slot) {
     VkFenceCreateInfo fence{};
     fence.sType = VK_STRUCTURE_TYPE_FENCE_CREATE_INFO;
     GLINT_VK_CHECK(vkCreateFence(dev, &fence, nullptr, &slot.fence));
-    slot.params = make_buffer(dev, phys, sizeof(AtlasParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, kHostMemory, 0);
+    slot.params = make_buffer(dev, phys, sizeof(AtlasParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                              kHostMemory, 0);
     slot.summary = make_buffer(dev, phys, sizeof(ViewTotals), kStorage, kDeviceMemory, 0);
-    slot.summary_host = make_buffer(dev, phys, sizeof(ViewTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT, kHostMemory,
-                                    VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    slot.summary_host = make_buffer(dev, phys, sizeof(ViewTotals), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                    kHostMemory, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
     if (device_->timestamp_bits() > 0) {
         VkQueryPoolCreateInfo q{};
         q.sType = VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO;
@@ -136,7 +140,8 @@ void GpuAtlasImpl::release() noexcept {
         slot.fence = VK_NULL_HANDLE;
         slot.timestamps = VK_NULL_HANDLE;
     }
-    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_}) destroy_buffer(dev, *b);
+    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_})
+        destroy_buffer(dev, *b);
     // Destroying the pools frees their command buffers and descriptor sets.
     if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
     if (pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(dev, pool_, nullptr);
@@ -152,13 +157,18 @@ void GpuAtlasImpl::ensure_targets(Slot& slot, int width, int height) {
     destroy_target(slot.reference);
     destroy_target(slot.examined);
     slot.width = slot.height = 0;
-    const VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+    const VkImageUsageFlags color =
+        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
     for (Target* t : {&slot.reference, &slot.examined}) {
-        t->normal_depth = make_image(dev, phys, width, height, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        t->primitive = make_image(dev, phys, width, height, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        t->depth = make_image(dev, phys, width, height, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                              VK_IMAGE_ASPECT_DEPTH_BIT);
-        const std::array<VkImageView, 3> views{t->normal_depth.view, t->primitive.view, t->depth.view};
+        t->normal_depth =
+            make_image(dev, phys, width, height, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
+        t->primitive =
+            make_image(dev, phys, width, height, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
+        t->depth =
+            make_image(dev, phys, width, height, kDepthFormat,
+                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+        const std::array<VkImageView, 3> views{t->normal_depth.view, t->primitive.view,
+                                               t->depth.view};
         VkFramebufferCreateInfo fb{};
         fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
         fb.renderPass = pipelines_->render_pass;
@@ -179,7 +189,8 @@ void GpuAtlasImpl::ensure_pixels(std::size_t pixel_count) {
     const VkDeviceSize bytes = static_cast<VkDeviceSize>(pixel_count) * sizeof(PixelDeviation);
     if (pixels_.buffer != VK_NULL_HANDLE && pixels_.size >= bytes) return;
     destroy_buffer(device_->device(), pixels_);
-    pixels_ = make_buffer(device_->device(), device_->physical(), bytes, kStorage, kDeviceMemory, 0);
+    pixels_ =
+        make_buffer(device_->device(), device_->physical(), bytes, kStorage, kDeviceMemory, 0);
     for (auto& slot : slots_) slot.set_current = false;
 }
 
@@ -220,11 +231,13 @@ void GpuAtlasImpl::write_set(Slot& slot) {
         buffer_infos[i] = {buffers[i].second, 0, VK_WHOLE_SIZE};
         VkWriteDescriptorSet& w = writes[images.size() + i];
         w.dstBinding = buffers[i].first;
-        w.descriptorType = buffers[i].first == GLINT_ATLAS_BINDING_PARAMS ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
-                                                                           : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        w.descriptorType = buffers[i].first == GLINT_ATLAS_BINDING_PARAMS
+                               ? VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER
+                               : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         w.pBufferInfo = &buffer_infos[i];
     }
-    vkUpdateDescriptorSets(device_->device(), static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    vkUpdateDescriptorSets(device_->device(), static_cast<std::uint32_t>(writes.size()),
+                           writes.data(), 0, nullptr);
     slot.set_current = true;
 }
 

@@ -28,8 +28,8 @@
 
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <vector>
@@ -44,7 +44,7 @@ inline int bits_for(double x) {
 }
 
 class GpuAtlasImpl {
-public:
+  public:
     /// \throw DeviceError (what was created is released first).
     GpuAtlasImpl(const VulkanMesh& reference, const VulkanMesh& examined, const FrameOptions& frame,
                  const GpuAtlasOptions& options);
@@ -56,7 +56,7 @@ public:
     [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
     [[nodiscard]] const GpuAtlasTimings& timings() const { return timings_; }
 
-private:
+  private:
     struct Target {
         Image normal_depth, primitive, depth;
         VkFramebuffer framebuffer = VK_NULL_HANDLE;
@@ -98,7 +98,8 @@ private:
     void wait(Slot& slot);
     [[nodiscard]] GpuViewSummary finish(Slot& slot);
     void add_timings(const Slot& slot);
-    [[nodiscard]] std::vector<GpuAtlasTotals> totals_from(const std::int64_t* sums, const std::uint32_t* words) const;
+    [[nodiscard]] std::vector<GpuAtlasTotals> totals_from(const std::int64_t* sums,
+                                                          const std::uint32_t* words) const;
     void wait_all() noexcept;
 
     VulkanMesh reference_;

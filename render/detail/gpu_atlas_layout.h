@@ -37,7 +37,8 @@ static_assert(offsetof(AtlasParams, mode) == 400);
 static_assert(offsetof(AtlasParams, view) == 416);
 static_assert(offsetof(AtlasParams, thresholds) == 432);
 static_assert(offsetof(AtlasParams, rgb) == 448);
-static_assert(sizeof(AtlasParams) == 464, "AtlasParams must match the std140 block in atlas_common.glsl");
+static_assert(sizeof(AtlasParams) == 464,
+              "AtlasParams must match the std140 block in atlas_common.glsl");
 
 /// buffer Summary (std430): one view's numbers.
 struct ViewTotals {
@@ -47,11 +48,12 @@ struct ViewTotals {
     std::uint32_t examined_only;
     std::uint32_t max_angle_bits;  ///< float bits
     std::uint32_t unused;
-    std::int64_t angle_sum;        ///< fixed point, AtlasParams::scales[3]
+    std::int64_t angle_sum;  ///< fixed point, AtlasParams::scales[3]
 };
 static_assert(offsetof(ViewTotals, max_angle_bits) == 16);
 static_assert(offsetof(ViewTotals, angle_sum) == 24);
-static_assert(sizeof(ViewTotals) == 32, "ViewTotals must match the Summary block in atlas_common.glsl");
+static_assert(sizeof(ViewTotals) == 32,
+              "ViewTotals must match the Summary block in atlas_common.glsl");
 
 /// struct PixelDeviation (std430): one pixel's comparison, kept on the device for the gather.
 struct PixelDeviation {

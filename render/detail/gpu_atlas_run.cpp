@@ -20,8 +20,8 @@ constexpr VkMemoryPropertyFlags kHostMemory =
     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
 
 /// One global memory barrier (the call sites say what it protects).
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access, VkPipelineStageFlags dst,
-             VkAccessFlags dst_access) {
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+             VkPipelineStageFlags dst, VkAccessFlags dst_access) {
     VkMemoryBarrier b{};
     b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
     b.srcAccessMask = src_access;
@@ -51,12 +51,14 @@ void check_view(const View& v, int supersample, std::uint32_t max_dimension, int
     const long long w = static_cast<long long>(c.width) * supersample;
     const long long h = static_cast<long long>(c.height) * supersample;
     if (c.width < 1 || c.height < 1 || w > max_dimension || h > max_dimension)
-        throw InputError("GPU atlas: view " + std::to_string(v.index) + " of " + std::to_string(c.width) + "x" +
-                         std::to_string(c.height) + " pixels with supersample " + std::to_string(supersample) +
-                         ", expected 1.." + std::to_string(max_dimension) + " sub-samples per side");
+        throw InputError(
+            "GPU atlas: view " + std::to_string(v.index) + " of " + std::to_string(c.width) + "x" +
+            std::to_string(c.height) + " pixels with supersample " + std::to_string(supersample) +
+            ", expected 1.." + std::to_string(max_dimension) + " sub-samples per side");
     if (v.zoom_index < 0 || v.zoom_index >= zoom_count)
-        throw InputError("GPU atlas: view " + std::to_string(v.index) + " has zoom " + std::to_string(v.zoom_index) +
-                         ", expected 0.." + std::to_string(zoom_count - 1));
+        throw InputError("GPU atlas: view " + std::to_string(v.index) + " has zoom " +
+                         std::to_string(v.zoom_index) + ", expected 0.." +
+                         std::to_string(zoom_count - 1));
 }
 
 }  // namespace
@@ -82,10 +84,12 @@ void GpuAtlasImpl::write_params(Slot& slot, const View& view, const Scales& scal
     p.frame[3] = cam.ortho_half_height;
     p.projector[0] = half_height * aspect;
     p.projector[1] = half_height;
-    p.projector[2] = std::max(3.0 * view.footprint, 0.02 * options_.framed_radius);  // backproject.cpp gather
+    p.projector[2] =
+        std::max(3.0 * view.footprint, 0.02 * options_.framed_radius);  // backproject.cpp gather
     p.projector[3] = options_.min_cos_incidence;
     // The view's angle sum: at most 180° per compared pixel.
-    slot.angle_scale = std::ldexp(1.0, 62 - 8 - bits_for(static_cast<double>(cam.width) * cam.height));
+    slot.angle_scale =
+        std::ldexp(1.0, 62 - 8 - bits_for(static_cast<double>(cam.width) * cam.height));
     p.scales[0] = scales.weight;
     p.scales[1] = scales.value;
     p.scales[2] = scales.depth;
@@ -102,11 +106,13 @@ void GpuAtlasImpl::write_params(Slot& slot, const View& view, const Scales& scal
     p.mode[1] = zoom * GLINT_SUM_FIELDS * vertices;
     p.mode[2] = zoom * GLINT_WORD_FIELDS * vertices;
     p.view[0] = view.index;
-    p.thresholds[0] = 1.0f / static_cast<float>(supersample_ * supersample_);  // resolve.cpp inv_samples
+    p.thresholds[0] =
+        1.0f / static_cast<float>(supersample_ * supersample_);  // resolve.cpp inv_samples
     p.thresholds[1] = options_.min_coverage;
     p.thresholds[2] = mask_threshold_;
     p.thresholds[3] = options_.missing_value;
-    p.rgb[0] = 1.0f / static_cast<float>(std::numeric_limits<std::uint8_t>::max());  // OpenImageIO's uint8 → float
+    p.rgb[0] = 1.0f / static_cast<float>(
+                          std::numeric_limits<std::uint8_t>::max());  // OpenImageIO's uint8 → float
     std::memcpy(slot.params.mapped, &p, sizeof(p));
 }
 
@@ -115,8 +121,9 @@ void GpuAtlasImpl::write_params(Slot& slot, const View& view, const Scales& scal
 void GpuAtlasImpl::record_clear(VkCommandBuffer cmd) {
     // Barrier: a previous run's passes and read-back copies are done with the accumulators
     // before the fills overwrite them (write-after-read and write-after-write).
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdFillBuffer(cmd, sums_.buffer, 0, VK_WHOLE_SIZE, 0u);
     vkCmdFillBuffer(cmd, scratch_key_.buffer, 0, VK_WHOLE_SIZE, 0u);
     vkCmdFillBuffer(cmd, scratch_cos_.buffer, 0, VK_WHOLE_SIZE, 0u);
@@ -125,7 +132,8 @@ void GpuAtlasImpl::record_clear(VkCommandBuffer cmd) {
         0u, 0u, 0u, 0xFFFFFFFFu, std::bit_cast<std::uint32_t>(-2.0f), 0xFFFFFFFFu};
     for (int z = 0; z < options_.zoom_count; ++z) {
         for (std::size_t f = 0; f < initial.size(); ++f) {
-            const VkDeviceSize offset = (static_cast<VkDeviceSize>(z) * GLINT_WORD_FIELDS + f) * field;
+            const VkDeviceSize offset =
+                (static_cast<VkDeviceSize>(z) * GLINT_WORD_FIELDS + f) * field;
             vkCmdFillBuffer(cmd, words_.buffer, offset, field, initial[f]);
         }
     }
@@ -143,7 +151,8 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
             VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdFillBuffer(cmd, slot.summary.buffer, 0, VK_WHOLE_SIZE, 0u);
     // Barrier: the zeroed summary before the pixel pass's atomics on it.
-    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     // Timestamps, each written once every command before it has completed.
     const auto stamp = [&](std::uint32_t query) {
@@ -155,14 +164,15 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     // The frames: the render pass's dependencies order the colour writes before the passes'
     // imageLoad, and the previous view's reads of these targets before the clear.
     const VkPipelineLayout graphics_layout = device_->layout();
-    record_normal_pass(cmd, pipelines_->render_pass, slot.reference.framebuffer, slot.width, slot.height,
-                       pipelines_->graphics[reference_.cull_back_faces ? 1 : 0], graphics_layout, reference_.buffers,
-                       view);
-    record_normal_pass(cmd, pipelines_->render_pass, slot.examined.framebuffer, slot.width, slot.height,
-                       pipelines_->graphics[examined_.cull_back_faces ? 1 : 0], graphics_layout, examined_.buffers,
-                       view);
+    record_normal_pass(cmd, pipelines_->render_pass, slot.reference.framebuffer, slot.width,
+                       slot.height, pipelines_->graphics[reference_.cull_back_faces ? 1 : 0],
+                       graphics_layout, reference_.buffers, view);
+    record_normal_pass(cmd, pipelines_->render_pass, slot.examined.framebuffer, slot.width,
+                       slot.height, pipelines_->graphics[examined_.cull_back_faces ? 1 : 0],
+                       graphics_layout, examined_.buffers, view);
     stamp(1);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout, 0, 1, &slot.set, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout, 0, 1,
+                            &slot.set, 0, nullptr);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->pixels);
     const auto w = static_cast<std::uint32_t>(view.camera.width);
     const auto h = static_cast<std::uint32_t>(view.camera.height);
@@ -170,27 +180,29 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     stamp(2);
     // Barrier: the pixel pass's atomics (atlas, scratch) and pixel buffer before the vertex
     // pass reads and folds them.
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->vertices);
     vkCmdDispatch(cmd, groups(reference_.buffers.vertex_count, GLINT_ATLAS_VERTEX_GROUP), 1, 1);
     stamp(3);
     // Barrier: the summary's atomics (pixel pass) before its copy to the host-visible buffer.
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-            VK_ACCESS_TRANSFER_READ_BIT);
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     const VkBufferCopy copy{0, 0, sizeof(ViewTotals)};
     vkCmdCopyBuffer(cmd, slot.summary.buffer, slot.summary_host.buffer, 1, &copy);
     // Barrier: the copy's write before the host reads it after the fence.
-    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-            VK_ACCESS_HOST_READ_BIT);
+    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
     GLINT_VK_CHECK(vkEndCommandBuffer(cmd));
     device_->submit(cmd, slot.fence);
 }
 
 void GpuAtlasImpl::add_timings(const Slot& slot) {
     std::array<std::uint64_t, 4> ticks{};
-    GLINT_VK_CHECK(vkGetQueryPoolResults(device_->device(), slot.timestamps, 0, 4, sizeof(ticks), ticks.data(),
-                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT));
+    GLINT_VK_CHECK(vkGetQueryPoolResults(device_->device(), slot.timestamps, 0, 4, sizeof(ticks),
+                                         ticks.data(), sizeof(std::uint64_t),
+                                         VK_QUERY_RESULT_64_BIT));
     const std::uint32_t bits = device_->timestamp_bits();
     const std::uint64_t mask = bits >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << bits) - 1;
     const double seconds_per_tick = 1e-9 * device_->limits().timestampPeriod;
@@ -222,7 +234,8 @@ GpuViewSummary GpuAtlasImpl::finish(Slot& slot) {
     s.reference_only = t.reference_only;
     s.examined_only = t.examined_only;
     s.max_angle_deg = std::bit_cast<float>(t.max_angle_bits);
-    s.mean_angle_deg = t.compared ? static_cast<double>(t.angle_sum) / slot.angle_scale / t.compared : 0.0;
+    s.mean_angle_deg =
+        t.compared ? static_cast<double>(t.angle_sum) / slot.angle_scale / t.compared : 0.0;
     return s;
 }
 
@@ -230,8 +243,8 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
     std::size_t largest = 1;
     for (const View& v : views) {
         check_view(v, supersample_, device_->max_dimension(), options_.zoom_count);
-        largest = std::max(largest,
-                           static_cast<std::size_t>(v.camera.width) * static_cast<std::size_t>(v.camera.height));
+        largest = std::max(largest, static_cast<std::size_t>(v.camera.width) *
+                                        static_cast<std::size_t>(v.camera.height));
     }
     scales_ = scales_for(views);
     timings_ = GpuAtlasTimings{};
@@ -253,7 +266,8 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
                 if (consumer) consumer(slot.view, summary);
             }
             const View& view = views[i];
-            ensure_targets(slot, view.camera.width * supersample_, view.camera.height * supersample_);
+            ensure_targets(slot, view.camera.width * supersample_,
+                           view.camera.height * supersample_);
             if (!slot.set_current) write_set(slot);
             write_params(slot, view, scales_[static_cast<std::size_t>(view.zoom_index)]);
             record(slot, view, i == 0);
@@ -261,7 +275,8 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
             slot.view = i;
         }
         // The views still in flight, oldest first.
-        for (std::size_t i = views.size() > slots_.size() ? views.size() - slots_.size() : 0; i < views.size(); ++i) {
+        for (std::size_t i = views.size() > slots_.size() ? views.size() - slots_.size() : 0;
+             i < views.size(); ++i) {
             Slot& slot = slots_[i % slots_.size()];
             if (!slot.busy) continue;
             const GpuViewSummary summary = finish(slot);
@@ -277,29 +292,31 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
 std::vector<GpuAtlasTotals> GpuAtlasImpl::read_totals() {
     GLINT_ASSERT(has_run_, "GPU atlas totals read before run()");
     const VkDevice dev = device_->device();
-    Buffer staging = make_buffer(dev, device_->physical(), sums_.size + words_.size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                                 kHostMemory, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    Buffer staging = make_buffer(dev, device_->physical(), sums_.size + words_.size,
+                                 VK_BUFFER_USAGE_TRANSFER_DST_BIT, kHostMemory,
+                                 VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
     std::vector<GpuAtlasTotals> out;
     try {
         Slot& slot = slots_[0];
         begin(slot.cmd);
         // Barrier: the last view's vertex pass wrote the accumulators; the copies read them.
         barrier(slot.cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_TRANSFER_READ_BIT);
-        const std::array<VkBufferCopy, 2> copies{{{0, 0, sums_.size}, {0, sums_.size, words_.size}}};
+                VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+        const std::array<VkBufferCopy, 2> copies{
+            {{0, 0, sums_.size}, {0, sums_.size, words_.size}}};
         vkCmdCopyBuffer(slot.cmd, sums_.buffer, staging.buffer, 1, &copies[0]);
         vkCmdCopyBuffer(slot.cmd, words_.buffer, staging.buffer, 1, &copies[1]);
         // Barrier: the copies' writes before the host reads the staging buffer.
-        barrier(slot.cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
+        barrier(slot.cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
         GLINT_VK_CHECK(vkEndCommandBuffer(slot.cmd));
         device_->submit(slot.cmd, slot.fence);
         slot.busy = true;
         wait(slot);
         out = totals_from(static_cast<const std::int64_t*>(staging.mapped),
-                          reinterpret_cast<const std::uint32_t*>(static_cast<const unsigned char*>(staging.mapped) +
-                                                                 sums_.size));
+                          reinterpret_cast<const std::uint32_t*>(
+                              static_cast<const unsigned char*>(staging.mapped) + sums_.size));
     } catch (...) {
         wait_all();
         destroy_buffer(dev, staging);
@@ -309,7 +326,8 @@ std::vector<GpuAtlasTotals> GpuAtlasImpl::read_totals() {
     return out;
 }
 
-std::vector<GpuAtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums, const std::uint32_t* words) const {
+std::vector<GpuAtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums,
+                                                      const std::uint32_t* words) const {
     const std::size_t n = reference_.buffers.vertex_count;
     std::vector<GpuAtlasTotals> out(static_cast<std::size_t>(options_.zoom_count));
     for (std::size_t z = 0; z < out.size(); ++z) {

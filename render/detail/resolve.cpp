@@ -37,28 +37,35 @@ void parallel_for(int count, int threads, const std::function<void(int, int)>& b
     // concurrency at `threads` (RenderOptions::threads).
     tbb::task_arena arena(threads);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<int>(0, threads, 1), [&](const tbb::blocked_range<int>& r) {
-            for (int t = r.begin(); t != r.end(); ++t) body(chunk_begin(t), chunk_begin(t + 1));
-        }, tbb::simple_partitioner());
+        tbb::parallel_for(
+            tbb::blocked_range<int>(0, threads, 1),
+            [&](const tbb::blocked_range<int>& r) {
+                for (int t = r.begin(); t != r.end(); ++t) body(chunk_begin(t), chunk_begin(t + 1));
+            },
+            tbb::simple_partitioner());
     });
 }
 
-void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, int y0, int y1, Frame& frame) {
+void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, int y0, int y1,
+                  Frame& frame) {
     const int w = frame.width;
     const std::size_t sw = static_cast<std::size_t>(w) * static_cast<std::size_t>(s);
     const int centre = s / 2;  // centre sub-sample (even s: just below-right of the centre)
     const float inv_samples = 1.0f / static_cast<float>(s * s);
     for (int y = y0; y < y1; ++y) {
         for (int x = 0; x < w; ++x) {
-            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                                  static_cast<std::size_t>(x);
             float nx = 0.0f, ny = 0.0f, nz = 0.0f, depth = 0.0f;
             int covered = 0;
             std::uint32_t first_id = kNoPrimitive;
             std::uint32_t centre_id = kNoPrimitive;
             for (int j = 0; j < s; ++j) {
-                const std::size_t row = (static_cast<std::size_t>(y - y0) * static_cast<std::size_t>(s) +
-                                         static_cast<std::size_t>(j)) * sw +
-                                        static_cast<std::size_t>(x) * static_cast<std::size_t>(s);
+                const std::size_t row =
+                    (static_cast<std::size_t>(y - y0) * static_cast<std::size_t>(s) +
+                     static_cast<std::size_t>(j)) *
+                        sw +
+                    static_cast<std::size_t>(x) * static_cast<std::size_t>(s);
                 for (int i = 0; i < s; ++i) {
                     const std::size_t k = row + static_cast<std::size_t>(i);
                     const std::uint32_t id = ids[k];
@@ -97,10 +104,12 @@ void resolve_rows(const float* normal_depth, const std::uint32_t* ids, int s, in
 
 void resolve_samples(const float* normal_depth, const std::uint32_t* ids, int s, int threads,
                      Frame& frame) {
-    const std::size_t sub_row = static_cast<std::size_t>(frame.width) * static_cast<std::size_t>(s) *
+    const std::size_t sub_row = static_cast<std::size_t>(frame.width) *
+                                static_cast<std::size_t>(s) *
                                 static_cast<std::size_t>(s);  // sub-samples per output row
     // note: below ~64k sub-samples the thread start costs more than it saves.
-    const int row_threads = frame.pixel_count() * static_cast<std::size_t>(s * s) < 64 * 1024 ? 1 : threads;
+    const int row_threads =
+        frame.pixel_count() * static_cast<std::size_t>(s * s) < 64 * 1024 ? 1 : threads;
     parallel_for(frame.height, row_threads, [&](int y0, int y1) {
         const std::size_t offset = static_cast<std::size_t>(y0) * sub_row;
         resolve_rows(normal_depth + 4 * offset, ids + offset, s, y0, y1, frame);

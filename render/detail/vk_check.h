@@ -15,10 +15,10 @@ namespace glint::detail {
 
 }  // namespace glint::detail
 
-#define GLINT_VK_CHECK(call)                                                          \
-    do {                                                                              \
-        const VkResult glint_vk_result_ = (call);                                     \
-        if (glint_vk_result_ != VK_SUCCESS) {                                         \
+#define GLINT_VK_CHECK(call)                                                               \
+    do {                                                                                   \
+        const VkResult glint_vk_result_ = (call);                                          \
+        if (glint_vk_result_ != VK_SUCCESS) {                                              \
             ::glint::detail::vk_check_failed(glint_vk_result_, #call, __FILE__, __LINE__); \
-        }                                                                             \
+        }                                                                                  \
     } while (false)

@@ -56,7 +56,8 @@ VkPipeline make_compute_pipeline(VkDevice device, VkPipelineLayout layout, Shade
     info.stage.pName = "main";
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    const VkResult r = vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+    const VkResult r =
+        vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
     vkDestroyShaderModule(device, module, nullptr);
     if (r != VK_SUCCESS) vk_check_failed(r, "vkCreateComputePipelines", __FILE__, __LINE__);
     return pipeline;

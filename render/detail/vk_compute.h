@@ -16,7 +16,7 @@ struct AtlasPipelines {
     VkPipeline pixels = VK_NULL_HANDLE;                 ///< atlas_pixels.comp
     VkPipeline vertices = VK_NULL_HANDLE;               ///< atlas_vertices.comp
     VkRenderPass render_pass = VK_NULL_HANDLE;          ///< colour targets left in GENERAL
-    std::array<VkPipeline, 2> graphics{};               ///< normal pass on render_pass, [cull_back_faces]
+    std::array<VkPipeline, 2> graphics{};  ///< normal pass on render_pass, [cull_back_faces]
 };
 
 /// Creates them all; `graphics_layout` is the normal pass's push-constant layout.

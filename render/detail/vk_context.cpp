@@ -9,7 +9,8 @@
 
 namespace glint::detail {
 
-VulkanDevice::VulkanDevice(const ContextOptions& options) : threads_(worker_count(options.threads)) {
+VulkanDevice::VulkanDevice(const ContextOptions& options)
+    : threads_(worker_count(options.threads)) {
     instance_ = std::make_unique<Instance>(options.validation, &log_);
     auto cands = enumerate(instance_->get());
     std::string why;
@@ -27,8 +28,9 @@ VulkanDevice::VulkanDevice(const ContextOptions& options) : threads_(worker_coun
     std::vector<VkQueueFamilyProperties> family_props(families);
     vkGetPhysicalDeviceQueueFamilyProperties(physical_, &families, family_props.data());
     timestamp_bits_ = queue_family_ < families ? family_props[queue_family_].timestampValidBits : 0;
-    max_dimension_ = std::min(props.limits.maxImageDimension2D,
-                              std::min(props.limits.maxFramebufferWidth, props.limits.maxFramebufferHeight));
+    max_dimension_ =
+        std::min(props.limits.maxImageDimension2D,
+                 std::min(props.limits.maxFramebufferWidth, props.limits.maxFramebufferHeight));
     try {
         create_device();
         render_pass_ = make_render_pass(device_);
@@ -116,9 +118,11 @@ std::vector<std::string> VulkanDevice::validation_messages() const {
 namespace {
 
 class VulkanContext final : public ContextImpl {
-public:
-    explicit VulkanContext(const ContextOptions& options) : device_(std::make_shared<VulkanDevice>(options)) {}
-    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh, const FrameOptions& options) override {
+  public:
+    explicit VulkanContext(const ContextOptions& options)
+        : device_(std::make_shared<VulkanDevice>(options)) {}
+    std::unique_ptr<RenderBackend> make_backend(const Mesh& mesh,
+                                                const FrameOptions& options) override {
         return make_vulkan_backend(device_, mesh, options);
     }
     [[nodiscard]] std::vector<std::string> validation_messages() const override {
@@ -126,13 +130,14 @@ public:
     }
     [[nodiscard]] const DeviceInfo& info() const { return device_->info(); }
 
-private:
+  private:
     std::shared_ptr<VulkanDevice> device_;
 };
 
 }  // namespace
 
-std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options, std::string& device_name,
+std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options,
+                                                 std::string& device_name,
                                                  std::string& device_type) {
     auto context = std::make_unique<VulkanContext>(options);
     device_name = context->info().name;

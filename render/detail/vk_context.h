@@ -22,7 +22,7 @@
 namespace glint::detail {
 
 class VulkanDevice {
-public:
+  public:
     /// \throw DeviceError no driver, no usable device (listing them), a failed call.
     explicit VulkanDevice(const ContextOptions& options);
     ~VulkanDevice();
@@ -52,7 +52,7 @@ public:
     void submit(VkCommandBuffer cmd, VkFence fence);
     [[nodiscard]] std::vector<std::string> validation_messages() const;
 
-private:
+  private:
     void create_device();
     void release() noexcept;
 
@@ -72,7 +72,7 @@ private:
     std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
     VkPhysicalDeviceLimits limits_{};
     std::uint32_t timestamp_bits_ = 0;
-    AtlasPipelines atlas_{};                 // created by atlas_pipelines() (pipeline_mutex_)
+    AtlasPipelines atlas_{};  // created by atlas_pipelines() (pipeline_mutex_)
 };
 
 /// A renderer's mesh as the GPU atlas uses it: its device, buffers and cull mode.
@@ -83,7 +83,7 @@ struct VulkanMesh {
 };
 
 /// A mesh on a shared device (render/vulkan_backend.cpp).
-std::unique_ptr<RenderBackend> make_vulkan_backend(std::shared_ptr<VulkanDevice> device, const Mesh& mesh,
-                                                   const FrameOptions& options);
+std::unique_ptr<RenderBackend> make_vulkan_backend(std::shared_ptr<VulkanDevice> device,
+                                                   const Mesh& mesh, const FrameOptions& options);
 
 }  // namespace glint::detail

@@ -30,21 +30,31 @@ std::string version_text(std::uint32_t v) {
 
 const char* type_name(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    default: return "other";
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return "discrete";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return "integrated";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return "virtual";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return "cpu";
+        default:
+            return "other";
     }
 }
 
 int type_score(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return 3;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return 1;
+        default:
+            return 0;
     }
 }
 
@@ -53,7 +63,8 @@ VKAPI_ATTR VkBool32 VKAPI_CALL debug_callback(VkDebugUtilsMessageSeverityFlagBit
                                               const VkDebugUtilsMessengerCallbackDataEXT* data,
                                               void* user) {
     auto* log = static_cast<MessageLog*>(user);
-    const char* level = (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
+    const char* level =
+        (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) ? "error" : "warning";
     std::lock_guard<std::mutex> lock(log->mutex);
     log->messages.push_back(std::string(level) + ": " +
                             (data != nullptr && data->pMessage != nullptr ? data->pMessage : "?"));
@@ -128,7 +139,8 @@ Instance::Instance(bool validation, MessageLog* log) {
     VkDebugUtilsMessengerCreateInfoEXT dbg = messenger_info(log);
     // Synchronisation validation too: it checks the barriers and subpass dependencies
     // (hazards between the clear, the draw, the copies and the host reads).
-    const VkValidationFeatureEnableEXT enables[] = {VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
+    const VkValidationFeatureEnableEXT enables[] = {
+        VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT};
     VkValidationFeaturesEXT features{};
     features.sType = VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT;
     features.enabledValidationFeatureCount = 1;
@@ -188,12 +200,16 @@ void evaluate_gpu_atlas(VkPhysicalDevice pd, const VkPhysicalDeviceFeatures& fea
     if (!features.shaderFloat64) missing.push_back("shaderFloat64");
     if (!features.shaderInt64) missing.push_back("shaderInt64");
     if (!v12.shaderBufferInt64Atomics) missing.push_back("shaderBufferInt64Atomics");
-    if (!(queue.queueFlags & VK_QUEUE_COMPUTE_BIT)) missing.push_back("compute on the graphics queue");
-    const VkFormatFeatureFlags storage = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
-    if (!has_optimal_features(pd, kNormalFormat, storage)) missing.push_back("RGBA32F storage image");
+    if (!(queue.queueFlags & VK_QUEUE_COMPUTE_BIT))
+        missing.push_back("compute on the graphics queue");
+    const VkFormatFeatureFlags storage =
+        VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT;
+    if (!has_optimal_features(pd, kNormalFormat, storage))
+        missing.push_back("RGBA32F storage image");
     if (!has_optimal_features(pd, kIdFormat, storage)) missing.push_back("R32_UINT storage image");
     info.supports_gpu_atlas = missing.empty();
-    for (std::size_t i = 0; i < missing.size(); ++i) info.gpu_atlas_reason += (i == 0 ? "lacks " : ", ") + missing[i];
+    for (std::size_t i = 0; i < missing.size(); ++i)
+        info.gpu_atlas_reason += (i == 0 ? "lacks " : ", ") + missing[i];
 }
 
 /// What glint needs of a device; `reason` collects every missing piece.
@@ -218,7 +234,8 @@ Candidate evaluate(VkPhysicalDevice pd) {
     c.score = type_score(props.deviceType);
 
     std::vector<std::string> missing;
-    if (props.apiVersion < kRequiredApi) missing.push_back("Vulkan 1.2 (has " + c.info.api_version_text + ")");
+    if (props.apiVersion < kRequiredApi)
+        missing.push_back("Vulkan 1.2 (has " + c.info.api_version_text + ")");
     VkPhysicalDeviceFeatures features{};
     vkGetPhysicalDeviceFeatures(pd, &features);
     if (!features.geometryShader) missing.push_back("geometryShader feature (gl_PrimitiveID)");
@@ -229,7 +246,8 @@ Candidate evaluate(VkPhysicalDevice pd) {
     // The first graphics family that also computes (the GPU atlas runs its passes on the same
     // queue), else the first graphics family.
     bool has_graphics = false;
-    const std::array<VkQueueFlags, 2> preferences{VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT, VK_QUEUE_GRAPHICS_BIT};
+    const std::array<VkQueueFlags, 2> preferences{VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT,
+                                                  VK_QUEUE_GRAPHICS_BIT};
     for (const VkQueueFlags wanted : preferences) {
         for (std::uint32_t i = 0; i < qcount && !has_graphics; ++i) {
             if ((queues[i].queueFlags & wanted) == wanted) {
@@ -239,13 +257,17 @@ Candidate evaluate(VkPhysicalDevice pd) {
         }
     }
     if (!has_graphics) missing.push_back("a graphics queue");
-    const VkFormatFeatureFlags color = VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
-    if (!has_optimal_features(pd, kNormalFormat, color)) missing.push_back("RGBA32F colour attachment");
-    if (!has_optimal_features(pd, kIdFormat, color)) missing.push_back("R32_UINT colour attachment");
+    const VkFormatFeatureFlags color =
+        VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT | VK_FORMAT_FEATURE_TRANSFER_SRC_BIT;
+    if (!has_optimal_features(pd, kNormalFormat, color))
+        missing.push_back("RGBA32F colour attachment");
+    if (!has_optimal_features(pd, kIdFormat, color))
+        missing.push_back("R32_UINT colour attachment");
     if (!has_optimal_features(pd, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) {
         missing.push_back("D32 depth attachment");
     }
-    if (props.limits.maxPushConstantsSize < GLINT_PUSH_CONSTANT_BYTES) missing.push_back("80 bytes of push constants");
+    if (props.limits.maxPushConstantsSize < GLINT_PUSH_CONSTANT_BYTES)
+        missing.push_back("80 bytes of push constants");
     c.info.is_usable = missing.empty();
     for (std::size_t i = 0; i < missing.size(); ++i) {
         c.info.reason += (i == 0 ? "lacks " : ", ") + missing[i];
@@ -279,14 +301,16 @@ int choose(const std::vector<Candidate>& cands, const std::string& name, std::st
         const auto& c = cands[i];
         if (!wanted.empty() && lower(c.info.name).find(wanted) == std::string::npos) continue;
         if (!c.info.is_usable) continue;
-        if (best < 0 || c.score > cands[static_cast<std::size_t>(best)].score) best = static_cast<int>(i);
+        if (best < 0 || c.score > cands[static_cast<std::size_t>(best)].score)
+            best = static_cast<int>(i);
     }
     if (best < 0) {
         std::ostringstream s;
         if (cands.empty()) {
             s << "no Vulkan device found (the driver lists none)";
         } else {
-            s << "no usable Vulkan device" << (wanted.empty() ? "" : " matching \"" + name + "\"") << "; devices:";
+            s << "no usable Vulkan device" << (wanted.empty() ? "" : " matching \"" + name + "\"")
+              << "; devices:";
             for (const auto& c : cands) {
                 s << " [" << c.info.name << " (" << c.info.type << ")"
                   << (c.info.is_usable ? ": usable" : ": " + c.info.reason) << "]";

@@ -27,7 +27,7 @@ struct MessageLog {
 
 /// Owns a VkInstance (and the debug messenger when validation is on).
 class Instance {
-public:
+  public:
     /// \throw DeviceError no driver, validation layer missing.
     Instance(bool validation, MessageLog* log);
     ~Instance();
@@ -35,7 +35,7 @@ public:
     Instance& operator=(const Instance&) = delete;
     [[nodiscard]] VkInstance get() const { return instance_; }
 
-private:
+  private:
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
 };

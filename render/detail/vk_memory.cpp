@@ -13,7 +13,8 @@ std::uint32_t find_memory_type(VkPhysicalDevice physical, std::uint32_t type_bit
     vkGetPhysicalDeviceMemoryProperties(physical, &mem);
     for (const VkMemoryPropertyFlags want : {required | preferred, required}) {
         for (std::uint32_t i = 0; i < mem.memoryTypeCount; ++i) {
-            if ((type_bits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return i;
+            if ((type_bits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want)
+                return i;
         }
     }
     throw DeviceError("no Vulkan memory type with the required properties (flags " +
@@ -36,8 +37,9 @@ VkDeviceMemory allocate(VkDevice device, VkPhysicalDevice physical, const VkMemo
 
 }  // namespace
 
-Buffer make_buffer(VkDevice device, VkPhysicalDevice physical, VkDeviceSize size, VkBufferUsageFlags usage,
-                   VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) {
+Buffer make_buffer(VkDevice device, VkPhysicalDevice physical, VkDeviceSize size,
+                   VkBufferUsageFlags usage, VkMemoryPropertyFlags required,
+                   VkMemoryPropertyFlags preferred) {
     Buffer b;
     b.size = size;
     VkBufferCreateInfo info{};

@@ -29,8 +29,9 @@ std::uint32_t find_memory_type(VkPhysicalDevice physical, std::uint32_t type_bit
 
 /// A buffer in its own memory, mapped when `required` includes HOST_VISIBLE.
 /// \throw DeviceError (the buffer is released first).
-Buffer make_buffer(VkDevice device, VkPhysicalDevice physical, VkDeviceSize size, VkBufferUsageFlags usage,
-                   VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred);
+Buffer make_buffer(VkDevice device, VkPhysicalDevice physical, VkDeviceSize size,
+                   VkBufferUsageFlags usage, VkMemoryPropertyFlags required,
+                   VkMemoryPropertyFlags preferred);
 
 /// A 2D device-local image (one mip, one layer, optimal tiling) in its own memory, with a view.
 /// \throw DeviceError (the image is released first).

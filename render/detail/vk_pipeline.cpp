@@ -131,15 +131,16 @@ VkRenderPass make_render_pass(VkDevice device, TargetUse use) {
     subpass.colorAttachmentCount = 2;
     subpass.pColorAttachments = color_refs.data();
     subpass.pDepthStencilAttachment = &depth_ref;
-    const VkPipelineStageFlags reader = compute ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT;
+    const VkPipelineStageFlags reader =
+        compute ? VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT : VK_PIPELINE_STAGE_TRANSFER_BIT;
     std::array<VkSubpassDependency, 2> deps{};
     // In: the previous view in these targets read the colour images (a transfer, or the
     // compute passes) and wrote depth; the clear (and layout transition) must wait for both.
     deps[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     deps[0].dstSubpass = 0;
     deps[0].srcStageMask = reader | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-    deps[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT |
-                           VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+    deps[0].dstStageMask =
+        VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
     deps[0].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
     deps[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
                             VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
@@ -177,7 +178,8 @@ VkPipelineLayout make_pipeline_layout(VkDevice device) {
     return layout;
 }
 
-VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass render_pass, bool cull_back_faces) {
+VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass render_pass,
+                         bool cull_back_faces) {
     VkShaderModule vert = make_shader_module(device, ShaderId::normal_vert);
     VkShaderModule frag = VK_NULL_HANDLE;
     try {
@@ -212,16 +214,17 @@ VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass 
     gp.renderPass = render_pass;
     gp.subpass = 0;
     VkPipeline pipeline = VK_NULL_HANDLE;
-    const VkResult r = vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline);
+    const VkResult r =
+        vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline);
     vkDestroyShaderModule(device, vert, nullptr);
     vkDestroyShaderModule(device, frag, nullptr);
     if (r != VK_SUCCESS) vk_check_failed(r, "vkCreateGraphicsPipelines", __FILE__, __LINE__);
     return pipeline;
 }
 
-void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer, int width,
-                        int height, VkPipeline pipeline, VkPipelineLayout layout, const MeshBuffers& mesh,
-                        const View& view) {
+void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer,
+                        int width, int height, VkPipeline pipeline, VkPipelineLayout layout,
+                        const MeshBuffers& mesh, const View& view) {
     const Camera& cam = view.camera;
     PushConstants pc{};
     const Eigen::Matrix4f clip = cam.clip_from_world().cast<float>();
@@ -239,11 +242,13 @@ void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebu
     rp.sType = VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO;
     rp.renderPass = render_pass;
     rp.framebuffer = framebuffer;
-    rp.renderArea = {{0, 0}, {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height)}};
+    rp.renderArea = {{0, 0},
+                     {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height)}};
     rp.clearValueCount = static_cast<std::uint32_t>(clears.size());
     rp.pClearValues = clears.data();
     vkCmdBeginRenderPass(cmd, &rp, VK_SUBPASS_CONTENTS_INLINE);
-    VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height),
+                        0.0f, 1.0f};
     vkCmdSetViewport(cmd, 0, 1, &viewport);
     vkCmdSetScissor(cmd, 0, 1, &rp.renderArea);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline);

@@ -36,7 +36,8 @@ enum class TargetUse {
 VkRenderPass make_render_pass(VkDevice device, TargetUse use = TargetUse::ReadBack);
 VkPipelineLayout make_pipeline_layout(VkDevice device);
 /// normal.vert / normal.frag, two vertex streams (positions, normals), depth test LESS.
-VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass render_pass, bool cull_back_faces);
+VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass render_pass,
+                         bool cull_back_faces);
 
 /// A mesh's buffers on the device (vertex streams and indices of render/vulkan_backend.cpp).
 struct MeshBuffers {
@@ -44,13 +45,13 @@ struct MeshBuffers {
     VkBuffer normals = VK_NULL_HANDLE;    ///< float3 per vertex
     VkBuffer indices = VK_NULL_HANDLE;    ///< uint3 per triangle
     std::uint32_t vertex_count = 0;
-    std::uint32_t index_count = 0;        ///< 3 per triangle
+    std::uint32_t index_count = 0;  ///< 3 per triangle
 };
 
 /// Records the normal pass of one mesh seen from `view` into `framebuffer` (w × h sub-samples):
 /// clear, one indexed draw of every triangle (gl_PrimitiveID = triangle index).
-void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer, int width,
-                        int height, VkPipeline pipeline, VkPipelineLayout layout, const MeshBuffers& mesh,
-                        const View& view);
+void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer,
+                        int width, int height, VkPipeline pipeline, VkPipelineLayout layout,
+                        const MeshBuffers& mesh, const View& view);
 
 }  // namespace glint::detail

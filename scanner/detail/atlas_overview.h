@@ -20,11 +20,11 @@ struct OverviewInput {
     const Mesh* mesh = nullptr;
     const SurfaceFields* fields = nullptr;
     const LegendContent* legend = nullptr;
-    double limit = 1.0;                         ///< colour range ±limit
+    double limit = 1.0;  ///< colour range ±limit
     const std::vector<Region>* regions = nullptr;
-    const SweepPlan* plan = nullptr;            ///< for the regions' best views
-    double coverage = 0.0;                      ///< share of the surface seen
-    std::string name;                           ///< of the reference, for the title
+    const SweepPlan* plan = nullptr;  ///< for the regions' best views
+    double coverage = 0.0;            ///< share of the surface seen
+    std::string name;                 ///< of the reference, for the title
     std::string unit;
 };
 

@@ -48,13 +48,15 @@ const std::string& font() {
 std::span<const float> diverging_knots() { return kRdBu; }
 
 ImageBuf diverging_image(const std::vector<float>& values, int width, int height, double limit) {
-    GLINT_ASSERT(values.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
-                 "diverging image: size does not match its values");
+    GLINT_ASSERT(
+        values.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+        "diverging image: size does not match its values");
     GLINT_ASSERT(limit > 0, "diverging image: the range must be positive");
     std::vector<float> t(values.size());
     for (std::size_t i = 0; i < t.size(); ++i) {
         const float v = values[i];
-        t[i] = std::isnan(v) ? 0.5f : static_cast<float>(std::clamp(0.5 + 0.5 * v / limit, 0.0, 1.0));
+        t[i] =
+            std::isnan(v) ? 0.5f : static_cast<float>(std::clamp(0.5 + 0.5 * v / limit, 0.0, 1.0));
     }
     ImageBuf scalar(ImageSpec(width, height, 1, TypeDesc::FLOAT));
     scalar.set_pixels(ROI(0, width, 0, height, 0, 1, 0, 1), TypeDesc::FLOAT, t.data());
@@ -71,10 +73,11 @@ ImageBuf canvas(int width, int height, Rgb colour) {
 
 bool has_font() { return !font().empty(); }
 
-void draw_text(ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour, IBA::TextAlignX align,
-               int shadow) {
+void draw_text(ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour,
+               IBA::TextAlignX align, int shadow) {
     if (font().empty() || text.empty()) return;
-    IBA::render_text(dst, x, y, text, size, font(), colour, align, IBA::TextAlignY::Baseline, shadow);
+    IBA::render_text(dst, x, y, text, size, font(), colour, align, IBA::TextAlignY::Baseline,
+                     shadow);
 }
 
 int text_width(std::string_view text, int size) {
@@ -95,7 +98,8 @@ void draw_tag(ImageBuf& dst, int x, int y, std::string_view text, int size) {
     draw_box(dst, x0, y0, x0 + w, y0 + h, kOutline, false);
     // note: the baseline sits a fifth of the size above the box's bottom edge (DejaVu's
     // descent), so digits look centred.
-    draw_text(dst, x, y0 + h - 1 - size / 5 - 1, text, size, {0.0f, 0.0f, 0.0f}, IBA::TextAlignX::Center);
+    draw_text(dst, x, y0 + h - 1 - size / 5 - 1, text, size, {0.0f, 0.0f, 0.0f},
+              IBA::TextAlignX::Center);
 }
 
 std::string encode_png(const ImageBuf& image) {

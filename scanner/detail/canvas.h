@@ -33,7 +33,8 @@ inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
 
 /// Colours `values` (one per pixel of a width × height image) on the diverging map with the
 /// symmetric range [−limit, +limit] (values beyond are clamped; NaN maps to 0). RGB float.
-[[nodiscard]] OIIO::ImageBuf diverging_image(const std::vector<float>& values, int width, int height, double limit);
+[[nodiscard]] OIIO::ImageBuf diverging_image(const std::vector<float>& values, int width,
+                                             int height, double limit);
 
 /// A width × height RGB float image filled with `colour`.
 [[nodiscard]] OIIO::ImageBuf canvas(int width, int height, Rgb colour = kBackground);
@@ -44,8 +45,10 @@ inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
 /// Text with its baseline-left (or the alignment given) at (x, y); `shadow` > 0 draws a dark
 /// halo of that radius so the text reads on any colour. ASCII only: OpenImageIO 2.4's
 /// render_text keeps 7 bits of each code point ("°" is drawn as "0", "±" as "1").
-void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour = kText,
-               OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left, int shadow = 0);
+void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size,
+               Rgb colour = kText,
+               OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left,
+               int shadow = 0);
 
 /// Width in pixels of `text` at `size` (an estimate when no font is found).
 [[nodiscard]] int text_width(std::string_view text, int size);

@@ -12,7 +12,7 @@ namespace IBA = OIIO::ImageBufAlgo;
 namespace {
 
 constexpr int kFont = 13;
-constexpr int kLine = 18;       // px per text line
+constexpr int kLine = 18;  // px per text line
 constexpr int kBarWidth = 20;
 constexpr int kMinBar = 120;
 constexpr int kMaxBar = 260;
@@ -37,7 +37,8 @@ void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c)
         const double v = c.limit * k / 2.0;
         const int row = bar_row(v, c.limit, top, height);
         IBA::render_line(dst, x + kBarWidth, row, x + kBarWidth + 5, row, kText);
-        draw_text(dst, x + kBarWidth + 9, row + kFont / 2 - 1, format_number(v, true) + (k == 2 ? unit : ""), kFont);
+        draw_text(dst, x + kBarWidth + 9, row + kFont / 2 - 1,
+                  format_number(v, true) + (k == 2 ? unit : ""), kFont);
     }
     if (c.shape_floor > 0 && c.shape_floor < c.limit) {
         // The shape floor: below it a change is not told apart from tessellation and noise.
@@ -54,9 +55,11 @@ void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
             const float* g = ((i + j) % 7 < 2) ? kUnseenStripe.data() : kUnseen.data();
-            if (x + i < dst.spec().width && y + j < dst.spec().height) dst.setpixel(x + i, y + j, g, 3);
+            if (x + i < dst.spec().width && y + j < dst.spec().height)
+                dst.setpixel(x + i, y + j, g, 3);
         }
-    draw_text(dst, x + s + 8, y + s - 2, roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
+    draw_text(dst, x + s + 8, y + s - 2,
+              roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
     const int y2 = y + kLine + 6;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
@@ -69,7 +72,8 @@ void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
 
 int legend_min_height(const LegendContent& c) {
     // (two lines each for the range and the shape floor when they wrap)
-    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches + static_cast<int>(c.lines.size() + 4) * kLine + 10;
+    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches +
+           static_cast<int>(c.lines.size() + 4) * kLine + 10;
 }
 
 void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
@@ -80,7 +84,8 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     draw_text(dst, x0, cy, "gain (bump)", kFont, {0.94f, 0.55f, 0.50f});
     cy += 8;
     const int fixed = legend_min_height(c) - kMinBar;
-    const int bar = std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLine, kMinBar, kMaxBar);
+    const int bar =
+        std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLine, kMinBar, kMaxBar);
     draw_bar(dst, x0 + 4, cy, bar, c);
     cy += bar + kLine;
     draw_text(dst, x0, cy, "loss (dent)", kFont, {0.55f, 0.72f, 0.95f});
@@ -91,8 +96,9 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     lines.insert(lines.begin(), "range +/-" + format_number(c.limit) + " " + c.unit +
                                     (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
     if (c.shape_floor > 0)
-        lines.insert(lines.begin() + 1, "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
-                                            (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
+        lines.insert(lines.begin() + 1,
+                     "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
+                         (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
     for (const auto& l : lines) {
         // A line too wide for the panel goes on two, its parenthesis on the second.
         const auto cut = l.rfind(" (");
@@ -110,7 +116,9 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     cy += 4;
     for (std::size_t i = 0; i < c.regions.size(); ++i) {
         if (cy + kLine > y + height && i + 1 < c.regions.size()) {
-            draw_text(dst, x0, cy, "... " + std::to_string(c.regions.size() - i) + " more (regions.csv)", kFont - 1);
+            draw_text(dst, x0, cy,
+                      "... " + std::to_string(c.regions.size() - i) + " more (regions.csv)",
+                      kFont - 1);
             break;
         }
         draw_text(dst, x0, cy, c.regions[i], kFont - 1);
@@ -118,7 +126,8 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     }
 }
 
-ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title, const LegendContent& legend) {
+ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
+                      const LegendContent& legend) {
     const int h = kTitleHeight + std::max(picture_h, legend_min_height(legend));
     ImageBuf sheet = canvas(picture_w + kLegendWidth, h);
     draw_title(sheet, title);

@@ -11,11 +11,11 @@
 namespace glint::detail {
 
 struct LegendContent {
-    double limit = 1.0;          ///< colour range ±limit, mesh units
-    std::string limit_source;    ///< why this range ("largest region peak", …)
-    double shape_floor = 0.0;    ///< marked on the bar when > 0 and inside the range
-    std::string unit;            ///< length unit shown ("mm"; "units" when unknown)
-    bool roi = false;            ///< the sweep analysed a part only: outside it counts as unseen
+    double limit = 1.0;        ///< colour range ±limit, mesh units
+    std::string limit_source;  ///< why this range ("largest region peak", …)
+    double shape_floor = 0.0;  ///< marked on the bar when > 0 and inside the range
+    std::string unit;          ///< length unit shown ("mm"; "units" when unknown)
+    bool roi = false;          ///< the sweep analysed a part only: outside it counts as unseen
     std::vector<std::string> lines;    ///< thresholds and floors, one per line
     std::vector<std::string> regions;  ///< "1 dent −0.41 mm, 12.3 mm²", in id order
 };

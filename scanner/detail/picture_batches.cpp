@@ -12,7 +12,8 @@
 namespace glint::detail {
 
 std::size_t batch_size(int threads) {
-    const int workers = threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int workers =
+        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     return static_cast<std::size_t>(std::clamp(2 * workers, 2, 16));
 }
 
@@ -26,7 +27,8 @@ void render_in_batches(Renderer& renderer, std::span<const View> views, int thre
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     const auto flush = [&] {
         arena.execute([&] {
-            tbb::parallel_for(std::size_t{0}, used, [&](std::size_t slot) { paint(slot, index[slot], frames[slot]); });
+            tbb::parallel_for(std::size_t{0}, used,
+                              [&](std::size_t slot) { paint(slot, index[slot], frames[slot]); });
         });
         if (finish)
             for (std::size_t slot = 0; slot < used; ++slot) finish(slot, index[slot]);

@@ -24,8 +24,9 @@ namespace glint::detail {
 /// finish(slot, k) on the calling thread, in view order, once its batch is painted. Checks for
 /// cancellation between views. Exceptions from either callback stop the run and propagate.
 /// `threads`: 0 = the machine's.
-void render_in_batches(Renderer& renderer, std::span<const View> views, int threads,
-                       const std::function<void(std::size_t slot, std::size_t k, const Frame& frame)>& paint,
-                       const std::function<void(std::size_t slot, std::size_t k)>& finish = {});
+void render_in_batches(
+    Renderer& renderer, std::span<const View> views, int threads,
+    const std::function<void(std::size_t slot, std::size_t k, const Frame& frame)>& paint,
+    const std::function<void(std::size_t slot, std::size_t k)>& finish = {});
 
 }  // namespace glint::detail

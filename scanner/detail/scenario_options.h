@@ -13,9 +13,11 @@ namespace glint::detail {
 
 /// Reads the sections present (unknown keys and wrong types fail with file, line, key);
 /// relative paths are resolved against `scenario_dir`.
-void read_analysis_sections(TableReader& top, const std::filesystem::path& scenario_dir, AnalysisOptions& options);
+void read_analysis_sections(TableReader& top, const std::filesystem::path& scenario_dir,
+                            AnalysisOptions& options);
 
 /// options.validate(), with an OptionError turned into "scenario \"F\" line L: [section] key …".
-void validate_analysis_sections(const toml::table& root, const std::string& file, const AnalysisOptions& options);
+void validate_analysis_sections(const toml::table& root, const std::string& file,
+                                const AnalysisOptions& options);
 
 }  // namespace glint::detail

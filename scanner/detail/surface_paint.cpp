@@ -28,8 +28,8 @@ struct PixelFields {
 // Barycentric weights of point p in the 2-D triangle (a, b, c), clamped to the triangle
 // (a supersampled pixel's centre may lie just outside the triangle its centre sub-sample hit)
 // and renormalised; equal weights for a degenerate projection (a triangle seen edge-on).
-std::array<double, 3> barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b,
-                                  const Eigen::Vector2d& c) {
+std::array<double, 3> barycentric(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
+                                  const Eigen::Vector2d& b, const Eigen::Vector2d& c) {
     const Eigen::Vector2d v0 = b - a, v1 = c - a, v2 = p - a;
     const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1);
     const double d20 = v2.dot(v0), d21 = v2.dot(v1);
@@ -45,9 +45,11 @@ std::array<double, 3> barycentric(const Eigen::Vector2d& p, const Eigen::Vector2
     return bw;
 }
 
-PixelFields sample_fields(const Mesh& mesh, const Frame& frame, const View& view, const SurfaceFields& fields) {
+PixelFields sample_fields(const Mesh& mesh, const Frame& frame, const View& view,
+                          const SurfaceFields& fields) {
     const std::size_t n = frame.pixel_count();
-    PixelFields out{std::vector<float>(n, kNaN), std::vector<std::int32_t>(n, 0), std::vector<std::uint8_t>(n, 0)};
+    PixelFields out{std::vector<float>(n, kNaN), std::vector<std::int32_t>(n, 0),
+                    std::vector<std::uint8_t>(n, 0)};
     const Projector project(view.camera);
     std::uint32_t cached = kNoPrimitive;
     std::array<Eigen::Vector2d, 3> corner;
@@ -56,11 +58,13 @@ PixelFields sample_fields(const Mesh& mesh, const Frame& frame, const View& view
         if (!frame.is_covered(p) || t == kNoPrimitive || t >= mesh.triangle_count()) continue;
         const auto& tri = mesh.triangles[t];
         if (t != cached) {
-            for (int k = 0; k < 3; ++k) corner[k] = project(mesh.positions[tri[k]].cast<double>()).head<2>();
+            for (int k = 0; k < 3; ++k)
+                corner[k] = project(mesh.positions[tri[k]].cast<double>()).head<2>();
             cached = t;
         }
-        const Eigen::Vector2d centre(static_cast<double>(p % static_cast<std::size_t>(frame.width)) + 0.5,
-                                     static_cast<double>(p / static_cast<std::size_t>(frame.width)) + 0.5);
+        const Eigen::Vector2d centre(
+            static_cast<double>(p % static_cast<std::size_t>(frame.width)) + 0.5,
+            static_cast<double>(p / static_cast<std::size_t>(frame.width)) + 0.5);
         const auto w = barycentric(centre, corner[0], corner[1], corner[2]);
         const int nearest = static_cast<int>(std::max_element(w.begin(), w.end()) - w.begin());
         double d = 0.0;
@@ -80,12 +84,14 @@ PixelFields sample_fields(const Mesh& mesh, const Frame& frame, const View& view
 
 // Contour pixels: a covered pixel whose region differs from a 4-neighbour's (an uncovered
 // neighbour counts as no region). Width 1 marks the region side only, width 2 both sides.
-std::vector<std::uint8_t> contour(const Frame& frame, const std::vector<std::int32_t>& region, int width) {
+std::vector<std::uint8_t> contour(const Frame& frame, const std::vector<std::int32_t>& region,
+                                  int width) {
     const int w = frame.width, h = frame.height;
     std::vector<std::uint8_t> edge(frame.pixel_count(), 0);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
-            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x);
+            const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(w) +
+                                  static_cast<std::size_t>(x);
             if (!frame.is_covered(p)) continue;
             const std::int32_t r = region[p];
             const int nx[4] = {x - 1, x + 1, x, x};
@@ -93,7 +99,8 @@ std::vector<std::uint8_t> contour(const Frame& frame, const std::vector<std::int
             for (int k = 0; k < 4; ++k) {
                 const bool inside = nx[k] >= 0 && nx[k] < w && ny[k] >= 0 && ny[k] < h;
                 const std::int32_t q =
-                    inside ? region[static_cast<std::size_t>(ny[k]) * static_cast<std::size_t>(w) + static_cast<std::size_t>(nx[k])]
+                    inside ? region[static_cast<std::size_t>(ny[k]) * static_cast<std::size_t>(w) +
+                                    static_cast<std::size_t>(nx[k])]
                            : 0;
                 if (q != r && (r != 0 || (width >= 2 && q != 0))) {
                     edge[p] = 1;
@@ -150,11 +157,12 @@ std::vector<RegionAnchor> anchors_of(const Frame& frame, const std::vector<std::
 
 }  // namespace
 
-PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& view, const SurfaceFields& fields,
-                             const PaintStyle& style) {
+PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& view,
+                             const SurfaceFields& fields, const PaintStyle& style) {
     const std::size_t nv = mesh.vertex_count();
-    GLINT_ASSERT(fields.distance.size() == nv && fields.region.size() == nv && fields.seen.size() == nv,
-                 "paint_surface: fields are not sized as the mesh");
+    GLINT_ASSERT(
+        fields.distance.size() == nv && fields.region.size() == nv && fields.seen.size() == nv,
+        "paint_surface: fields are not sized as the mesh");
     const PixelFields px = sample_fields(mesh, frame, view, fields);
     ImageBuf colour = diverging_image(px.distance, frame.width, frame.height, style.limit);
     const std::size_t n = frame.pixel_count();
@@ -173,14 +181,16 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
         }
         Rgb base{c[0], c[1], c[2]};
         if (!px.seen[p]) {
-            const bool stripe = (p % w + p / w) % static_cast<std::size_t>(std::max(2, style.hatch_period)) < 2;
+            const bool stripe =
+                (p % w + p / w) % static_cast<std::size_t>(std::max(2, style.hatch_period)) < 2;
             base = stripe ? kUnseenStripe : kUnseen;
         }
         if (edge[p]) base = kOutline;
         // Lambert with an ambient part: the form stays visible where the light grazes.
         const float lambert = std::max(0.0f, normal_in_camera(frame, view, p).dot(light));
         const float shade = edge[p] ? 1.0f : 0.32f + 0.68f * lambert;
-        for (int k = 0; k < 3; ++k) c[k] = cover * base[k] * shade + (1.0f - cover) * style.background[k];
+        for (int k = 0; k < 3; ++k)
+            c[k] = cover * base[k] * shade + (1.0f - cover) * style.background[k];
     }
     PaintedSurface out;
     out.image = canvas(frame.width, frame.height);
@@ -189,8 +199,9 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
     return out;
 }
 
-void draw_region_numbers(ImageBuf& dst, int x0, int y0, int width, const std::vector<RegionAnchor>& anchors,
-                         int font_size, std::size_t min_pixels) {
+void draw_region_numbers(ImageBuf& dst, int x0, int y0, int width,
+                         const std::vector<RegionAnchor>& anchors, int font_size,
+                         std::size_t min_pixels) {
     for (const auto& a : anchors) {
         if (a.pixels < min_pixels) continue;
         const std::string text = std::to_string(a.id);

@@ -27,9 +27,9 @@ namespace glint::detail {
 
 /// Per-vertex fields a picture shows (each one value per reference vertex).
 struct SurfaceFields {
-    std::span<const float> distance;          ///< signed shape change, mesh units (NaN = unknown)
-    std::span<const std::int32_t> region;     ///< region id, 0 = none
-    std::span<const std::uint8_t> seen;       ///< 0 = unseen (hatched)
+    std::span<const float> distance;       ///< signed shape change, mesh units (NaN = unknown)
+    std::span<const std::int32_t> region;  ///< region id, 0 = none
+    std::span<const std::uint8_t> seen;    ///< 0 = unseen (hatched)
 };
 
 /// Where a region's number goes in one picture.
@@ -47,9 +47,9 @@ struct PaintedSurface {
 };
 
 struct PaintStyle {
-    double limit = 1.0;      ///< colour range ±limit (mesh units), > 0
-    int outline_width = 2;   ///< 1: the region side of the contour only; 2: both sides
-    int hatch_period = 7;    ///< pixels between hatching stripes
+    double limit = 1.0;     ///< colour range ±limit (mesh units), > 0
+    int outline_width = 2;  ///< 1: the region side of the contour only; 2: both sides
+    int hatch_period = 7;   ///< pixels between hatching stripes
     Rgb background = kBackground;
 };
 
@@ -61,7 +61,8 @@ struct PaintStyle {
 /// Draws each anchor with at least `min_pixels` pixels as a numbered tag beside its region's
 /// bounding box (right, else left; on the anchor when neither fits the picture's `width`), for
 /// a picture pasted at (x0, y0).
-void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width, const std::vector<RegionAnchor>& anchors,
-                         int font_size, std::size_t min_pixels);
+void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width,
+                         const std::vector<RegionAnchor>& anchors, int font_size,
+                         std::size_t min_pixels);
 
 }  // namespace glint::detail

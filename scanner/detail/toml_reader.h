@@ -18,11 +18,12 @@ namespace glint::detail {
 
 // Reads typed values from one TOML table and rejects keys nobody asked about.
 class TableReader {
-public:
+  public:
     TableReader(const toml::table& table, std::string file, std::string section)
         : table_(table), file_(std::move(file)), section_(std::move(section)) {}
 
-    [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& what) const {
+    [[noreturn]] void fail(const toml::node* node, const std::string& key,
+                           const std::string& what) const {
         std::ostringstream s;
         s << "scenario \"" << file_ << "\"";
         if (node) s << " line " << node->source().begin.line;
@@ -57,7 +58,8 @@ public:
         fail(node, key, std::string("expected ") + expected + ", found " + type_name(*node));
     }
 
-    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t min_count, std::size_t max_count) {
+    std::optional<std::vector<double>> numbers(const std::string& key, std::size_t min_count,
+                                               std::size_t max_count) {
         const toml::node* node = get(key);
         if (!node) return std::nullopt;
         std::vector<double> out;
@@ -66,7 +68,9 @@ public:
         } else if (const auto* arr = node->as_array()) {
             for (const auto& e : *arr) {
                 auto v2 = e.value<double>();
-                if (!v2) fail(node, key, "expected an array of numbers, found an element of type " + type_name(e));
+                if (!v2)
+                    fail(node, key,
+                         "expected an array of numbers, found an element of type " + type_name(e));
                 out.push_back(*v2);
             }
         } else {
@@ -92,25 +96,33 @@ public:
     void finish() const {
         for (const auto& [k, node] : table_) {
             const std::string key(k.str());
-            if (!seen_.count(key)) fail(&node, key, "unknown key (check its spelling; README lists every key)");
+            if (!seen_.count(key))
+                fail(&node, key, "unknown key (check its spelling; README lists every key)");
         }
     }
 
     static std::string type_name(const toml::node& n) {
         switch (n.type()) {
-            case toml::node_type::string: return "a string";
-            case toml::node_type::integer: return "an integer";
-            case toml::node_type::floating_point: return "a number";
-            case toml::node_type::boolean: return "a boolean";
-            case toml::node_type::array: return "an array";
-            case toml::node_type::table: return "a table";
-            default: return "a date/time";
+            case toml::node_type::string:
+                return "a string";
+            case toml::node_type::integer:
+                return "an integer";
+            case toml::node_type::floating_point:
+                return "a number";
+            case toml::node_type::boolean:
+                return "a boolean";
+            case toml::node_type::array:
+                return "an array";
+            case toml::node_type::table:
+                return "a table";
+            default:
+                return "a date/time";
         }
     }
 
     [[nodiscard]] const std::string& file() const { return file_; }
 
-private:
+  private:
     const toml::table& table_;
     std::string file_;
     std::string section_;

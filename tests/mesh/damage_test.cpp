@@ -11,7 +11,10 @@ namespace glint {
 namespace {
 
 Mesh sphere(int level = 5) {
-    return make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = level, .radii = {10, 10, 10}});
+    return make_phantom({.kind = PhantomKind::Sphere,
+                         .scheme = TessellationScheme::Ico,
+                         .resolution = level,
+                         .radii = {10, 10, 10}});
 }
 
 const std::vector<float>& gt(const Mesh& m) { return m.find_scalar("gt_displacement")->values; }
@@ -23,14 +26,16 @@ void expect_input_error(F&& f, std::initializer_list<const char*> fragments) {
         f();
         FAIL() << "expected InputError";
     } catch (const InputError& e) {
-        for (const char* frag : fragments) EXPECT_NE(std::string(e.what()).find(frag), std::string::npos) << e.what();
+        for (const char* frag : fragments)
+            EXPECT_NE(std::string(e.what()).find(frag), std::string::npos) << e.what();
     }
 }
 
 TEST(ApplyDamage, DentIsInwardLabelledAndLocal) {
     Mesh m = sphere();
     const Mesh before = m;
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3, .depth = 0.5}});
+    apply_damage(
+        m, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3, .depth = 0.5}});
     double min_disp = 0.0;
     std::size_t labelled = 0;
     for (std::size_t v = 0; v < m.vertex_count(); ++v) {
@@ -55,14 +60,16 @@ TEST(ApplyDamage, DentIsInwardLabelledAndLocal) {
 
 TEST(ApplyDamage, BumpIsOutward) {
     Mesh m = sphere();
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Bump, .center = {0, 0, 10}, .radius = 2, .depth = 0.3}});
+    apply_damage(
+        m, {DamageSpec{.kind = DamageKind::Bump, .center = {0, 0, 10}, .radius = 2, .depth = 0.3}});
     EXPECT_NEAR(*std::max_element(gt(m).begin(), gt(m).end()), 0.3, 1e-6);
     EXPECT_GE(*std::min_element(gt(m).begin(), gt(m).end()), 0.0f);
 }
 
 TEST(ApplyDamage, PitHasAFlatBottom) {
     Mesh m = sphere(6);
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Pit, .center = {10, 0, 0}, .radius = 2, .depth = 0.4}});
+    apply_damage(
+        m, {DamageSpec{.kind = DamageKind::Pit, .center = {10, 0, 0}, .radius = 2, .depth = 0.4}});
     std::size_t at_full_depth = 0;
     for (float d : gt(m)) at_full_depth += std::abs(d + 0.4f) < 1e-5f;
     EXPECT_GT(at_full_depth, 10u);  // many vertices at the full depth: a flat floor
@@ -70,7 +77,9 @@ TEST(ApplyDamage, PitHasAFlatBottom) {
 
 TEST(ApplyDamage, GrooveFollowsItsPath) {
     Mesh m = sphere(6);
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Groove, .radius = 0.8, .depth = 0.2,
+    apply_damage(m, {DamageSpec{.kind = DamageKind::Groove,
+                                .radius = 0.8,
+                                .depth = 0.2,
                                 .path = {{10, -3, 0}, {9.5, 0, 3}}}});
     // Something along the path moved, nothing far from it did.
     std::size_t moved = 0;
@@ -86,7 +95,10 @@ TEST(ApplyDamage, GrooveFollowsItsPath) {
 
 TEST(ApplyDamage, FlattenCutsAPlaneAtTheDepth) {
     Mesh m = sphere(6);
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Flatten, .center = {0, 0, 10}, .radius = 4, .depth = 0.5,
+    apply_damage(m, {DamageSpec{.kind = DamageKind::Flatten,
+                                .center = {0, 0, 10},
+                                .radius = 4,
+                                .depth = 0.5,
                                 .plane_normal = Vec3d{0, 0, 1}}});
     float top = -1e9f;
     for (const auto& p : m.positions) top = std::max(top, p.z());
@@ -98,7 +110,9 @@ TEST(ApplyDamage, FlattenWithoutANormalCutsAcrossTheSurfaceAsItFaces) {
     // by more than the depth (a plane of another direction would fold the surface over).
     Mesh m = sphere(6);
     const Mesh before = m;
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Flatten, .center = {10, 0, 0}, .radius = 4, .depth = 0.5}});
+    apply_damage(
+        m,
+        {DamageSpec{.kind = DamageKind::Flatten, .center = {10, 0, 0}, .radius = 4, .depth = 0.5}});
     float tip = -1e9f, moved = 0.0f;
     for (std::size_t v = 0; v < m.vertex_count(); ++v) {
         tip = std::max(tip, m.positions[v].x());
@@ -110,7 +124,8 @@ TEST(ApplyDamage, FlattenWithoutANormalCutsAcrossTheSurfaceAsItFaces) {
 
 TEST(ApplyDamage, ErosionIsRoughDeterministicAndALoss) {
     Mesh a = sphere(6), b = sphere(6), c = sphere(6);
-    const DamageSpec e{.kind = DamageKind::Erosion, .center = {10, 0, 0}, .radius = 3, .depth = 0.4, .seed = 7};
+    const DamageSpec e{
+        .kind = DamageKind::Erosion, .center = {10, 0, 0}, .radius = 3, .depth = 0.4, .seed = 7};
     apply_damage(a, {e});
     apply_damage(b, {e});
     DamageSpec other = e;
@@ -129,16 +144,33 @@ TEST(ApplyDamage, NoiseIsNotLabelled) {
 
 TEST(ApplyDamage, RejectsADamageOutsideTheSurface) {
     Mesh m = sphere();
-    expect_input_error([&] { apply_damage(m, {DamageSpec{.center = {30, 0, 0}, .radius = 2, .depth = 0.1}}); },
-                       {"damage 1", "outside the surface"});
+    expect_input_error(
+        [&] {
+            apply_damage(m, {DamageSpec{.center = {30, 0, 0}, .radius = 2, .depth = 0.1}});
+        },
+        {"damage 1", "outside the surface"});
 }
 
 TEST(ApplyDamage, RejectsNonPositiveSizesNamingTheField) {
     Mesh m = sphere(2);
-    expect_input_error([&] { apply_damage(m, {DamageSpec{.center = {10, 0, 0}, .radius = 2, .depth = -0.1}}); }, {"depth"});
-    expect_input_error([&] { apply_damage(m, {DamageSpec{.center = {10, 0, 0}, .radius = 0, .depth = 0.1}}); }, {"radius"});
-    expect_input_error([&] { apply_damage(m, {DamageSpec{.kind = DamageKind::Groove, .radius = 1, .depth = 0.1, .path = {{10, 0, 0}}}}); },
-                       {"path"});
+    expect_input_error(
+        [&] {
+            apply_damage(m, {DamageSpec{.center = {10, 0, 0}, .radius = 2, .depth = -0.1}});
+        },
+        {"depth"});
+    expect_input_error(
+        [&] {
+            apply_damage(m, {DamageSpec{.center = {10, 0, 0}, .radius = 0, .depth = 0.1}});
+        },
+        {"radius"});
+    expect_input_error(
+        [&] {
+            apply_damage(
+                m,
+                {DamageSpec{
+                    .kind = DamageKind::Groove, .radius = 1, .depth = 0.1, .path = {{10, 0, 0}}}});
+        },
+        {"path"});
 }
 
 TEST(ParseDamageSpec, ReadsEveryKeyAndRejectsTypos) {
@@ -148,11 +180,15 @@ TEST(ParseDamageSpec, ReadsEveryKeyAndRejectsTypos) {
     EXPECT_EQ(d.radius, 4.0);
     EXPECT_EQ(d.seed, 9u);
     EXPECT_EQ(parse_damage_spec("groove:path=0,0,0/1,1,1/2,2,2;radius=1").path.size(), 3u);
-    EXPECT_EQ(parse_damage_spec("dent:center=1,2,3 radius=4 depth=0.5").radius, 4.0);  // spaces separate too
-    expect_input_error([] { (void)parse_damage_spec("dent:center=1,2,3;raduis=4"); }, {"raduis", "unknown key"});
-    expect_input_error([] { (void)parse_damage_spec("dint:center=1,2,3"); }, {"dint", "unknown kind"});
+    EXPECT_EQ(parse_damage_spec("dent:center=1,2,3 radius=4 depth=0.5").radius,
+              4.0);  // spaces separate too
+    expect_input_error([] { (void)parse_damage_spec("dent:center=1,2,3;raduis=4"); },
+                       {"raduis", "unknown key"});
+    expect_input_error([] { (void)parse_damage_spec("dint:center=1,2,3"); },
+                       {"dint", "unknown kind"});
     expect_input_error([] { (void)parse_damage_spec("dent:center=1,2"); }, {"center", "x,y,z"});
-    expect_input_error([] { (void)parse_damage_spec("dent:depth=abc"); }, {"depth", "not a number"});
+    expect_input_error([] { (void)parse_damage_spec("dent:depth=abc"); },
+                       {"depth", "not a number"});
 }
 
 TEST(ParsePoseSpec, BuildsProperRigidMotions) {

@@ -21,7 +21,8 @@ std::set<std::array<std::uint32_t, 3>> as_input_triangles(const DecimatedMesh& d
 }
 
 TEST(Decimate, MeetsTheBudgetWithInputVerticesAndKeepsTheMarkedTriangles) {
-    const Mesh sphere = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
+    const Mesh sphere = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
     std::vector<std::uint8_t> keep(sphere.triangle_count(), 0);
     std::size_t kept = 0;
     for (std::size_t t = 0; t < sphere.triangle_count(); ++t)
@@ -53,10 +54,12 @@ TEST(Decimate, MeetsTheBudgetWithInputVerticesAndKeepsTheMarkedTriangles) {
 }
 
 TEST(Decimate, BordersStayPutAndASmallMeshIsLeftAlone) {
-    Mesh half = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Uv, .resolution = 60});
+    Mesh half = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Uv, .resolution = 60});
     std::vector<Triangle> upper;
     for (const auto& t : half.triangles)
-        if (half.positions[t[0]].z() > 0 && half.positions[t[1]].z() > 0 && half.positions[t[2]].z() > 0)
+        if (half.positions[t[0]].z() > 0 && half.positions[t[1]].z() > 0 &&
+            half.positions[t[2]].z() > 0)
             upper.push_back(t);
     half.triangles = upper;
     const auto border = border_vertices(half);
@@ -65,7 +68,8 @@ TEST(Decimate, BordersStayPutAndASmallMeshIsLeftAlone) {
     std::set<std::uint32_t> shown(d.original_vertex.begin(), d.original_vertex.end());
     for (std::size_t v = 0; v < half.vertex_count(); ++v)
         if (border[v]) {
-            EXPECT_TRUE(shown.count(static_cast<std::uint32_t>(v))) << "border vertex " << v << " moved";
+            EXPECT_TRUE(shown.count(static_cast<std::uint32_t>(v)))
+                << "border vertex " << v << " moved";
         }
     const DecimatedMesh same = decimate(half, half.triangle_count(), {}, 1.0);
     EXPECT_EQ(same.mesh.triangle_count(), half.triangle_count());
@@ -73,7 +77,8 @@ TEST(Decimate, BordersStayPutAndASmallMeshIsLeftAlone) {
 }
 
 TEST(Decimate, InPiecesTheSurfaceStaysClosedAndMeetsTheBudget) {
-    const Mesh sphere = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
+    const Mesh sphere = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
     const DecimatedMesh d = decimate(sphere, 3000, {}, 1.0, 4000);  // 20480 triangles in 6 slabs
     EXPECT_LE(d.mesh.triangle_count(), 3000u + 150u);
     EXPECT_GT(d.mesh.triangle_count(), 1500u);

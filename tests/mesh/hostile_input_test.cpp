@@ -48,16 +48,18 @@ std::string chain(int depth) {
     std::string nodes = "[";
     for (int i = 0; i < depth; ++i) {
         if (i > 0) nodes += ',';
-        nodes += i + 1 < depth ? R"({"children":[)" + std::to_string(i + 1) + "]}" : R"({"mesh":0})";
+        nodes +=
+            i + 1 < depth ? R"({"children":[)" + std::to_string(i + 1) + "]}" : R"({"mesh":0})";
     }
     return nodes + "]";
 }
 
 TEST(HostileInput, RefusesAsciiPlyElementOfTwoToThe63EmptyEntriesAtOnce) {
-    const auto path = write_bytes("empty_entries.ply",
-                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                  "property float y\nproperty float z\nelement junk 9223372036854775808\n"
-                                  "end_header\n0 0 0\n1 0 0\n0 1 0\n");
+    const auto path =
+        write_bytes("empty_entries.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement junk 9223372036854775808\n"
+                    "end_header\n0 0 0\n1 0 0\n0 1 0\n");
     const auto start = Clock::now();
     const std::string msg = load_error<InputError>(path);
     EXPECT_LT(Clock::now() - start, std::chrono::seconds(1));
@@ -75,11 +77,14 @@ TEST(HostileInput, RefusesAsciiPlyCountTheBodyCannotHold) {
 }
 
 TEST(HostileInput, RefusesBinaryPlyCountOfEmptyItemsBeyondTheFile) {
-    const auto path = write_bytes("empty_binary.ply",
-                                  "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
-                                  "property float y\nproperty float z\nelement nothing 18446744073709551615\n"
-                                  "end_header\n" + std::string(12, '\0'));
-    EXPECT_CONTAINS(load_error<InputError>(path), "element \"nothing\" declares 18446744073709551615");
+    const auto path =
+        write_bytes("empty_binary.ply",
+                    "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\n"
+                    "property float y\nproperty float z\nelement nothing 18446744073709551615\n"
+                    "end_header\n" +
+                        std::string(12, '\0'));
+    EXPECT_CONTAINS(load_error<InputError>(path),
+                    "element \"nothing\" declares 18446744073709551615");
 }
 
 TEST(HostileInput, RefusesGltfNodesNestedThousandsDeep) {
@@ -118,23 +123,27 @@ TEST(HostileInput, RefusesGltfNodeCycle) {
 // without positions made it allocate 68 GB. glint reads surfaces: line primitives and
 // primitives without positions are refused before assimp sees them.
 TEST(HostileInput, RefusesGltfLinePrimitivesAndPrimitivesWithoutPositions) {
-    const std::string line_loop = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-                                  R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":2}]}],)"
-                                  R"("accessors":[{"componentType":5126,"count":3,"type":"VEC3"},)"
-                                  R"({"componentType":5123,"count":3,"type":"SCALAR"}]})";
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("line_loop.gltf", line_loop)),
-                    "glTF mesh 0 primitive 0: mode 2 (lines), expected 0 (points) or 4, 5, 6 (triangles)");
+    const std::string line_loop =
+        R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+        R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"mode":2}]}],)"
+        R"("accessors":[{"componentType":5126,"count":3,"type":"VEC3"},)"
+        R"({"componentType":5123,"count":3,"type":"SCALAR"}]})";
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("line_loop.gltf", line_loop)),
+        "glTF mesh 0 primitive 0: mode 2 (lines), expected 0 (points) or 4, 5, 6 (triangles)");
     std::string no_positions = line_loop;
     no_positions.replace(no_positions.find(R"("attributes")"), 12, R"("atqributes")");
     no_positions.replace(no_positions.find(R"("mode":2)"), 8, R"("mode":4)");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("no_positions.gltf", no_positions)), "no POSITION accessor");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("no_positions.gltf", no_positions)),
+                    "no POSITION accessor");
     // fuzz_glb: a triangle strip whose index accessor counts 0 made assimp allocate 2^64 bytes
     // (regression seed fuzz/corpus/glb/regression_strip_of_no_vertices.glb).
     std::string empty_strip = line_loop;
     empty_strip.replace(empty_strip.find(R"("mode":2)"), 8, R"("mode":5)");
     empty_strip.replace(empty_strip.rfind(R"("count":3)"), 9, R"("count":0)");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("empty_strip.gltf", empty_strip)),
-                    "glTF mesh 0 primitive 0: draws 0 vertices (indices accessor count), expected at least 3");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("empty_strip.gltf", empty_strip)),
+        "glTF mesh 0 primitive 0: draws 0 vertices (indices accessor count), expected at least 3");
 }
 
 // fuzz_glb: an 18-byte file named .glb without the "glTF" magic made assimp try every importer
@@ -142,29 +151,37 @@ TEST(HostileInput, RefusesGltfLinePrimitivesAndPrimitivesWithoutPositions) {
 // fuzz/corpus/glb/regression_not_a_glb.glb). Only what assimp's glTF importers claim goes on:
 // a GLB with its magic and version 1 or 2, glTF JSON whose asset.version starts with 1 or 2.
 TEST(HostileInput, RefusesGltfThatAssimpsGltfImportersWouldNotClaim) {
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("not.glb", R"(as": {indexarrayon)")),
-                    "a .glb file that does not start with \"glTF\" (found \"as\":\"), expected a binary glTF");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("not.glb", R"(as": {indexarrayon)")),
+        "a .glb file that does not start with \"glTF\" (found \"as\":\"), expected a binary glTF");
     std::string glb = "glTF";
     const std::uint32_t header[4] = {7, 40, 20, 0x4E4F534Au};
     glb.append(reinterpret_cast<const char*>(header), sizeof header);
     glb += std::string(20, ' ');
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("v7.glb", glb)), "GLB version 7, expected 1 or 2");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("empty.gltf", "{}")), "glTF JSON has no asset.version");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("v3.gltf", R"({"asset":{"version":"3.0"}})")),
-                    "asset.version \"3.0\", expected \"1.0\" or \"2.0\"");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("vnum.gltf", R"({"asset":{"version":2}})")), "asset.version 2,");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("v7.glb", glb)),
+                    "GLB version 7, expected 1 or 2");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("empty.gltf", "{}")),
+                    "glTF JSON has no asset.version");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("v3.gltf", R"({"asset":{"version":"3.0"}})")),
+        "asset.version \"3.0\", expected \"1.0\" or \"2.0\"");
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("vnum.gltf", R"({"asset":{"version":2}})")),
+                    "asset.version 2,");
 }
 
 // Formats glint does not document are not handed to assimp's other importers (unfuzzed here).
 TEST(HostileInput, RefusesFormatsOutsideTheDocumentedOnes) {
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("model.3ds", std::string(64, '\x4d'))),
-                    "unknown mesh format (extension .3ds and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("scene.dae", "<?xml version=\"1.0\"?><COLLADA/>")),
-                    "unknown mesh format (extension .dae");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("model.3ds", std::string(64, '\x4d'))),
+        "unknown mesh format (extension .3ds and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("scene.dae", "<?xml version=\"1.0\"?><COLLADA/>")),
+        "unknown mesh format (extension .dae");
 }
 
 TEST(HostileInput, RefusesDeeplyNestedJson) {
-    const auto path = write_bytes("nested.gltf", R"({"asset":{"extras":)" + std::string(100000, '[') + "}}");
+    const auto path =
+        write_bytes("nested.gltf", R"({"asset":{"extras":)" + std::string(100000, '[') + "}}");
     EXPECT_CONTAINS(load_error<InputError>(path), "deeper than 128 levels");
 }
 
@@ -198,13 +215,19 @@ TEST(HostileInput, EveryReaderHonoursTheTriangleBudget) {
     std::string two = kAsciiTriangle;
     two.replace(two.find("face 1"), 6, "face 2");
     two += "3 0 2 1\n";
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("two.ply", two), one), "limit 1 (--max-triangles)");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
-                                                                   "f 1 3 4\n"), one),
-                    "limit 1");
-    const std::string facet = "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                              "endloop\nendfacet\n";
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("two.stl", "solid x\n" + facet + facet + "endsolid x\n"), one),
+    EXPECT_CONTAINS(load_error<InputError>(write_bytes("two.ply", two), one),
+                    "limit 1 (--max-triangles)");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("quad.obj",
+                                           "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"
+                                           "f 1 3 4\n"),
+                               one),
+        "limit 1");
+    const std::string facet =
+        "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        "endloop\nendfacet\n";
+    EXPECT_CONTAINS(load_error<InputError>(
+                        write_bytes("two.stl", "solid x\n" + facet + facet + "endsolid x\n"), one),
                     "limit 1");
     std::string binary_stl(80, ' ');
     const std::uint32_t facets = 2;
@@ -212,16 +235,20 @@ TEST(HostileInput, EveryReaderHonoursTheTriangleBudget) {
     binary_stl += std::string(100, '\0');
     EXPECT_CONTAINS(load_error<InputError>(write_bytes("two_binary.stl", binary_stl), one),
                     "binary STL declares 2 triangles, more than the limit 1");
-    EXPECT_CONTAINS(load_error<InputError>(write_bytes("two.vtk", "# vtk DataFile Version 3.0\nx\nASCII\n"
-                                                                  "DATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 "
-                                                                  "1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n"), one),
-                    "limit 1");
+    EXPECT_CONTAINS(
+        load_error<InputError>(write_bytes("two.vtk",
+                                           "# vtk DataFile Version 3.0\nx\nASCII\n"
+                                           "DATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 "
+                                           "1 1 0 0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n"),
+                               one),
+        "limit 1");
     EXPECT_NO_THROW((void)load_mesh(write_bytes("one.ply", kAsciiTriangle), one));
 }
 
 TEST(HostileInput, LoadingStopsWhenCancelled) {
-    std::string text = "ply\nformat ascii 1.0\nelement vertex 20000\nproperty float x\nproperty float y\n"
-                       "property float z\nend_header\n";
+    std::string text =
+        "ply\nformat ascii 1.0\nelement vertex 20000\nproperty float x\nproperty float y\n"
+        "property float z\nend_header\n";
     for (int i = 0; i < 20000; ++i) text += "0 0 0\n";
     const auto path = write_bytes("cancel.ply", text);
     request_cancel(15);
@@ -239,9 +266,11 @@ namespace {
 // Found by fuzz/fuzz_off (libFuzzer timeout: assimp read "2222222222222222" glued to "OFF"
 // as the vertex count and ran for minutes).
 TEST(HostileInput, RefusesOffCountGluedToTheKeyword) {
-    const std::string bytes("OFF2222222222222222\n3 1\x0c\x0c\x0c 0\n0-  1 0 p 0 25z#502 \xff\xff\xffz q", 55);
+    const std::string bytes(
+        "OFF2222222222222222\n3 1\x0c\x0c\x0c 0\n0-  1 0 p 0 25z#502 \xff\xff\xffz q", 55);
     const auto path = test::write_bytes(test::output_dir("hostile_input_test"), "glued.off", bytes);
-    EXPECT_CONTAINS(load_error<InputError>(path), "OFF vertex list declares 2222222222222222 items");
+    EXPECT_CONTAINS(load_error<InputError>(path),
+                    "OFF vertex list declares 2222222222222222 items");
 }
 
 }  // namespace

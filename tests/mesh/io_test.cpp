@@ -1,7 +1,7 @@
 // load_mesh: every format loads, the fast PLY/STL readers return the same mesh as assimp,
 // real files match the counts in shared/data/README.md.
-#include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/error.h"
 #include "mesh/write.h"
 
 #include "tests/mesh/test_files.h"
@@ -44,9 +44,12 @@ Mesh noisy_torus(int rows, int cols, unsigned seed) {
             const float u = two_pi * static_cast<float>(i) / static_cast<float>(rows);
             const float v = two_pi * static_cast<float>(j) / static_cast<float>(cols);
             const float r = 1.0f + 0.3f * std::cos(v) + noise(rng);
-            m.positions.emplace_back(r * std::cos(u), r * std::sin(u), 0.3f * std::sin(v) + noise(rng));
+            m.positions.emplace_back(r * std::cos(u), r * std::sin(u),
+                                     0.3f * std::sin(v) + noise(rng));
         }
-    auto id = [&](int i, int j) { return static_cast<std::uint32_t>((i % rows) * cols + (j % cols)); };
+    auto id = [&](int i, int j) {
+        return static_cast<std::uint32_t>((i % rows) * cols + (j % cols));
+    };
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {
             m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
@@ -75,7 +78,8 @@ std::string ascii_stl(const Mesh& m) {
     for (const auto& t : m.triangles) {
         s << "facet normal 0 0 0\nouter loop\n";
         for (auto i : t)
-            s << "vertex " << m.positions[i].x() << " " << m.positions[i].y() << " " << m.positions[i].z() << "\n";
+            s << "vertex " << m.positions[i].x() << " " << m.positions[i].y() << " "
+              << m.positions[i].z() << "\n";
         s << "endloop\nendfacet\n";
     }
     s << "endsolid torus\n";
@@ -93,7 +97,9 @@ struct Canonical {
 
 Canonical canonical(const Mesh& m) {
     Canonical c;
-    auto p = [&](std::uint32_t i) { return P{m.positions[i].x(), m.positions[i].y(), m.positions[i].z()}; };
+    auto p = [&](std::uint32_t i) {
+        return P{m.positions[i].x(), m.positions[i].y(), m.positions[i].z()};
+    };
     for (std::uint32_t v = 0; v < m.positions.size(); ++v) c.positions.push_back(p(v));
     std::sort(c.positions.begin(), c.positions.end());
     for (const auto& t : m.triangles) {
@@ -115,7 +121,8 @@ void expect_fast_equals_assimp(const fs::path& path, MeshReader fast_reader) {
     EXPECT_EQ(fast.report.file_triangles, slow.report.file_triangles);
     EXPECT_EQ(fast.report.degenerate_triangles, slow.report.degenerate_triangles);
     EXPECT_EQ(fast.report.unused_vertices, slow.report.unused_vertices);
-    EXPECT_TRUE(canonical(fast.mesh) == canonical(slow.mesh)) << "fast and assimp meshes differ for " << path;
+    EXPECT_TRUE(canonical(fast.mesh) == canonical(slow.mesh))
+        << "fast and assimp meshes differ for " << path;
 }
 
 TEST(LoadMesh, FastPlyReturnsTheSameMeshAsAssimp) {
@@ -128,7 +135,8 @@ TEST(LoadMesh, FastPlyReturnsTheSameMeshAsAssimp) {
 
 TEST(LoadMesh, FastStlReturnsTheSameMeshAsAssimp) {
     const Mesh torus = noisy_torus(32, 32, 2);
-    expect_fast_equals_assimp(write_bytes("torus_binary.stl", binary_stl(torus)), MeshReader::FastStl);
+    expect_fast_equals_assimp(write_bytes("torus_binary.stl", binary_stl(torus)),
+                              MeshReader::FastStl);
     EXPECT_TRUE(canonical(load_mesh(out_dir() / "torus_binary.stl").mesh) == canonical(torus));
     // note: assimp's ASCII number parser (fast_atof) is not correctly rounded, so for ASCII the
     // reference is the generated mesh itself: 9 significant digits round-trip a float exactly.
@@ -155,8 +163,9 @@ TEST(LoadMesh, LoadsObjWithQuadsFromTheFixture) {
 }
 
 TEST(LoadMesh, LoadsOff) {
-    const auto path = write_bytes("tetra.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
-                                               "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");
+    const auto path = write_bytes("tetra.off",
+                                  "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+                                  "3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n");
     const LoadedMesh loaded = load_mesh(path);
     EXPECT_EQ(loaded.report.format, "off");
     EXPECT_EQ(loaded.mesh.vertex_count(), 4u);
@@ -175,7 +184,9 @@ std::string tetra_buffer() {
 std::string tetra_json(const std::string& buffer_uri) {
     return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
            R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
-           R"("buffers":[{"byteLength":72)" + buffer_uri + R"(}],)"
+           R"("buffers":[{"byteLength":72)" +
+           buffer_uri +
+           R"(}],)"
            R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},)"
            R"({"buffer":0,"byteOffset":48,"byteLength":24}],)"
            R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",)"
@@ -198,8 +209,9 @@ std::string base64(const std::string& in) {
 }
 
 TEST(LoadMesh, LoadsGltfWithAnEmbeddedBuffer) {
-    const auto path = write_bytes(
-        "tetra.gltf", tetra_json(R"(,"uri":"data:application/octet-stream;base64,)" + base64(tetra_buffer()) + "\""));
+    const auto path =
+        write_bytes("tetra.gltf", tetra_json(R"(,"uri":"data:application/octet-stream;base64,)" +
+                                             base64(tetra_buffer()) + "\""));
     const LoadedMesh loaded = load_mesh(path);
     EXPECT_EQ(loaded.report.format, "gltf");
     EXPECT_EQ(loaded.mesh.vertex_count(), 4u);
@@ -211,9 +223,10 @@ TEST(LoadMesh, LoadsGlb) {
     while (json.size() % 4) json += ' ';
     const std::string bin = tetra_buffer();  // 72 bytes, already a multiple of 4
     auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
-    const std::string glb = "glTF" + u32(2) + u32(static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size())) +
-                            u32(static_cast<std::uint32_t>(json.size())) + "JSON" + json +
-                            u32(static_cast<std::uint32_t>(bin.size())) + std::string("BIN\0", 4) + bin;
+    const std::string glb =
+        "glTF" + u32(2) + u32(static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size())) +
+        u32(static_cast<std::uint32_t>(json.size())) + "JSON" + json +
+        u32(static_cast<std::uint32_t>(bin.size())) + std::string("BIN\0", 4) + bin;
     const LoadedMesh loaded = load_mesh(write_bytes("tetra.glb", glb));
     EXPECT_EQ(loaded.report.format, "glb");
     EXPECT_EQ(loaded.mesh.vertex_count(), 4u);
@@ -221,7 +234,8 @@ TEST(LoadMesh, LoadsGlb) {
 }
 
 TEST(LoadMesh, LoadsObjWhoseMaterialLibraryIsMissingAndSaysSo) {
-    const auto path = write_bytes("with_mtl.obj", "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    const auto path = write_bytes(
+        "with_mtl.obj", "mtllib nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
     const LoadedMesh loaded = load_mesh(path);
     EXPECT_EQ(loaded.mesh.triangle_count(), 1u);
     ASSERT_FALSE(loaded.report.warnings.empty());

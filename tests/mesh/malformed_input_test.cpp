@@ -50,7 +50,8 @@ const std::string kPlyVertices = le_floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0})
 TEST(MalformedInput, RejectsPlyHeaderThatOverstatesVertexCount) {
     std::string head = kPlyHead;
     head.replace(head.find("vertex 4"), 8, "vertex 100");
-    const auto path = write_bytes("lying.ply", head + kPlyVertices + le_face({0, 1, 2}) + le_face({0, 2, 3}));
+    const auto path =
+        write_bytes("lying.ply", head + kPlyVertices + le_face({0, 1, 2}) + le_face({0, 2, 3}));
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, "\"" + path.string() + "\"");
     EXPECT_CONTAINS(msg, "element \"vertex\"");
@@ -58,17 +59,19 @@ TEST(MalformedInput, RejectsPlyHeaderThatOverstatesVertexCount) {
 }
 
 TEST(MalformedInput, RejectsTruncatedBinaryPly) {
-    const auto path = write_bytes("truncated.ply", kPlyHead + kPlyVertices + le_face({0, 1, 2}) + "\x03\x00");
+    const auto path =
+        write_bytes("truncated.ply", kPlyHead + kPlyVertices + le_face({0, 1, 2}) + "\x03\x00");
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "element \"face\" 1 of 2 is truncated");
 }
 
 TEST(MalformedInput, RejectsTruncatedAsciiPlyNamingTheLine) {
-    const auto path = write_bytes("truncated_ascii.ply",
-                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                  "property float y\nproperty float z\nelement face 1\n"
-                                  "property list uchar int vertex_indices\nend_header\n0.0 0.0 0.0\n1 0 0\n");
+    const auto path =
+        write_bytes("truncated_ascii.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n0.0 0.0 0.0\n1 0 0\n");
     // note: 18 body bytes could hold the three vertices ("0 0 0\n" each), so the count check
     // passes and the reader finds the truncation item by item.
     const std::string msg = load_error<InputError>(path);
@@ -78,18 +81,20 @@ TEST(MalformedInput, RejectsTruncatedAsciiPlyNamingTheLine) {
 }
 
 TEST(MalformedInput, RejectsUnparsableAsciiPlyValueNamingTheLine) {
-    const auto path = write_bytes("garbage_ascii.ply",
-                                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                  "property float y\nproperty float z\nelement face 1\n"
-                                  "property list uchar int vertex_indices\nend_header\n0 0 0\n1 zero 0\n"
-                                  "0 1 0\n3 0 1 2\n");
+    const auto path =
+        write_bytes("garbage_ascii.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 zero 0\n"
+                    "0 1 0\n3 0 1 2\n");
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, "line 11");
     EXPECT_CONTAINS(msg, "\"zero\"");
 }
 
 TEST(MalformedInput, RejectsPlyFaceIndexPastTheEnd) {
-    const auto path = write_bytes("index.ply", kPlyHead + kPlyVertices + le_face({0, 1, 2}) + le_face({0, 2, 4}));
+    const auto path =
+        write_bytes("index.ply", kPlyHead + kPlyVertices + le_face({0, 1, 2}) + le_face({0, 2, 4}));
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "face 1");
@@ -104,8 +109,9 @@ TEST(MalformedInput, RejectsPlyWithoutEndHeader) {
 
 TEST(MalformedInput, RejectsNaNCoordinateNamingTheVertex) {
     const float nan = std::numeric_limits<float>::quiet_NaN();
-    const auto path = write_bytes("nan.ply", kPlyHead + le_floats({0, 0, 0, 1, 0, 0, 1, nan, 0, 0, 1, 0}) +
-                                                 le_face({0, 1, 2}) + le_face({0, 2, 3}));
+    const auto path =
+        write_bytes("nan.ply", kPlyHead + le_floats({0, 0, 0, 1, 0, 0, 1, nan, 0, 0, 1, 0}) +
+                                   le_face({0, 1, 2}) + le_face({0, 2, 3}));
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "vertex 2 of 4");
@@ -130,16 +136,18 @@ TEST(MalformedInput, RejectsTruncatedBinaryStlNamingBothSizes) {
 }
 
 TEST(MalformedInput, RejectsNaNInBinaryStlNamingTheFacet) {
-    const auto path = write_bytes("nan.stl", binary_stl_bytes(2, 2, std::numeric_limits<float>::quiet_NaN()));
+    const auto path =
+        write_bytes("nan.stl", binary_stl_bytes(2, 2, std::numeric_limits<float>::quiet_NaN()));
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "facet 0 of 2, corner 0");
 }
 
 TEST(MalformedInput, RejectsAsciiStlSyntaxErrorNamingLineAndText) {
-    const auto path = write_bytes("syntax.stl",
-                                  "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n"
-                                  "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
+    const auto path =
+        write_bytes("syntax.stl",
+                    "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0\n"
+                    "vertex 0 1 0\nendloop\nendfacet\nendsolid s\n");
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "line 5");
@@ -147,8 +155,9 @@ TEST(MalformedInput, RejectsAsciiStlSyntaxErrorNamingLineAndText) {
 }
 
 TEST(MalformedInput, RejectsTruncatedAsciiStl) {
-    const auto path = write_bytes("truncated_ascii.stl",
-                                  "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n");
+    const auto path =
+        write_bytes("truncated_ascii.stl",
+                    "solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\n");
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "facet 0 (begun at line 2)");
@@ -204,17 +213,18 @@ TEST(MalformedInput, RejectsVtkWithTruncatedPoints) {
 }
 
 TEST(MalformedInput, RejectsVtkCellIndexPastTheEnd) {
-    const auto path = write_bytes("vtk_index.vtk",
-                                  "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n"
-                                  "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 8\n3 0 1 2\n3 0 2 3\n");
+    const auto path =
+        write_bytes("vtk_index.vtk",
+                    "# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\n"
+                    "POINTS 3 float\n0 0 0 1 0 0 0 1 0\nPOLYGONS 2 8\n3 0 1 2\n3 0 2 3\n");
     const std::string msg = load_error<InputError>(path);
     EXPECT_CONTAINS(msg, path.string());
     EXPECT_CONTAINS(msg, "POLYGONS cell 1 uses point 3, the file has 3 points");
 }
 
 TEST(MalformedInput, RejectsVtkDatasetOtherThanPolydata) {
-    const auto path = write_bytes("grid.vtk",
-                                  "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n");
+    const auto path = write_bytes(
+        "grid.vtk", "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n");
     EXPECT_CONTAINS(load_error<InputError>(path), "UNSTRUCTURED_GRID");
 }
 
@@ -236,7 +246,8 @@ namespace {
 // assimp 5.2 hangs on a PLY without end_header and crashes on a lying header; the assimp path
 // must reject those files with our error first.
 TEST(MalformedInput, AssimpPathRejectsBrokenPlyAndStlWithOurErrors) {
-    const auto no_end = write_bytes("assimp_no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
+    const auto no_end =
+        write_bytes("assimp_no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
     std::string head = kPlyHead;
     head.replace(head.find("vertex 4"), 8, "vertex 100");
     const auto lying = write_bytes("assimp_lying.ply", head + kPlyVertices + le_face({0, 1, 2}));

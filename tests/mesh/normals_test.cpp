@@ -29,7 +29,8 @@ NormalError analytic_error(const PhantomOptions& o) {
     const Mesh m = make_phantom(o);
     NormalError e;
     for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-        const double a = angle_deg(m.normals[v].cast<double>(), phantom_normal(o, m.positions[v].cast<double>()));
+        const double a = angle_deg(m.normals[v].cast<double>(),
+                                   phantom_normal(o, m.positions[v].cast<double>()));
         e.max_deg = std::max(e.max_deg, a);
         e.mean_deg += a;
     }
@@ -60,7 +61,8 @@ double cross_tessellation_max_deg(const Mesh& a, const Mesh& b, double* mean = n
         Vec3d normal = a.normals[near].cast<double>();
         for (auto t : ring[near]) {
             const auto& tri = a.triangles[t];
-            const Vec3d p0 = a.positions[tri[0]].cast<double>(), p1 = a.positions[tri[1]].cast<double>(),
+            const Vec3d p0 = a.positions[tri[0]].cast<double>(),
+                        p1 = a.positions[tri[1]].cast<double>(),
                         p2 = a.positions[tri[2]].cast<double>();
             const Vec3d n = (p1 - p0).cross(p2 - p0);
             const double n2 = n.squaredNorm();
@@ -70,7 +72,8 @@ double cross_tessellation_max_deg(const Mesh& a, const Mesh& b, double* mean = n
             const double m = std::min({w0, w1, w2});
             if (m > best_min) {
                 best_min = m;
-                normal = w0 * a.normals[tri[0]].cast<double>() + w1 * a.normals[tri[1]].cast<double>() +
+                normal = w0 * a.normals[tri[0]].cast<double>() +
+                         w1 * a.normals[tri[1]].cast<double>() +
                          w2 * a.normals[tri[2]].cast<double>();
             }
         }
@@ -83,7 +86,10 @@ double cross_tessellation_max_deg(const Mesh& a, const Mesh& b, double* mean = n
 }
 
 PhantomOptions ellipsoid(TessellationScheme scheme, int resolution) {
-    return {.kind = PhantomKind::Ellipsoid, .scheme = scheme, .resolution = resolution, .radii = {12.0, 8.0, 6.0}};
+    return {.kind = PhantomKind::Ellipsoid,
+            .scheme = scheme,
+            .resolution = resolution,
+            .radii = {12.0, 8.0, 6.0}};
 }
 
 // Measured (2026-11-22): ellipsoid 12×8×6 mm, uv 96 rings (18k vertices): max 0.128°,
@@ -99,8 +105,8 @@ constexpr double kCrossMaxDeg = 0.45;
 TEST(VertexNormals, AgreeWithTheAnalyticNormalOnTwoTessellationsOfAnEllipsoid) {
     const NormalError uv = analytic_error(ellipsoid(TessellationScheme::Uv, 96));
     const NormalError ico = analytic_error(ellipsoid(TessellationScheme::Ico, 5));
-    std::printf("ellipsoid vs analytic: uv96 max %.4f mean %.4f deg; ico5 max %.4f mean %.4f deg\n", uv.max_deg,
-                uv.mean_deg, ico.max_deg, ico.mean_deg);
+    std::printf("ellipsoid vs analytic: uv96 max %.4f mean %.4f deg; ico5 max %.4f mean %.4f deg\n",
+                uv.max_deg, uv.mean_deg, ico.max_deg, ico.mean_deg);
     EXPECT_LT(uv.max_deg, kEllipsoidMaxDeg);
     EXPECT_LT(ico.max_deg, kEllipsoidMaxDeg);
     EXPECT_LT(uv.mean_deg, kMeanDeg);
@@ -108,12 +114,14 @@ TEST(VertexNormals, AgreeWithTheAnalyticNormalOnTwoTessellationsOfAnEllipsoid) {
 }
 
 TEST(VertexNormals, AgreeWithTheAnalyticNormalOnTwoTessellationsOfTheCondyle) {
-    const PhantomOptions uv{.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 96};
-    const PhantomOptions ico{.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 5};
+    const PhantomOptions uv{
+        .kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 96};
+    const PhantomOptions ico{
+        .kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 5};
     const NormalError a = analytic_error(uv);
     const NormalError b = analytic_error(ico);
-    std::printf("condyle vs analytic: uv96 max %.4f mean %.4f deg; ico5 max %.4f mean %.4f deg\n", a.max_deg,
-                a.mean_deg, b.max_deg, b.mean_deg);
+    std::printf("condyle vs analytic: uv96 max %.4f mean %.4f deg; ico5 max %.4f mean %.4f deg\n",
+                a.max_deg, a.mean_deg, b.max_deg, b.mean_deg);
     EXPECT_LT(a.max_deg, kCondyleMaxDeg);
     EXPECT_LT(b.max_deg, kCondyleMaxDeg);
     EXPECT_LT(a.mean_deg, kMeanDeg);
@@ -125,7 +133,8 @@ TEST(VertexNormals, TwoTessellationsAgreeWithEachOther) {
     const Mesh ico = make_phantom(ellipsoid(TessellationScheme::Ico, 5));
     double mean = 0.0;
     const double worst = cross_tessellation_max_deg(uv, ico, &mean);
-    std::printf("ellipsoid uv96 field at ico5 vertices: max %.4f deg, mean %.4f deg\n", worst, mean);
+    std::printf("ellipsoid uv96 field at ico5 vertices: max %.4f deg, mean %.4f deg\n", worst,
+                mean);
     EXPECT_LT(worst, kCrossMaxDeg);
     EXPECT_LT(mean, kMeanDeg);
 }
@@ -134,7 +143,8 @@ TEST(VertexNormals, AreAngleWeightedSoSplittingAFanDoesNotTiltThem) {
     // A vertex at the apex of a square pyramid: 4 faces. Splitting one face into two
     // triangles (same plane) must not change the apex normal under angle weighting.
     Mesh m;
-    m.positions = {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, -1, 0}, {1.f / 3, 1.f / 3, 1.f / 3}};
+    m.positions = {{0, 0, 1},  {1, 0, 0},  {0, 1, 0},
+                   {-1, 0, 0}, {0, -1, 0}, {1.f / 3, 1.f / 3, 1.f / 3}};
     m.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}, {0, 4, 1}};
     compute_vertex_normals(m);
     const Vec3f before = m.normals[0];

@@ -13,7 +13,10 @@ namespace glint {
 namespace {
 
 Mesh sphere(int level) {
-    return make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = level, .radii = {10, 10, 10}});
+    return make_phantom({.kind = PhantomKind::Sphere,
+                         .scheme = TessellationScheme::Ico,
+                         .resolution = level,
+                         .radii = {10, 10, 10}});
 }
 
 TEST(Remesh, KeepsTheSurfaceAndReachesTheTargetEdge) {
@@ -27,7 +30,8 @@ TEST(Remesh, KeepsTheSurfaceAndReachesTheTargetEdge) {
     // Vertices are projected onto the input: on its triangles, so inside the sphere by at most
     // the depth of a triangle's circumcentre (circumradius ≈ edge/√3 on the near-equilateral
     // icosphere), never outside it.
-    const double sagitta = 10.0 - 10.0 * std::cos(std::asin(before.max / std::sqrt(3.0) / 10.0)) + 1e-4;
+    const double sagitta =
+        10.0 - 10.0 * std::cos(std::asin(before.max / std::sqrt(3.0) / 10.0)) + 1e-4;
     for (const auto& p : out.positions) {
         const double r = p.cast<double>().norm();
         EXPECT_LE(r, 10.0 + 1e-4);
@@ -47,7 +51,8 @@ TEST(Remesh, RefusesBadInputWithOneLine) {
     Mesh fan = sphere(1);
     // Three triangles on one edge: not a polygon mesh.
     fan.positions.push_back({0, 0, 30});
-    fan.triangles.push_back({fan.triangles[0][0], fan.triangles[0][1], static_cast<std::uint32_t>(fan.vertex_count() - 1)});
+    fan.triangles.push_back({fan.triangles[0][0], fan.triangles[0][1],
+                             static_cast<std::uint32_t>(fan.vertex_count() - 1)});
     try {
         (void)remesh_isotropic(fan, {1.0, 3});
         FAIL() << "expected InputError";
@@ -70,7 +75,8 @@ TEST(Shuffle, SameSurfaceOtherOrder) {
     std::size_t moved = 0;
     for (std::size_t v = 0; v < m.vertex_count(); ++v) {
         moved += m.positions[v] != before.positions[v];
-        EXPECT_EQ(m.find_scalar("height")->values[v], m.positions[v].z());  // fields follow their vertex
+        EXPECT_EQ(m.find_scalar("height")->values[v],
+                  m.positions[v].z());  // fields follow their vertex
     }
     EXPECT_GT(moved, m.vertex_count() / 2);
     EXPECT_NEAR(surface_area(m), surface_area(before), 1e-6 * surface_area(before));
@@ -78,7 +84,8 @@ TEST(Shuffle, SameSurfaceOtherOrder) {
     auto volume = [](const Mesh& x) {
         double s = 0;
         for (const auto& t : x.triangles)
-            s += x.positions[t[0]].cast<double>().dot(x.positions[t[1]].cast<double>().cross(x.positions[t[2]].cast<double>()));
+            s += x.positions[t[0]].cast<double>().dot(
+                x.positions[t[1]].cast<double>().cross(x.positions[t[2]].cast<double>()));
         return s / 6;
     };
     EXPECT_NEAR(volume(m), volume(before), 1e-6 * std::abs(volume(before)));

@@ -44,7 +44,9 @@ TEST(ReorderForLocality, KeepsTheSameSurfaceAndMapsBackToOriginalIds) {
     for (std::size_t t = 0; t < m.triangles.size(); ++t) {
         const auto& o = original.triangles[map.original_triangle[t]];
         Triangle mapped;
-        for (int k = 0; k < 3; ++k) mapped[static_cast<std::size_t>(k)] = map.original_vertex[m.triangles[t][static_cast<std::size_t>(k)]];
+        for (int k = 0; k < 3; ++k)
+            mapped[static_cast<std::size_t>(k)] =
+                map.original_vertex[m.triangles[t][static_cast<std::size_t>(k)]];
         const bool same = (mapped == o) || (mapped == Triangle{o[1], o[2], o[0]}) ||
                           (mapped == Triangle{o[2], o[0], o[1]});
         EXPECT_TRUE(same) << "triangle " << t;
@@ -53,7 +55,8 @@ TEST(ReorderForLocality, KeepsTheSameSurfaceAndMapsBackToOriginalIds) {
     std::vector<float> values(m.positions.size());
     for (std::size_t v = 0; v < values.size(); ++v) values[v] = static_cast<float>(m.labels[v]);
     const auto back = to_original_order(map, values);
-    for (std::size_t v = 0; v < back.size(); ++v) EXPECT_EQ(back[v], static_cast<float>(original.labels[v]));
+    for (std::size_t v = 0; v < back.size(); ++v)
+        EXPECT_EQ(back[v], static_cast<float>(original.labels[v]));
 }
 
 }  // namespace

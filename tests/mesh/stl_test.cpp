@@ -37,7 +37,8 @@ std::vector<Facet> cube_facets() {
     return out;
 }
 
-std::string binary_stl(const std::vector<Facet>& facets, const std::string& header80 = "glint test") {
+std::string binary_stl(const std::vector<Facet>& facets,
+                       const std::string& header80 = "glint test") {
     std::string s(80, ' ');
     std::memcpy(s.data(), header80.data(), std::min<std::size_t>(header80.size(), 80));
     const auto n = static_cast<std::uint32_t>(facets.size());
@@ -56,7 +57,8 @@ std::string ascii_stl(const std::vector<Facet>& facets) {
     s << "solid cube\n";
     for (const auto& f : facets) {
         s << "  facet normal 0 0 0\n    outer loop\n";
-        for (const auto& v : f) s << "      vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+        for (const auto& v : f)
+            s << "      vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
         s << "    endloop\n  endfacet\n";
     }
     s << "endsolid cube\n";
@@ -85,15 +87,15 @@ TEST(StlReader, ReadsAsciiToTheSameMeshAsBinary) {
 }
 
 TEST(StlReader, ReadsABinaryFileWhoseHeaderStartsWithSolid) {
-    const LoadedMesh loaded =
-        load_mesh(write_bytes("solid_header.stl", binary_stl(cube_facets(), "solid exported by a CAD tool")));
+    const LoadedMesh loaded = load_mesh(
+        write_bytes("solid_header.stl", binary_stl(cube_facets(), "solid exported by a CAD tool")));
     EXPECT_EQ(loaded.report.format, "stl-binary");
     EXPECT_EQ(loaded.mesh.vertex_count(), 8u);
 }
 
 TEST(StlReader, CountsDuplicateAndDegenerateFacets) {
     auto facets = cube_facets();
-    facets.push_back(facets[3]);                                     // exact duplicate
+    facets.push_back(facets[3]);                                         // exact duplicate
     facets.push_back({Vec3f(0, 0, 0), Vec3f(1, 0, 0), Vec3f(2, 0, 0)});  // collinear: zero area
     facets.push_back({Vec3f(0, 0, 0), Vec3f(0, 0, 0), Vec3f(1, 1, 1)});  // repeated corner
     const LoadedMesh loaded = load_mesh(write_bytes("cube_repairs.stl", binary_stl(facets)));
@@ -117,7 +119,8 @@ TEST(StlReader, FanSplitsAsciiFacetsWithMoreThanThreeVertices) {
 }
 
 TEST(StlReader, LoadsARealMolarWithTheReadmeCounts) {
-    const auto path = fs::path(GLINT_SHARED_DATA_DIR) / "teeth_cbct_openfulljaw/Patient_26_tooth_19.stl";
+    const auto path =
+        fs::path(GLINT_SHARED_DATA_DIR) / "teeth_cbct_openfulljaw/Patient_26_tooth_19.stl";
     if (!fs::exists(path)) GTEST_SKIP() << "shared data not present: " << path;
     const LoadedMesh loaded = load_mesh(path);
     EXPECT_EQ(loaded.report.format, "stl-binary");

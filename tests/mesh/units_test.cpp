@@ -28,19 +28,33 @@ TEST(Units, SpellingsBecomeOneCanonicalName) {
 }
 
 TEST(Units, ReadFromTheCommentsFormatsCarry) {
-    EXPECT_EQ(unit_from_header(text("ply\nformat ascii 1.0\ncomment unit mm\nelement vertex 0\nend_header\n"), ".ply"), "mm");
+    EXPECT_EQ(
+        unit_from_header(
+            text("ply\nformat ascii 1.0\ncomment unit mm\nelement vertex 0\nend_header\n"), ".ply"),
+        "mm");
     EXPECT_EQ(unit_from_header(text("ply\ncomment units: um\nend_header\n"), ".ply"), "um");
-    EXPECT_EQ(unit_from_header(text("# vtk DataFile Version 3.0\nglint mesh unit m\nASCII\n"), ".vtk"), "m");
+    EXPECT_EQ(
+        unit_from_header(text("# vtk DataFile Version 3.0\nglint mesh unit m\nASCII\n"), ".vtk"),
+        "m");
     EXPECT_EQ(unit_from_header(text("# Exported\n# Units = millimeters\nv 0 0 0\n"), ".obj"), "mm");
-    EXPECT_EQ(unit_from_header(text("# coordinates in unit in cm\nv 0 0 0\n"), ".obj"), "cm");  // "in" then a unit
-    EXPECT_EQ(unit_from_header(text("UNITS=mm binary STL header, padded to 80 bytes.............................."), ".stl"), "mm");
+    EXPECT_EQ(unit_from_header(text("# coordinates in unit in cm\nv 0 0 0\n"), ".obj"),
+              "cm");  // "in" then a unit
+    EXPECT_EQ(
+        unit_from_header(
+            text("UNITS=mm binary STL header, padded to 80 bytes.............................."),
+            ".stl"),
+        "mm");
     EXPECT_EQ(unit_from_header(text("{}"), ".gltf"), "m");  // glTF 2.0: metres
 }
 
 TEST(Units, NotGuessedFromDataOrOtherWords) {
     // Only comment lines count; "community" and "unity" are not "unit".
-    EXPECT_EQ(unit_from_header(text("# Blender3D v249 OBJ File: community unity\nv 0 0 0\n"), ".obj"), "");
-    EXPECT_EQ(unit_from_header(text("ply\nelement unit_mm 0\nend_header\ncomment unit mm\n"), ".ply"), "");
+    EXPECT_EQ(
+        unit_from_header(text("# Blender3D v249 OBJ File: community unity\nv 0 0 0\n"), ".obj"),
+        "");
+    EXPECT_EQ(
+        unit_from_header(text("ply\nelement unit_mm 0\nend_header\ncomment unit mm\n"), ".ply"),
+        "");
     EXPECT_EQ(unit_from_header(text("solid part\nfacet normal 0 0 1\n"), ".stl"), "");
 }
 
@@ -54,7 +68,8 @@ TEST(Units, NumbersForPeopleCarryTheirUnit) {
 
 TEST(Units, LoadingRecordsTheUnitAFileStates) {
     const auto dir = test::output_dir("units_test");
-    const auto path = test::write_bytes(dir, "stated.obj", "# units: mm\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    const auto path =
+        test::write_bytes(dir, "stated.obj", "# units: mm\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_EQ(load_mesh(path).mesh.unit, "mm");
     const auto none = test::write_bytes(dir, "none.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     EXPECT_EQ(load_mesh(none).mesh.unit, "");

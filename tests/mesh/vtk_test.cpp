@@ -24,8 +24,8 @@ fs::path write_text(const std::string& name, const std::string& text) {
 }
 
 // Repairs off: the mesh is exactly what the file stores.
-const LoadOptions kAsStored{.weld = false, .drop_degenerate = false, .drop_unused = false,
-                            .compute_normals = false};
+const LoadOptions kAsStored{
+    .weld = false, .drop_degenerate = false, .drop_unused = false, .compute_normals = false};
 
 // A unit square of two triangles carrying every kind of section glint must read or skip.
 const std::string kSquare =
@@ -57,7 +57,7 @@ TEST(VtkReader, ReadsPointDataAndSkipsEverythingElse) {
     EXPECT_EQ(m.find_scalar("thickness")->values, (std::vector<float>{0.5f, 1.5f, 2.5f, 3.5f}));
     ASSERT_NE(m.find_scalar("quality index"), nullptr);
     EXPECT_EQ(m.find_scalar("quality index")->values, (std::vector<float>{9, 8, 7, 6}));
-    EXPECT_EQ(m.find_scalar("two"), nullptr);        // 2 components: skipped, reported
+    EXPECT_EQ(m.find_scalar("two"), nullptr);         // 2 components: skipped, reported
     EXPECT_EQ(m.find_scalar("cellscalar"), nullptr);  // cell data: skipped
     EXPECT_EQ(m.labels, (std::vector<std::int32_t>{0, 3, 3, 0}));
     ASSERT_EQ(m.colors.size(), 4u);
@@ -92,10 +92,11 @@ TEST(VtkReader, ConvertsTriangleStripsKeepingOrientation) {
 }
 
 TEST(VtkReader, ReadsTheVtk51OffsetsAndConnectivityLayout) {
-    const auto path = write_text("v51.vtk",
-                                 "# vtk DataFile Version 5.1\nnew\nASCII\nDATASET POLYDATA\n"
-                                 "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\n"
-                                 "POLYGONS 2 4\nOFFSETS vtktypeint64\n0 4\nCONNECTIVITY vtktypeint64\n0 1 2 3\n");
+    const auto path =
+        write_text("v51.vtk",
+                   "# vtk DataFile Version 5.1\nnew\nASCII\nDATASET POLYDATA\n"
+                   "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+                   "POLYGONS 2 4\nOFFSETS vtktypeint64\n0 4\nCONNECTIVITY vtktypeint64\n0 1 2 3\n");
     const LoadedMesh loaded = load_mesh(path, kAsStored);
     EXPECT_EQ(loaded.mesh.triangle_count(), 2u);
     EXPECT_EQ(loaded.report.split_polygons, 1u);
@@ -127,7 +128,8 @@ TEST_P(RealVtkFiles, LoadWithTheReadmeCounts) {
     EXPECT_EQ(r.file_vertices, c.vertices);
     EXPECT_EQ(r.file_triangles, c.triangles);
     EXPECT_EQ(repaired.mesh.vertex_count(), c.vertices - r.welded_vertices - r.unused_vertices);
-    EXPECT_EQ(repaired.mesh.triangle_count(), c.triangles - r.degenerate_triangles - r.duplicate_triangles);
+    EXPECT_EQ(repaired.mesh.triangle_count(),
+              c.triangles - r.degenerate_triangles - r.duplicate_triangles);
 }
 
 INSTANTIATE_TEST_SUITE_P(SmartDoc, RealVtkFiles,
@@ -136,9 +138,10 @@ INSTANTIATE_TEST_SUITE_P(SmartDoc, RealVtkFiles,
                                            RealVtk{"condyle.vtk", "vtk-ascii", 1002, 2000}),
                          [](const auto& param_info) {
                              std::string n = param_info.param.file;
-                             return n.substr(0, n.find('.')) == "skull_d" ? std::string("SkullDecimated")
-                                    : n.starts_with("skull")             ? std::string("Skull")
-                                                                         : std::string("Condyle");
+                             return n.substr(0, n.find('.')) == "skull_d"
+                                        ? std::string("SkullDecimated")
+                                    : n.starts_with("skull") ? std::string("Skull")
+                                                             : std::string("Condyle");
                          });
 
 TEST(VtkReader, KeepsTheCondylesParaPhiScalar) {

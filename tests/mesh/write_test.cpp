@@ -1,7 +1,7 @@
 // Writers: PLY and VTK round trips keep every per-vertex array; inputs are never overwritten.
+#include "mesh/write.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
-#include "mesh/write.h"
 
 #include "tests/mesh/test_files.h"
 
@@ -11,8 +11,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,9 +27,11 @@ fs::path out_dir() { return test::output_dir("write_test"); }
 Mesh octahedron() {
     Mesh m;
     m.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     for (std::size_t v = 0; v < 6; ++v) {
-        m.colors.push_back({static_cast<std::uint8_t>(40 * v), 7, static_cast<std::uint8_t>(255 - v)});
+        m.colors.push_back(
+            {static_cast<std::uint8_t>(40 * v), 7, static_cast<std::uint8_t>(255 - v)});
         m.labels.push_back(static_cast<std::int32_t>(v % 2 ? -3 : 12));
     }
     m.set_scalar("damage", {0.0f, 0.25f, 0.5f, 1e-7f, -2.0f, 1e6f});
@@ -38,8 +40,8 @@ Mesh octahedron() {
     return m;
 }
 
-const LoadOptions kAsStored{.weld = false, .drop_degenerate = false, .drop_unused = false,
-                            .compute_normals = false};
+const LoadOptions kAsStored{
+    .weld = false, .drop_degenerate = false, .drop_unused = false, .compute_normals = false};
 
 void expect_round_trip(const Mesh& in, const Mesh& out) {
     EXPECT_EQ(out.positions, in.positions);
@@ -90,7 +92,7 @@ TEST(WriteVtk, RoundTripKeepsPositionsNormalsColoursScalarsAndLabels) {
     write_vtk(in, path);
     const LoadedMesh loaded = load_mesh(path, kAsStored);
     EXPECT_EQ(loaded.report.format, "vtk-ascii");  // CloudCompare refuses binary legacy VTK
-    expect_round_trip(in, loaded.mesh);           // shortest round-trip text: floats exact
+    expect_round_trip(in, loaded.mesh);            // shortest round-trip text: floats exact
 }
 
 std::string read_text(const fs::path& path) {
@@ -133,7 +135,8 @@ TEST(WritePly, AddsQualityForMeshLabAndScalarNamesForCloudCompare) {
     EXPECT_EQ(loaded.mesh.find_scalar("quality")->values, in.find_scalar("damage")->values);
     EXPECT_EQ(loaded.mesh.find_scalar("scalar_damage")->values, in.find_scalar("damage")->values);
     EXPECT_EQ(loaded.mesh.find_scalar("damage")->values, in.find_scalar("damage")->values);
-    EXPECT_THROW(write_ply(in, out_dir() / "bad_quality.ply", {.quality_scalar = "nope"}), InputError);
+    EXPECT_THROW(write_ply(in, out_dir() / "bad_quality.ply", {.quality_scalar = "nope"}),
+                 InputError);
 }
 
 // Decodes the n-th inline binary DataArray of a .vtp as floats (after its UInt32 byte count).
@@ -144,7 +147,8 @@ std::vector<float> vtp_floats(const std::string& xml, const std::string& name) {
     std::string bytes;
     int bits = 0, buffer = 0;
     for (char c : b64) {
-        const auto at = std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(c);
+        const auto at =
+            std::string("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/").find(c);
         if (at == std::string::npos) break;
         buffer = (buffer << 6) | static_cast<int>(at);
         bits += 6;

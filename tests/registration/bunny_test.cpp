@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <numbers>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <sstream>
 
 namespace glint {
@@ -29,9 +29,11 @@ std::map<std::string, Rigid> read_poses() {
         std::istringstream s(line);
         std::string tag, file;
         double tx, ty, tz, qx, qy, qz, qw;
-        if (!(s >> tag >> file >> tx >> ty >> tz >> qx >> qy >> qz >> qw) || tag != "bmesh") continue;
+        if (!(s >> tag >> file >> tx >> ty >> tz >> qx >> qy >> qz >> qw) || tag != "bmesh")
+            continue;
         Rigid world_from_scan = Rigid::Identity();
-        world_from_scan.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix().transpose();
+        world_from_scan.linear() =
+            Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix().transpose();
         world_from_scan.translation() = Vec3d(tx, ty, tz);
         poses[fs::path(file).stem().string()] = world_from_scan;
     }
@@ -52,7 +54,9 @@ PairError register_pair(const std::string& ref, const std::string& exa) {
     const Mesh e = load_mesh(kBunny / "derived" / (exa + "_tri.ply")).mesh;
     const Rigid truth = poses.at(ref).inverse() * poses.at(exa);  // reference_from_examined
     Rigid disturb = Rigid::Identity();
-    disturb.linear() = Eigen::AngleAxisd(5.0 * std::numbers::pi / 180, Vec3d(1, 2, 0.5).normalized()).toRotationMatrix();
+    disturb.linear() =
+        Eigen::AngleAxisd(5.0 * std::numbers::pi / 180, Vec3d(1, 2, 0.5).normalized())
+            .toRotationMatrix();
     disturb.translation() = Vec3d(0.003, -0.004, 0.0);  // metres
     RegistrationOptions o;
     o.samples = 8000;
@@ -72,15 +76,17 @@ constexpr double kMaxRotationDeg = 0.2;
 constexpr double kMaxTranslationMm = 0.25;
 
 TEST(BunnyScans, PairsRegisterToTheirGroundTruthPoses) {
-    if (!fs::exists(kBunny / "derived" / "bun000_tri.ply")) GTEST_SKIP() << "shared data not present: " << kBunny;
+    if (!fs::exists(kBunny / "derived" / "bun000_tri.ply"))
+        GTEST_SKIP() << "shared data not present: " << kBunny;
     for (const auto& [ref, exa] : {std::pair{"bun000", "bun045"}, std::pair{"bun045", "bun090"},
                                    std::pair{"bun000", "bun315"}}) {
         const PairError e = register_pair(ref, exa);
         const RegistrationResult& r = e.result;
-        std::printf("bunny %s <- %s: rotation error %.4f deg, translation error %.4f mm, %d iterations, overlap %.3f, "
-                    "inliers %.3f, RMS %.3g mm, %s\n",
-                    ref, exa, e.rotation_deg, e.translation_mm, r.iterations, r.overlap, r.inlier_fraction,
-                    1000 * r.rms, r.termination_detail.c_str());
+        std::printf(
+            "bunny %s <- %s: rotation error %.4f deg, translation error %.4f mm, %d iterations, overlap %.3f, "
+            "inliers %.3f, RMS %.3g mm, %s\n",
+            ref, exa, e.rotation_deg, e.translation_mm, r.iterations, r.overlap, r.inlier_fraction,
+            1000 * r.rms, r.termination_detail.c_str());
         EXPECT_TRUE(r.converged) << ref << " <- " << exa << ": " << r.termination_detail;
         EXPECT_LT(e.rotation_deg, kMaxRotationDeg) << ref << " <- " << exa;
         EXPECT_LT(e.translation_mm, kMaxTranslationMm) << ref << " <- " << exa;

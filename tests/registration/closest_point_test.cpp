@@ -10,7 +10,10 @@ namespace glint {
 namespace {
 
 Mesh sphere(int level) {
-    return make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = level, .radii = {10, 10, 10}});
+    return make_phantom({.kind = PhantomKind::Sphere,
+                         .scheme = TessellationScheme::Ico,
+                         .resolution = level,
+                         .radii = {10, 10, 10}});
 }
 
 TEST(ClosestPointIndex, FindsTheNearestSurfacePointWithItsSign) {
@@ -19,7 +22,8 @@ TEST(ClosestPointIndex, FindsTheNearestSurfacePointWithItsSign) {
     // The flat facets lie inside the sphere by at most their sagitta, r²/2R for a facet of
     // circumradius r: ~0.24 mm at level 5 gives 0.003 mm (measured 0.00285).
     constexpr double kSagitta = 0.004;
-    for (const Vec3d& dir : {Vec3d(1, 0, 0), Vec3d(0.3, -0.5, 0.8).normalized(), Vec3d(-1, -1, -1).normalized()}) {
+    for (const Vec3d& dir :
+         {Vec3d(1, 0, 0), Vec3d(0.3, -0.5, 0.8).normalized(), Vec3d(-1, -1, -1).normalized()}) {
         const ClosestPoint out = index.closest(13.0 * dir);
         ASSERT_TRUE(out.found);
         EXPECT_NEAR(out.distance, 3.0, kSagitta);
@@ -59,9 +63,11 @@ TEST(ClosestPointIndex, RespectsTheQueryRadius) {
 TEST(ClosestPointIndex, BatchQueriesMatchSingleQueries) {
     const ClosestPointIndex index(sphere(3));
     std::vector<Vec3d> q;
-    for (int i = 0; i < 5000; ++i) q.emplace_back(std::sin(i) * 12, std::cos(i * 0.7) * 9, std::sin(i * 1.3) * 11);
+    for (int i = 0; i < 5000; ++i)
+        q.emplace_back(std::sin(i) * 12, std::cos(i * 0.7) * 9, std::sin(i * 1.3) * 11);
     const auto batch = index.closest(q);
-    for (std::size_t i = 0; i < q.size(); i += 97) EXPECT_EQ(batch[i].triangle, index.closest(q[i]).triangle);
+    for (std::size_t i = 0; i < q.size(); i += 97)
+        EXPECT_EQ(batch[i].triangle, index.closest(q[i]).triangle);
 }
 
 TEST(ClosestPointIndex, ABorrowingIndexAnswersAsACopyingOne) {

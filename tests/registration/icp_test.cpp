@@ -25,9 +25,15 @@ namespace {
 // An ellipsoid 12×8×6 mm with two bumps off its axes: no rotational or mirror symmetry, so
 // the true pose is the only one that fits.
 Mesh blob(TessellationScheme scheme, int resolution) {
-    Mesh m = make_phantom({.kind = PhantomKind::Ellipsoid, .scheme = scheme, .resolution = resolution, .radii = {12, 8, 6}});
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Bump, .center = {6.9, 4.0, 3.3}, .radius = 4, .depth = 1.5},
-                     DamageSpec{.kind = DamageKind::Bump, .center = {-9.0, 0.0, -3.9}, .radius = 3, .depth = 1.0}});
+    Mesh m = make_phantom({.kind = PhantomKind::Ellipsoid,
+                           .scheme = scheme,
+                           .resolution = resolution,
+                           .radii = {12, 8, 6}});
+    apply_damage(
+        m,
+        {DamageSpec{.kind = DamageKind::Bump, .center = {6.9, 4.0, 3.3}, .radius = 4, .depth = 1.5},
+         DamageSpec{
+             .kind = DamageKind::Bump, .center = {-9.0, 0.0, -3.9}, .radius = 3, .depth = 1.0}});
     m.labels.clear();
     m.scalars.clear();
     return m;
@@ -35,7 +41,8 @@ Mesh blob(TessellationScheme scheme, int resolution) {
 
 Rigid motion(double angle_deg, const Vec3d& axis, const Vec3d& t) {
     Rigid r = Rigid::Identity();
-    r.linear() = Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis.normalized()).toRotationMatrix();
+    r.linear() = Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis.normalized())
+                     .toRotationMatrix();
     r.translation() = t;
     return r;
 }
@@ -64,8 +71,8 @@ TEST(RegisterMeshes, RecoversAKnownMotionOnACleanPair) {
     const Mesh exa = moved(ref, truth.inverse());
     const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000});
     const Errors e = errors(r, truth);
-    std::printf("clean pair: rotation error %.2e deg, translation error %.2e mm, %d iterations\n", e.rotation_deg,
-                e.translation, r.iterations);
+    std::printf("clean pair: rotation error %.2e deg, translation error %.2e mm, %d iterations\n",
+                e.rotation_deg, e.translation, r.iterations);
     EXPECT_TRUE(r.converged) << r.termination;
     EXPECT_LT(e.rotation_deg, 0.001);
     EXPECT_LT(e.translation, 1e-4 * kSize);
@@ -82,7 +89,10 @@ const DentedPair& dented_pair() {
         DentedPair p;
         p.reference = blob(TessellationScheme::Ico, 5);
         Mesh damaged = p.reference;
-        apply_damage(damaged, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -8, 0}, .radius = 4, .depth = 1.0}});
+        apply_damage(
+            damaged,
+            {DamageSpec{
+                .kind = DamageKind::Dent, .center = {0, -8, 0}, .radius = 4, .depth = 1.0}});
         p.truth = motion(4.0, {0, 1, 1}, {0.3, 0.2, -0.1});
         p.examined = moved(damaged, p.truth.inverse());
         return p;
@@ -94,11 +104,15 @@ class RobustLossOnADent : public ::testing::TestWithParam<RobustLoss> {};
 
 TEST_P(RobustLossOnADent, IsNotPulledByTheDentWhilePlainLeastSquaresIs) {
     const DentedPair& p = dented_pair();
-    const RegistrationResult r = register_meshes(p.reference, p.examined, {.loss = GetParam(), .samples = 6000});
+    const RegistrationResult r =
+        register_meshes(p.reference, p.examined, {.loss = GetParam(), .samples = 6000});
     const Errors robust = errors(r, p.truth);
-    const Errors plain = errors(register_meshes(p.reference, p.examined, {.loss = RobustLoss::None, .samples = 6000}), p.truth);
-    std::printf("dented pair: %s %.2e deg / %.2e mm (%s), plain %.2e deg / %.2e mm\n", to_string(GetParam()).c_str(),
-                robust.rotation_deg, robust.translation, r.termination.c_str(), plain.rotation_deg, plain.translation);
+    const Errors plain = errors(
+        register_meshes(p.reference, p.examined, {.loss = RobustLoss::None, .samples = 6000}),
+        p.truth);
+    std::printf("dented pair: %s %.2e deg / %.2e mm (%s), plain %.2e deg / %.2e mm\n",
+                to_string(GetParam()).c_str(), robust.rotation_deg, robust.translation,
+                r.termination.c_str(), plain.rotation_deg, plain.translation);
     EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(robust.rotation_deg, 0.002);
     EXPECT_LT(robust.translation, 1e-4 * kSize);
@@ -107,15 +121,19 @@ TEST_P(RobustLossOnADent, IsNotPulledByTheDentWhilePlainLeastSquaresIs) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Losses, RobustLossOnADent,
-                         ::testing::Values(RobustLoss::Cauchy, RobustLoss::Huber, RobustLoss::Tukey),
-                         [](const ::testing::TestParamInfo<RobustLoss>& p) { return to_string(p.param); });
+                         ::testing::Values(RobustLoss::Cauchy, RobustLoss::Huber,
+                                           RobustLoss::Tukey),
+                         [](const ::testing::TestParamInfo<RobustLoss>& p) {
+                             return to_string(p.param);
+                         });
 
 TEST(RegisterMeshes, DoesNotNeedVertexCorrespondence) {
     const Mesh ref = blob(TessellationScheme::Ico, 5);
     const Rigid truth = motion(6.0, {3, -1, 2}, {-0.5, 0.4, 0.2});
     const Mesh exa = moved(blob(TessellationScheme::Uv, 90), truth.inverse());
     const Errors e = errors(register_meshes(ref, exa, {.samples = 6000}), truth);
-    std::printf("re-tessellated pair: rotation error %.2e deg, translation error %.2e mm\n", e.rotation_deg, e.translation);
+    std::printf("re-tessellated pair: rotation error %.2e deg, translation error %.2e mm\n",
+                e.rotation_deg, e.translation);
     // The two tessellations differ by their sagitta (~0.005 mm); measured 1e-3° / 1e-4 mm.
     EXPECT_LT(e.rotation_deg, 0.01);
     EXPECT_LT(e.translation, 0.005);
@@ -125,13 +143,15 @@ class ThirtyDegreeStart : public ::testing::TestWithParam<Vec3d> {};
 
 TEST_P(ThirtyDegreeStart, ConvergesFrom30DegreesAnd10PercentWithoutLandmarks) {
     const Mesh ref = blob(TessellationScheme::Ico, 4);
-    const Rigid truth = motion(30.0, GetParam(), {2.4, -1.0, 0.8});  // |t| ≈ 2.7 mm: > 10% of the size
+    const Rigid truth =
+        motion(30.0, GetParam(), {2.4, -1.0, 0.8});  // |t| ≈ 2.7 mm: > 10% of the size
     const Mesh exa = moved(ref, truth.inverse());
     const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000});
     const Errors e = errors(r, truth);
-    std::printf("30 deg start about (%g, %g, %g): rotation error %.2e deg, translation error %.2e mm (%s, %s)\n",
-                GetParam().x(), GetParam().y(), GetParam().z(), e.rotation_deg, e.translation, r.coarse.c_str(),
-                r.termination.c_str());
+    std::printf(
+        "30 deg start about (%g, %g, %g): rotation error %.2e deg, translation error %.2e mm (%s, %s)\n",
+        GetParam().x(), GetParam().y(), GetParam().z(), e.rotation_deg, e.translation,
+        r.coarse.c_str(), r.termination.c_str());
     EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(e.rotation_deg, 0.001);
     EXPECT_LT(e.translation, 1e-4 * kSize);
@@ -156,8 +176,9 @@ TEST_P(LandmarkStart, ConvergesWithThreeLandmarks) {
     o.initial = fit_landmarks(on_exa, on_ref);
     const RegistrationResult r = register_meshes(ref, exa, o);
     const Errors e = errors(r, truth);
-    std::printf("%.0f deg start with landmarks: rotation error %.2e deg, translation error %.2e mm (%s)\n", GetParam(),
-                e.rotation_deg, e.translation, r.termination.c_str());
+    std::printf(
+        "%.0f deg start with landmarks: rotation error %.2e deg, translation error %.2e mm (%s)\n",
+        GetParam(), e.rotation_deg, e.translation, r.termination.c_str());
     EXPECT_TRUE(r.converged) << r.termination_detail;
     EXPECT_LT(e.rotation_deg, 0.001);
     EXPECT_LT(e.translation, 1e-4 * kSize);
@@ -170,11 +191,17 @@ INSTANTIATE_TEST_SUITE_P(Angles, LandmarkStart, ::testing::Values(120.0, 180.0))
 // must keep the pose nearest the scan's own placement, not a flip that moves the pit to the
 // other side (it did before the tie rule: a 180° error).
 TEST(RegisterMeshes, KeepsTheNearestPoseOfASymmetricShape) {
-    const Mesh ref = make_phantom({.kind = PhantomKind::Ellipsoid, .scheme = TessellationScheme::Ico, .resolution = 5,
+    const Mesh ref = make_phantom({.kind = PhantomKind::Ellipsoid,
+                                   .scheme = TessellationScheme::Ico,
+                                   .resolution = 5,
                                    .radii = {12, 8, 6}});
-    Mesh exa = make_phantom({.kind = PhantomKind::Ellipsoid, .scheme = TessellationScheme::Uv, .resolution = 80,
+    Mesh exa = make_phantom({.kind = PhantomKind::Ellipsoid,
+                             .scheme = TessellationScheme::Uv,
+                             .resolution = 80,
                              .radii = {12, 8, 6}});
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Pit, .center = {0, 8, 0}, .radius = 1.2, .depth = 0.4}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Pit, .center = {0, 8, 0}, .radius = 1.2, .depth = 0.4}});
     const Rigid truth = motion(5.0, {3, -2, 4}, {0.3, -0.2, 0.1});
     const RegistrationResult r = register_meshes(ref, moved(exa, truth.inverse()), {});
     const Errors e = errors(r, truth);
@@ -197,8 +224,9 @@ TEST(RegisterMeshes, FitsOnTheStableHalfWhenTheOtherHalfIsDeformed) {
     RegistrationOptions o{.samples = 6000};
     o.roi = parse_roi("box:0.5,-20,-20,20,20,20");
     const Errors with_roi = errors(register_meshes(ref, exa, o), truth);
-    std::printf("half deformed, ROI on the stable half: rotation error %.2e deg, translation error %.2e mm\n",
-                with_roi.rotation_deg, with_roi.translation);
+    std::printf(
+        "half deformed, ROI on the stable half: rotation error %.2e deg, translation error %.2e mm\n",
+        with_roi.rotation_deg, with_roi.translation);
     EXPECT_LT(with_roi.rotation_deg, 0.002);
     EXPECT_LT(with_roi.translation, 1e-3);
 }
@@ -208,8 +236,8 @@ TEST(RegisterMeshes, SymmetricModeRecoversTheMotionToo) {
     const Rigid truth = motion(5.0, {2, -1, 1}, {0.3, 0.1, -0.2});
     const Mesh exa = moved(blob(TessellationScheme::Uv, 60), truth.inverse());
     const Errors e = errors(register_meshes(ref, exa, {.samples = 4000, .symmetric = true}), truth);
-    std::printf("symmetric, re-tessellated: rotation error %.2e deg, translation error %.2e mm\n", e.rotation_deg,
-                e.translation);
+    std::printf("symmetric, re-tessellated: rotation error %.2e deg, translation error %.2e mm\n",
+                e.rotation_deg, e.translation);
     // Measured 0.023° / 0.0015 mm: the reverse residuals lean on the coarse uv-60 mesh's
     // normals, so on this pair symmetric is less accurate than the one-sided fit (0.003°).
     EXPECT_LT(e.rotation_deg, 0.05);
@@ -240,7 +268,8 @@ Mesh plate(double side, double z) {
     Mesh m;
     for (int y = 0; y <= 10; ++y)
         for (int x = 0; x <= 10; ++x)
-            m.positions.emplace_back(float(side * (x - 5) / 10), float(side * (y - 5) / 10), float(z));
+            m.positions.emplace_back(float(side * (x - 5) / 10), float(side * (y - 5) / 10),
+                                     float(z));
     for (std::uint32_t y = 0; y < 10; ++y)
         for (std::uint32_t x = 0; x < 10; ++x) {
             const std::uint32_t a = y * 11 + x;
@@ -254,7 +283,8 @@ TEST(RegisterMeshes, MeshesThatDoNotOverlapGiveAnHonestFailure) {
     // A flat plate floating above the blob, facing it: every closest point on the blob
     // faces the other way, so no pair is compatible and no fit can be claimed.
     const Mesh ref = blob(TessellationScheme::Ico, 3);
-    const RegistrationResult r = register_meshes(ref, plate(10.0, 30.0), {.samples = 1000, .coarse = false});
+    const RegistrationResult r =
+        register_meshes(ref, plate(10.0, 30.0), {.samples = 1000, .coarse = false});
     EXPECT_FALSE(r.converged);
     EXPECT_NE(r.termination.find("no overlap"), std::string::npos) << r.termination;
 }
@@ -276,7 +306,8 @@ TEST(RegisterMeshes, ConvergesOnTheCostWhenTheParameterTolerancesAreOff) {
     const Mesh ref = blob(TessellationScheme::Ico, 5);
     const Rigid truth = motion(6.0, {3, -1, 2}, {-0.5, 0.4, 0.2});
     const Mesh exa = moved(blob(TessellationScheme::Uv, 90), truth.inverse());
-    const RegistrationOptions o{.samples = 6000, .rotation_tolerance_deg = 0.0, .translation_tolerance = 0.0};
+    const RegistrationOptions o{
+        .samples = 6000, .rotation_tolerance_deg = 0.0, .translation_tolerance = 0.0};
     const RegistrationResult r = register_meshes(ref, exa, o);
     const Errors e = errors(r, truth);
     std::printf("cost convergence: %s, rotation error %.2e deg, translation error %.2e mm\n",
@@ -302,7 +333,8 @@ TEST(RegisterMeshes, RejectsAVertexMaskOfTheWrongSize) {
         (void)register_meshes(ref, ref, o);
         FAIL() << "expected InputError";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find(std::to_string(ref.vertex_count() - 1) + " entries"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find(std::to_string(ref.vertex_count() - 1) + " entries"),
+                  std::string::npos)
             << e.what();
     }
 }
@@ -313,18 +345,21 @@ TEST(RegisterMeshes, ReportsTheEvidenceAtTheFinalPose) {
     const Mesh ref = blob(TessellationScheme::Ico, 4);
     const Rigid truth = motion(5.0, {1, 2, 3}, {0.4, -0.2, 0.3});
     const Mesh exa = moved(ref, truth.inverse());
-    const RegistrationResult r = register_meshes(ref, exa, {.samples = 4000, .max_iterations = 1, .coarse = false});
+    const RegistrationResult r =
+        register_meshes(ref, exa, {.samples = 4000, .max_iterations = 1, .coarse = false});
     ASSERT_EQ(r.log.size(), 1u);
     // Independent measurement: |distance| of the examined vertices, moved by the returned
     // pose, to the reference surface.
     const ClosestPointIndex index(ref);
     std::vector<Vec3d> points;
-    for (const auto& p : exa.positions) points.push_back(r.reference_from_examined * p.cast<double>());
+    for (const auto& p : exa.positions)
+        points.push_back(r.reference_from_examined * p.cast<double>());
     double ss = 0.0;
     for (const auto& c : index.closest(points)) ss += c.distance * c.distance;
     const double rms_at_pose = std::sqrt(ss / static_cast<double>(points.size()));
-    std::printf("one iteration: reported RMS %.3e, measured at the pose %.3e, before the step %.3e, overlap %.3f\n",
-                r.rms, rms_at_pose, r.log.back().rms, r.overlap);
+    std::printf(
+        "one iteration: reported RMS %.3e, measured at the pose %.3e, before the step %.3e, overlap %.3f\n",
+        r.rms, rms_at_pose, r.log.back().rms, r.overlap);
     EXPECT_GT(r.log.back().rms, 5 * rms_at_pose);  // what the evidence before the step would say
     EXPECT_NEAR(r.rms, rms_at_pose, 0.5 * rms_at_pose);
     EXPECT_GT(r.overlap, 0.99);
@@ -362,22 +397,27 @@ std::string write_text(const std::string& name, const std::string& text) {
 TEST(ReadLandmarks, TurnsWrongTypesAndShapesIntoInputErrorsNamingFileAndPair) {
     const std::string good = R"({"examined": [0, 0, 0], "reference": [1, 1, 1]})";
     const std::vector<std::pair<std::string, std::string>> cases{
-        {R"({"pairs": [)" + good + R"(, {"examined": ["a", 0, 0], "reference": [1, 1, 1]}]})", "pair 2"},
+        {R"({"pairs": [)" + good + R"(, {"examined": ["a", 0, 0], "reference": [1, 1, 1]}]})",
+         "pair 2"},
         {R"({"pairs": [)" + good + R"(, {"examined": [0, 0], "reference": [1, 1, 1]}]})", "pair 2"},
         {R"({"pairs": [{"examined": [0, 0, 0], "reference": 5}]})", "pair 1"},
         {R"({"pairs": [{"examined": [0, 0, 0]}]})", "pair 1"},
         {R"({"pairs": [)" + good + R"(, 7]})", "pair 2"},
         {R"({"pairs": [{"examined": {"view": {"azimuth": "east", "elevation": 0, "size": 64}, "pixel": [1, 2]},
-                        "reference": [0, 0, 0]}]})", "pair 1"},
+                        "reference": [0, 0, 0]}]})",
+         "pair 1"},
         {R"({"pairs": [{"examined": {"view": {"azimuth": 0, "elevation": 0, "size": 64}, "pixel": [1]},
-                        "reference": [0, 0, 0]}]})", "pair 1"},
+                        "reference": [0, 0, 0]}]})",
+         "pair 1"},
         {R"({"pairs": [{"examined": {"view": {"azimuth": 0, "elevation": 0}, "pixel": [1, 2]},
-                        "reference": [0, 0, 0]}]})", "pair 1"},
+                        "reference": [0, 0, 0]}]})",
+         "pair 1"},
         {R"({"pairs": {"examined": [0, 0, 0]}})", "pairs"},
         {R"([1, 2, 3])", "pairs"},
     };
     for (std::size_t i = 0; i < cases.size(); ++i) {
-        const std::string path = write_text("landmarks_bad_" + std::to_string(i) + ".json", cases[i].first);
+        const std::string path =
+            write_text("landmarks_bad_" + std::to_string(i) + ".json", cases[i].first);
         try {
             (void)read_landmarks(path);
             ADD_FAILURE() << "case " << i << " was accepted: " << cases[i].first;
@@ -387,7 +427,8 @@ TEST(ReadLandmarks, TurnsWrongTypesAndShapesIntoInputErrorsNamingFileAndPair) {
             EXPECT_NE(what.find(cases[i].second), std::string::npos) << what;
         }
     }
-    EXPECT_THROW((void)read_landmarks(write_text("missing_dir_is_not_this.json", "") + ".none"), IoError);
+    EXPECT_THROW((void)read_landmarks(write_text("missing_dir_is_not_this.json", "") + ".none"),
+                 IoError);
 }
 
 TEST(ReadLandmarks, ReadsPointsAndPickedPixels) {
@@ -415,7 +456,8 @@ TEST(RegistrationJson, RecordsTheRoiNumbersAndSourceFiles) {
     RegistrationOptions o;
     o.roi = parse_roi("sphere:1,2,3,4.5");
     o.initial = motion(10, {0, 0, 1}, {1, 0, 0});
-    const auto sphere = nlohmann::json::parse(to_json({}, o, {.init_file = "start.json"}))["options"];
+    const auto sphere =
+        nlohmann::json::parse(to_json({}, o, {.init_file = "start.json"}))["options"];
     EXPECT_EQ(sphere["roi"]["shape"], "sphere");
     EXPECT_EQ(sphere["roi"]["center"], nlohmann::json::array({1.0, 2.0, 3.0}));
     EXPECT_EQ(sphere["roi"]["radius"], 4.5);
@@ -427,7 +469,8 @@ TEST(RegistrationJson, RecordsTheRoiNumbersAndSourceFiles) {
     EXPECT_EQ(box["max"], nlohmann::json::array({4.0, 5.0, 6.0}));
     o.roi = parse_roi("mask:stable.ply:bone");
     o.roi->vertex_mask = {1, 0, 1};
-    const auto mask = nlohmann::json::parse(to_json({}, o, {.landmarks_file = "lm.json"}))["options"];
+    const auto mask =
+        nlohmann::json::parse(to_json({}, o, {.landmarks_file = "lm.json"}))["options"];
     EXPECT_EQ(mask["roi"]["file"], "stable.ply");
     EXPECT_EQ(mask["roi"]["property"], "bone");
     EXPECT_EQ(mask["roi"]["masked_vertices"], 2);
@@ -442,8 +485,12 @@ TEST(RegistrationJson, WritesTheTransformAndItsInverse) {
     Eigen::Matrix4d a, b;
     for (int i = 0; i < 4; ++i)
         for (int k = 0; k < 4; ++k) {
-            a(i, k) = j["reference_from_examined"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>();
-            b(i, k) = j["examined_from_reference"][static_cast<std::size_t>(i)][static_cast<std::size_t>(k)].get<double>();
+            a(i, k) = j["reference_from_examined"][static_cast<std::size_t>(i)]
+                       [static_cast<std::size_t>(k)]
+                           .get<double>();
+            b(i, k) = j["examined_from_reference"][static_cast<std::size_t>(i)]
+                       [static_cast<std::size_t>(k)]
+                           .get<double>();
         }
     EXPECT_TRUE((a * b).isApprox(Eigen::Matrix4d::Identity(), 1e-12));
     EXPECT_TRUE(a.isApprox(r.reference_from_examined.matrix(), 1e-15));
@@ -463,13 +510,15 @@ namespace {
 
 // Regression (issue 16): a non-number in the matrix threw nlohmann's type_error (exit 4).
 TEST(ReadFit, TurnsANonNumberEntryIntoAnInputErrorNamingRowAndEntry) {
-    const std::string path = write_text("fit_string_entry.json",
-                                        R"({"reference_from_examined": [[1, 0, 0, 0], [0, 1, "x", 0], [0, 0, 1, 0], [0, 0, 0, 1]]})");
+    const std::string path = write_text(
+        "fit_string_entry.json",
+        R"({"reference_from_examined": [[1, 0, 0, 0], [0, 1, "x", 0], [0, 0, 1, 0], [0, 0, 0, 1]]})");
     try {
         (void)read_fit(path);
         ADD_FAILURE() << "no error";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("row 2 of reference_from_examined: entry 3 is string"), std::string::npos)
+        EXPECT_NE(std::string(e.what()).find("row 2 of reference_from_examined: entry 3 is string"),
+                  std::string::npos)
             << e.what();
     }
 }

@@ -16,12 +16,12 @@ constexpr double kAgreementAngleDeg = 0.5;
 constexpr double kAgreementShare = 0.995;
 
 struct Agreement {
-    std::size_t both = 0;            // covered in both frames
-    std::size_t only_one = 0;        // covered in one frame only (silhouette rasterisation rules)
-    std::size_t within = 0;          // of `both`, normals within kAgreementAngleDeg
-    std::size_t interior = 0;        // pixels whose 3×3 neighbourhood shows one triangle in both
+    std::size_t both = 0;      // covered in both frames
+    std::size_t only_one = 0;  // covered in one frame only (silhouette rasterisation rules)
+    std::size_t within = 0;    // of `both`, normals within kAgreementAngleDeg
+    std::size_t interior = 0;  // pixels whose 3×3 neighbourhood shows one triangle in both
     std::size_t interior_id_diff = 0;
-    double max_depth_diff = 0.0;     // over interior pixels
+    double max_depth_diff = 0.0;  // over interior pixels
     double max_angle_interior = 0.0;
 };
 
@@ -37,14 +37,16 @@ Agreement compare(const Frame& a, const Frame& b) {
             if (ca != cb) ++r.only_one;
             if (!(ca && cb)) continue;
             ++r.both;
-            const double ang = angle_deg(pixel_normal(a, p).cast<double>(), pixel_normal(b, p).cast<double>());
+            const double ang =
+                angle_deg(pixel_normal(a, p).cast<double>(), pixel_normal(b, p).cast<double>());
             if (ang <= kAgreementAngleDeg) ++r.within;
             if (x == 0 || y == 0 || x == w - 1 || y == h - 1) continue;
             bool same = true;
             for (int dy = -1; dy <= 1 && same; ++dy) {
                 for (int dx = -1; dx <= 1; ++dx) {
                     const auto q = static_cast<std::size_t>((y + dy) * w + (x + dx));
-                    if (a.primitive_id[q] != a.primitive_id[p] || b.primitive_id[q] != b.primitive_id[p]) {
+                    if (a.primitive_id[q] != a.primitive_id[p] ||
+                        b.primitive_id[q] != b.primitive_id[p]) {
                         same = false;
                         break;
                     }
@@ -53,7 +55,8 @@ Agreement compare(const Frame& a, const Frame& b) {
             if (!same) continue;
             ++r.interior;
             if (a.primitive_id[p] != b.primitive_id[p]) ++r.interior_id_diff;
-            r.max_depth_diff = std::max(r.max_depth_diff, static_cast<double>(std::abs(a.depth[p] - b.depth[p])));
+            r.max_depth_diff =
+                std::max(r.max_depth_diff, static_cast<double>(std::abs(a.depth[p] - b.depth[p])));
             r.max_angle_interior = std::max(r.max_angle_interior, ang);
         }
     }
@@ -77,10 +80,11 @@ void check_agreement(const Mesh& mesh, const std::vector<View>& views, int s, co
         total.max_angle_interior = std::max(total.max_angle_interior, r.max_angle_interior);
     });
     const double share = static_cast<double>(total.within) / static_cast<double>(total.both);
-    std::printf("[agreement %s s=%d] both=%zu only_one=%zu within0.5=%.5f interior=%zu id_diff=%zu "
-                "max_angle_interior=%.4f° max_depth_diff=%.2e\n",
-                label, s, total.both, total.only_one, share, total.interior, total.interior_id_diff,
-                total.max_angle_interior, total.max_depth_diff);
+    std::printf(
+        "[agreement %s s=%d] both=%zu only_one=%zu within0.5=%.5f interior=%zu id_diff=%zu "
+        "max_angle_interior=%.4f° max_depth_diff=%.2e\n",
+        label, s, total.both, total.only_one, share, total.interior, total.interior_id_diff,
+        total.max_angle_interior, total.max_depth_diff);
     EXPECT_GE(share, kAgreementShare);
     EXPECT_GT(total.interior, total.both / 5);
     EXPECT_EQ(total.interior_id_diff, 0u);
@@ -95,8 +99,12 @@ std::vector<View> ring_views(const Mesh& mesh, Projection projection, int size) 
     int index = 0;
     for (double el : {-50.0, 0.0, 35.0, 89.0}) {
         for (double az = 0.0; az < 360.0; az += 72.0) {
-            views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = az + el, .elevation_deg = el, .width = size,
-                                                     .height = size, .projection = projection, .index = index++}));
+            views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = az + el,
+                                                     .elevation_deg = el,
+                                                     .width = size,
+                                                     .height = size,
+                                                     .projection = projection,
+                                                     .index = index++}));
         }
     }
     return views;
@@ -119,7 +127,8 @@ TEST(BackendAgreement, OpenCorrugatedSurfaceAgreesFromBothSides) {
     const Mesh mesh = make_corrugated_plane(8, 1.0, 0.1, 1.0);
     std::vector<View> views;
     for (double el : {70.0, 20.0, -60.0}) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 30, .elevation_deg = el, .width = 160, .height = 128}));
+        views.push_back(make_view(
+            mesh, ViewSpec{.azimuth_deg = 30, .elevation_deg = el, .width = 160, .height = 128}));
     }
     check_agreement(mesh, views, 1, "corrugated");
 }

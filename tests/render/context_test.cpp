@@ -24,9 +24,7 @@ namespace {
 
 class RenderContextTest : public testing::TestWithParam<Backend> {};
 
-ContextOptions context_options(Backend backend) {
-    return test_options(backend).context_options();
-}
+ContextOptions context_options(Backend backend) { return test_options(backend).context_options(); }
 
 std::vector<Mesh> four_meshes() {
     std::vector<Mesh> meshes;
@@ -41,15 +39,19 @@ std::vector<Mesh> four_meshes() {
 std::vector<View> some_views(const Mesh& mesh) {
     std::vector<View> views;
     for (int i = 0; i < 5; ++i) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 40.0 * i, .elevation_deg = 10.0 * i - 20,
-                                                 .width = 24 + 8 * (i % 3), .height = 24 + 4 * i, .index = i}));
+        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 40.0 * i,
+                                                 .elevation_deg = 10.0 * i - 20,
+                                                 .width = 24 + 8 * (i % 3),
+                                                 .height = 24 + 4 * i,
+                                                 .index = i}));
     }
     return views;
 }
 
 template <typename T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 void expect_bitwise_equal(const Frame& a, const Frame& b, const std::string& what) {
@@ -123,7 +125,8 @@ TEST_P(RenderContextTest, RenderersOnOneContextGiveTheFramesOfStandaloneRenderer
         const auto got = render_all(shared, views);
         ASSERT_EQ(got.size(), expected.size());
         for (std::size_t i = 0; i < views.size(); ++i) {
-            expect_bitwise_equal(got[i], expected[i], "mesh " + std::to_string(k) + " view " + std::to_string(i));
+            expect_bitwise_equal(got[i], expected[i],
+                                 "mesh " + std::to_string(k) + " view " + std::to_string(i));
         }
         expect_no_validation_messages(shared);
     }
@@ -134,8 +137,9 @@ TEST_P(RenderContextTest, PairsAreBitwiseTheSequentialFrames) {
     auto context = std::make_shared<RenderContext>(context_options(GetParam()));
     // Different frame options on the two sides: each frame is finished with its own.
     Renderer first(context, meshes[2], FrameOptions{.supersample = 2});
-    Renderer second(context, meshes[0], FrameOptions{.normal_space = NormalSpace::View, .supersample = 3,
-                                                     .min_coverage = 1.0f});
+    Renderer second(
+        context, meshes[0],
+        FrameOptions{.normal_space = NormalSpace::View, .supersample = 3, .min_coverage = 1.0f});
     const auto views = some_views(meshes[2]);
     const auto expected_first = render_all(first, views);
     const auto expected_second = render_all(second, views);
@@ -161,7 +165,9 @@ TEST_P(RenderContextTest, PairsAcrossTwoContextsMatchToo) {
         expect_bitwise_equal(a, expected[i], "first");
         expect_bitwise_equal(b, expected[i], "second");
     });
-    EXPECT_THROW(render_view_pairs(first, first, views, [](std::size_t, const Frame&, const Frame&) {}), InputError);
+    EXPECT_THROW(
+        render_view_pairs(first, first, views, [](std::size_t, const Frame&, const Frame&) {}),
+        InputError);
 }
 
 TEST_P(RenderContextTest, PairConsumerExceptionPropagatesAndBothStayUsable) {
@@ -176,7 +182,8 @@ TEST_P(RenderContextTest, PairConsumerExceptionPropagatesAndBothStayUsable) {
                                    }),
                  std::runtime_error);
     std::size_t calls = 0;
-    render_view_pairs(first, second, views, [&](std::size_t, const Frame&, const Frame&) { ++calls; });
+    render_view_pairs(first, second, views,
+                      [&](std::size_t, const Frame&, const Frame&) { ++calls; });
     EXPECT_EQ(calls, views.size());
     expect_no_validation_messages(first);
 }
@@ -188,16 +195,17 @@ TEST_P(RenderContextTest, ContextAndRenderersMayEndInAnyOrder) {
     std::optional<Renderer> early(std::in_place, context, mesh);
     auto late = std::make_unique<Renderer>(context, mesh);
     const Frame expected = early->render(view);
-    early.reset();   // a renderer ends before its context
-    context.reset(); // the context's last outside owner goes; the renderer keeps it alive
+    early.reset();    // a renderer ends before its context
+    context.reset();  // the context's last outside owner goes; the renderer keeps it alive
     expect_bitwise_equal(late->render(view), expected, "after the context was released");
-    late.reset();    // the device goes with the last renderer
+    late.reset();  // the device goes with the last renderer
 }
 
 TEST(RenderContext, RejectsANullContextAndBadOptions) {
     const Mesh mesh = make_icosphere(1);
     EXPECT_THROW(Renderer(nullptr, mesh), InputError);
-    EXPECT_THROW(RenderContext(ContextOptions{.backend = Backend::Embree, .device = "llvmpipe"}), InputError);
+    EXPECT_THROW(RenderContext(ContextOptions{.backend = Backend::Embree, .device = "llvmpipe"}),
+                 InputError);
     auto context = std::make_shared<RenderContext>(ContextOptions{.backend = Backend::Embree});
     EXPECT_THROW(Renderer(context, mesh, FrameOptions{.supersample = 0}), InputError);
     EXPECT_THROW(Renderer(context, Mesh{}), InputError);
@@ -227,7 +235,8 @@ TEST(RenderContext, NoVulkanDriverIsOneLineDeviceError) {
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, RenderContextTest, testing::ValuesIn(all_backends()), backend_name);
+INSTANTIATE_TEST_SUITE_P(Backends, RenderContextTest, testing::ValuesIn(all_backends()),
+                         backend_name);
 
 }  // namespace
 }  // namespace glint::test

@@ -29,7 +29,10 @@ std::vector<View> ring(const Mesh& mesh, int size, int count, int zoom = 0) {
     for (int i = 0; i < count; ++i) {
         views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = 360.0 * i / count,
                                                  .elevation_deg = i % 2 ? 25.0 : -25.0,
-                                                 .width = size, .height = size, .zoom_index = zoom, .index = i}));
+                                                 .width = size,
+                                                 .height = size,
+                                                 .zoom_index = zoom,
+                                                 .index = i}));
     }
     return views;
 }
@@ -37,8 +40,10 @@ std::vector<View> ring(const Mesh& mesh, int size, int count, int zoom = 0) {
 /// A copy of `mesh` with every vertex normal turned by `deg` about the x axis.
 Mesh with_turned_normals(const Mesh& mesh, double deg) {
     Mesh m = mesh;
-    const Eigen::Matrix3f turn = Eigen::AngleAxisf(static_cast<float>(deg * std::numbers::pi / 180.0),
-                                                   Eigen::Vector3f::UnitX()).toRotationMatrix();
+    const Eigen::Matrix3f turn =
+        Eigen::AngleAxisf(static_cast<float>(deg * std::numbers::pi / 180.0),
+                          Eigen::Vector3f::UnitX())
+            .toRotationMatrix();
     for (auto& n : m.normals) n = (turn * n).normalized();
     return m;
 }
@@ -100,8 +105,11 @@ TEST(GpuAtlas, MeasuresNormalsTurnedByAKnownAngle) {
     GpuAtlas atlas(a, b, GpuAtlasOptions{.framed_radius = 1.5});
     std::vector<View> views;
     for (int i = 0; i < 4; ++i)
-        views.push_back(make_view(plane, ViewSpec{.azimuth_deg = 90.0 * i, .elevation_deg = i % 2 ? 40.0 : 70.0,
-                                                  .width = 48, .height = 48, .index = i}));
+        views.push_back(make_view(plane, ViewSpec{.azimuth_deg = 90.0 * i,
+                                                  .elevation_deg = i % 2 ? 40.0 : 70.0,
+                                                  .width = 48,
+                                                  .height = 48,
+                                                  .index = i}));
     atlas.run(views, [&](std::size_t, const GpuViewSummary& s) {
         EXPECT_GT(s.compared, 500u);
         EXPECT_EQ(s.reference_only + s.examined_only, 0u);

@@ -40,7 +40,8 @@ Rendered sphere_frame(Backend backend, int size, int s, const std::string& devic
     o.device = device;
     Renderer r(mesh, o);
     Rendered out;
-    out.view = make_view(mesh, ViewSpec{.azimuth_deg = 30, .elevation_deg = 20, .width = size, .height = size});
+    out.view = make_view(
+        mesh, ViewSpec{.azimuth_deg = 30, .elevation_deg = 20, .width = size, .height = size});
     out.frame = r.render(out.view);
     expect_no_validation_messages(r);
     return out;
@@ -76,7 +77,8 @@ TEST(FrameImage, ExrKeepsTheFloatNumbersAndTheMetadata) {
 TEST(FrameImage, PngIsTheEightBitPaperColour) {
     const Rendered r = sphere_frame(Backend::Embree, 40, 1);
     const fs::path path = output_dir() / "sphere_frame_paper8.png";
-    write_frame_image(path, r.frame, r.view, FrameImageOptions{.shade = {.mode = ShadeMode::Paper8}});
+    write_frame_image(path, r.frame, r.view,
+                      FrameImageOptions{.shade = {.mode = ShadeMode::Paper8}});
     OIIO::ImageBuf buf(path.string());
     ASSERT_TRUE(buf.read(0, 0, true, OIIO::TypeDesc::UINT8)) << buf.geterror();
     ASSERT_EQ(buf.spec().nchannels, 4);
@@ -135,15 +137,18 @@ TEST(GoldenImage, LavapipeSphereMatchesTheStoredExr) {
         fs::copy_file(actual, golden, fs::copy_options::overwrite_existing);
         GTEST_SKIP() << "golden updated: " << golden;
     }
-    ASSERT_TRUE(fs::exists(golden)) << "missing golden " << golden << " (run with GLINT_UPDATE_GOLDEN=1)";
+    ASSERT_TRUE(fs::exists(golden))
+        << "missing golden " << golden << " (run with GLINT_UPDATE_GOLDEN=1)";
     OIIO::ImageBuf a(actual.string());
     OIIO::ImageBuf g(golden.string());
-    ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT) && g.read(0, 0, true, OIIO::TypeDesc::FLOAT));
+    ASSERT_TRUE(a.read(0, 0, true, OIIO::TypeDesc::FLOAT) &&
+                g.read(0, 0, true, OIIO::TypeDesc::FLOAT));
     // Compare the shaded colour, coverage and the normal channels (by name: OpenEXR sorts
     // them); depth and id are covered by the analytic tests.
     const auto pick = [](const OIIO::ImageBuf& src) {
         std::vector<int> order;
-        for (const char* name : {"R", "G", "B", "A", "N.x", "N.y", "N.z"}) order.push_back(src.spec().channelindex(name));
+        for (const char* name : {"R", "G", "B", "A", "N.x", "N.y", "N.z"})
+            order.push_back(src.spec().channelindex(name));
         return OIIO::ImageBufAlgo::channels(src, 7, order);
     };
     const OIIO::ImageBuf a7 = pick(a);
@@ -155,8 +160,8 @@ TEST(GoldenImage, LavapipeSphereMatchesTheStoredExr) {
         const fs::path diff = output_dir() / "LavapipeSphere.diff.exr";
         OIIO::ImageBuf d = OIIO::ImageBufAlgo::absdiff(a7, g7);
         d.write(diff.string());
-        ADD_FAILURE() << cmp.nfail << " pixels differ (max " << cmp.maxerror << " at " << cmp.maxx << ","
-                      << cmp.maxy << "); actual: " << actual << ", diff: " << diff;
+        ADD_FAILURE() << cmp.nfail << " pixels differ (max " << cmp.maxerror << " at " << cmp.maxx
+                      << "," << cmp.maxy << "); actual: " << actual << ", diff: " << diff;
     }
 }
 

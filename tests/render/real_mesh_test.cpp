@@ -17,7 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(RealMesh, MandibleRendersAlikeOnBothBackends) {
-    const fs::path path = fs::path(GLINT_SHARED_DATA_DIR) / "mandible_cbct_artisynth" / "jaw_smooth.obj";
+    const fs::path path =
+        fs::path(GLINT_SHARED_DATA_DIR) / "mandible_cbct_artisynth" / "jaw_smooth.obj";
     if (!fs::exists(path)) GTEST_SKIP() << "shared data not present: " << path;
     const LoadedMesh loaded = load_mesh(path);
     const Mesh& mesh = loaded.mesh;
@@ -27,8 +28,11 @@ TEST(RealMesh, MandibleRendersAlikeOnBothBackends) {
     const double az[] = {0, 90, 180, 270, 45, 225};
     const double el[] = {0, 0, 0, 0, 60, -45};
     for (int i = 0; i < 6; ++i) {
-        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = az[i], .elevation_deg = el[i], .width = 256,
-                                                 .height = 256, .index = i}));
+        views.push_back(make_view(mesh, ViewSpec{.azimuth_deg = az[i],
+                                                 .elevation_deg = el[i],
+                                                 .width = 256,
+                                                 .height = 256,
+                                                 .index = i}));
     }
     const fs::path out = fs::path(GLINT_TEST_OUTPUT_DIR) / "render";
     fs::create_directories(out);
@@ -39,7 +43,8 @@ TEST(RealMesh, MandibleRendersAlikeOnBothBackends) {
         write_frame_image(stem + "_normal.png", f, views[i]);
         write_frame_image(stem + "_reflection.png", f, views[i],
                           FrameImageOptions{.shade = {.mode = ShadeMode::Reflection}});
-        write_frame_image(stem + "_zebra.png", f, views[i], FrameImageOptions{.shade = {.mode = ShadeMode::Zebra}});
+        write_frame_image(stem + "_zebra.png", f, views[i],
+                          FrameImageOptions{.shade = {.mode = ShadeMode::Zebra}});
     });
     std::size_t both = 0, within = 0, only_one = 0;
     em.render_views(views, [&](std::size_t i, const Frame& f) {
@@ -48,12 +53,14 @@ TEST(RealMesh, MandibleRendersAlikeOnBothBackends) {
             if (f.is_covered(p) != v.is_covered(p)) ++only_one;
             if (!(f.is_covered(p) && v.is_covered(p))) continue;
             ++both;
-            if (angle_deg(pixel_normal(f, p).cast<double>(), pixel_normal(v, p).cast<double>()) <= 0.5) ++within;
+            if (angle_deg(pixel_normal(f, p).cast<double>(), pixel_normal(v, p).cast<double>()) <=
+                0.5)
+                ++within;
         }
     });
     const double share = static_cast<double>(within) / static_cast<double>(both);
-    std::printf("[mandible] %zu triangles, both=%zu within0.5=%.5f only_one=%zu\n", mesh.triangle_count(), both,
-                share, only_one);
+    std::printf("[mandible] %zu triangles, both=%zu within0.5=%.5f only_one=%zu\n",
+                mesh.triangle_count(), both, share, only_one);
     EXPECT_GT(both, 20000u);
     EXPECT_GE(share, 0.995);
     EXPECT_LE(static_cast<double>(only_one), 0.005 * static_cast<double>(both));

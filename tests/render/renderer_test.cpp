@@ -21,8 +21,10 @@ namespace {
 class RendererTest : public testing::TestWithParam<Backend> {};
 
 View sphere_view(const Mesh& mesh, int size, double az = 30, double el = 20, int index = 0) {
-    return make_view(mesh, ViewSpec{.azimuth_deg = az, .elevation_deg = el, .width = size, .height = size,
-                                    .index = index});
+    return make_view(
+        mesh,
+        ViewSpec{
+            .azimuth_deg = az, .elevation_deg = el, .width = size, .height = size, .index = index});
 }
 
 TEST(RenderOptions, RejectsOutOfRangeFieldsNamingThem) {
@@ -31,7 +33,9 @@ TEST(RenderOptions, RejectsOutOfRangeFieldsNamingThem) {
             RenderOptions{.supersample = s}.validate();
             FAIL() << "supersample " << s << " accepted";
         } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("supersample = " + std::to_string(s)), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("supersample = " + std::to_string(s)),
+                      std::string::npos)
+                << e.what();
         }
     }
     EXPECT_THROW(RenderOptions{.min_coverage = 1.5f}.validate(), InputError);
@@ -169,11 +173,14 @@ TEST_P(RendererTest, BackFaceCullingLeavesAClosedMeshUnchanged) {
     Renderer plane_culled(plane, o);
     EXPECT_FALSE(plane_culled.options().cull_back_faces);
     const auto& warnings = plane_culled.info().warnings;
-    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(),
-                            [](const std::string& w) { return w.find("culling turned off") != std::string::npos; }));
-    const Frame below = plane_culled.render(make_view(plane, ViewSpec{.elevation_deg = -60, .width = 32, .height = 32}));
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+        return w.find("culling turned off") != std::string::npos;
+    }));
+    const Frame below = plane_culled.render(
+        make_view(plane, ViewSpec{.elevation_deg = -60, .width = 32, .height = 32}));
     EXPECT_GT(below.covered_count(), 100u);
-    const Frame above = plane_culled.render(make_view(plane, ViewSpec{.elevation_deg = 60, .width = 32, .height = 32}));
+    const Frame above = plane_culled.render(
+        make_view(plane, ViewSpec{.elevation_deg = 60, .width = 32, .height = 32}));
     EXPECT_GT(above.covered_count(), 100u);
     expect_no_validation_messages(culled_renderer);
     expect_no_validation_messages(plane_culled);
@@ -204,8 +211,10 @@ TEST_P(RendererTest, MovedRendererKeepsRendering) {
 
 TEST(ResolveBackend, ExplicitChoiceWinsAndAutoSaysWhy) {
     std::string reason;
-    EXPECT_EQ(resolve_backend(RenderOptions{.backend = Backend::Embree}, 10, &reason), Backend::Embree);
-    EXPECT_EQ(resolve_backend(RenderOptions{.backend = Backend::Vulkan}, 10, &reason), Backend::Vulkan);
+    EXPECT_EQ(resolve_backend(RenderOptions{.backend = Backend::Embree}, 10, &reason),
+              Backend::Embree);
+    EXPECT_EQ(resolve_backend(RenderOptions{.backend = Backend::Vulkan}, 10, &reason),
+              Backend::Vulkan);
     const Backend chosen = resolve_backend(RenderOptions{}, 1000, &reason);
     EXPECT_NE(chosen, Backend::Auto);
     EXPECT_FALSE(reason.empty());
@@ -243,7 +252,7 @@ TEST(VulkanDevice, UnknownDeviceNameThrowsDeviceErrorListingDevices) {
 
 /// Sets an environment variable for a scope (unset when `value` is null), restoring it after.
 class ScopedEnv {
-public:
+  public:
     ScopedEnv(const char* name, const char* value) : name_(name) {
         if (const char* old = std::getenv(name)) saved_ = old;
         if (value != nullptr) ::setenv(name, value, 1);
@@ -256,7 +265,7 @@ public:
     ScopedEnv(const ScopedEnv&) = delete;
     ScopedEnv& operator=(const ScopedEnv&) = delete;
 
-private:
+  private:
     std::string name_;
     std::optional<std::string> saved_;
 };

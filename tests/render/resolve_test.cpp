@@ -13,7 +13,8 @@ namespace glint {
 namespace {
 
 /// One output pixel resolved from s = 2: four sub-samples (normal xyz, depth), ids.
-Frame resolve_one_pixel(const std::vector<float>& normal_depth, const std::vector<std::uint32_t>& ids) {
+Frame resolve_one_pixel(const std::vector<float>& normal_depth,
+                        const std::vector<std::uint32_t>& ids) {
     Frame f;
     f.width = 1;
     f.height = 1;
@@ -40,8 +41,8 @@ TEST(ResolveSamples, AveragesAndRenormalisesCoveredSubSamples) {
 
 TEST(ResolveSamples, CancellingNormalsLeaveThePixelUncoveredNotZeroLength) {
     // A knife edge seen along its ridge: two sub-samples facing +x, two facing −x.
-    const Frame f = resolve_one_pixel({1, 0, 0, 1.0f, -1, 0, 0, 1.0f, 1, 0, 0, 1.0f, -1, 0, 0, 1.0f},
-                                      {1, 2, 1, 2});
+    const Frame f = resolve_one_pixel(
+        {1, 0, 0, 1.0f, -1, 0, 0, 1.0f, 1, 0, 0, 1.0f, -1, 0, 0, 1.0f}, {1, 2, 1, 2});
     EXPECT_FALSE(f.is_covered(0));
     EXPECT_EQ(f.primitive_id[0], kNoPrimitive);
     EXPECT_EQ(f.depth[0], kNoDepth);
@@ -50,10 +51,12 @@ TEST(ResolveSamples, CancellingNormalsLeaveThePixelUncoveredNotZeroLength) {
 
 TEST(ResolveSamples, NearlyCancellingNormalsStillGiveAUnitNormal) {
     // Opposite but not exactly: a direction exists, and the pixel carries it at unit length.
-    const Frame f = resolve_one_pixel({1, 0, 0, 1.0f, -0.9f, 0.4359f, 0, 1.0f, 0, 0, 0, 0, 0, 0, 0, 0},
-                                      {1, 2, kNoPrimitive, kNoPrimitive});
+    const Frame f =
+        resolve_one_pixel({1, 0, 0, 1.0f, -0.9f, 0.4359f, 0, 1.0f, 0, 0, 0, 0, 0, 0, 0, 0},
+                          {1, 2, kNoPrimitive, kNoPrimitive});
     ASSERT_TRUE(f.is_covered(0));
-    const float len = std::sqrt(f.normal[0] * f.normal[0] + f.normal[1] * f.normal[1] + f.normal[2] * f.normal[2]);
+    const float len = std::sqrt(f.normal[0] * f.normal[0] + f.normal[1] * f.normal[1] +
+                                f.normal[2] * f.normal[2]);
     EXPECT_NEAR(len, 1.0f, 1e-5f);
 }
 

@@ -33,8 +33,9 @@ TEST_P(ScaleSpace, TwoTessellationsOfOneSphereRenderTheSameFrame) {
     std::size_t covered = 0;
     for (double el : {-60.0, 0.0, 45.0, 85.0}) {
         // Identical cameras: frame both with the same sphere (the exact one).
-        const View view = make_view(FramingSphere{{0, 0, 0}, 1.0},
-                                    ViewSpec{.azimuth_deg = 17 + el, .elevation_deg = el, .width = 128, .height = 128});
+        const View view = make_view(
+            FramingSphere{{0, 0, 0}, 1.0},
+            ViewSpec{.azimuth_deg = 17 + el, .elevation_deg = el, .width = 128, .height = 128});
         const Frame a = ri.render(view);
         const Frame b = ru.render(view);
         for (std::size_t p = 0; p < a.pixel_count(); ++p) {
@@ -43,12 +44,14 @@ TEST_P(ScaleSpace, TwoTessellationsOfOneSphereRenderTheSameFrame) {
                 continue;
             }
             ++covered;
-            angles.push_back(angle_deg(pixel_normal(a, p).cast<double>(), pixel_normal(b, p).cast<double>()));
+            angles.push_back(
+                angle_deg(pixel_normal(a, p).cast<double>(), pixel_normal(b, p).cast<double>()));
         }
     }
-    std::printf("[tessellation %s] pixels=%zu median=%.4f° p99=%.4f° max=%.4f° silhouette_diff=%zu\n",
-                to_string(GetParam()).c_str(), covered, quantile(angles, 0.5), quantile(angles, 0.99),
-                quantile(angles, 1.0), silhouette_diff);
+    std::printf(
+        "[tessellation %s] pixels=%zu median=%.4f° p99=%.4f° max=%.4f° silhouette_diff=%zu\n",
+        to_string(GetParam()).c_str(), covered, quantile(angles, 0.5), quantile(angles, 0.99),
+        quantile(angles, 1.0), silhouette_diff);
     EXPECT_GT(covered, 30000u);
     EXPECT_LT(quantile(angles, 0.5), 0.01);
     EXPECT_LT(quantile(angles, 0.99), 0.1);
@@ -107,20 +110,24 @@ TEST_P(ScaleSpace, CoarseFootprintAveragesAwayAFineCorrugation) {
         int height;
         double spread_deg = 0.0;
     };
-    std::vector<Level> levels = {{1.0 / 16, 1, 96, 64}, {0.5, 8, 32, 8}, {2.0, 8, 8, 2}, {3.3, 8, 6, 1}};
+    std::vector<Level> levels = {
+        {1.0 / 16, 1, 96, 64}, {0.5, 8, 32, 8}, {2.0, 8, 8, 2}, {3.3, 8, 6, 1}};
     for (auto& level : levels) {
         Renderer r(mesh, test_options(GetParam(), level.supersample));
-        const View view = make_view(centre, ViewSpec{.azimuth_deg = -90, .elevation_deg = 90,
-                                                     .zoom = ZoomKind::Footprint,
-                                                     .zoom_value = level.footprint_in_wavelengths * kWavelength,
-                                                     .width = level.width, .height = level.height,
-                                                     .up = {0.0, 1.0, 0.0}});  // image x = world x
+        const View view =
+            make_view(centre, ViewSpec{.azimuth_deg = -90,
+                                       .elevation_deg = 90,
+                                       .zoom = ZoomKind::Footprint,
+                                       .zoom_value = level.footprint_in_wavelengths * kWavelength,
+                                       .width = level.width,
+                                       .height = level.height,
+                                       .up = {0.0, 1.0, 0.0}});  // image x = world x
         std::size_t px = 0;
         level.spread_deg = normal_spread_deg(r.render(view), &px);
         EXPECT_EQ(px, static_cast<std::size_t>(level.width * level.height));
         std::printf("[footprint %s] %.4gλ per px, s=%d: RMS spread %.4f° over %zu px\n",
-                    to_string(GetParam()).c_str(), level.footprint_in_wavelengths, level.supersample,
-                    level.spread_deg, px);
+                    to_string(GetParam()).c_str(), level.footprint_in_wavelengths,
+                    level.supersample, level.spread_deg, px);
         expect_no_validation_messages(r);
     }
     EXPECT_GT(levels[0].spread_deg, 8.0);

@@ -24,10 +24,10 @@ std::optional<Vec3d> hit_unit_sphere(const Ray& ray) {
 }
 
 struct SphereStats {
-    std::size_t inner_pixels = 0;     // pixels whose every sub-sample hits the exact sphere
-    std::size_t covered_mismatch = 0; // inner pixels the renderer left uncovered
-    std::vector<double> angle_deg;    // rendered vs analytic normal, inner pixels
-    std::vector<double> depth_err;    // |rendered − analytic| depth, inner pixels
+    std::size_t inner_pixels = 0;      // pixels whose every sub-sample hits the exact sphere
+    std::size_t covered_mismatch = 0;  // inner pixels the renderer left uncovered
+    std::vector<double> angle_deg;     // rendered vs analytic normal, inner pixels
+    std::vector<double> depth_err;     // |rendered − analytic| depth, inner pixels
 };
 
 SphereStats compare_with_sphere(const Frame& f, const View& view, int s) {
@@ -85,7 +85,8 @@ TEST_P(SphereGolden, OrthographicNormalsMatchAnalyticSphere) {
     const Mesh mesh = make_icosphere(5);
     for (const int s : {1, 2}) {
         Renderer renderer(mesh, test_options(GetParam(), s));
-        const View view = make_view(mesh, ViewSpec{.azimuth_deg = 20, .elevation_deg = 30, .width = 128, .height = 128});
+        const View view = make_view(
+            mesh, ViewSpec{.azimuth_deg = 20, .elevation_deg = 30, .width = 128, .height = 128});
         const Frame f = renderer.render(view);
         const SphereStats st = compare_with_sphere(f, view, s);
         // Framing uses the bounding box's sphere (radius √3): the disc is π·(64/(1.05·√3))² ≈ 3.9k px.
@@ -95,10 +96,12 @@ TEST_P(SphereGolden, OrthographicNormalsMatchAnalyticSphere) {
         EXPECT_LT(quantile(st.angle_deg, 0.99), kP99AngleDeg) << "s=" << s;
         EXPECT_LT(quantile(st.angle_deg, 1.0), kMaxAngleDeg) << "s=" << s;
         EXPECT_LT(quantile(st.depth_err, 0.99), kP99DepthError) << "s=" << s;
-        RecordProperty("p99_angle_deg_s" + std::to_string(s), std::to_string(quantile(st.angle_deg, 0.99)));
+        RecordProperty("p99_angle_deg_s" + std::to_string(s),
+                       std::to_string(quantile(st.angle_deg, 0.99)));
         std::printf("[sphere %s s=%d] inner=%zu median=%.4f° p99=%.4f° max=%.4f° depth p99=%.2e\n",
                     to_string(GetParam()).c_str(), s, st.inner_pixels, quantile(st.angle_deg, 0.5),
-                    quantile(st.angle_deg, 0.99), quantile(st.angle_deg, 1.0), quantile(st.depth_err, 0.99));
+                    quantile(st.angle_deg, 0.99), quantile(st.angle_deg, 1.0),
+                    quantile(st.depth_err, 0.99));
         expect_no_validation_messages(renderer);
     }
 }
@@ -106,8 +109,12 @@ TEST_P(SphereGolden, OrthographicNormalsMatchAnalyticSphere) {
 TEST_P(SphereGolden, PerspectiveNormalsMatchAnalyticSphere) {
     const Mesh mesh = make_icosphere(5);
     Renderer renderer(mesh, test_options(GetParam(), 1));
-    const View view = make_view(mesh, ViewSpec{.azimuth_deg = -70, .elevation_deg = -10, .width = 96, .height = 128,
-                                               .projection = Projection::Perspective, .fov_y_rad = 0.6});
+    const View view = make_view(mesh, ViewSpec{.azimuth_deg = -70,
+                                               .elevation_deg = -10,
+                                               .width = 96,
+                                               .height = 128,
+                                               .projection = Projection::Perspective,
+                                               .fov_y_rad = 0.6});
     const Frame f = renderer.render(view);
     const SphereStats st = compare_with_sphere(f, view, 1);
     ASSERT_GT(st.inner_pixels, 1500u);
@@ -115,16 +122,17 @@ TEST_P(SphereGolden, PerspectiveNormalsMatchAnalyticSphere) {
     EXPECT_LT(quantile(st.angle_deg, 0.99), kP99AngleDeg);
     EXPECT_LT(quantile(st.angle_deg, 1.0), kMaxAngleDeg);
     EXPECT_LT(quantile(st.depth_err, 0.99), kP99DepthError);
-    std::printf("[sphere persp %s] inner=%zu p99=%.4f° max=%.4f° depth p99=%.2e\n", to_string(GetParam()).c_str(),
-                st.inner_pixels, quantile(st.angle_deg, 0.99), quantile(st.angle_deg, 1.0),
-                quantile(st.depth_err, 0.99));
+    std::printf("[sphere persp %s] inner=%zu p99=%.4f° max=%.4f° depth p99=%.2e\n",
+                to_string(GetParam()).c_str(), st.inner_pixels, quantile(st.angle_deg, 0.99),
+                quantile(st.angle_deg, 1.0), quantile(st.depth_err, 0.99));
     expect_no_validation_messages(renderer);
 }
 
 TEST_P(SphereGolden, PrimitiveIdNamesTheTriangleThePixelRayHits) {
     const Mesh mesh = make_icosphere(3);
     Renderer renderer(mesh, test_options(GetParam(), 1));
-    const View view = make_view(mesh, ViewSpec{.azimuth_deg = 45, .elevation_deg = 10, .width = 96, .height = 96});
+    const View view = make_view(
+        mesh, ViewSpec{.azimuth_deg = 45, .elevation_deg = 10, .width = 96, .height = 96});
     const Frame f = renderer.render(view);
     std::size_t checked = 0;
     std::size_t outside = 0;

@@ -11,8 +11,9 @@ namespace glint::test {
 
 Mesh make_icosphere(int level, double radius) {
     const double t = (1.0 + std::sqrt(5.0)) / 2.0;
-    std::vector<Vec3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                            {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<Vec3d> p = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                            {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                            {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (auto& v : p) v.normalize();
     std::vector<Triangle> tris = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
                                   {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
@@ -61,7 +62,8 @@ Mesh make_uv_sphere(int rings, double radius) {
         const double theta = pi * i / rings;
         for (int j = 0; j < segments; ++j) {
             const double phi = 2.0 * pi * j / segments;
-            const Vec3d n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            const Vec3d n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta));
             mesh.positions.push_back((radius * n).cast<float>());
             mesh.normals.push_back(n.cast<float>());
         }
@@ -79,11 +81,13 @@ Mesh make_uv_sphere(int rings, double radius) {
             mesh.triangles.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
         }
     }
-    for (int j = 0; j < segments; ++j) mesh.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
+    for (int j = 0; j < segments; ++j)
+        mesh.triangles.push_back({south, at(rings - 1, j + 1), at(rings - 1, j)});
     return mesh;
 }
 
-Mesh make_corrugated_strip(int nx, int ny, double half_x, double half_y, double amplitude, double wavelength) {
+Mesh make_corrugated_strip(int nx, int ny, double half_x, double half_y, double amplitude,
+                           double wavelength) {
     Mesh mesh;
     const double k = 2.0 * std::numbers::pi / wavelength;
     for (int j = 0; j <= ny; ++j) {
@@ -92,7 +96,8 @@ Mesh make_corrugated_strip(int nx, int ny, double half_x, double half_y, double 
             const double y = -half_y + 2.0 * half_y * j / ny;
             const double z = amplitude * std::sin(k * x);
             mesh.positions.push_back(Vec3d(x, y, z).cast<float>());
-            mesh.normals.push_back(Vec3d(-amplitude * k * std::cos(k * x), 0.0, 1.0).normalized().cast<float>());
+            mesh.normals.push_back(
+                Vec3d(-amplitude * k * std::cos(k * x), 0.0, 1.0).normalized().cast<float>());
         }
     }
     auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (nx + 1) + i); };

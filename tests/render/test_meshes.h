@@ -18,7 +18,8 @@ Mesh make_uv_sphere(int rings, double radius = 1.0);
 Mesh make_corrugated_plane(int n, double half, double amplitude, double wavelength);
 
 /// Rectangular patch [-half_x, half_x] × [-half_y, half_y], nx × ny quads, same surface.
-Mesh make_corrugated_strip(int nx, int ny, double half_x, double half_y, double amplitude, double wavelength);
+Mesh make_corrugated_strip(int nx, int ny, double half_x, double half_y, double amplitude,
+                           double wavelength);
 
 /// Bumpy closed surface (sphere with radius 1 + 0.15·sin(5θ)·cos(3φ)), angle-weighted
 /// normals: a mesh with curvature everywhere for backend agreement.

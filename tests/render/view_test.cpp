@@ -15,8 +15,12 @@ constexpr double kEps = 1e-9;  // double arithmetic on unit-sized values
 
 TEST(MakeView, OrthographicFootprintSetsTheImageScale) {
     const FramingSphere sphere{{1, 2, 3}, 5.0};
-    const View v = make_view(sphere, ViewSpec{.azimuth_deg = 30, .elevation_deg = 45, .zoom = ZoomKind::Footprint,
-                                              .zoom_value = 0.02, .width = 200, .height = 100});
+    const View v = make_view(sphere, ViewSpec{.azimuth_deg = 30,
+                                              .elevation_deg = 45,
+                                              .zoom = ZoomKind::Footprint,
+                                              .zoom_value = 0.02,
+                                              .width = 200,
+                                              .height = 100});
     EXPECT_NEAR(v.footprint, 0.02, kEps);
     EXPECT_NEAR(v.camera.footprint_at(1.0), 0.02, kEps);
     EXPECT_NEAR(v.camera.ortho_half_height, 1.0, kEps);
@@ -34,7 +38,10 @@ TEST(MakeView, OrthographicFootprintSetsTheImageScale) {
 TEST(MakeView, FitFramesTheWholeSphere) {
     const FramingSphere sphere{{0, 0, 0}, 2.0};
     for (const Projection proj : {Projection::Orthographic, Projection::Perspective}) {
-        const View v = make_view(sphere, ViewSpec{.azimuth_deg = 10, .elevation_deg = -20, .width = 64, .height = 48,
+        const View v = make_view(sphere, ViewSpec{.azimuth_deg = 10,
+                                                  .elevation_deg = -20,
+                                                  .width = 64,
+                                                  .height = 48,
                                                   .projection = proj});
         // Points on the sphere's outline project inside the image.
         const Camera& cam = v.camera;
@@ -52,16 +59,24 @@ TEST(MakeView, FitFramesTheWholeSphere) {
 
 TEST(MakeView, PerspectiveFootprintHoldsAtTheNearestSurface) {
     const FramingSphere sphere{{0, 0, 0}, 1.0};
-    const View v = make_view(sphere, ViewSpec{.zoom = ZoomKind::Footprint, .zoom_value = 0.005, .width = 256,
-                                              .height = 256, .projection = Projection::Perspective, .fov_y_rad = 0.4});
+    const View v = make_view(sphere, ViewSpec{.zoom = ZoomKind::Footprint,
+                                              .zoom_value = 0.005,
+                                              .width = 256,
+                                              .height = 256,
+                                              .projection = Projection::Perspective,
+                                              .fov_y_rad = 0.4});
     const double distance = (v.camera.eye() - sphere.center).norm();
     EXPECT_NEAR(v.camera.footprint_at(distance - 1.0), 0.005, kEps);
     EXPECT_NEAR(v.footprint, 0.005, kEps);
-    const View d = make_view(sphere, ViewSpec{.zoom = ZoomKind::Distance, .zoom_value = 7.0,
+    const View d = make_view(sphere, ViewSpec{.zoom = ZoomKind::Distance,
+                                              .zoom_value = 7.0,
                                               .projection = Projection::Perspective});
     EXPECT_NEAR((d.camera.eye() - sphere.center).norm(), 7.0, kEps);
-    const View px = make_view(sphere, ViewSpec{.zoom = ZoomKind::DistancePixels, .zoom_value = 100, .width = 200,
-                                               .height = 200, .projection = Projection::Perspective});
+    const View px = make_view(sphere, ViewSpec{.zoom = ZoomKind::DistancePixels,
+                                               .zoom_value = 100,
+                                               .width = 200,
+                                               .height = 200,
+                                               .projection = Projection::Perspective});
     // 100 pixels of the fit footprint 2r/h = 0.01 → 1 unit from the nearest surface.
     EXPECT_NEAR((px.camera.eye() - sphere.center).norm(), 2.0, kEps);
 }
@@ -75,11 +90,15 @@ TEST(MakeView, RejectsInvalidSpecsNamingTheField) {
         EXPECT_NE(std::string(e.what()).find("width = 0"), std::string::npos) << e.what();
     }
     EXPECT_THROW((void)make_view(sphere, ViewSpec{.elevation_deg = 91}), InputError);
-    EXPECT_THROW((void)make_view(sphere, ViewSpec{.zoom = ZoomKind::Footprint, .zoom_value = -1}), InputError);
-    EXPECT_THROW((void)make_view(sphere, ViewSpec{.zoom = ZoomKind::Distance, .zoom_value = 0.5,
+    EXPECT_THROW((void)make_view(sphere, ViewSpec{.zoom = ZoomKind::Footprint, .zoom_value = -1}),
+                 InputError);
+    EXPECT_THROW((void)make_view(sphere, ViewSpec{.zoom = ZoomKind::Distance,
+                                                  .zoom_value = 0.5,
                                                   .projection = Projection::Perspective}),
                  InputError);
-    EXPECT_THROW((void)make_view(sphere, ViewSpec{.zoom = ZoomKind::DistancePixels, .zoom_value = 10}), InputError);
+    EXPECT_THROW(
+        (void)make_view(sphere, ViewSpec{.zoom = ZoomKind::DistancePixels, .zoom_value = 10}),
+        InputError);
     EXPECT_THROW((void)framing_sphere(Mesh{}), InputError);
     EXPECT_THROW((void)parse_projection("fisheye"), InputError);
 }

@@ -15,11 +15,17 @@
 namespace glint {
 namespace {
 
-Mesh condyle() { return make_phantom({.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 5}); }
+Mesh condyle() {
+    return make_phantom(
+        {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 5});
+}
 
 Mesh dented(double radius, double depth) {
     Mesh m = condyle();
-    apply_damage(m, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = radius, .depth = depth}});
+    apply_damage(
+        m,
+        {DamageSpec{
+            .kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = radius, .depth = depth}});
     return m;
 }
 
@@ -42,14 +48,16 @@ std::size_t regions_at(const Mesh& examined, const Calibration& c) {
 
 TEST(Calibrate, OnlyDeformationsLargerThanTheReferentialOneAreFlagged) {
     // Referential: a 0.2 mm dent of 1.5 mm radius.
-    const Calibration c = calibrate(condyle(), dented(1.5, 0.2), analysis_options(),
-                                    CalibrationOptions{.threshold_deg = 3.0, .finest = 0.05, .coarsest = 4.0, .step = 1.5},
-                                    "dent 1.5 mm / 0.2 mm");
+    const Calibration c = calibrate(
+        condyle(), dented(1.5, 0.2), analysis_options(),
+        CalibrationOptions{.threshold_deg = 3.0, .finest = 0.05, .coarsest = 4.0, .step = 1.5},
+        "dent 1.5 mm / 0.2 mm");
     ASSERT_TRUE(c.found);
     // Finer rungs show it, the calibration rung and coarser ones do not.
     ASSERT_GT(c.ladder.size(), 3u);
     EXPECT_GT(c.ladder.front().regions, 0u);
-    std::printf("calibration footprint %.3f mm/px (threshold %.1f deg)\n", c.footprint, c.threshold_deg);
+    std::printf("calibration footprint %.3f mm/px (threshold %.1f deg)\n", c.footprint,
+                c.threshold_deg);
     // Dents on either side of the referential one, scaled by 1.5 in radius and depth (the
     // same shape, so the same slopes, over a larger or smaller footprint): the larger is
     // flagged at the calibrated zoom, the smaller is not — though it is a real, visible
@@ -76,11 +84,14 @@ namespace {
 
 // Regression (issue 16): values of the wrong type threw nlohmann's type_error (exit 4).
 TEST(ReadCalibration, TurnsWrongTypesIntoInputErrors) {
-    for (const std::string text : {R"({"glint_calibration": 1, "found": "yes", "footprint": 1, "threshold_deg": 4})",
-                                   R"({"glint_calibration": 1, "found": true, "footprint": 1, "threshold_deg": "4"})",
-                                   R"({"glint_calibration": 1, "found": true, "footprint": 1})",
-                                   R"({"glint_calibration": 1, "found": true, "footprint": 1, "threshold_deg": 4, "referential": 3})"}) {
-        const auto path = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "calibration_wrong_type.json";
+    for (
+        const std::string text :
+        {R"({"glint_calibration": 1, "found": "yes", "footprint": 1, "threshold_deg": 4})",
+         R"({"glint_calibration": 1, "found": true, "footprint": 1, "threshold_deg": "4"})",
+         R"({"glint_calibration": 1, "found": true, "footprint": 1})",
+         R"({"glint_calibration": 1, "found": true, "footprint": 1, "threshold_deg": 4, "referential": 3})"}) {
+        const auto path =
+            std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "calibration_wrong_type.json";
         std::ofstream(path) << text;
         EXPECT_THROW((void)read_calibration(path), InputError) << text;
     }

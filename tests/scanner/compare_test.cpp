@@ -20,8 +20,12 @@ struct TestFrame {
 
 TEST(CompareFrames, MeasuresAngleSignedDepthAndSilhouette) {
     const double tilt = 10.0 * std::numbers::pi / 180.0;
-    TestFrame ref{{0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0}, {5, 5, 0, 0}, {1, 1, 0, 0}, {7, 8, kNoPrimitive, kNoPrimitive}};
-    TestFrame exa{{0, static_cast<float>(std::sin(tilt)), static_cast<float>(std::cos(tilt)), 0, 0, 0, 0, 0, 1, 0, 0, 0},
+    TestFrame ref{{0, 0, 1, 0, 0, 1, 0, 0, 0, 0, 0, 0},
+                  {5, 5, 0, 0},
+                  {1, 1, 0, 0},
+                  {7, 8, kNoPrimitive, kNoPrimitive}};
+    TestFrame exa{{0, static_cast<float>(std::sin(tilt)), static_cast<float>(std::cos(tilt)), 0, 0,
+                   0, 0, 0, 1, 0, 0, 0},
                   {5.25f, 0, 4, 0},
                   {1, 0, 1, 0},
                   {3, kNoPrimitive, 4, kNoPrimitive}};
@@ -36,14 +40,17 @@ TEST(CompareFrames, MeasuresAngleSignedDepthAndSilhouette) {
     EXPECT_EQ(d.reference_only, 1u);
     EXPECT_EQ(d.examined_only, 1u);
     // Paper metric: |Δ(0.5·n)|·255 averaged over R, G, B, on 8-bit colours.
-    const double expected_rgb = (0.0 + std::abs(std::round(127.5 * std::sin(tilt) + 127.5) - 128.0) +
-                                 std::abs(std::round(127.5 * std::cos(tilt) + 127.5) - 255.0)) / 3.0;
+    const double expected_rgb =
+        (0.0 + std::abs(std::round(127.5 * std::sin(tilt) + 127.5) - 128.0) +
+         std::abs(std::round(127.5 * std::cos(tilt) + 127.5) - 255.0)) /
+        3.0;
     EXPECT_NEAR(d.value[0], expected_rgb, 1e-3);
     EXPECT_TRUE(std::isnan(d.value[3]));
 }
 
 TEST(CompareFrames, PartlyCoveredEdgePixelsAreNotCompared) {
-    TestFrame ref{{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {1, 1, 1, 1}, {1, 0.5f, 1, 1}, {0, 0, 0, 0}};
+    TestFrame ref{
+        {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {1, 1, 1, 1}, {1, 0.5f, 1, 1}, {0, 0, 0, 0}};
     TestFrame exa{{1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0}, {1, 1, 1, 1}, {1, 1, 1, 1}, {0, 0, 0, 0}};
     const DeviationMap d = compare_frames(ref.view(), exa.view());
     EXPECT_EQ(d.compared, 3u);
@@ -53,8 +60,12 @@ TEST(CompareFrames, PartlyCoveredEdgePixelsAreNotCompared) {
 
 TEST(CompareFrames, RejectsFramesOfDifferentSize) {
     TestFrame a{{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {1, 1, 1, 1}, {1, 1, 1, 1}, {0, 0, 0, 0}};
-    FrameView small{1, 1, std::span<const float>(a.normal).first(3), std::span<const std::uint32_t>(a.prim).first(1),
-                    std::span<const float>(a.depth).first(1), std::span<const float>(a.coverage).first(1)};
+    FrameView small{1,
+                    1,
+                    std::span<const float>(a.normal).first(3),
+                    std::span<const std::uint32_t>(a.prim).first(1),
+                    std::span<const float>(a.depth).first(1),
+                    std::span<const float>(a.coverage).first(1)};
     EXPECT_THROW((void)compare_frames(a.view(), small), InputError);
 }
 
@@ -87,7 +98,8 @@ TEST(Metrics, EveryDescriptorIsCompleteAndParsesByName) {
 TEST(Metrics, AngleMetricValuesAreTheComparedAngles) {
     TestFrame ref{{0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {1, 1, 1, 1}, {1, 1, 1, 1}, {0, 0, 0, 0}};
     TestFrame exa{{1, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1}, {1, 1, 1, 1}, {1, 1, 1, 1}, {0, 0, 0, 0}};
-    const DeviationMap d = compare_frames(ref.view(), exa.view(), CompareOptions{}, Metric::AngleDeg);
+    const DeviationMap d =
+        compare_frames(ref.view(), exa.view(), CompareOptions{}, Metric::AngleDeg);
     ASSERT_EQ(d.value.size(), 4u);
     EXPECT_NEAR(d.value[0], 90.0, 1e-4);
     EXPECT_NEAR(d.value[1], 0.0, 1e-4);

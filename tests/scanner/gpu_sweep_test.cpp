@@ -12,8 +12,8 @@
 //   rounded to 2^-k, k ≥ 37 here) where the CPU rounds double sums; measured on lavapipe:
 //   ≤ 1.2e-13 for the means of the metric, ≤ 5e-10 for the signed depth, 0 for the weights.
 // - a view's mean angle: its fixed-point sum has a step of 2^-(54 − log2 pixels) degrees.
-#include "scanner/analysis.h"
 #include "scanner/gpu_sweep.h"
+#include "scanner/analysis.h"
 #include "scanner/sweep.h"
 
 #include "mesh/cancel.h"
@@ -47,7 +47,9 @@ struct Pair {
     Mesh reference = condyle(TessellationScheme::Ico, 4);
     Mesh examined = [] {
         Mesh m = condyle(TessellationScheme::Uv, 40);
-        apply_damage(m, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+        apply_damage(
+            m, {DamageSpec{
+                   .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
         return m;
     }();
 };
@@ -97,19 +99,22 @@ AtlasDifference difference(const ZoomAtlas& a, const ZoomAtlas& b) {
         d.max_ulps = std::max(d.max_ulps, ulps(a.value_max[v], b.value_max[v]));
         d.best_cos_ulps = std::max(d.best_cos_ulps, ulps(a.best_cos[v], b.best_cos[v]));
         d.mean = std::max(d.mean, std::abs(double(a.value_mean[v]) - b.value_mean[v]));
-        d.weight = std::max(d.weight, std::abs(double(a.weight[v]) - b.weight[v]) / std::max(1.0, double(a.weight[v])));
+        d.weight = std::max(d.weight, std::abs(double(a.weight[v]) - b.weight[v]) /
+                                          std::max(1.0, double(a.weight[v])));
         d.missing = std::max(d.missing, std::abs(double(a.missing[v]) - b.missing[v]));
         if (std::isnan(a.depth_mean[v]) != std::isnan(b.depth_mean[v])) {
             d.depth_mean = std::numeric_limits<double>::infinity();
         } else if (!std::isnan(a.depth_mean[v])) {
-            d.depth_mean = std::max(d.depth_mean, std::abs(double(a.depth_mean[v]) - b.depth_mean[v]));
+            d.depth_mean =
+                std::max(d.depth_mean, std::abs(double(a.depth_mean[v]) - b.depth_mean[v]));
         }
     }
     return d;
 }
 
 /// Expects the GPU sweep to equal the read-back sweep within the file's tolerances.
-void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double metric_range, const char* what) {
+void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double metric_range,
+                       const char* what) {
     ASSERT_FALSE(host.on_gpu) << what;
     ASSERT_TRUE(gpu.on_gpu) << what << ": " << gpu.accumulation_note;
     ASSERT_EQ(host.zooms.size(), gpu.zooms.size());
@@ -122,7 +127,8 @@ void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double m
         EXPECT_EQ(h.compared, g.compared) << what << " view " << i;
         EXPECT_EQ(h.reference_only, g.reference_only) << what << " view " << i;
         EXPECT_EQ(h.examined_only, g.examined_only) << what << " view " << i;
-        EXPECT_LE(ulps(float(h.max_angle_deg), float(g.max_angle_deg)), kAngleUlps) << what << " view " << i;
+        EXPECT_LE(ulps(float(h.max_angle_deg), float(g.max_angle_deg)), kAngleUlps)
+            << what << " view " << i;
         EXPECT_NEAR(h.mean_angle_deg, g.mean_angle_deg, 1e-9 * std::max(1.0, h.mean_angle_deg))
             << what << " view " << i;
     }
@@ -130,10 +136,11 @@ void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double m
         const ZoomAtlas& a = host.zooms[z].atlas;
         const ZoomAtlas& b = gpu.zooms[z].atlas;
         const AtlasDifference d = difference(a, b);
-        std::cout << what << " zoom " << z << ": " << a.count.size() << " vertices; differing count " << d.count
-                  << ", best_view " << d.best_view << ", max_view " << d.max_view << ", depth_at_max "
-                  << d.depth_at_max << "; max " << d.max_ulps << " ulp, best_cos " << d.best_cos_ulps
-                  << " ulp; |Δ| mean " << d.mean << ", weight (rel) " << d.weight << ", missing " << d.missing
+        std::cout << what << " zoom " << z << ": " << a.count.size()
+                  << " vertices; differing count " << d.count << ", best_view " << d.best_view
+                  << ", max_view " << d.max_view << ", depth_at_max " << d.depth_at_max << "; max "
+                  << d.max_ulps << " ulp, best_cos " << d.best_cos_ulps << " ulp; |Δ| mean "
+                  << d.mean << ", weight (rel) " << d.weight << ", missing " << d.missing
                   << ", depth_mean " << d.depth_mean << "\n";
         EXPECT_EQ(d.count, 0u) << what;
         EXPECT_EQ(d.best_view, 0u) << what;
@@ -154,10 +161,13 @@ TEST(GpuSweep, GivesTheReadBackAtlasOnADentedPhantom) {
     SweepOptions host = vulkan_options(Accumulation::Host);
     const SweepPlan plan = make_sweep_plan(p.reference, host.plan);
     const SweepResult h = run_sweep(p.reference, p.examined, plan, host);
-    const SweepResult g = run_sweep(p.reference, p.examined, plan, vulkan_options(Accumulation::Gpu));
+    const SweepResult g =
+        run_sweep(p.reference, p.examined, plan, vulkan_options(Accumulation::Gpu));
     expect_same_sweep(h, g, 180.0, "angle, ortho, s=2, 96²");
     // Not trivially equal: the dent deviates, and most of the surface was observed.
-    EXPECT_GT(*std::max_element(g.zooms[0].atlas.value_max.begin(), g.zooms[0].atlas.value_max.end()), 5.0f);
+    EXPECT_GT(
+        *std::max_element(g.zooms[0].atlas.value_max.begin(), g.zooms[0].atlas.value_max.end()),
+        5.0f);
     EXPECT_GT(g.zooms[0].coverage.fraction, 0.8);
 }
 
@@ -170,11 +180,16 @@ SweepPlan perspective_plan(const Mesh& mesh, int size) {
     for (int zoom = 0; zoom < 2; ++zoom) {
         for (double az : {20.0, 140.0, 260.0}) {
             for (double el : {-40.0, 35.0}) {
-                const ViewSpec spec{.azimuth_deg = az, .elevation_deg = el,
+                const ViewSpec spec{.azimuth_deg = az,
+                                    .elevation_deg = el,
                                     .zoom = zoom == 0 ? ZoomKind::Fit : ZoomKind::DistancePixels,
-                                    .zoom_value = 3.0 * size, .width = size, .height = size,
-                                    .projection = Projection::Perspective, .fov_y_rad = 0.6,
-                                    .zoom_index = zoom, .index = index++};
+                                    .zoom_value = 3.0 * size,
+                                    .width = size,
+                                    .height = size,
+                                    .projection = Projection::Perspective,
+                                    .fov_y_rad = 0.6,
+                                    .zoom_index = zoom,
+                                    .index = index++};
                 plan.views.push_back(PlannedView{.view = make_view(mesh, spec)});
             }
         }
@@ -197,7 +212,9 @@ TEST(GpuSweep, GivesTheReadBackAtlasForPerspectiveViewsTheRgbMetricAndACoverageM
     const SweepResult h = run_sweep(p.reference, p.examined, plan, host);
     const SweepResult g = run_sweep(p.reference, p.examined, plan, gpu);
     expect_same_sweep(h, g, 255.0, "rgb, perspective, s=1, two zooms, 80²");
-    EXPECT_GT(*std::max_element(g.zooms[1].atlas.value_max.begin(), g.zooms[1].atlas.value_max.end()), 10.0f);
+    EXPECT_GT(
+        *std::max_element(g.zooms[1].atlas.value_max.begin(), g.zooms[1].atlas.value_max.end()),
+        10.0f);
 }
 
 /// The examined surface without its end beyond x = `cut` (an open mesh): from the side, the
@@ -207,7 +224,8 @@ Mesh cut_off(const Mesh& m, float cut) {
     out.positions = m.positions;
     out.normals = m.normals;
     for (const auto& t : m.triangles)
-        if (m.positions[t[0]].x() < cut && m.positions[t[1]].x() < cut && m.positions[t[2]].x() < cut)
+        if (m.positions[t[0]].x() < cut && m.positions[t[1]].x() < cut &&
+            m.positions[t[2]].x() < cut)
             out.triangles.push_back(t);
     return out;
 }
@@ -226,7 +244,8 @@ TEST(GpuSweep, GivesTheReadBackAtlasWhereTheExaminedSurfaceIsMissing) {
     for (const auto& v : g.views) reference_only += v.reference_only;
     EXPECT_GT(reference_only, 100u);  // the hole shows
     expect_same_sweep(h, g, 180.0, "angle, missing surface, s=3, 96²");
-    EXPECT_GT(*std::max_element(g.zooms[0].atlas.missing.begin(), g.zooms[0].atlas.missing.end()), 0.5f);
+    EXPECT_GT(*std::max_element(g.zooms[0].atlas.missing.begin(), g.zooms[0].atlas.missing.end()),
+              0.5f);
 }
 
 TEST(GpuSweep, DecidesTheSameRegions) {
@@ -270,7 +289,8 @@ TEST(GpuSweep, ReadsFramesBackOnlyWhenPerViewExrsAreWritten) {
     o.exports.output = dir / "without_exr";
     const AnalysisResult without = analyse(p.reference, p.examined, o);
     EXPECT_TRUE(without.sweep.on_gpu) << without.sweep.accumulation_note;
-    EXPECT_EQ(without.decisions[0].regions.region_of_vertex, with_exr.decisions[0].regions.region_of_vertex);
+    EXPECT_EQ(without.decisions[0].regions.region_of_vertex,
+              with_exr.decisions[0].regions.region_of_vertex);
 }
 
 TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {
@@ -305,7 +325,8 @@ TEST(GpuSweep, ObserverSeesEveryViewInOrderWithoutFramesAndCanStopTheSweep) {
     int calls = 0;
     EXPECT_THROW(static_cast<void>(run_sweep(p.reference, p.examined, plan, o,
                                              [&](const PlannedView&, const DeviationMap&) {
-                                                 if (++calls == 3) throw Cancelled("stopped by the test");
+                                                 if (++calls == 3)
+                                                     throw Cancelled("stopped by the test");
                                              })),
                  Cancelled);
     EXPECT_EQ(calls, 3);

@@ -65,7 +65,8 @@ TEST(OutputFolder, RefusesAnExistingFolderUnlessAllowedToReplaceIt) {
         OutputFolder second(dir / "atlas");
         FAIL() << "an existing output folder was accepted";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("exists; give --force"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("exists; give --force"), std::string::npos)
+            << e.what();
     }
     // Nothing was staged beside it.
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);

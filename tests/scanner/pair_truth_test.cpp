@@ -12,7 +12,10 @@ namespace glint {
 namespace {
 
 Mesh sphere(int level) {
-    return make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = level, .radii = {10, 10, 10}});
+    return make_phantom({.kind = PhantomKind::Sphere,
+                         .scheme = TessellationScheme::Ico,
+                         .resolution = level,
+                         .radii = {10, 10, 10}});
 }
 
 DamageSpec dent(const Vec3d& c, double radius, double depth) {
@@ -75,12 +78,13 @@ TEST(PairTruth, BaselineThresholdsTheDistanceIntoComponents) {
     std::vector<float> distance(m.vertex_count(), 0.0f);
     for (std::size_t v = 0; v < m.vertex_count(); ++v) {
         const auto& p = m.positions[v];
-        if (p.z() > 9.0f) distance[v] = -0.3f;   // a cap at the top
-        if (p.z() < -9.0f) distance[v] = 0.3f;   // and one at the bottom
+        if (p.z() > 9.0f) distance[v] = -0.3f;  // a cap at the top
+        if (p.z() < -9.0f) distance[v] = 0.3f;  // and one at the bottom
     }
     const BaselineResult b = distance_baseline(m, distance, 0.1);
     EXPECT_EQ(b.regions, 2u);
-    for (std::size_t v = 0; v < m.vertex_count(); ++v) EXPECT_EQ(b.region_of_vertex[v] != 0, std::abs(distance[v]) > 0.1f);
+    for (std::size_t v = 0; v < m.vertex_count(); ++v)
+        EXPECT_EQ(b.region_of_vertex[v] != 0, std::abs(distance[v]) > 0.1f);
 }
 
 }  // namespace

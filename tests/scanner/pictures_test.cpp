@@ -34,8 +34,10 @@ Rgb pixel(const OIIO::ImageBuf& image, int x, int y) {
 // A sphere seen from +y; distance = x (signed, so +x is a gain, −x a loss); a region on the
 // +z cap; the −z cap unseen.
 struct PaintedSphere {
-    Mesh mesh = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
-    View view = make_view(mesh, ViewSpec{.azimuth_deg = 90, .elevation_deg = 0, .width = 160, .height = 160});
+    Mesh mesh = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    View view = make_view(
+        mesh, ViewSpec{.azimuth_deg = 90, .elevation_deg = 0, .width = 160, .height = 160});
     std::vector<float> distance;
     std::vector<std::int32_t> region;
     std::vector<std::uint8_t> seen;
@@ -49,7 +51,8 @@ struct PaintedSphere {
         }
         Renderer renderer(mesh, RenderOptions{.backend = Backend::Embree, .supersample = 2});
         const Frame frame = renderer.render(view);
-        painted = detail::paint_surface(mesh, frame, view, {distance, region, seen}, {.limit = 1.0});
+        painted =
+            detail::paint_surface(mesh, frame, view, {distance, region, seen}, {.limit = 1.0});
     }
     // The pixel under the surface point in direction (x, y, z) from the centre (radius 10).
     [[nodiscard]] Rgb at(double x, double y, double z) const {
@@ -82,7 +85,8 @@ TEST(SurfacePaint, UnseenIsHatchedGreyAndTheBackgroundIsPlain) {
         row.push_back(c[0]);
     }
     const float brightest = *std::max_element(row.begin(), row.end());
-    const auto stripes = std::count_if(row.begin(), row.end(), [&](float g) { return g < 0.7f * brightest; });
+    const auto stripes =
+        std::count_if(row.begin(), row.end(), [&](float g) { return g < 0.7f * brightest; });
     const auto plain = static_cast<std::ptrdiff_t>(row.size()) - stripes;
     EXPECT_GT(stripes, 2);
     EXPECT_GT(plain, 6);
@@ -113,10 +117,11 @@ TEST(SurfacePaint, RegionsAreOutlinedAndAnchoredInside) {
 TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
     const std::vector<float> v{-2.0f, -1.0f, 0.0f, 1.0f, 2.0f, kNaN};
     const OIIO::ImageBuf img = detail::diverging_image(v, 6, 1, 1.0);
-    const Rgb lo = pixel(img, 0, 0), lo1 = pixel(img, 1, 0), mid = pixel(img, 2, 0), hi = pixel(img, 4, 0);
+    const Rgb lo = pixel(img, 0, 0), lo1 = pixel(img, 1, 0), mid = pixel(img, 2, 0),
+              hi = pixel(img, 4, 0);
     for (int k = 0; k < 3; ++k) {
         EXPECT_FLOAT_EQ(lo[k], lo1[k]);
-        EXPECT_NEAR(mid[k], 247.0f / 255.0f, 1e-4f);  // RdBu's centre
+        EXPECT_NEAR(mid[k], 247.0f / 255.0f, 1e-4f);   // RdBu's centre
         EXPECT_FLOAT_EQ(pixel(img, 5, 0)[k], mid[k]);  // NaN: no change
     }
     EXPECT_NEAR(lo[2], 172.0f / 255.0f, 1e-4f);  // #2166ac
@@ -131,7 +136,8 @@ AnalysisResult result_with(std::vector<double> peaks, double floor) {
     r.decisions[0].rule = DecisionRule::Fused;
     r.decisions[0].shape.value = floor;
     int id = 0;
-    for (double p : peaks) r.decisions[0].regions.regions.push_back(Region{.id = ++id, .peak_depth = p});
+    for (double p : peaks)
+        r.decisions[0].regions.regions.push_back(Region{.id = ++id, .peak_depth = p});
     return r;
 }
 
@@ -142,7 +148,8 @@ TEST(ShapeScale, FollowsTheMedianRegionPeakRoundedUpAndNeverBelowTwiceTheFloor) 
     EXPECT_EQ(shape_scale(result_with({0.05}, 0.04)).source, "twice the shape floor");
     // No region: the 99th percentile of |distance| over seen vertices.
     AnalysisResult r = result_with({}, 0.0);
-    for (int i = 0; i < 1000; ++i) r.distance.push_back(i % 2 ? 0.001f * static_cast<float>(i) : -0.5f);
+    for (int i = 0; i < 1000; ++i)
+        r.distance.push_back(i % 2 ? 0.001f * static_cast<float>(i) : -0.5f);
     r.sweep.zooms[0].coverage.seen.assign(1000, 1);
     r.distance[7] = 100.0f;  // one outlier does not set the range
     EXPECT_DOUBLE_EQ(shape_scale(r).limit, 1.0);
@@ -153,9 +160,12 @@ TEST(Pictures, ASweepWritesAtlasMosaicAndViewsWithTheDentInBlue) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "pictures";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const Mesh ref = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     Mesh exa = ref;
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
     AnalysisOptions options;
     options.fit.mode = FitMode::Identity;
     options.sweep.plan.azimuth_step_deg = 90;
@@ -169,8 +179,10 @@ TEST(Pictures, ASweepWritesAtlasMosaicAndViewsWithTheDentInBlue) {
     ASSERT_GE(best, 0);
     EXPECT_TRUE(fs::exists(dir / "atlas" / "report.html"));
     const std::string best_picture =
-        "views/" + view_file_stem(result.sweep.plan.views[static_cast<std::size_t>(best)].view) + ".png";
-    for (const std::string& f : {std::string("atlas.png"), std::string("mosaic_z0.png"), best_picture}) {
+        "views/" + view_file_stem(result.sweep.plan.views[static_cast<std::size_t>(best)].view) +
+        ".png";
+    for (const std::string& f :
+         {std::string("atlas.png"), std::string("mosaic_z0.png"), best_picture}) {
         OIIO::ImageBuf img((dir / "atlas" / f).string());
         ASSERT_TRUE(img.read()) << f << ": " << img.geterror();
         // The dent shows blue: pixels clearly bluer than red (the legend's bar has some too,

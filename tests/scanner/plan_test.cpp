@@ -18,7 +18,8 @@ Mesh octahedron() {
         m.positions.push_back(c + 10.f * v);
         m.normals.push_back(v);
     }
-    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+    m.triangles = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
+                   {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
     return m;
 }
 
@@ -55,7 +56,8 @@ TEST(SweepPlan, FibonacciSphereIsNearUniform) {
     ASSERT_EQ(plan.views.size(), 200u);
     // Mean direction ~0 for a uniform covering of the sphere.
     Vec3d sum = Vec3d::Zero();
-    for (const auto& v : plan.views) sum += direction_from_az_el(v.view.azimuth_deg, v.view.elevation_deg);
+    for (const auto& v : plan.views)
+        sum += direction_from_az_el(v.view.azimuth_deg, v.view.elevation_deg);
     EXPECT_LT(sum.norm() / 200.0, 0.01);
 }
 

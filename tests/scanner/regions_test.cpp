@@ -1,6 +1,6 @@
+#include "scanner/regions.h"
 #include "scanner/atlas.h"
 #include "scanner/decision.h"
-#include "scanner/regions.h"
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,8 @@ TEST(FindRegions, GroupsConnectedDamageAndMeasuresIt) {
         }
     angle[id(10, 10)] = 9.f;
     const RegionResult r = find_regions(m, at_least(angle, 5.f), seen,
-                                        {.value = &angle, .shape = &distance, .view = &view}, RegionOptions{.min_vertices = 3});
+                                        {.value = &angle, .shape = &distance, .view = &view},
+                                        RegionOptions{.min_vertices = 3});
     ASSERT_EQ(r.regions.size(), 2u);
     EXPECT_EQ(r.dropped_small, 1u);
     EXPECT_EQ(r.damaged_vertices, 9u + 4u + 1u);
@@ -81,14 +82,16 @@ TEST(FindRegions, FillsTheFloorOfARingShapedDent) {
     auto id = [n](int x, int y) { return static_cast<std::size_t>(y * (n + 1) + x); };
     for (int y = 5; y <= 11; ++y)
         for (int x = 5; x <= 11; ++x)
-            if (std::max(std::abs(x - 8), std::abs(y - 8)) >= 2) angle[id(x, y)] = 10.f;  // ring, hole 3×3
+            if (std::max(std::abs(x - 8), std::abs(y - 8)) >= 2)
+                angle[id(x, y)] = 10.f;  // ring, hole 3×3
     const RegionFields fields{.value = &angle};
     const RegionResult filled = find_regions(m, at_least(angle, 5.f), seen, fields);
     ASSERT_EQ(filled.regions.size(), 1u);
     EXPECT_EQ(filled.filled_vertices, 9u);
     EXPECT_EQ(filled.regions[0].vertex_count, 49u);
     EXPECT_EQ(filled.region_of_vertex[id(8, 8)], 1);
-    const RegionResult ring = find_regions(m, at_least(angle, 5.f), seen, fields, RegionOptions{.fill_holes = false});
+    const RegionResult ring =
+        find_regions(m, at_least(angle, 5.f), seen, fields, RegionOptions{.fill_holes = false});
     EXPECT_EQ(ring.regions[0].vertex_count, 40u);
     // An unseen vertex in the hole keeps it open: unseen is never declared damaged.
     seen[id(8, 8)] = 0;
@@ -107,10 +110,25 @@ TEST(FindRegions, UnseenVerticesAreNeverDamaged) {
 TEST(AtlasAccumulator, KeepsMaxMeanCountAndMostFrontalView) {
     const Mesh m = grid(1);  // two triangles, four vertices
     AtlasAccumulator acc(m, 0.1);
-    acc.add({.triangle = 0, .barycentric = {1.f, 0.f, 0.f}, .value = 2.f, .signed_depth = -0.1f, .cos_incidence = 0.5f}, 3);
-    acc.add({.triangle = 0, .barycentric = {0.5f, 0.5f, 0.f}, .value = 6.f, .signed_depth = -0.3f, .cos_incidence = 0.9f}, 4);
+    acc.add({.triangle = 0,
+             .barycentric = {1.f, 0.f, 0.f},
+             .value = 2.f,
+             .signed_depth = -0.1f,
+             .cos_incidence = 0.5f},
+            3);
+    acc.add({.triangle = 0,
+             .barycentric = {0.5f, 0.5f, 0.f},
+             .value = 6.f,
+             .signed_depth = -0.3f,
+             .cos_incidence = 0.9f},
+            4);
     AtlasAccumulator other(m, 0.1);
-    other.add({.triangle = 1, .barycentric = {1.f, 0.f, 0.f}, .value = 4.f, .signed_depth = 0.2f, .cos_incidence = 0.7f}, 5);
+    other.add({.triangle = 1,
+               .barycentric = {1.f, 0.f, 0.f},
+               .value = 4.f,
+               .signed_depth = 0.2f,
+               .cos_incidence = 0.7f},
+              5);
     acc.merge(other);
     const ZoomAtlas a = acc.finish();
     // Vertex 0 is corner 0 of both triangles.
@@ -159,7 +177,8 @@ TEST(FindRegions, KindFollowsThePeakShapeChangeAndMissingSurfaceByMajority) {
         shape[id(x, 7)] = 0.3f;
         missing[id(x, 7)] = 1.f;
     }
-    const RegionResult r = find_regions(m, at_least(angle, 5.f), seen, {.value = &angle, .shape = &shape, .missing = &missing},
+    const RegionResult r = find_regions(m, at_least(angle, 5.f), seen,
+                                        {.value = &angle, .shape = &shape, .missing = &missing},
                                         RegionOptions{.fill_holes = false});
     ASSERT_EQ(r.regions.size(), 2u);
     for (const auto& region : r.regions) {

@@ -10,9 +10,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstring>
-#include <map>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -22,7 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(FillTemplate, ReplacesEveryNameOnceAndNeverScansWhatItInserted) {
-    EXPECT_EQ(fill_template("a @X@ b @Y_2@ c @x@ d@", {{"X", "@Y_2@"}, {"Y_2", "2"}}), "a @Y_2@ b 2 c @x@ d@");
+    EXPECT_EQ(fill_template("a @X@ b @Y_2@ c @x@ d@", {{"X", "@Y_2@"}, {"Y_2", "2"}}),
+              "a @Y_2@ b 2 c @x@ d@");
     EXPECT_EQ(fill_template("e-mail a@b.c and @@", {}), "e-mail a@b.c and @@");
     EXPECT_THROW((void)fill_template("@MISSING@", {{"X", "1"}}), std::logic_error);
 }
@@ -45,7 +46,8 @@ nlohmann::json page_data(const std::string& html) {
 
 // Standard base64 (RFC 4648), as the page's atob() reads it.
 std::string base64_decode(const std::string& text) {
-    static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const std::string alphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     unsigned bits = 0;
     int count = 0;
@@ -76,10 +78,13 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report_html";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const Mesh ref = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     Mesh exa = ref;
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5},
-                       DamageSpec{.kind = DamageKind::Bump, .center = {0, 0, 10}, .radius = 3.0, .depth = 0.4}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5},
+         DamageSpec{.kind = DamageKind::Bump, .center = {0, 0, 10}, .radius = 3.0, .depth = 0.4}});
     AnalysisOptions options;
     options.fit.mode = FitMode::Identity;
     options.sweep.plan.azimuth_step_deg = 90;
@@ -103,7 +108,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
         pos = html.find("</script>", body);
         ASSERT_NE(pos, std::string::npos) << "unclosed <script>";
     }
-    EXPECT_FALSE(std::regex_search(markup, std::regex("<(script|link|img|iframe)\\b[^>]*\\s(src|href)\\s*=")));
+    EXPECT_FALSE(std::regex_search(
+        markup, std::regex("<(script|link|img|iframe)\\b[^>]*\\s(src|href)\\s*=")));
     EXPECT_NE(html.find("REVISION=\"111\""), std::string::npos) << "three.js inlined";
     EXPECT_NE(html.find("THREE.OrbitControls"), std::string::npos) << "OrbitControls inlined";
     EXPECT_NE(html.find("window.glintSelftest"), std::string::npos) << "report.js inlined";
@@ -119,31 +125,39 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_EQ(indices[3 * 5 + 1], ref.triangles[5][1]);
     std::map<std::string, nlohmann::json> fields;
     for (const auto& f : data["fields"]) fields[f["name"]] = f;
-    for (const char* name : {"distance", "angle_mean_z0", "angle_max_z0", "region_z0", "seen_z0", "count_z0"})
+    for (const char* name :
+         {"distance", "angle_mean_z0", "angle_max_z0", "region_z0", "seen_z0", "count_z0"})
         ASSERT_TRUE(fields.count(name)) << name;
     const auto distance = decode<float>(fields["distance"]["values"]);
     ASSERT_EQ(distance.size(), ref.vertex_count());
-    for (std::size_t v = 0; v < distance.size(); v += 97) EXPECT_EQ(distance[v], result.distance[v]);
+    for (std::size_t v = 0; v < distance.size(); v += 97)
+        EXPECT_EQ(distance[v], result.distance[v]);
     const auto region = decode<float>(fields["region_z0"]["values"]);
     for (std::size_t v = 0; v < region.size(); ++v)
         ASSERT_EQ(region[v], static_cast<float>(result.decisions[0].regions.region_of_vertex[v]));
-    EXPECT_EQ(fields["distance"]["range"][0].get<double>(), -fields["distance"]["range"][1].get<double>());
+    EXPECT_EQ(fields["distance"]["range"][0].get<double>(),
+              -fields["distance"]["range"][1].get<double>());
     EXPECT_EQ(data["colormaps"]["diverging"].size(), 27u);
 
     // The pictures: the mosaic and every region's best view, as PNG data URIs.
     ASSERT_EQ(data["images"]["mosaics"].size(), 1u);
-    EXPECT_EQ(data["images"]["mosaics"][0].get<std::string>().rfind("data:image/png;base64,iVBORw0KGgo", 0), 0u);
+    EXPECT_EQ(data["images"]["mosaics"][0].get<std::string>().rfind(
+                  "data:image/png;base64,iVBORw0KGgo", 0),
+              0u);
     ASSERT_EQ(result.decisions[0].regions.regions.size(), 2u);
     for (const auto& r : result.decisions[0].regions.regions)
-        EXPECT_TRUE(data["images"]["best_views"].contains(std::to_string(r.best_view))) << "region " << r.id;
-    EXPECT_FALSE(fs::exists(dir / "atlas" / "views" / "z0_az000.0_el-30.0.png")) << "--no-views writes no view";
+        EXPECT_TRUE(data["images"]["best_views"].contains(std::to_string(r.best_view)))
+            << "region " << r.id;
+    EXPECT_FALSE(fs::exists(dir / "atlas" / "views" / "z0_az000.0_el-30.0.png"))
+        << "--no-views writes no view";
     // Bounded: the libraries (~0.9 MB) plus the data, nothing per view beyond the best ones.
     EXPECT_LT(html.size(), 4'000'000u);
 
     // A mesh above the page's budget is shown decimated: every triangle touching a region kept,
     // the rest collapsed; every vertex shown is an atlas vertex at its place, with its values.
     const std::size_t budget = ref.triangle_count() / 8;
-    const nlohmann::json small = page_data(report_html(ref, result, read_text(dir / "atlas" / "report.json"), {}, budget));
+    const nlohmann::json small =
+        page_data(report_html(ref, result, read_text(dir / "atlas" / "report.json"), {}, budget));
     EXPECT_EQ(small["mesh"]["triangles"].get<std::size_t>(), ref.triangle_count());
     const auto ids = decode<std::uint32_t>(small["mesh"]["vertex_ids"]);
     const auto shown_positions = decode<float>(small["mesh"]["positions"]);
@@ -167,7 +181,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
         is_shown[ids[k]] = 1;
         EXPECT_EQ(shown_positions[3 * k], ref.positions[ids[k]].x());
         EXPECT_EQ(shown_distance[k], result.distance[ids[k]]);
-        EXPECT_EQ(shown_region[k], static_cast<float>(result.decisions[0].regions.region_of_vertex[ids[k]]));
+        EXPECT_EQ(shown_region[k],
+                  static_cast<float>(result.decisions[0].regions.region_of_vertex[ids[k]]));
     }
     for (std::size_t v = 0; v < ref.vertex_count(); ++v)
         if (result.decisions[0].regions.region_of_vertex[v] != 0) {

@@ -26,9 +26,12 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report";
     fs::remove_all(dir);
     fs::create_directories(dir);
-    const Mesh ref = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     Mesh exa = ref;
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
     write_ply(ref, dir / "ref.ply");
 
     AnalysisOptions options;
@@ -42,15 +45,17 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     options.exports.output = dir / "atlas";
     options.exports.command_line = "glint sweep ref.ply exa.ply -o atlas --exr";
     options.exports.write_exr = true;
-    options.exports.inputs.push_back({"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
+    options.exports.inputs.push_back(
+        {"reference", dir / "ref.ply", "", ref.vertex_count(), ref.triangle_count()});
     // A scenario's ground truth rides along into the atlas files, beside glint's own fields.
     std::vector<float> truth(ref.vertex_count());
     for (std::size_t v = 0; v < truth.size(); ++v) truth[v] = static_cast<float>(exa.labels[v]);
     options.exports.extra_scalars.emplace_back("truth_damage", truth);
     const AnalysisResult result = analyse(ref, exa, options);
     EXPECT_EQ(result.output, dir / "atlas");
-    for (const char* f : {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "report.html", "atlas.png", "mosaic_z0.png",
-                          "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
+    for (const char* f :
+         {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "report.html", "atlas.png",
+          "mosaic_z0.png", "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
         EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
 
     const Mesh atlas = load_mesh(dir / "atlas" / "atlas.ply").mesh;
@@ -87,7 +92,8 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     EXPECT_EQ(z["regions"][0]["kind"], "dent");
     // The histogram counts every seen vertex once.
     const auto counts = z["histogram"]["counts"].get<std::vector<std::size_t>>();
-    EXPECT_GT(std::accumulate(counts.begin(), counts.end(), std::size_t{0}), ref.vertex_count() / 2);
+    EXPECT_GT(std::accumulate(counts.begin(), counts.end(), std::size_t{0}),
+              ref.vertex_count() / 2);
     EXPECT_EQ(r["views"].size(), 16u);
     EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);
 }

@@ -148,7 +148,8 @@ TEST(ReadNpyMask, ReadsBooleanVectorAndRejectsOtherFiles) {
 TEST(ReadNpyMask, RefusesLyingLengthsBeforeAllocating) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
     fs::create_directories(dir);
-    auto expect_refused = [&](const std::string& name, const std::string& bytes, const std::string& says) {
+    auto expect_refused = [&](const std::string& name, const std::string& bytes,
+                              const std::string& says) {
         write_file_atomically(dir / name, bytes);
         try {
             (void)read_npy_mask(dir / name);
@@ -158,10 +159,13 @@ TEST(ReadNpyMask, RefusesLyingLengthsBeforeAllocating) {
         }
     };
     // A v2.0 header claiming 4 GiB, in a file of 20 bytes.
-    expect_refused("huge_header.npy", std::string("\x93NUMPY\x02\x00\xff\xff\xff\xff", 12) + "{'descr'", "exceeds the file");
+    expect_refused("huge_header.npy",
+                   std::string("\x93NUMPY\x02\x00\xff\xff\xff\xff", 12) + "{'descr'",
+                   "exceeds the file");
     // A shape of 10^18 values (and one that does not parse) in a file of 128 bytes.
     for (const std::string shape : {"1000000000000000000", "x"}) {
-        std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (" + shape + ",), }";
+        std::string header =
+            "{'descr': '|b1', 'fortran_order': False, 'shape': (" + shape + ",), }";
         header.append(128 - 10 - header.size() - 1, ' ');
         header += '\n';
         std::string file = std::string("\x93NUMPY\x01\x00", 8);

@@ -42,7 +42,9 @@ Zoom zoom0(const AnalysisResult& r) { return {r.sweep.zooms[0], r.decisions[0]};
 TEST(Sweep, RoiRunAgreesWithTheFullRunInsideTheRoi) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = 2.5, .depth = 0.4}});
+    apply_damage(
+        exa, {DamageSpec{
+                 .kind = DamageKind::Dent, .center = {0, -5.2, 4}, .radius = 2.5, .depth = 0.4}});
     const AnalysisOptions full_options = options_with(0.1);
     AnalysisOptions roi_options = full_options;
     roi_options.sweep.plan.roi = parse_roi("sphere:0,-5,4,4");
@@ -55,14 +57,17 @@ TEST(Sweep, RoiRunAgreesWithTheFullRunInsideTheRoi) {
     double worst = 0.0;
     for (std::size_t v = 0; v < ref.vertex_count(); ++v) {
         if (!roi_options.sweep.plan.roi->contains_point(ref.positions[v].cast<double>())) {
-            EXPECT_EQ(p.sweep.coverage.seen[v], 0) << "vertex " << v << " outside the ROI was analysed";
+            EXPECT_EQ(p.sweep.coverage.seen[v], 0)
+                << "vertex " << v << " outside the ROI was analysed";
             continue;
         }
         ++inside;
         if (!f.sweep.coverage.seen[v] || !p.sweep.coverage.seen[v]) continue;
         ++both;
-        worst = std::max(worst, std::abs(double(f.sweep.atlas.value_mean[v]) - p.sweep.atlas.value_mean[v]));
-        agree += (f.decision.regions.region_of_vertex[v] != 0) == (p.decision.regions.region_of_vertex[v] != 0);
+        worst = std::max(
+            worst, std::abs(double(f.sweep.atlas.value_mean[v]) - p.sweep.atlas.value_mean[v]));
+        agree += (f.decision.regions.region_of_vertex[v] != 0) ==
+                 (p.decision.regions.region_of_vertex[v] != 0);
     }
     // The ROI plan keeps the full plan's views that see the ROI and frames them the same way
     // at the same footprint, so the vertices they see get the same observations except those
@@ -75,11 +80,14 @@ TEST(Sweep, RoiRunAgreesWithTheFullRunInsideTheRoi) {
 }
 
 TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
-    const Mesh ref = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     Mesh exa = ref;
     // A dent at the north pole, and a plan that only looks from the equator: the pole is seen
     // at grazing incidence only (beyond the 75° rule).
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 2, .depth = 0.3}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 2, .depth = 0.3}});
     AnalysisOptions o = options_with(0.15);
     o.sweep.plan.elevations_deg = {0};
     o.sweep.plan.azimuth_step_deg = 90;
@@ -100,7 +108,9 @@ TEST(Sweep, WhatNoViewSeesIsReportedUnseenNotUndamaged) {
 TEST(Sweep, ThePapersRgbMetricFindsTheSameDent) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
     const AnalysisOptions angle = options_with(0.12);
     AnalysisOptions rgb = angle;
     rgb.sweep.metric = Metric::RgbAbs;
@@ -126,7 +136,8 @@ Mesh dome(const Mesh& sphere) {
     d.positions = sphere.positions;
     d.normals = sphere.normals;
     for (const auto& t : sphere.triangles) {
-        const float z = sphere.positions[t[0]].z() + sphere.positions[t[1]].z() + sphere.positions[t[2]].z();
+        const float z =
+            sphere.positions[t[0]].z() + sphere.positions[t[1]].z() + sphere.positions[t[2]].z();
         if (z > 0.0f) d.triangles.push_back(t);
     }
     return d;
@@ -137,10 +148,13 @@ TEST(Sweep, TheHiddenSideOfAnOpenMeshIsReportedUnseen) {
     // through the opening, the inner (back) side of its top, which the coverage rule does not
     // count as an observation of the surface. A dent on top must come out unseen, not
     // undamaged (before the rule was signed, the back side counted as seen).
-    const Mesh sphere = make_phantom({.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    const Mesh sphere = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     const Mesh ref = dome(sphere);
     Mesh exa_sphere = sphere;
-    apply_damage(exa_sphere, {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 3, .depth = 0.5}});
+    apply_damage(
+        exa_sphere,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 3, .depth = 0.5}});
     const Mesh exa = dome(exa_sphere);
     AnalysisOptions below = options_with(0.15);
     below.sweep.plan.elevations_deg = {-60, -30};
@@ -169,7 +183,8 @@ TEST(Sweep, TheHiddenSideOfAnOpenMeshIsReportedUnseen) {
 TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
     const Mesh ref = condyle(TessellationScheme::Ico, 5);
     Mesh exa = condyle(TessellationScheme::Uv, 64);
-    const DamageSpec dent{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4};
+    const DamageSpec dent{
+        .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4};
     apply_damage(exa, {dent});
     const AnalysisResult r = analyse(ref, exa, options_with(0.12));
     const auto& regions = r.decisions[0].regions.regions;
@@ -194,7 +209,8 @@ TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
 
 template <typename T>
 bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 // The views stream by bands through the workers and fold by vertex ranges, one per worker
@@ -204,7 +220,9 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 TEST(Sweep, TheAtlasIsTheSameBitForBitWhateverTheNumberOfWorkers) {
     const Mesh ref = condyle(TessellationScheme::Ico, 4);
     Mesh exa = condyle(TessellationScheme::Uv, 40);
-    apply_damage(exa, {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
     for (const Backend backend : {Backend::Embree, Backend::Vulkan}) {
         AnalysisOptions o = options_with(0.2);
         o.sweep.render.backend = backend;
@@ -217,8 +235,8 @@ TEST(Sweep, TheAtlasIsTheSameBitForBitWhateverTheNumberOfWorkers) {
         for (std::size_t z = 0; z < 2; ++z) {
             const ZoomAtlas& a = one.sweep.zooms[z].atlas;
             const ZoomAtlas& b = three.sweep.zooms[z].atlas;
-            const std::string what = std::string(backend == Backend::Embree ? "Embree" : "Vulkan") + " zoom " +
-                                     std::to_string(z);
+            const std::string what = std::string(backend == Backend::Embree ? "Embree" : "Vulkan") +
+                                     " zoom " + std::to_string(z);
             EXPECT_TRUE(same_bits(a.value_max, b.value_max)) << what;
             EXPECT_TRUE(same_bits(a.value_mean, b.value_mean)) << what;
             EXPECT_TRUE(same_bits(a.depth_at_max, b.depth_at_max)) << what;

@@ -36,7 +36,8 @@ TEST(ResolveUnits, ConvertsAnExaminedInAnotherStatedUnit) {
 }
 
 TEST(ResolveUnits, AStatedUnitWinsAndSaysWhatItOverrode) {
-    const UnitResolution r = resolve_units(triangle(10, "m"), triangle(10, ""), {.unit = "millimetres"});
+    const UnitResolution r =
+        resolve_units(triangle(10, "m"), triangle(10, ""), {.unit = "millimetres"});
     EXPECT_EQ(r.unit, "mm");
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_NE(r.warnings[0].find("states unit m"), std::string::npos) << r.warnings[0];
@@ -55,7 +56,8 @@ TEST(ResolveUnits, RefusesSizes1000TimesApartNamingBoth) {
 }
 
 TEST(ResolveUnits, AllowsAMismatchWhenToldAndWarns) {
-    const UnitResolution r = resolve_units(triangle(10, ""), triangle(0.01f, ""), {.allow_scale_mismatch = true});
+    const UnitResolution r =
+        resolve_units(triangle(10, ""), triangle(0.01f, ""), {.allow_scale_mismatch = true});
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_NE(r.warnings[0].find("allowed"), std::string::npos);
 }
@@ -66,7 +68,8 @@ TEST(ResolveUnits, AcceptsAPartialScanWithinTheRatio) {
 }
 
 TEST(ResolveUnits, RefusesAnUnknownUnitName) {
-    EXPECT_THROW((void)resolve_units(triangle(1, ""), triangle(1, ""), {.unit = "furlong"}), OptionError);
+    EXPECT_THROW((void)resolve_units(triangle(1, ""), triangle(1, ""), {.unit = "furlong"}),
+                 OptionError);
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-
 namespace glint {
 namespace {
 
@@ -16,9 +15,12 @@ Mesh ellipsoid_surface(const Vec3d& spacing, double grid_angle_deg) {
     o.center = {40, -10, 25};
     o.radii = {12, 9, 7};
     o.grid.spacing = spacing;
-    o.grid.direction = Eigen::AngleAxisd(grid_angle_deg * M_PI / 180.0, Vec3d(0, 0.6, 0.8)).toRotationMatrix();
+    o.grid.direction =
+        Eigen::AngleAxisd(grid_angle_deg * M_PI / 180.0, Vec3d(0, 0.6, 0.8)).toRotationMatrix();
     const double half = 16.0;
-    for (int d = 0; d < 3; ++d) o.grid.size[static_cast<std::size_t>(d)] = static_cast<std::size_t>(2 * half / spacing[d]) + 1;
+    for (int d = 0; d < 3; ++d)
+        o.grid.size[static_cast<std::size_t>(d)] =
+            static_cast<std::size_t>(2 * half / spacing[d]) + 1;
     o.grid.origin = o.center - o.grid.direction * Vec3d::Constant(half);
     return extract_surface(make_ellipsoid_volume(o), {.iso = 500.0}).mesh;
 }
@@ -42,8 +44,8 @@ TEST(VolumeSweep, SameObjectAtTwoSpacingsGivesNoRegion) {
     ASSERT_EQ(r.decisions.size(), 1u);
     EXPECT_EQ(r.decisions[0].regions.regions.size(), 0u);
     for (const auto& g : r.decisions[0].regions.regions)
-        ADD_FAILURE() << "region: area " << g.area << ", peak depth " << g.peak_depth << ", max " << g.max_value << " at "
-                      << g.centroid.transpose();
+        ADD_FAILURE() << "region: area " << g.area << ", peak depth " << g.peak_depth << ", max "
+                      << g.max_value << " at " << g.centroid.transpose();
     EXPECT_GT(r.sweep.zooms[0].coverage.fraction, 0.9);
     // Same place: the signed distance between the two surfaces stays under a tenth of a mm.
     double worst = 0.0;

@@ -45,7 +45,8 @@ void expect_same_surface(const Mesh& a, const Mesh& b, const std::string& what) 
     ASSERT_EQ(a.vertex_count(), b.vertex_count()) << what;
     ASSERT_EQ(a.triangle_count(), b.triangle_count()) << what;
     double worst = 0.0;
-    for (std::size_t v = 0; v < a.vertex_count(); ++v) worst = std::max(worst, double((a.positions[v] - b.positions[v]).norm()));
+    for (std::size_t v = 0; v < a.vertex_count(); ++v)
+        worst = std::max(worst, double((a.positions[v] - b.positions[v]).norm()));
     // DICOM writes positions as decimal strings of 16 characters; NIfTI stores float32.
     EXPECT_LT(worst, 1e-3) << what << ": largest vertex difference, mm";
 }
@@ -83,7 +84,8 @@ TEST(ReadVolume, DicomSeriesReadsBackInTheRightFrame) {
 }
 
 // The error's message is one line naming the file and containing `says`.
-void expect_input_error(const fs::path& path, const std::string& says, const SurfaceOptions& options = {.iso = 500.0}) {
+void expect_input_error(const fs::path& path, const std::string& says,
+                        const SurfaceOptions& options = {.iso = 500.0}) {
     try {
         (void)load_surface(path, options);
         FAIL() << path << ": no error";
@@ -95,7 +97,9 @@ void expect_input_error(const fs::path& path, const std::string& says, const Sur
     }
 }
 
-void write_text(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+void write_text(const fs::path& p, const std::string& text) {
+    std::ofstream(p, std::ios::binary) << text;
+}
 
 TEST(ReadVolume, RejectsTruncatedRawData) {
     const fs::path dir = fresh_dir("truncated");
@@ -107,8 +111,9 @@ TEST(ReadVolume, RejectsTruncatedRawData) {
 TEST(ReadVolume, RejectsAHeaderThatLiesAboutSizes) {
     const fs::path dir = fresh_dir("lying");
     write_text(dir / "v.raw", std::string(8 * 8 * 8 * 2, '\0'));
-    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 16\nElementType = MET_SHORT\n"
-                              "ElementDataFile = v.raw\n");
+    write_text(dir / "v.mhd",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 16\nElementType = MET_SHORT\n"
+               "ElementDataFile = v.raw\n");
     expect_input_error(dir / "v.mhd", "needs 2048");
 }
 
@@ -116,8 +121,9 @@ TEST(ReadVolume, RejectsAMissingSliceFile) {
     const fs::path dir = fresh_dir("slices");
     for (int k = 1; k <= 3; ++k)
         if (k != 2) write_text(dir / ("s." + std::to_string(k)), std::string(8 * 8 * 2, '\0'));
-    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
-                              "ElementDataFile = s.%d 1 3 1\n");
+    write_text(dir / "v.mhd",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
+               "ElementDataFile = s.%d 1 3 1\n");
     expect_input_error(dir / "v.mhd", "s.2\" is missing");
 }
 
@@ -125,11 +131,13 @@ TEST(ReadVolume, RefusesASlicePatternThatIsNotOneIntegerConversion) {
     // The pattern comes from the file and goes to snprintf: %s or %n there would read or write
     // memory, so anything but one %d is bad input.
     const fs::path dir = fresh_dir("slice_format");
-    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
-                              "ElementDataFile = s.%s%n 1 3 1\n");
+    write_text(dir / "v.mhd",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
+               "ElementDataFile = s.%s%n 1 3 1\n");
     expect_input_error(dir / "v.mhd", "expected a name with one %d");
-    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
-                              "ElementDataFile = s.%d 1 9223372036854775806 1\n");
+    write_text(dir / "v.mhd",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 3\nElementType = MET_SHORT\n"
+               "ElementDataFile = s.%d 1 9223372036854775806 1\n");
     expect_input_error(dir / "v.mhd", "expected 0 to 1000000");
 }
 
@@ -181,7 +189,8 @@ TEST(ReadVolume, RefusesANiftiDatatypeOrDimensionNiftilibWouldPrintAbout) {
     bad = bytes;
     bad[40] = 9;  // dim[0]
     write_text(dir / "dims.nii", bad);
-    expect_input_error(dir / "dims.nii", "expected 1 to 7 dimensions");  // read as swapped: 9 fits neither order
+    expect_input_error(dir / "dims.nii",
+                       "expected 1 to 7 dimensions");  // read as swapped: 9 fits neither order
 }
 
 // A NUL inside a header key made MetaIO loop (a fuzz_mha timeout; the input is the regression
@@ -189,44 +198,56 @@ TEST(ReadVolume, RefusesANiftiDatatypeOrDimensionNiftilibWouldPrintAbout) {
 // refused with its line, before MetaIO reads the file.
 TEST(ReadVolume, RefusesAMetaImageHeaderThatIsNotKeyValueText) {
     const fs::path dir = fresh_dir("header_control_byte");
-    std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
-                         "ElementDataFile = LOCAL\n";
+    std::string header =
+        "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+        "ElementDataFile = LOCAL\n";
     header.insert(header.find("NDims") + 5, std::string("\0entDat\x01", 8));
     write_text(dir / "v.mha", header + std::string(8 * 8 * 8 * 2, '\0'));
     expect_input_error(dir / "v.mha", "MetaImage header line 2 holds the control byte 0x0");
     // A key or a value of a few hundred bytes overran MetaIO's 255-byte fields (libc aborted:
     // fuzz_mha; the seeds regression_long_header_key.mha and regression_long_header_value.mha):
     // lines are refused above 254 bytes, keys that are not identifiers of up to 64 characters.
-    const std::string rest = "DimSize = 8 8 8\nElementType = MET_SHORT\nElementDataFile = LOCAL\n" + std::string(1024, '\0');
-    write_text(dir / "long.mha", "ObjectType = Image\nNDims" + std::string(300, '\xff') + " = 3\n" + rest);
+    const std::string rest = "DimSize = 8 8 8\nElementType = MET_SHORT\nElementDataFile = LOCAL\n" +
+                             std::string(1024, '\0');
+    write_text(dir / "long.mha",
+               "ObjectType = Image\nNDims" + std::string(300, '\xff') + " = 3\n" + rest);
     expect_input_error(dir / "long.mha", "MetaImage header line 2 is 309 bytes long");
-    write_text(dir / "long.mha", "ObjectType = Image" + std::string(240, 'x') + "\nNDims = 3\n" + rest);
+    write_text(dir / "long.mha",
+               "ObjectType = Image" + std::string(240, 'x') + "\nNDims = 3\n" + rest);
     expect_input_error(dir / "long.mha", "MetaImage header line 1 is 258 bytes long");
-    write_text(dir / "key.mha", "ObjectType = Image\nNDims" + std::string(30, '\xff') + " = 3\n" + rest);
+    write_text(dir / "key.mha",
+               "ObjectType = Image\nNDims" + std::string(30, '\xff') + " = 3\n" + rest);
     expect_input_error(dir / "key.mha", "MetaImage header line 2 has the key \"NDims???");
-    write_text(dir / "nodata.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n");
+    write_text(dir / "nodata.mha",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n");
     expect_input_error(dir / "nodata.mha", "no ElementDataFile");
     // MetaIO divided by the step of a data-file value with a space that is no slice pattern
     // (SIGFPE: fuzz_mha; the seed regression_data_file_not_a_pattern.mha).
-    write_text(dir / "pattern.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
-                                    "ElementDataFile = LOCObjectType = Image%\n");
+    write_text(dir / "pattern.mha",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+               "ElementDataFile = LOCObjectType = Image%\n");
     expect_input_error(dir / "pattern.mha", "expected LOCAL, LIST, a file name or a slice pattern");
-    write_text(dir / "pattern.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
-                                    "ElementDataFile = s.%d 1 8 0\n");
+    write_text(dir / "pattern.mha",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+               "ElementDataFile = s.%d 1 8 0\n");
     expect_input_error(dir / "pattern.mha", "step > 0");
     // Binary voxels after ElementDataFile = LOCAL are not header: a clean file still reads.
-    write_text(dir / "ok.mha", "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
-                               "ElementDataFile = LOCAL\n" + std::string(8 * 8 * 8 * 2, '\x01'));
+    write_text(dir / "ok.mha",
+               "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n"
+               "ElementDataFile = LOCAL\n" +
+                   std::string(8 * 8 * 8 * 2, '\x01'));
     EXPECT_EQ(read_volume(dir / "ok.mha").geometry.voxel_count(), 512u);
 }
 
 TEST(ReadVolume, RefusesAZeroSpacingOrASingularDirection) {
     const fs::path dir = fresh_dir("bad_geometry");
     write_text(dir / "v.raw", std::string(8 * 8 * 8 * 2, '\0'));
-    const std::string header = "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n";
+    const std::string header =
+        "ObjectType = Image\nNDims = 3\nDimSize = 8 8 8\nElementType = MET_SHORT\n";
     write_text(dir / "zero.mhd", header + "ElementSpacing = 0 1 1\nElementDataFile = v.raw\n");
     expect_input_error(dir / "zero.mhd", "a spacing other than 0");
-    write_text(dir / "flat.mhd", header + "TransformMatrix = 1 0 0 1 0 0 0 0 1\nElementDataFile = v.raw\n");
+    write_text(dir / "flat.mhd",
+               header + "TransformMatrix = 1 0 0 1 0 0 0 0 1\nElementDataFile = v.raw\n");
     expect_input_error(dir / "flat.mhd", "expected finite axes that span 3D");
 }
 
@@ -234,8 +255,10 @@ TEST(ReadVolume, RefusesAZeroSpacingOrASingularDirection) {
 // fuzz_nii findings: ITK tried to allocate 600 GB); refused before anything is allocated.
 TEST(ReadVolume, RefusesMoreVoxelsThanTheFileOrTheBudgetHolds) {
     const fs::path dir = fresh_dir("budget");
-    write_text(dir / "big.mha", "ObjectType = Image\nNDims = 3\nDimSize = 1000 1000 1000\nElementType = MET_SHORT\n"
-                                "ElementDataFile = LOCAL\n" + std::string(64, '\0'));
+    write_text(dir / "big.mha",
+               "ObjectType = Image\nNDims = 3\nDimSize = 1000 1000 1000\nElementType = MET_SHORT\n"
+               "ElementDataFile = LOCAL\n" +
+                   std::string(64, '\0'));
     expect_input_error(dir / "big.mha", "-byte file \"big.mha\" can hold");
     write_volume(small_volume(), dir / "v.nii.gz");
     EXPECT_NO_THROW((void)read_volume(dir / "v.nii.gz"));
@@ -243,7 +266,8 @@ TEST(ReadVolume, RefusesMoreVoxelsThanTheFileOrTheBudgetHolds) {
         (void)read_volume(dir / "v.nii.gz", 100);
         ADD_FAILURE() << "read past the voxel budget";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("more than the limit 100"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("more than the limit 100"), std::string::npos)
+            << e.what();
     }
 }
 
@@ -251,23 +275,28 @@ TEST(ReadVolume, RefusesMoreVoxelsThanTheFileOrTheBudgetHolds) {
 // timeout): NDims is refused first.
 TEST(ReadVolume, RefusesAMetaImageNDimsThatIsNotASmallInteger) {
     const fs::path dir = fresh_dir("ndims");
-    write_text(dir / "v.mha", "ObjectType = Image\nNDims = = -3\nDimSize = 6 6 4\nElementType = MET_SHORT\n"
-                              "ElementDataFile = LOCAL\n" + std::string(288, '\0'));
+    write_text(dir / "v.mha",
+               "ObjectType = Image\nNDims = = -3\nDimSize = 6 6 4\nElementType = MET_SHORT\n"
+               "ElementDataFile = LOCAL\n" +
+                   std::string(288, '\0'));
     expect_input_error(dir / "v.mha", "NDims = \"= -3\", expected an integer from 1 to 4");
 }
 
 TEST(ReadVolume, RejectsA2DImage) {
     const fs::path dir = fresh_dir("image2d");
     write_text(dir / "v.raw", std::string(8 * 8 * 2, '\0'));
-    write_text(dir / "v.mhd", "ObjectType = Image\nNDims = 2\nDimSize = 8 8\nElementType = MET_SHORT\nElementDataFile = v.raw\n");
+    write_text(
+        dir / "v.mhd",
+        "ObjectType = Image\nNDims = 2\nDimSize = 8 8\nElementType = MET_SHORT\nElementDataFile = v.raw\n");
     expect_input_error(dir / "v.mhd", "2D image");
 }
 
 TEST(ReadVolume, RejectsA4DImage) {
     const fs::path dir = fresh_dir("image4d");
     write_text(dir / "v.raw", std::string(8 * 8 * 8 * 3 * 2, '\0'));
-    write_text(dir / "v.mhd",
-               "ObjectType = Image\nNDims = 4\nDimSize = 8 8 8 3\nElementType = MET_SHORT\nElementDataFile = v.raw\n");
+    write_text(
+        dir / "v.mhd",
+        "ObjectType = Image\nNDims = 4\nDimSize = 8 8 8 3\nElementType = MET_SHORT\nElementDataFile = v.raw\n");
     expect_input_error(dir / "v.mhd", "4D image");
 }
 
@@ -291,8 +320,10 @@ TEST(LoadSurface, IsoOutsideTheRangeNamesTheFile) {
 }
 
 TEST(LoadSurface, SurfaceOptionsOnAMeshFileAreAnError) {
-    EXPECT_THROW((void)load_surface(fs::path(GLINT_TEST_DATA_DIR) / "cube.obj", {.iso = 1.0}), InputError);
-    EXPECT_EQ(load_surface(fs::path(GLINT_TEST_DATA_DIR) / "cube.obj", {}).mesh.triangle_count(), 12u);
+    EXPECT_THROW((void)load_surface(fs::path(GLINT_TEST_DATA_DIR) / "cube.obj", {.iso = 1.0}),
+                 InputError);
+    EXPECT_EQ(load_surface(fs::path(GLINT_TEST_DATA_DIR) / "cube.obj", {}).mesh.triangle_count(),
+              12u);
 }
 
 TEST(ReadVolume, MissingFileIsBadInput) {

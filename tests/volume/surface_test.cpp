@@ -20,10 +20,13 @@ EllipsoidVolumeOptions rotated_grid_ellipsoid(Vec3d spacing = {0.8, 1.0, 1.5}) {
     o.center = {3, -2, 5};
     o.radii = {12, 9, 7};
     o.grid.spacing = spacing;
-    o.grid.direction = Eigen::AngleAxisd(30.0 * M_PI / 180.0, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+    o.grid.direction =
+        Eigen::AngleAxisd(30.0 * M_PI / 180.0, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
     // A box of 34 mm around the centre, in grid axes.
     const double half = 17.0;
-    for (int d = 0; d < 3; ++d) o.grid.size[static_cast<std::size_t>(d)] = static_cast<std::size_t>(2 * half / spacing[d]) + 1;
+    for (int d = 0; d < 3; ++d)
+        o.grid.size[static_cast<std::size_t>(d)] =
+            static_cast<std::size_t>(2 * half / spacing[d]) + 1;
     o.grid.origin = o.center - o.grid.direction * Vec3d::Constant(half);
     return o;
 }
@@ -59,7 +62,8 @@ TEST(ExtractSurface, LeftHandedDirectionKeepsNormalsOutward) {
     const ExtractedSurface s = extract_surface(make_ellipsoid_volume(o), {.iso = 500.0});
     std::size_t outward = 0;
     for (std::size_t v = 0; v < s.mesh.vertex_count(); ++v)
-        if (s.mesh.normals[v].cast<double>().dot(s.mesh.positions[v].cast<double>() - o.center) > 0) ++outward;
+        if (s.mesh.normals[v].cast<double>().dot(s.mesh.positions[v].cast<double>() - o.center) > 0)
+            ++outward;
     EXPECT_EQ(outward, s.mesh.vertex_count());
 }
 
@@ -74,7 +78,8 @@ Volume two_blobs() {
     b.center = {45, 15, 15};
     b.radii = {5, 5, 5};
     const Volume w = make_ellipsoid_volume(b);
-    for (std::size_t n = 0; n < v.voxels.size(); ++n) v.voxels[n] = std::max(v.voxels[n], w.voxels[n]);
+    for (std::size_t n = 0; n < v.voxels.size(); ++n)
+        v.voxels[n] = std::max(v.voxels[n], w.voxels[n]);
     return v;
 }
 
@@ -96,7 +101,8 @@ TEST(ExtractSurface, RoiKeepsOnlyTrianglesInside) {
     SurfaceOptions o{.iso = 500.0};
     o.roi = parse_roi("sphere:45,15,15,8");
     const ExtractedSurface s = extract_surface(v, o);
-    for (const auto& p : s.mesh.positions) EXPECT_LE((p.cast<double>() - Vec3d(45, 15, 15)).norm(), 8.0 + 1e-4);
+    for (const auto& p : s.mesh.positions)
+        EXPECT_LE((p.cast<double>() - Vec3d(45, 15, 15)).norm(), 8.0 + 1e-4);
     EXPECT_LT(s.report.cropped[0], v.geometry.size[0]);
 }
 
@@ -105,10 +111,12 @@ TEST(ExtractSurface, SmoothingDoesNotShrinkAndDecimationStaysWithinTolerance) {
     const Volume v = make_ellipsoid_volume(o);
     const ExtractedSurface plain = extract_surface(v, {.iso = 500.0});
     const ExtractedSurface smooth = extract_surface(v, {.iso = 500.0, .smooth_iterations = 20});
-    const ExtractedSurface coarse = extract_surface(v, {.iso = 500.0, .edge_mm = 2.0, .tolerance_mm = 0.1});
+    const ExtractedSurface coarse =
+        extract_surface(v, {.iso = 500.0, .edge_mm = 2.0, .tolerance_mm = 0.1});
     auto mean_distance = [&](const Mesh& m) {
         double sum = 0.0;
-        for (const auto& p : m.positions) sum += ellipsoid_signed_distance(p.cast<double>(), o.center, o.radii);
+        for (const auto& p : m.positions)
+            sum += ellipsoid_signed_distance(p.cast<double>(), o.center, o.radii);
         return sum / double(m.vertex_count());
     };
     // Windowed sinc does not shrink: the mean signed distance stays within 0.05 mm of 0
@@ -117,7 +125,8 @@ TEST(ExtractSurface, SmoothingDoesNotShrinkAndDecimationStaysWithinTolerance) {
     EXPECT_LT(coarse.report.triangles, plain.report.triangles / 2);
     EXPECT_LE(coarse.report.decimation_error_mm, 0.1);
     for (const auto& p : coarse.mesh.positions)
-        EXPECT_LT(std::abs(ellipsoid_signed_distance(p.cast<double>(), o.center, o.radii)), 0.1 + 0.1);
+        EXPECT_LT(std::abs(ellipsoid_signed_distance(p.cast<double>(), o.center, o.radii)),
+                  0.1 + 0.1);
 }
 
 TEST(ExtractSurface, IsoOutsideTheDataRangeSaysTheRange) {
@@ -147,7 +156,8 @@ TEST(ExtractSurface, EmptyResultSaysSo) {
 TEST(ExtractSurface, RejectsBadOptions) {
     const Volume v = two_blobs();
     EXPECT_THROW((void)extract_surface(v, {}), OptionError);
-    EXPECT_THROW((void)extract_surface(v, {.iso = 500.0, .largest = true, .seed = Vec3d(1, 2, 3)}), OptionError);
+    EXPECT_THROW((void)extract_surface(v, {.iso = 500.0, .largest = true, .seed = Vec3d(1, 2, 3)}),
+                 OptionError);
     EXPECT_THROW((void)extract_surface(v, {.iso = 500.0, .passband = 3.0}), OptionError);
 }
 

@@ -5,11 +5,11 @@
 #include "mesh/error.h"
 #include "volume/detail/itk_io.h"
 
+#include <gdcmTrace.h>
 #include <itkGDCMImageIO.h>
 #include <itkImage.h>
 #include <itkImageFileWriter.h>
 #include <itkMetaDataObject.h>
-#include <gdcmTrace.h>
 
 #include <algorithm>
 #include <cmath>
@@ -50,7 +50,8 @@ ShortSlice::Pointer slice_image(const RawVolume& v, std::size_t k) {
     short* out = image->GetBufferPointer();
     const std::size_t n = v.size[0] * v.size[1];
     const float* in = v.voxels.data() + k * n;
-    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<short>(std::clamp(std::lround(in[i]), -32768L, 32767L));
+    for (std::size_t i = 0; i < n; ++i)
+        out[i] = static_cast<short>(std::clamp(std::lround(in[i]), -32768L, 32767L));
     return image;
 }
 
@@ -67,7 +68,9 @@ void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
         const ShortSlice::Pointer slice = slice_image(v, k);
         // note: ImageFileWriter hands the image's dictionary to the ImageIO.
         itk::MetaDataDictionary& dict = slice->GetMetaDataDictionary();
-        auto set = [&](const char* tag, const std::string& value) { itk::EncapsulateMetaData<std::string>(dict, tag, value); };
+        auto set = [&](const char* tag, const std::string& value) {
+            itk::EncapsulateMetaData<std::string>(dict, tag, value);
+        };
         set("0008|0016", "1.2.840.10008.5.1.4.1.1.2");  // CT Image Storage
         set("0008|0018", new_uid(rng));
         set("0008|0060", "CT");
@@ -86,7 +89,8 @@ void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
         try {
             writer->Update();
         } catch (const itk::ExceptionObject& e) {
-            throw IoError("DICOM folder \"" + folder.string() + "\": cannot write " + name + ": " + e.GetDescription());
+            throw IoError("DICOM folder \"" + folder.string() + "\": cannot write " + name + ": " +
+                          e.GetDescription());
         }
     }
 }

@@ -4,6 +4,7 @@
 
 #include "mesh/error.h"
 
+#include <gdcmTrace.h>
 #include <itkGDCMImageIO.h>
 #include <itkGDCMSeriesFileNames.h>
 #include <itkImage.h>
@@ -13,7 +14,6 @@
 #include <itkMetaImageIO.h>
 #include <itkNiftiImageIO.h>
 #include <itkNrrdImageIO.h>
-#include <gdcmTrace.h>
 #include <nifti1_io.h>
 #include <zlib.h>
 
@@ -42,8 +42,10 @@ namespace {
 using FloatImage = itk::Image<float, 3>;
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
-               return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    return s.size() >= suffix.size() &&
+           std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) {
+               return std::tolower(static_cast<unsigned char>(a)) ==
+                      std::tolower(static_cast<unsigned char>(b));
            });
 }
 
@@ -54,7 +56,9 @@ std::string one_line(const itk::ExceptionObject& e) {
     std::string text = e.GetDescription();
     std::replace(text.begin(), text.end(), '\n', ' ');
     std::replace(text.begin(), text.end(), '\r', ' ');
-    text.erase(std::unique(text.begin(), text.end(), [](char a, char b) { return a == ' ' && b == ' '; }), text.end());
+    text.erase(
+        std::unique(text.begin(), text.end(), [](char a, char b) { return a == ' ' && b == ' '; }),
+        text.end());
     while (!text.empty() && text.back() == ' ') text.pop_back();
     return text;
 }
@@ -67,13 +71,16 @@ itk::ImageIOBase::Pointer image_io_for(const fs::path& path) {
     if (format == "nifti") return itk::NiftiImageIO::New().GetPointer();
     if (format == "nrrd") return itk::NrrdImageIO::New().GetPointer();
     if (format == "dicom") return itk::GDCMImageIO::New().GetPointer();
-    throw InputError(quoted(path) + ": unknown volume format, expected .mhd .mha .nii .nii.gz .nrrd .nhdr .dcm or a "
-                                    "DICOM folder");
+    throw InputError(
+        quoted(path) +
+        ": unknown volume format, expected .mhd .mha .nii .nii.gz .nrrd .nhdr .dcm or a "
+        "DICOM folder");
 }
 
 std::string size_text(const itk::ImageIOBase& io) {
     std::ostringstream s;
-    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d) s << (d ? " x " : "") << io.GetDimensions(d);
+    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d)
+        s << (d ? " x " : "") << io.GetDimensions(d);
     return s.str();
 }
 
@@ -100,7 +107,8 @@ void check_direction(const Matrix3& m, const fs::path& path) {
     if (!(std::abs(det) > 1e-6)) {
         std::ostringstream text;
         text << quoted(path) << ": direction matrix [";
-        for (std::size_t r = 0; r < 3; ++r) text << (r ? "; " : "") << m[r][0] << " " << m[r][1] << " " << m[r][2];
+        for (std::size_t r = 0; r < 3; ++r)
+            text << (r ? "; " : "") << m[r][0] << " " << m[r][1] << " " << m[r][2];
         text << "], expected finite axes that span 3D";
         throw InputError(text.str());
     }
@@ -110,7 +118,9 @@ void check_direction(const Matrix3& m, const fs::path& path) {
 // zero or a normal float. note: subnormal entries (|x| < 1.2e-38) send ITK's float SVD of a
 // NIfTI orientation into an endless loop (a fuzz_nii finding); 1e-30 keeps well clear of them
 // while a rounded rotation's "zeros" (~1e-8) stay.
-bool plausible(double x, double limit) { return std::isfinite(x) && std::abs(x) <= limit && (x == 0.0 || std::abs(x) >= 1e-30); }
+bool plausible(double x, double limit) {
+    return std::isfinite(x) && std::abs(x) <= limit && (x == 0.0 || std::abs(x) >= 1e-30);
+}
 
 // note: 1e6 mm for a voxel axis (a kilometre) and 1e9 mm for a position bound what any scan
 // holds; far beyond them ITK's matrix code overflows.
@@ -137,10 +147,12 @@ std::optional<NiftiHeader> read_nifti_header(const fs::path& path) {
     bool swap = false;
     auto integer = [&](std::size_t at, std::size_t bytes) {
         std::uint64_t v = 0;
-        for (std::size_t k = 0; k < bytes; ++k) v |= static_cast<std::uint64_t>(h[at + (swap ? bytes - 1 - k : k)]) << (8 * k);
+        for (std::size_t k = 0; k < bytes; ++k)
+            v |= static_cast<std::uint64_t>(h[at + (swap ? bytes - 1 - k : k)]) << (8 * k);
         if (bytes == 8) return static_cast<std::int64_t>(v);
         const std::uint64_t sign = std::uint64_t{1} << (8 * bytes - 1);
-        return v & sign ? static_cast<std::int64_t>(v) - static_cast<std::int64_t>(sign << 1) : static_cast<std::int64_t>(v);
+        return v & sign ? static_cast<std::int64_t>(v) - static_cast<std::int64_t>(sign << 1)
+                        : static_cast<std::int64_t>(v);
     };
     // note: as niftilib does: 540 in either byte order is NIfTI-2; anything else is read as
     // NIfTI-1 (niftilib goes on past a wrong sizeof_hdr), its byte order told by dim[0].
@@ -179,12 +191,15 @@ std::optional<NiftiHeader> read_nifti_header(const fs::path& path) {
 void check_nifti_header(const fs::path& path) {
     const std::optional<NiftiHeader> n = read_nifti_header(path);
     if (!n) return;
-    static constexpr std::array<std::int32_t, 16> kDatatypes{2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024, 1280, 1536, 1792, 2048, 2304};
+    static constexpr std::array<std::int32_t, 16> kDatatypes{
+        2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024, 1280, 1536, 1792, 2048, 2304};
     if (n->dim0 < 1 || n->dim0 > 7 || n->dim1 < 1)
-        throw InputError(quoted(path) + ": NIfTI dim[0] = " + std::to_string(n->dim0) + ", dim[1] = " + std::to_string(n->dim1) +
+        throw InputError(quoted(path) + ": NIfTI dim[0] = " + std::to_string(n->dim0) +
+                         ", dim[1] = " + std::to_string(n->dim1) +
                          ", expected 1 to 7 dimensions of at least one voxel");
     if (std::find(kDatatypes.begin(), kDatatypes.end(), n->datatype) == kDatatypes.end())
-        throw InputError(quoted(path) + ": NIfTI datatype " + std::to_string(n->datatype) + ", expected one of NIfTI's codes");
+        throw InputError(quoted(path) + ": NIfTI datatype " + std::to_string(n->datatype) +
+                         ", expected one of NIfTI's codes");
     auto refuse = [&](const std::string& field, double value, const std::string& expected) {
         std::ostringstream text;
         text << quoted(path) << ": NIfTI " << field << " = " << value << ", expected " << expected;
@@ -192,17 +207,21 @@ void check_nifti_header(const fs::path& path) {
     };
     for (std::size_t k = 0; k < 3; ++k)
         if (!plausible(n->pixdim[k], kMaxAxisMm) || (n->qform_code > 0 && n->pixdim[k] == 0.0))
-            refuse("pixdim[" + std::to_string(k + 1) + "]", n->pixdim[k], "a spacing other than 0, at most 1e6 mm");
+            refuse("pixdim[" + std::to_string(k + 1) + "]", n->pixdim[k],
+                   "a spacing other than 0, at most 1e6 mm");
     for (std::size_t k = 0; k < 6 && n->qform_code > 0; ++k)
-        if (!(k < 3 ? std::isfinite(n->quatern[k]) && std::abs(n->quatern[k]) <= 1.0 + 1e-5 : plausible(n->quatern[k], kMaxPositionMm)))
-            refuse("qform parameter " + std::to_string(k), n->quatern[k], k < 3 ? "a quaternion component in [-1, 1]" : "a position within 1e9 mm");
+        if (!(k < 3 ? std::isfinite(n->quatern[k]) && std::abs(n->quatern[k]) <= 1.0 + 1e-5
+                    : plausible(n->quatern[k], kMaxPositionMm)))
+            refuse("qform parameter " + std::to_string(k), n->quatern[k],
+                   k < 3 ? "a quaternion component in [-1, 1]" : "a position within 1e9 mm");
     if (n->sform_code <= 0) return;
     Matrix3 m{};
     for (std::size_t r = 0; r < 3; ++r) {
         for (std::size_t c = 0; c < 4; ++c) {
             const double x = n->srow[4 * r + c];
             if (!plausible(x, c < 3 ? kMaxAxisMm : kMaxPositionMm))
-                refuse(std::string("srow_") + "xyz"[r] + "[" + std::to_string(c) + "]", x, "a finite, normal number of plausible size");
+                refuse(std::string("srow_") + "xyz"[r] + "[" + std::to_string(c) + "]", x,
+                       "a finite, normal number of plausible size");
             if (c < 3) m[r][c] = x;
         }
     }
@@ -227,9 +246,10 @@ void check_data_file_value(const fs::path& path, const std::string& value) {
     in >> format >> first >> last >> step;
     const bool parsed = !in.fail() && !(in >> rest);
     if (!parsed || step <= 0 || last < first)
-        throw InputError(quoted(path) + ": ElementDataFile = \"" + printable(value.substr(0, 60)) +
-                         "\", expected LOCAL, LIST, a file name or a slice pattern 'name%d first last step' "
-                         "(first <= last, step > 0)");
+        throw InputError(
+            quoted(path) + ": ElementDataFile = \"" + printable(value.substr(0, 60)) +
+            "\", expected LOCAL, LIST, a file name or a slice pattern 'name%d first last step' "
+            "(first <= last, step > 0)");
 }
 
 // MetaIO trusts its header: it reads every array field with NDims entries, and on a value it
@@ -245,8 +265,8 @@ void check_metaimage_header(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     auto refuse = [&](int n, const std::string& found) {
-        throw InputError(quoted(path) + ": MetaImage header line " + std::to_string(n + 1) + " " + found +
-                         ", expected text lines 'Key = Value' up to ElementDataFile");
+        throw InputError(quoted(path) + ": MetaImage header line " + std::to_string(n + 1) + " " +
+                         found + ", expected text lines 'Key = Value' up to ElementDataFile");
     };
     auto trim = [](std::string t) {
         t.erase(0, t.find_first_not_of(" \t\r"));
@@ -267,12 +287,17 @@ void check_metaimage_header(const fs::path& path) {
         }
         if (trim(line).empty()) continue;
         const auto eq = line.find('=');
-        if (eq == std::string::npos) refuse(n, "has no '=' (\"" + printable(trim(line).substr(0, 40)) + "\")");
+        if (eq == std::string::npos)
+            refuse(n, "has no '=' (\"" + printable(trim(line).substr(0, 40)) + "\")");
         const std::string key = trim(line.substr(0, eq)), value = trim(line.substr(eq + 1));
-        const bool identifier = !key.empty() && key.size() <= kMaxKey && std::all_of(key.begin(), key.end(), [](char c) {
-            return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
-        });
-        if (!identifier) refuse(n, "has the key \"" + printable(key.substr(0, 40)) + (key.size() > 40 ? "...\"" : "\""));
+        const bool identifier =
+            !key.empty() && key.size() <= kMaxKey &&
+            std::all_of(key.begin(), key.end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+            });
+        if (!identifier)
+            refuse(n, "has the key \"" + printable(key.substr(0, 40)) +
+                          (key.size() > 40 ? "...\"" : "\""));
         if (key == "ElementDataFile") {
             check_data_file_value(path, value);
             return;
@@ -281,40 +306,51 @@ void check_metaimage_header(const fs::path& path) {
         int dims = 0;
         const auto r = std::from_chars(value.data(), value.data() + value.size(), dims);
         if (r.ec != std::errc() || r.ptr != value.data() + value.size() || dims < 1 || dims > 4)
-            throw InputError(quoted(path) + ": NDims = \"" + printable(value.substr(0, 40)) + "\", expected an integer from 1 to 4");
+            throw InputError(quoted(path) + ": NDims = \"" + printable(value.substr(0, 40)) +
+                             "\", expected an integer from 1 to 4");
     }
-    throw InputError(quoted(path) + ": no ElementDataFile within the first " + std::to_string(kMaxLines) +
-                     " lines of the MetaImage header, expected 'ElementDataFile = LOCAL' or a file name");
+    throw InputError(
+        quoted(path) + ": no ElementDataFile within the first " + std::to_string(kMaxLines) +
+        " lines of the MetaImage header, expected 'ElementDataFile = LOCAL' or a file name");
 }
 
 // Rejects what is not one scalar 3D volume, before any voxel is read.
 void check_header(const itk::ImageIOBase& io, const fs::path& path) {
     const unsigned dims = io.GetNumberOfDimensions();
-    if (dims == 2) throw InputError(quoted(path) + ": a 2D image (" + size_text(io) + "), expected a 3D volume");
+    if (dims == 2)
+        throw InputError(quoted(path) + ": a 2D image (" + size_text(io) +
+                         "), expected a 3D volume");
     if (dims == 4 && io.GetDimensions(3) != 1)
-        throw InputError(quoted(path) + ": a 4D image (" + size_text(io) + "), expected a 3D volume");
-    if (dims < 2 || dims > 4) throw InputError(quoted(path) + ": a " + std::to_string(dims) + "D image, expected a 3D volume");
+        throw InputError(quoted(path) + ": a 4D image (" + size_text(io) +
+                         "), expected a 3D volume");
+    if (dims < 2 || dims > 4)
+        throw InputError(quoted(path) + ": a " + std::to_string(dims) +
+                         "D image, expected a 3D volume");
     if (io.GetNumberOfComponents() != 1)
         throw InputError(quoted(path) + ": " + std::to_string(io.GetNumberOfComponents()) +
                          " components per voxel, expected a scalar volume");
     for (unsigned d = 0; d < 3; ++d)
         if (io.GetDimensions(d) < 2)
-            throw InputError(quoted(path) + ": size " + size_text(io) + ", expected at least 2 voxels along every axis");
+            throw InputError(quoted(path) + ": size " + size_text(io) +
+                             ", expected at least 2 voxels along every axis");
     // The geometry ITK would hand to the image: a non-finite or singular one makes its matrix
     // code abort the process (vnl), so it is refused here, before the voxels are read.
     Matrix3 direction{};
     for (unsigned d = 0; d < 3; ++d) {
         const double spacing = io.GetSpacing(d), origin = io.GetOrigin(d);
-        if (!plausible(spacing, kMaxAxisMm) || spacing == 0.0 || !plausible(origin, kMaxPositionMm)) {
+        if (!plausible(spacing, kMaxAxisMm) || spacing == 0.0 ||
+            !plausible(origin, kMaxPositionMm)) {
             std::ostringstream text;
-            text << quoted(path) << ": spacing " << spacing << " and origin " << origin << " along axis " << d
+            text << quoted(path) << ": spacing " << spacing << " and origin " << origin
+                 << " along axis " << d
                  << ", expected a spacing other than 0 up to 1e6 mm and an origin within 1e9 mm";
             throw InputError(text.str());
         }
         const auto column = io.GetDirection(d);
         for (unsigned r = 0; r < 3; ++r) {
             direction[r][d] = r < column.size() ? column[r] : 0.0;
-            if (!plausible(direction[r][d], kMaxAxisMm)) direction[r][d] = std::numeric_limits<double>::quiet_NaN();
+            if (!plausible(direction[r][d], kMaxAxisMm))
+                direction[r][d] = std::numeric_limits<double>::quiet_NaN();
         }
     }
     check_direction(direction, path);
@@ -322,32 +358,39 @@ void check_header(const itk::ImageIOBase& io, const fs::path& path) {
 
 // A file pattern "CThead.%d 1 113 1" (printf pattern, first, last, step): one file per slice,
 // each exactly one slice of bytes (MetaIO would read a missing slice as nothing and go on).
-void require_slice_files(const itk::ImageIOBase& io, const fs::path& header, const std::string& pattern) {
+void require_slice_files(const itk::ImageIOBase& io, const fs::path& header,
+                         const std::string& pattern) {
     std::istringstream in(pattern);
     std::string format;
     long first = 0, last = 0, step = 1;
     in >> format >> first >> last >> step;
-    if (!in || step <= 0 || last < first) return;  // not a pattern MetaIO reads either: let it say so
+    if (!in || step <= 0 || last < first)
+        return;  // not a pattern MetaIO reads either: let it say so
     // note: the pattern comes from the file: only one integer conversion (%d, %03d, …) may
     // reach snprintf, anything else (%s, %n, two conversions) is refused as bad input.
     if (!std::regex_match(format, std::regex("[^%]*%0?[0-9]{0,3}d[^%]*")))
-        throw InputError(quoted(header) + ": file pattern \"" + format + "\", expected a name with one %d");
+        throw InputError(quoted(header) + ": file pattern \"" + format +
+                         "\", expected a name with one %d");
     if (io.GetDimensions(2) == 0) return;
-    const auto slice_bytes = static_cast<std::uintmax_t>(io.GetImageSizeInBytes()) / io.GetDimensions(2);
+    const auto slice_bytes =
+        static_cast<std::uintmax_t>(io.GetImageSizeInBytes()) / io.GetDimensions(2);
     if (first < 0 || last > 1'000'000)
-        throw InputError(quoted(header) + ": file pattern \"" + pattern + "\" numbers slices " + std::to_string(first) +
-                         " to " + std::to_string(last) + ", expected 0 to 1000000");
+        throw InputError(quoted(header) + ": file pattern \"" + pattern + "\" numbers slices " +
+                         std::to_string(first) + " to " + std::to_string(last) +
+                         ", expected 0 to 1000000");
     for (long n = first; n <= last; n += step) {
         char name[1024];
         std::snprintf(name, sizeof name, format.c_str(), static_cast<int>(n));
         const fs::path slice = header.parent_path() / name;
         std::error_code ec;
         if (!fs::exists(slice, ec))
-            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" is missing (pattern \"" + pattern + "\")");
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() +
+                             "\" is missing (pattern \"" + pattern + "\")");
         const auto found = fs::file_size(slice, ec);
         if (!ec && found != slice_bytes)
-            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" holds " + std::to_string(found) +
-                             " bytes, one slice needs " + std::to_string(slice_bytes));
+            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" holds " +
+                             std::to_string(found) + " bytes, one slice needs " +
+                             std::to_string(slice_bytes));
     }
 }
 
@@ -371,10 +414,10 @@ void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     const auto found = fs::file_size(data, ec);
     const auto expected = static_cast<std::uintmax_t>(io.GetImageSizeInBytes());
     if (!ec && found != expected)
-        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" holds " + std::to_string(found) +
-                         " bytes, the header (" + size_text(io) + " " +
-                         itk::ImageIOBase::GetComponentTypeAsString(io.GetComponentType()) + ") needs " +
-                         std::to_string(expected));
+        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" holds " +
+                         std::to_string(found) + " bytes, the header (" + size_text(io) + " " +
+                         itk::ImageIOBase::GetComponentTypeAsString(io.GetComponentType()) +
+                         ") needs " + std::to_string(expected));
 }
 
 RawVolume from_itk(const FloatImage& image, std::string format, std::string stored) {
@@ -423,10 +466,12 @@ std::string count_text(long double n) {
 void require_data_fits(const itk::ImageIOBase& io, const fs::path& path, const std::string& format,
                        std::size_t max_voxels) {
     long double voxels = 1.0L;
-    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d) voxels *= static_cast<long double>(io.GetDimensions(d));
+    for (unsigned d = 0; d < io.GetNumberOfDimensions(); ++d)
+        voxels *= static_cast<long double>(io.GetDimensions(d));
     voxels *= static_cast<long double>(io.GetNumberOfComponents());
     if (voxels > static_cast<long double>(max_voxels))
-        throw InputError(quoted(path) + ": size " + size_text(io) + " is " + count_text(voxels) + " voxels, more than the limit " + std::to_string(max_voxels));
+        throw InputError(quoted(path) + ": size " + size_text(io) + " is " + count_text(voxels) +
+                         " voxels, more than the limit " + std::to_string(max_voxels));
     fs::path holder = path;
     bool compressed = false;
     if (format == "nifti") {
@@ -435,30 +480,37 @@ void require_data_fits(const itk::ImageIOBase& io, const fs::path& path, const s
         const std::string encoding = nrrd_field(path, "encoding:");
         compressed = encoding != "raw" && encoding != "";
         const std::string data = nrrd_field(path, "data file:");
-        if (!data.empty() && data.find(' ') == std::string::npos && data != "LIST") holder = path.parent_path() / data;
+        if (!data.empty() && data.find(' ') == std::string::npos && data != "LIST")
+            holder = path.parent_path() / data;
         else if (!data.empty()) return;  // a list or pattern of files: ITK reads it slice by slice
     } else if (auto* meta = dynamic_cast<itk::MetaImageIO*>(const_cast<itk::ImageIOBase*>(&io))) {
         MetaImage* m = meta->GetMetaImagePointer();
         compressed = m->CompressedData();
         const std::string data = m->ElementDataFileName();
-        if (data == "LIST" || data.find(' ') != std::string::npos) return;  // slice files, checked apart
+        if (data == "LIST" || data.find(' ') != std::string::npos)
+            return;  // slice files, checked apart
         if (data != "LOCAL") holder = path.parent_path() / data;
     }
     std::error_code ec;
     const auto available = fs::file_size(holder, ec);
     if (ec) return;  // ITK says the data file is missing
     const long double needed = voxels * static_cast<long double>(io.GetComponentSize());
-    const long double room = static_cast<long double>(available) * (compressed ? kMaxCompressionRatio : 1.0);
+    const long double room =
+        static_cast<long double>(available) * (compressed ? kMaxCompressionRatio : 1.0);
     if (needed > room)
-        throw InputError(quoted(path) + ": size " + size_text(io) + " needs " + count_text(needed) + " bytes of voxels, " + (compressed ? "more than a compressed " : "more than the ") +
-                         std::to_string(available) + "-byte file \"" + holder.filename().string() + "\" can hold");
+        throw InputError(quoted(path) + ": size " + size_text(io) + " needs " + count_text(needed) +
+                         " bytes of voxels, " +
+                         (compressed ? "more than a compressed " : "more than the ") +
+                         std::to_string(available) + "-byte file \"" + holder.filename().string() +
+                         "\" can hold");
 }
 
 RawVolume read_file(const fs::path& path, std::size_t max_voxels) {
     itk::ImageIOBase::Pointer io = image_io_for(path);
     const std::string format = volume_format(path);
     io->SetFileName(path.string());
-    if (!io->CanReadFile(path.string().c_str())) throw InputError(quoted(path) + ": not a readable " + format + " file");
+    if (!io->CanReadFile(path.string().c_str()))
+        throw InputError(quoted(path) + ": not a readable " + format + " file");
     if (format == "nifti") check_nifti_header(path);
     if (format == "metaimage") check_metaimage_header(path);
     io->ReadImageInformation();
@@ -491,16 +543,19 @@ RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
     auto io = itk::GDCMImageIO::New();
     io->SetFileName(files.front());
     io->ReadImageInformation();
-    const long double voxels = static_cast<long double>(io->GetDimensions(0)) * io->GetDimensions(1) * files.size();
+    const long double voxels =
+        static_cast<long double>(io->GetDimensions(0)) * io->GetDimensions(1) * files.size();
     if (voxels > static_cast<long double>(max_voxels))
         throw InputError(quoted(folder) + ": " + std::to_string(files.size()) + " slices of " +
-                         std::to_string(io->GetDimensions(0)) + " x " + std::to_string(io->GetDimensions(1)) +
-                         " voxels, more than the limit " + std::to_string(max_voxels));
+                         std::to_string(io->GetDimensions(0)) + " x " +
+                         std::to_string(io->GetDimensions(1)) + " voxels, more than the limit " +
+                         std::to_string(max_voxels));
     auto reader = itk::ImageSeriesReader<FloatImage>::New();
     reader->SetImageIO(io);
     reader->SetFileNames(files);
     reader->Update();
-    return from_itk(*reader->GetOutput(), "dicom", itk::ImageIOBase::GetComponentTypeAsString(io->GetComponentType()));
+    return from_itk(*reader->GetOutput(), "dicom",
+                    itk::ImageIOBase::GetComponentTypeAsString(io->GetComponentType()));
 }
 
 FloatImage::Pointer to_itk(const RawVolume& v) {
@@ -555,7 +610,8 @@ void itk_write(const RawVolume& volume, const fs::path& path) {
         writer->SetImageIO(image_io_for(path));
         writer->SetFileName(path.string());
         writer->SetInput(to_itk(volume));
-        writer->SetUseCompression(ends_with(path.string(), ".gz") || ends_with(path.string(), ".nhdr"));
+        writer->SetUseCompression(ends_with(path.string(), ".gz") ||
+                                  ends_with(path.string(), ".nhdr"));
         writer->Update();
     } catch (const itk::ExceptionObject& e) {
         throw IoError(quoted(path) + ": cannot write: " + one_line(e));

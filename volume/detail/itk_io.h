@@ -17,7 +17,8 @@ struct RawVolume {
     std::array<std::size_t, 3> size{0, 0, 0};
     std::array<double, 3> spacing{1, 1, 1};
     std::array<double, 3> origin{0, 0, 0};
-    std::array<double, 9> direction{1, 0, 0, 0, 1, 0, 0, 0, 1};  ///< row-major, columns = axes i, j, k
+    std::array<double, 9> direction{1, 0, 0, 0, 1,
+                                    0, 0, 0, 1};  ///< row-major, columns = axes i, j, k
     std::vector<float> voxels;
     std::string format;       ///< metaimage, nifti, nrrd, dicom
     std::string stored_type;  ///< as stored ("short", "float", …)

@@ -26,9 +26,12 @@ namespace {
 VtkSurface run_flying_edges(vtkImageData* image, double iso);
 }  // namespace
 
-std::size_t VtkSurface::triangle_count() const { return poly ? static_cast<std::size_t>(poly->GetNumberOfPolys()) : 0; }
+std::size_t VtkSurface::triangle_count() const {
+    return poly ? static_cast<std::size_t>(poly->GetNumberOfPolys()) : 0;
+}
 
-VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t, 3>, 2>& crop, double iso) {
+VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t, 3>, 2>& crop,
+                   double iso) {
     const VolumeGeometry& g = volume.geometry;
     std::array<std::size_t, 3> n{};
     for (std::size_t d = 0; d < 3; ++d) n[d] = crop[1][d] - crop[0][d] + 1;
@@ -37,7 +40,8 @@ VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t
     // note: index space (spacing 1, origin at the crop's first voxel); the physical mapping,
     // with its direction matrix, is applied afterwards (VTK 9.1's contour filters ignore an
     // image's direction matrix).
-    image->SetOrigin(static_cast<double>(crop[0][0]), static_cast<double>(crop[0][1]), static_cast<double>(crop[0][2]));
+    image->SetOrigin(static_cast<double>(crop[0][0]), static_cast<double>(crop[0][1]),
+                     static_cast<double>(crop[0][2]));
     image->SetSpacing(1, 1, 1);
     auto scalars = vtkSmartPointer<vtkFloatArray>::New();
     const auto count = static_cast<vtkIdType>(n[0] * n[1] * n[2]);
@@ -52,7 +56,8 @@ VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t
     float* dst = scalars->GetPointer(0);
     for (std::size_t k = 0; k < n[2]; ++k)
         for (std::size_t j = 0; j < n[1]; ++j) {
-            const float* src = volume.voxels.data() + g.offset(crop[0][0], crop[0][1] + j, crop[0][2] + k);
+            const float* src =
+                volume.voxels.data() + g.offset(crop[0][0], crop[0][1] + j, crop[0][2] + k);
             std::copy_n(src, n[0], dst + n[0] * (j + n[1] * k));
         }
     image->GetPointData()->SetScalars(scalars);
@@ -76,8 +81,9 @@ VtkSurface run_flying_edges(vtkImageData* image, double iso) {
 void VtkSurface::to_physical(const VolumeGeometry& g) {
     const Eigen::Matrix3d m = g.direction * g.spacing.asDiagonal();
     auto transform = vtkSmartPointer<vtkTransform>::New();
-    double e[16] = {m(0, 0), m(0, 1), m(0, 2), g.origin.x(), m(1, 0), m(1, 1), m(1, 2), g.origin.y(),
-                    m(2, 0), m(2, 1), m(2, 2), g.origin.z(), 0, 0, 0, 1};
+    double e[16] = {
+        m(0, 0), m(0, 1), m(0, 2), g.origin.x(), m(1, 0), m(1, 1), m(1, 2), g.origin.y(),
+        m(2, 0), m(2, 1), m(2, 2), g.origin.z(), 0,       0,       0,       1};
     transform->SetMatrix(e);
     auto filter = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
     filter->SetInputData(poly);
@@ -96,7 +102,8 @@ void VtkSurface::keep_inside(const Roi& roi) {
         filter->SetImplicitFunction(sphere);
     } else {
         auto box = vtkSmartPointer<vtkBox>::New();
-        box->SetBounds(roi.min.x(), roi.max.x(), roi.min.y(), roi.max.y(), roi.min.z(), roi.max.z());
+        box->SetBounds(roi.min.x(), roi.max.x(), roi.min.y(), roi.max.y(), roi.min.z(),
+                       roi.max.z());
         filter->SetImplicitFunction(box);
     }
     filter->SetInputData(poly);
@@ -154,7 +161,8 @@ Mesh VtkSurface::to_mesh(bool flip) const {
                 remap[id] = static_cast<std::uint32_t>(mesh.positions.size());
                 double p[3];
                 points->GetPoint(static_cast<vtkIdType>(id), p);
-                mesh.positions.emplace_back(static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2]));
+                mesh.positions.emplace_back(static_cast<float>(p[0]), static_cast<float>(p[1]),
+                                            static_cast<float>(p[2]));
             }
             t[static_cast<std::size_t>(c)] = remap[id];
         }

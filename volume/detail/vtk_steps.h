@@ -33,6 +33,7 @@ struct VtkSurface {
 
 /// Flying edges on the voxels [crop[0], crop[1]] (inclusive), output in voxel index
 /// coordinates of the whole volume.
-[[nodiscard]] VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t, 3>, 2>& crop, double iso);
+[[nodiscard]] VtkSurface contour(const Volume& volume,
+                                 const std::array<std::array<std::size_t, 3>, 2>& crop, double iso);
 
 }  // namespace glint::detail
