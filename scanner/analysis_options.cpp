@@ -81,7 +81,37 @@ json decision_json(const DecisionOptions& d) {
 
 }  // namespace
 
+AtlasFiles parse_atlas_files(std::string_view list, const std::string& key) {
+    AtlasFiles files{.ply = false, .vtk = false, .vtp = false};
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        const std::string_view name = list.substr(start, comma - start);
+        bool* flag = name == "ply"   ? &files.ply
+                     : name == "vtk" ? &files.vtk
+                     : name == "vtp" ? &files.vtp
+                                     : nullptr;
+        if (flag == nullptr || *flag)
+            throw OptionError(key, "\"" + std::string(list) + "\"",
+                              flag == nullptr ? "expected a comma-separated list of ply, vtk, vtp"
+                                              : "names " + std::string(name) + " twice");
+        *flag = true;
+        start = comma + 1;
+    }
+    return files;
+}
+
+std::string to_string(const AtlasFiles& files) {
+    std::string out;
+    for (const auto& [on, name] :
+         {std::pair{files.ply, "ply"}, {files.vtk, "vtk"}, {files.vtp, "vtp"}})
+        if (on) out += (out.empty() ? "" : ",") + std::string(name);
+    return out;
+}
+
 void ExportOptions::validate() const {
+    if (!atlas_files.ply && !atlas_files.vtk && !atlas_files.vtp)
+        throw OptionError("exports.atlas_files", "none", "expected at least one of ply, vtk, vtp");
     if (mosaic_tile < 16 || mosaic_tile > 1024)
         throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
     std::error_code ec;
@@ -114,6 +144,7 @@ std::string to_json(const AnalysisOptions& o) {
                     {"exports",
                      {{"views", o.exports.write_views},
                       {"exr", o.exports.write_exr},
+                      {"atlas_files", to_string(o.exports.atlas_files)},
                       {"mosaic_tile", o.exports.mosaic_tile}}}};
     return j.dump(2);
 }

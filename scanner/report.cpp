@@ -362,9 +362,10 @@ void write_outputs(const OutputFolder& folder, const Mesh& reference, const Anal
         WriteOptions viewers;
         viewers.cloudcompare_names = true;
         if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
-        write_ply(atlas, folder.file("atlas.ply"), viewers);
-        write_vtk(atlas, folder.file("atlas.vtk"), viewers);
-        write_vtp(atlas, folder.file("atlas.vtp"), viewers);
+        const AtlasFiles& files = options.exports.atlas_files;
+        if (files.ply) write_ply(atlas, folder.file("atlas.ply"), viewers);
+        if (files.vtk) write_vtk(atlas, folder.file("atlas.vtk"), viewers);
+        if (files.vtp) write_vtp(atlas, folder.file("atlas.vtp"), viewers);
     }
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     const std::string json_text = report_json(reference, result, options);

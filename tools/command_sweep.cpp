@@ -33,6 +33,7 @@ struct SweepArgs {
     bool no_views = false;
     bool exr = false;
     bool no_exr = false;  // the default since EXRs became opt-in; accepted for scripts
+    std::string atlas_formats = "ply,vtk,vtp";
     std::string calibration;
     std::string output;
     bool print = false;
@@ -85,6 +86,7 @@ void run(SweepArgs& a) {
     options.exports.replace_existing = a.force;
     options.exports.write_views = !a.no_views;
     options.exports.write_exr = a.exr && !a.no_exr;
+    options.exports.atlas_files = parse_atlas_files(a.atlas_formats, "--atlas-formats");
     options.exports.command_line = global_flags().command_line;
     options.validate();
     if (a.print) {
@@ -134,6 +136,11 @@ void setup(CLI::App& app) {
         "its frames back)");
     cmd->add_flag("--no-exr", a.no_exr, "No per-view EXR files (the default; kept for scripts)")
         ->excludes(exr);
+    cmd->add_option(
+           "--atlas-formats", a.atlas_formats,
+           "Atlas files to write, comma-separated: ply (MeshLab, CloudCompare), vtk (legacy "
+           "ASCII: ParaView, Slicer, CloudCompare), vtp (ParaView, Slicer); default all three")
+        ->capture_default_str();
     cmd->add_option("--calibration", a.calibration,
                     "calibration.json from glint calibrate: its zoom and threshold")
         ->excludes("--zoom")

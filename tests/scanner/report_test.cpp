@@ -5,6 +5,7 @@
 #include "scanner/report.h"
 
 #include "mesh/damage.h"
+#include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/phantom.h"
 #include "mesh/write.h"
@@ -96,6 +97,27 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
               ref.vertex_count() / 2);
     EXPECT_EQ(r["views"].size(), 16u);
     EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);
+}
+
+// --atlas-formats / ExportOptions::atlas_files: a list of the three names, each at most once.
+TEST(AtlasFiles, ParsesAListAndRefusesUnknownRepeatedAndEmpty) {
+    const AtlasFiles two = parse_atlas_files("vtp,ply", "--atlas-formats");
+    EXPECT_TRUE(two.ply);
+    EXPECT_FALSE(two.vtk);
+    EXPECT_TRUE(two.vtp);
+    EXPECT_EQ(to_string(two), "ply,vtp");
+    EXPECT_EQ(to_string(AtlasFiles{}), "ply,vtk,vtp");
+    for (const char* bad : {"ply,stl", "vtk,vtk", "", "ply,", " ply"}) {
+        try {
+            (void)parse_atlas_files(bad, "--atlas-formats");
+            ADD_FAILURE() << "accepted \"" << bad << "\"";
+        } catch (const OptionError& e) {
+            EXPECT_NE(std::string(e.what()).find("--atlas-formats"), std::string::npos) << e.what();
+        }
+    }
+    ExportOptions none;
+    none.atlas_files = AtlasFiles{.ply = false, .vtk = false, .vtp = false};
+    EXPECT_THROW(none.validate(), OptionError);
 }
 
 }  // namespace
