@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace glint {
@@ -52,13 +53,13 @@ std::vector<CoarseHypothesis> hypotheses(const std::vector<Sample>& reference,
 
 }  // namespace
 
-CoarseAlignment coarse_align(const ClosestPointIndex& reference, const ClosestPointIndex& examined,
+CoarseAlignment coarse_align(const ClosestPointIndex& reference, const Mesh& examined,
                              const std::vector<Sample>& samples, const RegistrationOptions& o,
                              double diagonal) {
     RegistrationOptions quick = o;
     quick.samples = std::min(o.samples, 2000);
     quick.symmetric = false;
-    const auto quick_samples = sample_surface(examined.mesh(), quick.samples, o.seed + 3);
+    const auto quick_samples = sample_surface(examined, quick.samples, o.seed + 3);
     CoarseAlignment out;
     // The hypotheses' short runs are independent: one task each (Ceres single-threaded in
     // each), kept in the hypotheses' order.
@@ -122,11 +123,11 @@ CoarseAlignment coarse_align(const Mesh& reference, const Mesh& examined,
     if (reference.triangles.empty() || examined.triangles.empty())
         throw InputError("coarse alignment: both meshes need triangles");
     const ClosestPointIndex ref_index(reference);
-    const ClosestPointIndex exa_index(examined);
-    const double diagonal =
-        std::max(bounds(reference).diagonal(), bounds(exa_index.mesh()).diagonal());
-    const auto samples = detail::sample_surface(exa_index.mesh(), options.samples, options.seed);
-    return detail::coarse_align(ref_index, exa_index, samples, options, diagonal);
+    std::optional<Mesh> with_normals;
+    const Mesh& exam = detail::with_vertex_normals(examined, with_normals);
+    const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
+    const auto samples = detail::sample_surface(exam, options.samples, options.seed);
+    return detail::coarse_align(ref_index, exam, samples, options, diagonal);
 }
 
 }  // namespace glint

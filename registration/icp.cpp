@@ -6,6 +6,7 @@
 #include "registration/detail/icp_core.h"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 namespace glint {
@@ -68,9 +69,13 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
                              " contains no vertex of the reference mesh");
     }
     const ClosestPointIndex ref_index = ClosestPointIndex::borrowing(reference);
-    // The index computes angle-weighted normals when the mesh has none.
-    const ClosestPointIndex exa_index = ClosestPointIndex::borrowing(examined);
-    const Mesh& exam = exa_index.mesh();
+    // The examined samples carry vertex normals (angle-weighted ones computed when the mesh has
+    // none). Its closest-point index only for a symmetric fit, the one that queries it: the
+    // BVH of a 2M-triangle mesh takes about half a second to build.
+    std::optional<Mesh> with_normals;
+    const Mesh& exam = detail::with_vertex_normals(examined, with_normals);
+    std::optional<ClosestPointIndex> exa_index;
+    if (o.symmetric) exa_index.emplace(ClosestPointIndex::borrowing(exam));
     const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
     const auto samples = detail::sample_surface(exam, o.samples, o.seed);
     const auto ref_samples =
@@ -80,12 +85,13 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     Rigid start = o.initial.value_or(Rigid::Identity());
     std::string coarse = o.initial ? "given initial pose" : "identity";
     if (o.coarse && !o.initial) {
-        const CoarseAlignment c = detail::coarse_align(ref_index, exa_index, samples, o, diagonal);
+        const CoarseAlignment c = detail::coarse_align(ref_index, exam, samples, o, diagonal);
         start = c.reference_from_examined;
         coarse = c.description;
     }
-    detail::IcpRun run = detail::run_icp(samples, ref_samples, ref_index, &exa_index, start, o,
-                                         o.max_iterations, diagonal);
+    detail::IcpRun run =
+        detail::run_icp(samples, ref_samples, ref_index, exa_index ? &*exa_index : nullptr, start,
+                        o, o.max_iterations, diagonal);
     run.result.reference_from_examined = run.t;
     run.result.examined_from_reference = run.t.inverse();
     run.result.coarse = coarse;

@@ -9,9 +9,9 @@
 
 namespace glint::detail {
 
-/// See glint::coarse_align; `samples` are the examined samples of the fine fit.
-[[nodiscard]] CoarseAlignment coarse_align(const ClosestPointIndex& reference,
-                                           const ClosestPointIndex& examined,
+/// See glint::coarse_align; `examined` with vertex normals, `samples` the examined samples of
+/// the fine fit.
+[[nodiscard]] CoarseAlignment coarse_align(const ClosestPointIndex& reference, const Mesh& examined,
                                            const std::vector<Sample>& samples,
                                            const RegistrationOptions& options, double diagonal);
 

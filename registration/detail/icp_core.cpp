@@ -1,5 +1,7 @@
 #include "registration/detail/icp_core.h"
 
+#include "mesh/normals.h"
+
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
@@ -15,6 +17,13 @@
 namespace glint::detail {
 
 // Area-uniform samples: a triangle picked with probability ∝ area, a uniform point in it.
+const Mesh& with_vertex_normals(const Mesh& mesh, std::optional<Mesh>& storage) {
+    if (mesh.has_normals()) return mesh;
+    storage = mesh;
+    compute_vertex_normals(*storage);
+    return *storage;
+}
+
 std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t seed) {
     const auto areas = triangle_areas(mesh);
     std::vector<double> cumulative(areas.size());

@@ -8,6 +8,7 @@
 #include "registration/icp.h"
 
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,10 @@ struct Sample {
 
 /// `count` area-uniform samples with interpolated normals (deterministic for a seed).
 [[nodiscard]] std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t seed);
+
+/// `mesh` itself when it has vertex normals, else a copy in `storage` with angle-weighted ones
+/// (as ClosestPointIndex computes them).
+[[nodiscard]] const Mesh& with_vertex_normals(const Mesh& mesh, std::optional<Mesh>& storage);
 
 /// Median of |v|, 0 for an empty vector.
 [[nodiscard]] double median_abs(std::vector<double> v);
