@@ -131,20 +131,13 @@ Vec3d vec3(const std::string& where, const std::string& key, const std::string& 
 
 std::string to_string(DamageKind kind) {
     switch (kind) {
-        case DamageKind::Dent:
-            return "dent";
-        case DamageKind::Bump:
-            return "bump";
-        case DamageKind::Pit:
-            return "pit";
-        case DamageKind::Groove:
-            return "groove";
-        case DamageKind::Flatten:
-            return "flatten";
-        case DamageKind::Erosion:
-            return "erosion";
-        case DamageKind::Noise:
-            return "noise";
+        case DamageKind::Dent: return "dent";
+        case DamageKind::Bump: return "bump";
+        case DamageKind::Pit: return "pit";
+        case DamageKind::Groove: return "groove";
+        case DamageKind::Flatten: return "flatten";
+        case DamageKind::Erosion: return "erosion";
+        case DamageKind::Noise: return "noise";
     }
     return "?";
 }
@@ -197,18 +190,10 @@ void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center,
         if (s >= 1.0) continue;
         double amount = 0.0;
         switch (d.kind) {
-            case DamageKind::Dent:
-                amount = -d.depth * bump_profile(s);
-                break;
-            case DamageKind::Bump:
-                amount = d.depth * bump_profile(s);
-                break;
-            case DamageKind::Pit:
-                amount = -d.depth * pit_profile(s);
-                break;
-            case DamageKind::Groove:
-                amount = -d.depth * bump_profile(s);
-                break;
+            case DamageKind::Dent: amount = -d.depth * bump_profile(s); break;
+            case DamageKind::Bump: amount = d.depth * bump_profile(s); break;
+            case DamageKind::Pit: amount = -d.depth * pit_profile(s); break;
+            case DamageKind::Groove: amount = -d.depth * bump_profile(s); break;
             case DamageKind::Erosion: {
                 // note: noise at ~3 cells per radius gives a rough floor with a few
                 // lumps; 0.3 + 0.7·noise keeps every eroded vertex below the surface.
@@ -227,8 +212,7 @@ void displace(const Mesh& mesh, const DamageSpec& d, const Vec3d& center,
                 disp[v] = move.dot(normal);
                 continue;
             }
-            case DamageKind::Noise:
-                break;
+            case DamageKind::Noise: break;
         }
         disp[v] = amount;
         offset[v] += amount * normal;

@@ -226,15 +226,11 @@ Mesh make_phantom(const PhantomOptions& o) {
         for (const auto& d : s.directions) {
             Vec3d p;
             switch (o.kind) {
-                case PhantomKind::Sphere:
-                    p = o.radii.x() * d;
-                    break;
+                case PhantomKind::Sphere: p = o.radii.x() * d; break;
                 case PhantomKind::Ellipsoid:
                     p = d / (d.array() / o.radii.array()).matrix().norm();
                     break;
-                default:
-                    p = scale * (kCondyleOrigin + condyle_radius(d) * d);
-                    break;
+                default: p = scale * (kCondyleOrigin + condyle_radius(d) * d); break;
             }
             m.positions.push_back(p.cast<float>());
         }
@@ -246,8 +242,7 @@ Mesh make_phantom(const PhantomOptions& o) {
 
 Vec3d phantom_normal(const PhantomOptions& o, const Vec3d& p) {
     switch (o.kind) {
-        case PhantomKind::Sphere:
-            return p.normalized();
+        case PhantomKind::Sphere: return p.normalized();
         case PhantomKind::Ellipsoid:
             return (p.array() / (o.radii.array() * o.radii.array())).matrix().normalized();
         case PhantomKind::Torus: {
@@ -279,14 +274,10 @@ TessellationScheme parse_scheme(const std::string& text) {
 
 std::string to_string(PhantomKind kind) {
     switch (kind) {
-        case PhantomKind::Sphere:
-            return "sphere";
-        case PhantomKind::Ellipsoid:
-            return "ellipsoid";
-        case PhantomKind::Torus:
-            return "torus";
-        case PhantomKind::Condyle:
-            return "condyle";
+        case PhantomKind::Sphere: return "sphere";
+        case PhantomKind::Ellipsoid: return "ellipsoid";
+        case PhantomKind::Torus: return "torus";
+        case PhantomKind::Condyle: return "condyle";
     }
     return "?";
 }

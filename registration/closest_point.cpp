@@ -117,15 +117,9 @@ void finish_query(const ClosestPointIndexData& d, QueryState& s) {
     const auto k = static_cast<std::size_t>(s.feature_index);
     Vec3d pseudo = Vec3d::Zero();
     switch (s.best.feature) {
-        case ClosestFeature::Face:
-            pseudo = d.face_normal(s.best.triangle);
-            break;
-        case ClosestFeature::Edge:
-            pseudo = d.edge_normal(tri[k], tri[(k + 1) % 3]);
-            break;
-        case ClosestFeature::Vertex:
-            pseudo = d.vertex_normal(tri[k]);
-            break;
+        case ClosestFeature::Face: pseudo = d.face_normal(s.best.triangle); break;
+        case ClosestFeature::Edge: pseudo = d.edge_normal(tri[k], tri[(k + 1) % 3]); break;
+        case ClosestFeature::Vertex: pseudo = d.vertex_normal(tri[k]); break;
     }
     const double side = (s.query - s.best.point).dot(pseudo);
     s.best.signed_distance = side < 0 ? -s.best.distance : s.best.distance;

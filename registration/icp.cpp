@@ -21,14 +21,10 @@ RobustLoss parse_loss(const std::string& text) {
 
 std::string to_string(RobustLoss loss) {
     switch (loss) {
-        case RobustLoss::None:
-            return "none";
-        case RobustLoss::Huber:
-            return "huber";
-        case RobustLoss::Cauchy:
-            return "cauchy";
-        case RobustLoss::Tukey:
-            return "tukey";
+        case RobustLoss::None: return "none";
+        case RobustLoss::Huber: return "huber";
+        case RobustLoss::Cauchy: return "cauchy";
+        case RobustLoss::Tukey: return "tukey";
     }
     return "?";
 }

@@ -19,12 +19,9 @@ Backend parse_backend(const std::string& text) {
 
 std::string to_string(Backend backend) {
     switch (backend) {
-        case Backend::Auto:
-            return "auto";
-        case Backend::Vulkan:
-            return "vulkan";
-        case Backend::Embree:
-            return "embree";
+        case Backend::Auto: return "auto";
+        case Backend::Vulkan: return "vulkan";
+        case Backend::Embree: return "embree";
     }
     return "?";
 }

@@ -19,16 +19,11 @@ ShadeMode parse_shade_mode(const std::string& text) {
 
 std::string to_string(ShadeMode mode) {
     switch (mode) {
-        case ShadeMode::Normal:
-            return "normal";
-        case ShadeMode::Reflection:
-            return "reflection";
-        case ShadeMode::Zebra:
-            return "zebra";
-        case ShadeMode::Paper8:
-            return "paper8";
-        case ShadeMode::Depth:
-            return "depth";
+        case ShadeMode::Normal: return "normal";
+        case ShadeMode::Reflection: return "reflection";
+        case ShadeMode::Zebra: return "zebra";
+        case ShadeMode::Paper8: return "paper8";
+        case ShadeMode::Depth: return "depth";
     }
     return "?";
 }

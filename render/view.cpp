@@ -79,9 +79,7 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
             case ZoomKind::Fit:
                 footprint = 2.0 * spec.margin * r / std::min(spec.width, spec.height);
                 break;
-            case ZoomKind::Footprint:
-                footprint = spec.zoom_value;
-                break;
+            case ZoomKind::Footprint: footprint = spec.zoom_value; break;
             case ZoomKind::Distance:
                 if (spec.zoom_value <= r) {
                     throw InputError(field_error("distance", spec.zoom_value,
@@ -89,8 +87,7 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
                 }
                 footprint = 2.0 * (spec.zoom_value - r) * tan_half / spec.height;
                 break;
-            case ZoomKind::DistancePixels:
-                break;  // rejected by validate()
+            case ZoomKind::DistancePixels: break;  // rejected by validate()
         }
         cam.ortho_half_height = 0.5 * footprint * spec.height;
         // The camera sits outside the sphere; the image plane is at the eye, so the near
@@ -109,9 +106,7 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
             case ZoomKind::Footprint:
                 distance = r + spec.zoom_value * spec.height / (2.0 * tan_half);
                 break;
-            case ZoomKind::Distance:
-                distance = spec.zoom_value;
-                break;
+            case ZoomKind::Distance: distance = spec.zoom_value; break;
             case ZoomKind::DistancePixels: {
                 // The paper's pixel unit, fixed per mesh: f0 = 2r/h (view.h).
                 const double f0 = 2.0 * r / spec.height;

@@ -80,14 +80,10 @@ FitMode parse_fit_mode(const std::string& text) {
 
 std::string to_string(FitMode mode) {
     switch (mode) {
-        case FitMode::Identity:
-            return "identity";
-        case FitMode::File:
-            return "file";
-        case FitMode::Register:
-            return "register";
-        case FitMode::Truth:
-            return "truth";
+        case FitMode::Identity: return "identity";
+        case FitMode::File: return "file";
+        case FitMode::Register: return "register";
+        case FitMode::Truth: return "truth";
     }
     return "?";
 }
@@ -141,8 +137,7 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             out.reference_from_examined = read_fit(options.fit_file.string());
             out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
             return out;
-        case FitMode::Register:
-            return register_examined(reference, examined, options);
+        case FitMode::Register: return register_examined(reference, examined, options);
     }
     return out;
 }

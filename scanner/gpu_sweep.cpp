@@ -21,12 +21,9 @@ Accumulation parse_accumulation(const std::string& text) {
 
 std::string to_string(Accumulation accumulation) {
     switch (accumulation) {
-        case Accumulation::Auto:
-            return "auto";
-        case Accumulation::Gpu:
-            return "gpu";
-        case Accumulation::Host:
-            return "host";
+        case Accumulation::Auto: return "auto";
+        case Accumulation::Gpu: return "gpu";
+        case Accumulation::Host: return "host";
     }
     return "?";
 }

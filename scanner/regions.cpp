@@ -10,12 +10,9 @@ namespace glint {
 
 std::string to_string(RegionKind kind) {
     switch (kind) {
-        case RegionKind::Dent:
-            return "dent";
-        case RegionKind::Bump:
-            return "bump";
-        case RegionKind::MissingSurface:
-            return "missing surface";
+        case RegionKind::Dent: return "dent";
+        case RegionKind::Bump: return "bump";
+        case RegionKind::MissingSurface: return "missing surface";
     }
     return "?";
 }

@@ -187,30 +187,21 @@ std::string script_safe(std::string text) {
     return out;
 }
 
-std::string html_escape(const std::string& text) {
+}  // namespace
+
+std::string escape_markup(const std::string& text) {
     std::string out;
     for (char c : text) {
         switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
         }
     }
     return out;
 }
-
-}  // namespace
 
 std::string fill_template(std::string_view page_template,
                           const std::vector<std::pair<std::string, std::string>>& values) {
@@ -268,7 +259,7 @@ std::string report_html(const Mesh& reference, const AnalysisResult& result,
         if (in.value("role", "") == "reference" && in.contains("path"))
             title +=
                 ": " + std::filesystem::path(in["path"].get<std::string>()).filename().string();
-    return fill_template(asset("report.html.in"), {{"TITLE", html_escape(title)},
+    return fill_template(asset("report.html.in"), {{"TITLE", escape_markup(title)},
                                                    {"THREE_JS", asset("three.min.js")},
                                                    {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
                                                    {"DATA_JSON", script_safe(data.dump())},

@@ -45,4 +45,8 @@ inline constexpr std::size_t kReportPageTriangles = 250000;
 [[nodiscard]] std::string fill_template(
     std::string_view page_template, const std::vector<std::pair<std::string, std::string>>& values);
 
+/// `text` with &, <, > and " as character references: safe inside HTML and XML elements and
+/// double-quoted attributes (report.html, the Slicer module's XML).
+[[nodiscard]] std::string escape_markup(const std::string& text);
+
 }  // namespace glint

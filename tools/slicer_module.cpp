@@ -8,6 +8,7 @@
 #include "render/context.h"
 #include "scanner/analysis.h"
 #include "scanner/metric.h"
+#include "scanner/report_html.h"
 #include "tools/slicer_parameters.h"
 
 #include <cstdio>
@@ -249,42 +250,19 @@ SlicerGroup results_group() {
              value("string", "lengthUnit", "Unit", "Unit of every length (empty when unknown).")}};
 }
 
-std::string escaped(const std::string& text) {
-    std::string out;
-    for (char c : text) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
-}
-
 void write_parameter(std::ostringstream& x, const SlicerParameter& p) {
     x << "    <" << p.tag;
     if (!p.type.empty()) x << " type=\"" << p.type << '"';
     if (!p.file_extensions.empty()) x << " fileExtensions=\"" << p.file_extensions << '"';
     x << ">\n      <name>" << p.name << "</name>\n";
     if (!p.longflag.empty()) x << "      <longflag>" << p.longflag << "</longflag>\n";
-    x << "      <label>" << escaped(p.label) << "</label>\n";
-    x << "      <description>" << escaped(p.description) << "</description>\n";
+    x << "      <label>" << escape_markup(p.label) << "</label>\n";
+    x << "      <description>" << escape_markup(p.description) << "</description>\n";
     if (!p.channel.empty()) x << "      <channel>" << p.channel << "</channel>\n";
     if (p.index >= 0) x << "      <index>" << p.index << "</index>\n";
     if (!p.default_value.empty())
-        x << "      <default>" << escaped(p.default_value) << "</default>\n";
-    for (const auto& e : p.elements) x << "      <element>" << escaped(e) << "</element>\n";
+        x << "      <default>" << escape_markup(p.default_value) << "</default>\n";
+    for (const auto& e : p.elements) x << "      <element>" << escape_markup(e) << "</element>\n";
     if (p.constraints)
         x << "      <constraints>\n        <minimum>" << number((*p.constraints)[0])
           << "</minimum>\n        <maximum>" << number((*p.constraints)[1])
@@ -321,8 +299,8 @@ std::string slicer_xml() {
          "identification.</acknowledgements>\n";
     for (const SlicerGroup& g : slicer_groups()) {
         x << "  <parameters" << (g.advanced ? " advanced=\"true\"" : "") << ">\n"
-          << "    <label>" << escaped(g.label) << "</label>\n    <description>"
-          << escaped(g.description) << "</description>\n";
+          << "    <label>" << escape_markup(g.label) << "</label>\n    <description>"
+          << escape_markup(g.description) << "</description>\n";
         for (const SlicerParameter& p : g.parameters) write_parameter(x, p);
         x << "  </parameters>\n";
     }

@@ -22,17 +22,13 @@ enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 std::size_t size_of(Type t) {
     switch (t) {
         case Type::Int8:
-        case Type::UInt8:
-            return 1;
+        case Type::UInt8: return 1;
         case Type::Int16:
-        case Type::UInt16:
-            return 2;
+        case Type::UInt16: return 2;
         case Type::Int32:
         case Type::UInt32:
-        case Type::Float32:
-            return 4;
-        case Type::Float64:
-            return 8;
+        case Type::Float32: return 4;
+        case Type::Float64: return 8;
     }
     return 0;
 }
@@ -84,22 +80,14 @@ T load(const char* p) {
 template <bool Swap>
 double load_value(const char* p, Type t) {
     switch (t) {
-        case Type::Int8:
-            return load<std::int8_t, Swap>(p);
-        case Type::UInt8:
-            return load<std::uint8_t, Swap>(p);
-        case Type::Int16:
-            return load<std::int16_t, Swap>(p);
-        case Type::UInt16:
-            return load<std::uint16_t, Swap>(p);
-        case Type::Int32:
-            return load<std::int32_t, Swap>(p);
-        case Type::UInt32:
-            return load<std::uint32_t, Swap>(p);
-        case Type::Float32:
-            return static_cast<double>(load<float, Swap>(p));
-        case Type::Float64:
-            return load<double, Swap>(p);
+        case Type::Int8: return load<std::int8_t, Swap>(p);
+        case Type::UInt8: return load<std::uint8_t, Swap>(p);
+        case Type::Int16: return load<std::int16_t, Swap>(p);
+        case Type::UInt16: return load<std::uint16_t, Swap>(p);
+        case Type::Int32: return load<std::int32_t, Swap>(p);
+        case Type::UInt32: return load<std::uint32_t, Swap>(p);
+        case Type::Float32: return static_cast<double>(load<float, Swap>(p));
+        case Type::Float64: return load<double, Swap>(p);
     }
     return 0.0;
 }
@@ -108,22 +96,14 @@ double load_value(const char* p, Type t) {
 template <bool Swap>
 std::int64_t load_int(const char* p, Type t) {
     switch (t) {
-        case Type::Int8:
-            return load<std::int8_t, Swap>(p);
-        case Type::UInt8:
-            return load<std::uint8_t, Swap>(p);
-        case Type::Int16:
-            return load<std::int16_t, Swap>(p);
-        case Type::UInt16:
-            return load<std::uint16_t, Swap>(p);
-        case Type::Int32:
-            return load<std::int32_t, Swap>(p);
-        case Type::UInt32:
-            return load<std::uint32_t, Swap>(p);
-        case Type::Float32:
-            return clamp_to<std::int64_t>(load<float, Swap>(p));
-        case Type::Float64:
-            return clamp_to<std::int64_t>(load<double, Swap>(p));
+        case Type::Int8: return load<std::int8_t, Swap>(p);
+        case Type::UInt8: return load<std::uint8_t, Swap>(p);
+        case Type::Int16: return load<std::int16_t, Swap>(p);
+        case Type::UInt16: return load<std::uint16_t, Swap>(p);
+        case Type::Int32: return load<std::int32_t, Swap>(p);
+        case Type::UInt32: return load<std::uint32_t, Swap>(p);
+        case Type::Float32: return clamp_to<std::int64_t>(load<float, Swap>(p));
+        case Type::Float64: return clamp_to<std::int64_t>(load<double, Swap>(p));
     }
     return 0;
 }
@@ -140,42 +120,21 @@ struct Builder {
 
     void store(std::size_t v, const Property& p, double value) {
         switch (p.target) {
-            case Target::X:
-                mesh.positions[v].x() = static_cast<float>(value);
-                break;
-            case Target::Y:
-                mesh.positions[v].y() = static_cast<float>(value);
-                break;
-            case Target::Z:
-                mesh.positions[v].z() = static_cast<float>(value);
-                break;
-            case Target::Nx:
-                mesh.normals[v].x() = static_cast<float>(value);
-                break;
-            case Target::Ny:
-                mesh.normals[v].y() = static_cast<float>(value);
-                break;
-            case Target::Nz:
-                mesh.normals[v].z() = static_cast<float>(value);
-                break;
-            case Target::Red:
-                mesh.colors[v][0] = color_byte(p.type, value);
-                break;
-            case Target::Green:
-                mesh.colors[v][1] = color_byte(p.type, value);
-                break;
-            case Target::Blue:
-                mesh.colors[v][2] = color_byte(p.type, value);
-                break;
-            case Target::Label:
-                mesh.labels[v] = clamp_to<std::int32_t>(value);
-                break;
+            case Target::X: mesh.positions[v].x() = static_cast<float>(value); break;
+            case Target::Y: mesh.positions[v].y() = static_cast<float>(value); break;
+            case Target::Z: mesh.positions[v].z() = static_cast<float>(value); break;
+            case Target::Nx: mesh.normals[v].x() = static_cast<float>(value); break;
+            case Target::Ny: mesh.normals[v].y() = static_cast<float>(value); break;
+            case Target::Nz: mesh.normals[v].z() = static_cast<float>(value); break;
+            case Target::Red: mesh.colors[v][0] = color_byte(p.type, value); break;
+            case Target::Green: mesh.colors[v][1] = color_byte(p.type, value); break;
+            case Target::Blue: mesh.colors[v][2] = color_byte(p.type, value); break;
+            case Target::Label: mesh.labels[v] = clamp_to<std::int32_t>(value); break;
             case Target::Scalar:
                 mesh.scalars[p.scalar_index].values[v] = static_cast<float>(value);
                 break;
             case Target::Ignore:
-            case Target::FaceIndices:
-                break;
+            case Target::FaceIndices: break;
         }
     }
 
@@ -201,15 +160,9 @@ class PlyParser {
             const bool is_vertex = static_cast<std::ptrdiff_t>(e) == vertex_element_;
             const bool is_face = static_cast<std::ptrdiff_t>(e) == face_element_;
             switch (encoding_) {
-                case Encoding::Ascii:
-                    read_ascii(el, is_vertex, is_face);
-                    break;
-                case Encoding::BinaryLe:
-                    read_binary<false>(el, is_vertex, is_face);
-                    break;
-                case Encoding::BinaryBe:
-                    read_binary<true>(el, is_vertex, is_face);
-                    break;
+                case Encoding::Ascii: read_ascii(el, is_vertex, is_face); break;
+                case Encoding::BinaryLe: read_binary<false>(el, is_vertex, is_face); break;
+                case Encoding::BinaryBe: read_binary<true>(el, is_vertex, is_face); break;
             }
         }
         finish();

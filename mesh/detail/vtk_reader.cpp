@@ -55,22 +55,17 @@ std::optional<Type> parse_type(std::string_view s) {
 std::size_t size_of(Type t) {
     switch (t) {
         case Type::Int8:
-        case Type::UInt8:
-            return 1;
+        case Type::UInt8: return 1;
         case Type::Int16:
-        case Type::UInt16:
-            return 2;
+        case Type::UInt16: return 2;
         case Type::Int32:
         case Type::UInt32:
-        case Type::Float32:
-            return 4;
+        case Type::Float32: return 4;
         case Type::Int64:
         case Type::UInt64:
-        case Type::Float64:
-            return 8;
+        case Type::Float64: return 8;
         case Type::Bit:
-        case Type::String:
-            return 0;
+        case Type::String: return 0;
     }
     return 0;
 }
@@ -90,29 +85,18 @@ T load_be(const char* p) {
 
 double load_value(const char* p, Type t) {
     switch (t) {
-        case Type::Int8:
-            return load_be<std::int8_t>(p);
-        case Type::UInt8:
-            return load_be<std::uint8_t>(p);
-        case Type::Int16:
-            return load_be<std::int16_t>(p);
-        case Type::UInt16:
-            return load_be<std::uint16_t>(p);
-        case Type::Int32:
-            return load_be<std::int32_t>(p);
-        case Type::UInt32:
-            return load_be<std::uint32_t>(p);
-        case Type::Int64:
-            return static_cast<double>(load_be<std::int64_t>(p));
-        case Type::UInt64:
-            return static_cast<double>(load_be<std::uint64_t>(p));
-        case Type::Float32:
-            return static_cast<double>(load_be<float>(p));
-        case Type::Float64:
-            return load_be<double>(p);
+        case Type::Int8: return load_be<std::int8_t>(p);
+        case Type::UInt8: return load_be<std::uint8_t>(p);
+        case Type::Int16: return load_be<std::int16_t>(p);
+        case Type::UInt16: return load_be<std::uint16_t>(p);
+        case Type::Int32: return load_be<std::int32_t>(p);
+        case Type::UInt32: return load_be<std::uint32_t>(p);
+        case Type::Int64: return static_cast<double>(load_be<std::int64_t>(p));
+        case Type::UInt64: return static_cast<double>(load_be<std::uint64_t>(p));
+        case Type::Float32: return static_cast<double>(load_be<float>(p));
+        case Type::Float64: return load_be<double>(p);
         case Type::Bit:
-        case Type::String:
-            return 0.0;
+        case Type::String: return 0.0;
     }
     return 0.0;
 }

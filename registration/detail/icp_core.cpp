@@ -95,14 +95,10 @@ struct PlaneToPoint {
 
 ceres::LossFunction* make_loss(RobustLoss loss, double scale) {
     switch (loss) {
-        case RobustLoss::None:
-            return nullptr;
-        case RobustLoss::Huber:
-            return new ceres::HuberLoss(scale);
-        case RobustLoss::Cauchy:
-            return new ceres::CauchyLoss(scale);
-        case RobustLoss::Tukey:
-            return new ceres::TukeyLoss(scale);
+        case RobustLoss::None: return nullptr;
+        case RobustLoss::Huber: return new ceres::HuberLoss(scale);
+        case RobustLoss::Cauchy: return new ceres::CauchyLoss(scale);
+        case RobustLoss::Tukey: return new ceres::TukeyLoss(scale);
     }
     return nullptr;
 }

@@ -9,8 +9,7 @@ namespace glint::detail {
 const char* vk_result_name(VkResult result) {
     switch (result) {
 #define GLINT_CASE(x) \
-    case x:           \
-        return #x;
+    case x: return #x;
         GLINT_CASE(VK_SUCCESS)
         GLINT_CASE(VK_NOT_READY)
         GLINT_CASE(VK_TIMEOUT)
@@ -32,8 +31,7 @@ const char* vk_result_name(VkResult result) {
         GLINT_CASE(VK_ERROR_UNKNOWN)
         GLINT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
 #undef GLINT_CASE
-        default:
-            return "VkResult(unknown)";
+        default: return "VkResult(unknown)";
     }
 }
 
