@@ -65,8 +65,36 @@ ImageBuf diverging_image(const std::vector<float>& values, int width, int height
     return rgb;
 }
 
+DivergingTable::DivergingTable() : rgb_(3 * (kEntries + 1)) {
+    ImageBuf ramp(ImageSpec(kEntries + 1, 1, 1, TypeDesc::FLOAT));
+    std::vector<float> t(kEntries + 1);
+    for (int i = 0; i <= kEntries; ++i)
+        t[static_cast<std::size_t>(i)] = static_cast<float>(i) / kEntries;
+    ramp.set_pixels(ROI(0, kEntries + 1, 0, 1, 0, 1, 0, 1), TypeDesc::FLOAT, t.data());
+    const ImageBuf rgb = IBA::color_map(ramp, 0, 9, 3, kRdBu);
+    if (rgb.has_error() ||
+        !rgb.get_pixels(ROI(0, kEntries + 1, 0, 1, 0, 1, 0, 3), TypeDesc::FLOAT, rgb_.data()))
+        throw IoError("diverging colour map: " + rgb.geterror());
+}
+
+const DivergingTable& DivergingTable::get() {
+    static const DivergingTable table;
+    return table;
+}
+
+Rgb DivergingTable::operator()(float value, double limit) const {
+    const double t = std::isnan(value)
+                         ? 0.5
+                         : std::clamp(0.5 + 0.5 * static_cast<double>(value) / limit, 0.0, 1.0);
+    const double x = t * kEntries;
+    const int i = std::min(static_cast<int>(x), kEntries - 1);
+    const auto f = static_cast<float>(x - i);
+    const float* a = &rgb_[3 * static_cast<std::size_t>(i)];
+    return {a[0] + f * (a[3] - a[0]), a[1] + f * (a[4] - a[1]), a[2] + f * (a[5] - a[2])};
+}
+
 ImageBuf canvas(int width, int height, Rgb colour) {
-    ImageBuf buf(ImageSpec(width, height, 3, TypeDesc::FLOAT));
+    ImageBuf buf(ImageSpec(width, height, 3, TypeDesc::UINT8));
     IBA::fill(buf, colour);
     return buf;
 }

@@ -7,7 +7,9 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
+#include <algorithm>
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -36,7 +38,31 @@ inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
 [[nodiscard]] OIIO::ImageBuf diverging_image(const std::vector<float>& values, int width,
                                              int height, double limit);
 
-/// A width × height RGB float image filled with `colour`.
+/// The diverging map as a table for per-pixel use: ImageBufAlgo::color_map evaluated once at
+/// kEntries + 1 evenly spaced points of [0, 1]. The map is linear between its 9 knots, which
+/// fall on table points (kEntries is a multiple of 8), so interpolating the table gives the
+/// map's own colours (to float rounding) without an image per picture.
+class DivergingTable {
+  public:
+    static constexpr int kEntries = 1024;
+    static_assert(kEntries % 8 == 0, "the map's knots must fall on table points");
+    /// The table (built on first use; thread-safe).
+    [[nodiscard]] static const DivergingTable& get();
+    /// The colour of `value` in the range ±limit (clamped; NaN maps to 0, as diverging_image).
+    [[nodiscard]] Rgb operator()(float value, double limit) const;
+
+  private:
+    DivergingTable();
+    std::vector<float> rgb_;  ///< (kEntries + 1) × 3
+};
+
+/// A colour channel (0…1) as an 8-bit value, rounded as OpenImageIO converts.
+[[nodiscard]] inline std::uint8_t to_byte(float v) {
+    return static_cast<std::uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+}
+
+/// A width × height RGB image of 8 bits per channel (what the PNG pictures store: drawing,
+/// copying and encoding need no conversion) filled with `colour`.
 [[nodiscard]] OIIO::ImageBuf canvas(int width, int height, Rgb colour = kBackground);
 
 /// Whether the DejaVu font was found (text is decoration: without it pictures are unlabelled).
@@ -59,7 +85,8 @@ void draw_box(OIIO::ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, b
 /// A number on a small white tag with a dark border, centred on (x, y): the id of a region.
 void draw_tag(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size);
 
-/// The image as PNG bytes (8 bits per channel). \throw IoError with OIIO's message.
+/// The image as PNG bytes (8 bits per channel; an 8-bit image is written as it is).
+/// \throw IoError with OIIO's message.
 [[nodiscard]] std::string encode_png(const OIIO::ImageBuf& image);
 
 /// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set.

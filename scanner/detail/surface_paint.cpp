@@ -164,22 +164,20 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
         fields.distance.size() == nv && fields.region.size() == nv && fields.seen.size() == nv,
         "paint_surface: fields are not sized as the mesh");
     const PixelFields px = sample_fields(mesh, frame, view, fields);
-    ImageBuf colour = diverging_image(px.distance, frame.width, frame.height, style.limit);
+    const DivergingTable& colours = DivergingTable::get();
     const std::size_t n = frame.pixel_count();
-    std::vector<float> rgb(3 * n);
-    const ROI all(0, frame.width, 0, frame.height, 0, 1, 0, 3);
-    colour.get_pixels(all, TypeDesc::FLOAT, rgb.data());
+    std::vector<std::uint8_t> rgb(3 * n);
     const std::vector<std::uint8_t> edge = contour(frame, px.region, style.outline_width);
     const Vec3f light = ShadeOptions{}.light_in_camera.normalized().cast<float>();
     const auto w = static_cast<std::size_t>(frame.width);
     for (std::size_t p = 0; p < n; ++p) {
-        float* c = &rgb[3 * p];
+        std::uint8_t* c = &rgb[3 * p];
         const float cover = std::clamp(frame.coverage[p], 0.0f, 1.0f);
         if (cover <= 0.0f) {
-            std::copy(style.background.begin(), style.background.end(), c);
+            for (int k = 0; k < 3; ++k) c[k] = to_byte(style.background[k]);
             continue;
         }
-        Rgb base{c[0], c[1], c[2]};
+        Rgb base = colours(px.distance[p], style.limit);
         if (!px.seen[p]) {
             const bool stripe =
                 (p % w + p / w) % static_cast<std::size_t>(std::max(2, style.hatch_period)) < 2;
@@ -190,11 +188,12 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
         const float lambert = std::max(0.0f, normal_in_camera(frame, view, p).dot(light));
         const float shade = edge[p] ? 1.0f : 0.32f + 0.68f * lambert;
         for (int k = 0; k < 3; ++k)
-            c[k] = cover * base[k] * shade + (1.0f - cover) * style.background[k];
+            c[k] = to_byte(cover * base[k] * shade + (1.0f - cover) * style.background[k]);
     }
     PaintedSurface out;
-    out.image = canvas(frame.width, frame.height);
-    out.image.set_pixels(all, TypeDesc::FLOAT, rgb.data());
+    out.image = OIIO::ImageBuf(OIIO::ImageSpec(frame.width, frame.height, 3, TypeDesc::UINT8));
+    out.image.set_pixels(ROI(0, frame.width, 0, frame.height, 0, 1, 0, 3), TypeDesc::UINT8,
+                         rgb.data());
     out.anchors = anchors_of(frame, px.region);
     return out;
 }

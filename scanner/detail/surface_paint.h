@@ -42,7 +42,7 @@ struct RegionAnchor {
 };
 
 struct PaintedSurface {
-    OIIO::ImageBuf image;               ///< RGB float, the frame's size
+    OIIO::ImageBuf image;               ///< RGB, 8 bits per channel, the frame's size
     std::vector<RegionAnchor> anchors;  ///< regions visible, by id
 };
 

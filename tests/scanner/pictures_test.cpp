@@ -128,6 +128,44 @@ TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
     EXPECT_NEAR(hi[0], 178.0f / 255.0f, 1e-4f);  // #b2182b
 }
 
+// The table the pictures colour pixels with gives OpenImageIO's colours: every value of a
+// fine sweep across (and beyond) the range, the knots, NaN, and a range other than 1.
+TEST(DivergingTable, GivesTheColourMapsOwnColours) {
+    std::vector<float> v;
+    for (int i = -1300; i <= 1300; ++i) v.push_back(static_cast<float>(i) * 0.0017f);
+    for (int k = 0; k <= 8; ++k) v.push_back(-2.5f + 5.0f * static_cast<float>(k) / 8.0f);
+    v.push_back(kNaN);
+    for (const double limit : {1.0, 2.5, 0.003}) {
+        std::vector<float> scaled(v);
+        for (float& x : scaled) x *= static_cast<float>(limit);
+        const auto w = static_cast<int>(scaled.size());
+        const OIIO::ImageBuf img = detail::diverging_image(scaled, w, 1, limit);
+        const auto& table = detail::DivergingTable::get();
+        for (int i = 0; i < w; ++i) {
+            const Rgb want = pixel(img, i, 0);
+            const Rgb got = table(scaled[static_cast<std::size_t>(i)], limit);
+            for (int k = 0; k < 3; ++k)
+                ASSERT_NEAR(got[k], want[k], 2e-6f)
+                    << "value " << scaled[static_cast<std::size_t>(i)] << " range " << limit;
+        }
+    }
+}
+
+TEST(Canvas, IsEightBitAndEncodesAsItIs) {
+    OIIO::ImageBuf c = detail::canvas(7, 5, {1.0f, 0.5f, 0.0f});
+    EXPECT_EQ(c.spec().format, OIIO::TypeDesc::UINT8);
+    const std::string png = detail::encode_png(c);
+    ASSERT_GT(png.size(), 8u);
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+    const Rgb p = pixel(c, 6, 4);
+    EXPECT_FLOAT_EQ(p[0], 1.0f);
+    EXPECT_FLOAT_EQ(p[1], 128.0f / 255.0f);  // 0.5 rounded as OpenImageIO converts
+    EXPECT_FLOAT_EQ(p[2], 0.0f);
+    EXPECT_EQ(detail::to_byte(0.5f), 128);
+    EXPECT_EQ(detail::to_byte(-1.0f), 0);
+    EXPECT_EQ(detail::to_byte(2.0f), 255);
+}
+
 AnalysisResult result_with(std::vector<double> peaks, double floor) {
     AnalysisResult r;
     r.size = 100.0;
