@@ -182,7 +182,7 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
         announce(observer, "export");
         t = Clock::now();
         result.total_seconds = seconds_since(t_start);
-        write_outputs(*folder, reference, result, options);
+        write_outputs(*folder, reference, result, options, observer.stage);
         folder->commit();
         result.output = folder->target();
         result.export_seconds = seconds_since(t);

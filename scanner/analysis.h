@@ -120,7 +120,7 @@ struct AnalysisResult {
 /// Progress of a long analysis; every member may be empty.
 struct AnalysisObserver {
     std::function<void(std::string_view stage)>
-        stage;  ///< "fit", "distance", "sweep", "decide", "export"
+        stage;  ///< "fit", "distance", "sweep", "decide", "export", "pictures"
     std::function<void(std::size_t done, std::size_t total)> views;
 };
 

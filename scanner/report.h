@@ -14,7 +14,9 @@
 #include "scanner/output_folder.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 
 namespace glint {
 
@@ -39,8 +41,10 @@ namespace glint {
 [[nodiscard]] std::string regions_csv(const AnalysisResult& result);
 
 /// Writes atlas.ply, atlas.vtk, atlas.vtp, regions.csv, report.json, the pictures and
-/// report.html into the folder.
+/// report.html into the folder. `stage` (when set) is called with "pictures" before the
+/// pictures are drawn, after the other files (AnalysisObserver::stage).
 void write_outputs(const OutputFolder& folder, const Mesh& reference, const AnalysisResult& result,
-                   const AnalysisOptions& options);
+                   const AnalysisOptions& options,
+                   const std::function<void(std::string_view stage)>& stage = {});
 
 }  // namespace glint

@@ -234,21 +234,34 @@ std::string fill_template(std::string_view page_template,
     return out;
 }
 
-std::string report_html(const Mesh& reference, const AnalysisResult& result,
-                        const std::string& report_json, const PictureOutput& pictures,
-                        std::size_t max_triangles) {
+struct ReportPageData::Parts {
+    json data;  ///< the page's data without "report" and "images"
+};
+
+ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
+                                std::size_t max_triangles) {
+    auto parts = std::make_shared<ReportPageData::Parts>();
+    json& data = parts->data;
     const ShapeScale scale = shape_scale(result);
-    json data;
-    data["report"] = json::parse(report_json);
     data["unit"] = result.unit.empty() ? "units" : result.unit;
-    const ShownMesh shown = shown_mesh(reference, result, max_triangles);
-    data["mesh"] = mesh_json(reference, shown);
-    data["fields"] = fields_json(shown, result, scale);
+    {
+        const ShownMesh shown = shown_mesh(reference, result, max_triangles);
+        data["mesh"] = mesh_json(reference, shown);
+        data["fields"] = fields_json(shown, result, scale);
+    }
     data["shape_scale"] = {
         {"limit", scale.limit}, {"source", scale.source}, {"floor", scale.floor}};
     const auto knots = detail::diverging_knots();
     data["colormaps"] = {{"diverging", std::vector<float>(knots.begin(), knots.end())},
                          {"sequential", inferno_knots()}};
+    return {std::move(parts)};
+}
+
+std::string report_html(const ReportPageData& page, const std::string& report_json,
+                        const PictureOutput& pictures) {
+    GLINT_ASSERT(page.parts != nullptr, "report_html: no page data");
+    json data = page.parts->data;
+    data["report"] = json::parse(report_json);
     json images = {{"mosaics", json::array()}, {"best_views", json::object()}};
     for (const auto& m : pictures.mosaics) images["mosaics"].push_back(data_uri(m));
     for (const auto& [view, png] : pictures.best_views)
@@ -265,6 +278,12 @@ std::string report_html(const Mesh& reference, const AnalysisResult& result,
                                                    {"DATA_JSON", script_safe(data.dump())},
                                                    {"REPORT_JS", asset("report.js")},
                                                    {"REPORT_CSS", asset("report.css")}});
+}
+
+std::string report_html(const Mesh& reference, const AnalysisResult& result,
+                        const std::string& report_json, const PictureOutput& pictures,
+                        std::size_t max_triangles) {
+    return report_html(report_page_data(reference, result, max_triangles), report_json, pictures);
 }
 
 }  // namespace glint

@@ -25,6 +25,7 @@
 #include "scanner/analysis.h"
 #include "scanner/pictures.h"
 
+#include <memory>
 #include <string>
 
 namespace glint {
@@ -34,7 +35,23 @@ namespace glint {
 /// 2M-triangle atlas shown whole made 81 MB.
 inline constexpr std::size_t kReportPageTriangles = 250000;
 
-/// The page for a finished analysis. `report_json` is report.json's text (embedded whole).
+/// What the page shows of the analysis itself: the mesh (decimated when large), its fields and
+/// the colour maps. The slow part of the page for a large mesh (the decimation: 0.9 s at 2M
+/// triangles), independent of the pictures, so it is made while they render (scanner/report.cpp).
+struct ReportPageData {
+    struct Parts;
+    std::shared_ptr<const Parts> parts;
+};
+
+/// \pre result from analyse() on `reference`.
+[[nodiscard]] ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
+                                              std::size_t max_triangles = kReportPageTriangles);
+
+/// The page from its data, report.json's text (embedded whole) and the pictures.
+[[nodiscard]] std::string report_html(const ReportPageData& data, const std::string& report_json,
+                                      const PictureOutput& pictures);
+
+/// The page for a finished analysis, in one call (report_page_data, then report_html).
 /// \pre result from analyse() on `reference`.
 [[nodiscard]] std::string report_html(const Mesh& reference, const AnalysisResult& result,
                                       const std::string& report_json, const PictureOutput& pictures,

@@ -157,8 +157,9 @@ class SlicerProgress {
     }
     void stage(std::string_view name) {
         // note: the stages' shares of the whole are rough (the sweep is most of a run).
-        static const std::map<std::string_view, double> at{
-            {"fit", 0.05}, {"distance", 0.2}, {"sweep", 0.3}, {"decide", 0.9}, {"export", 0.95}};
+        static const std::map<std::string_view, double> at{{"fit", 0.05},    {"distance", 0.2},
+                                                           {"sweep", 0.3},   {"decide", 0.9},
+                                                           {"export", 0.93}, {"pictures", 0.96}};
         const auto it = at.find(name);
         if (it != at.end()) progress(it->second, name);
     }
