@@ -91,7 +91,10 @@ TEST(SurfacePaint, UnseenIsHatchedGreyAndTheBackgroundIsPlain) {
     EXPECT_GT(stripes, 2);
     EXPECT_GT(plain, 6);
     const Rgb corner = pixel(s.painted.image, 1, 1);
-    for (int k = 0; k < 3; ++k) EXPECT_FLOAT_EQ(corner[k], detail::kBackground[k]);
+    // The background exactly, as 8 bits store it.
+    for (int k = 0; k < 3; ++k)
+        EXPECT_FLOAT_EQ(corner[k],
+                        static_cast<float>(detail::to_byte(detail::kBackground[k])) / 255.0f);
 }
 
 TEST(SurfacePaint, RegionsAreOutlinedAndAnchoredInside) {
