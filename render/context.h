@@ -61,6 +61,10 @@ struct FrameOptions {
     /// copying them: the mesh must then outlive the renderer, unchanged. (A mesh without
     /// normals is copied anyway; the GPU uploads the mesh either way.)
     bool share_mesh = false;
+    /// CPU ray casting (Embree) at supersample 1 also returns each pixel's barycentric weights
+    /// in its triangle (Frame::barycentric), for pictures that interpolate per-vertex values.
+    /// Ignored by the GPU and at s > 1 (the frame's barycentric stays empty).
+    bool barycentrics = false;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;

@@ -18,6 +18,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <numeric>
@@ -233,6 +234,14 @@ class EmbreeBackend final : public RenderBackend {
         resolve_rows(scratch.normal_depth.data(), scratch.ids.data(), s, y0 - row0, y1 - row0, dst);
     }
 
+    // Frame::barycentric: 2 per pixel when asked for at s = 1 (written by trace_band<true>),
+    // else empty.
+    void size_barycentrics(Frame& f) const {
+        if (options_.barycentrics && options_.supersample == 1)
+            f.barycentric.resize(2 * f.pixel_count());
+        else f.barycentric.clear();
+    }
+
     void render_one(const View& view) {
         const Camera& cam = view.camera;
         if (frame_.width != cam.width || frame_.height != cam.height ||
@@ -240,6 +249,7 @@ class EmbreeBackend final : public RenderBackend {
             frame_ = make_empty_frame(cam.width, cam.height);
         }
         frame_.normal_space = NormalSpace::World;
+        size_barycentrics(frame_);
         const Rays rays = rays_of(cam);
         // Work unit: a band of output rows whose sub-sample rows are a multiple of the 4-row
         // packet height; threads take bands from a shared counter (load balance: empty sky
@@ -277,6 +287,7 @@ class EmbreeBackend final : public RenderBackend {
             rows.coverage.size() != rows.pixel_count())
             rows = make_empty_frame(cam.width, y1 - y0);
         rows.normal_space = NormalSpace::World;
+        size_barycentrics(rows);
         trace_into(rays_of(cam), y0, y1, static_cast<Scratch&>(scratch), rows, y0);
         device_->check("intersecting rays");
     }
@@ -337,6 +348,9 @@ class EmbreeBackend final : public RenderBackend {
                             dst.primitive_id[idx] = kNoPrimitive;
                             dst.depth[idx] = kNoDepth;
                             dst.coverage[idx] = 0.0f;
+                            if (!dst.barycentric.empty())
+                                dst.barycentric[2 * idx] = dst.barycentric[2 * idx + 1] =
+                                    std::numeric_limits<float>::quiet_NaN();
                         } else {
                             scratch.ids[idx] = kNoPrimitive;
                         }
@@ -358,6 +372,10 @@ class EmbreeBackend final : public RenderBackend {
                         dst.primitive_id[idx] = prim;
                         dst.depth[idx] = packet.ray.tfar[k];
                         dst.coverage[idx] = 1.0f;
+                        if (!dst.barycentric.empty()) {
+                            dst.barycentric[2 * idx] = u;
+                            dst.barycentric[2 * idx + 1] = v;
+                        }
                     } else {
                         float* nd = &scratch.normal_depth[4 * idx];
                         nd[0] = n.x();

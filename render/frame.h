@@ -44,6 +44,10 @@ struct Frame {
     std::vector<float> depth;
     /// Share of covered sub-samples, 0…1 (1/s² steps).
     std::vector<float> coverage;
+    /// Empty, or 2 floats per pixel: the weights (u, v) of corners 1 and 2 of primitive_id's
+    /// triangle where the pixel's ray hit it (corner 0: 1 − u − v); NaN where uncovered. Only
+    /// from CPU ray casting at s = 1 with FrameOptions::barycentrics.
+    std::vector<float> barycentric;
 
     [[nodiscard]] std::size_t pixel_count() const {
         return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);

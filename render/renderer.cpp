@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <deque>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -161,6 +162,7 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
     }
     FrameOptions frame = options_.frame_options();
     frame.share_mesh = options.share_mesh && source == &mesh;  // never a copy made here
+    frame.barycentrics = options.barycentrics;
     backend_ = context_->impl().make_backend(*source, frame);
 }
 
@@ -191,6 +193,9 @@ void finish_frame(Frame& frame, const View& view, const RenderOptions& options) 
                 frame.primitive_id[p] = kNoPrimitive;
                 frame.depth[p] = kNoDepth;
                 frame.coverage[p] = 0.0f;
+                if (!frame.barycentric.empty())
+                    frame.barycentric[2 * p] = frame.barycentric[2 * p + 1] =
+                        std::numeric_limits<float>::quiet_NaN();
             }
         }
     }

@@ -53,19 +53,27 @@ PixelFields sample_fields(const Mesh& mesh, const Frame& frame, const View& view
     const Projector project(view.camera);
     std::uint32_t cached = kNoPrimitive;
     std::array<Eigen::Vector2d, 3> corner;
+    // The ray caster's own weights when the frame has them (pictures render at s = 1).
+    const bool hits = frame.barycentric.size() == 2 * n;
     for (std::size_t p = 0; p < n; ++p) {
         const std::uint32_t t = frame.primitive_id[p];
         if (!frame.is_covered(p) || t == kNoPrimitive || t >= mesh.triangle_count()) continue;
         const auto& tri = mesh.triangles[t];
-        if (t != cached) {
-            for (int k = 0; k < 3; ++k)
-                corner[k] = project(mesh.positions[tri[k]].cast<double>()).head<2>();
-            cached = t;
+        std::array<double, 3> w;
+        if (hits) {
+            const double u = frame.barycentric[2 * p], v = frame.barycentric[2 * p + 1];
+            w = {std::max(0.0, 1.0 - u - v), u, v};
+        } else {
+            if (t != cached) {
+                for (int k = 0; k < 3; ++k)
+                    corner[k] = project(mesh.positions[tri[k]].cast<double>()).head<2>();
+                cached = t;
+            }
+            const Eigen::Vector2d centre(
+                static_cast<double>(p % static_cast<std::size_t>(frame.width)) + 0.5,
+                static_cast<double>(p / static_cast<std::size_t>(frame.width)) + 0.5);
+            w = barycentric(centre, corner[0], corner[1], corner[2]);
         }
-        const Eigen::Vector2d centre(
-            static_cast<double>(p % static_cast<std::size_t>(frame.width)) + 0.5,
-            static_cast<double>(p / static_cast<std::size_t>(frame.width)) + 0.5);
-        const auto w = barycentric(centre, corner[0], corner[1], corner[2]);
         const int nearest = static_cast<int>(std::max_element(w.begin(), w.end()) - w.begin());
         double d = 0.0;
         bool known = true;

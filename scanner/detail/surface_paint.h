@@ -9,8 +9,9 @@
 //            region (the region pixel nearest its pixel centroid) for its number.
 //
 // Per-pixel values come from the frame's primitive ids: the pixel centre's barycentric
-// weights in its triangle (from the projected corners; exact for orthographic views)
-// interpolate the per-vertex distance, and the corner with the largest weight gives the
+// weights in its triangle (the ray caster's, Frame::barycentric, where the frame has them;
+// else from the projected corners, exact for orthographic views) interpolate the per-vertex
+// distance, and the corner with the largest weight gives the
 // region and the seen flag, so outlines follow the vertices' dual cells.
 #pragma once
 

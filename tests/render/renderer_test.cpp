@@ -3,6 +3,7 @@
 #include "render/renderer.h"
 
 #include "mesh/error.h"
+#include "mesh/geometry.h"
 #include "render/view.h"
 #include "tests/render/render_test_util.h"
 #include "tests/render/test_meshes.h"
@@ -10,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <stdexcept>
@@ -48,6 +50,54 @@ TEST(Renderer, RejectsMeshWithoutTriangles) {
     Mesh mesh;
     mesh.positions.push_back(Vec3f::Zero());
     EXPECT_THROW(Renderer(mesh, RenderOptions{.backend = Backend::Embree}), InputError);
+}
+
+// Frame::barycentric (pictures): the weights of the pixel's ray hit, so the weighted corners
+// are the surface point the pixel shows: it projects to the pixel centre at the pixel's depth.
+// Only on request, only at s = 1.
+TEST(Renderer, EmbreeReturnsTheHitsBarycentricWeightsOnRequest) {
+    const Mesh mesh = make_icosphere(3);
+    const auto cpu = shared_render_context(ContextOptions{.backend = Backend::Embree});
+    for (const bool perspective : {false, true}) {
+        View view = sphere_view(mesh, 48, 40, -25);
+        if (perspective)
+            view = make_view(mesh, ViewSpec{.azimuth_deg = 40,
+                                            .elevation_deg = -25,
+                                            .width = 48,
+                                            .height = 48,
+                                            .projection = Projection::Perspective});
+        Renderer r(cpu, mesh, FrameOptions{.barycentrics = true});
+        const Frame f = r.render(view);
+        ASSERT_EQ(f.barycentric.size(), 2 * f.pixel_count());
+        const Projector project(view.camera);
+        std::size_t checked = 0;
+        for (std::size_t p = 0; p < f.pixel_count(); ++p) {
+            const float u = f.barycentric[2 * p], v = f.barycentric[2 * p + 1];
+            if (!f.is_covered(p)) {
+                EXPECT_TRUE(std::isnan(u) && std::isnan(v)) << "pixel " << p;
+                continue;
+            }
+            ASSERT_GE(u, -1e-6f);
+            ASSERT_GE(v, -1e-6f);
+            ASSERT_LE(u + v, 1.0f + 1e-6f);
+            const auto& t = mesh.triangles[f.primitive_id[p]];
+            const Vec3d hit = ((1.0f - u - v) * mesh.positions[t[0]] + u * mesh.positions[t[1]] +
+                               v * mesh.positions[t[2]])
+                                  .cast<double>();
+            const Eigen::Vector3d px = project(hit);
+            const auto w = static_cast<std::size_t>(f.width);
+            EXPECT_NEAR(px.x(), static_cast<double>(p % w) + 0.5, 1e-3) << "pixel " << p;
+            EXPECT_NEAR(px.y(), static_cast<double>(p / w) + 0.5, 1e-3) << "pixel " << p;
+            EXPECT_NEAR(px.z(), f.depth[p], 1e-4) << "pixel " << p;
+            ++checked;
+        }
+        EXPECT_GT(checked, 500u);
+    }
+    EXPECT_TRUE(
+        Renderer(cpu, mesh, FrameOptions{}).render(sphere_view(mesh, 16)).barycentric.empty());
+    EXPECT_TRUE(Renderer(cpu, mesh, FrameOptions{.supersample = 2, .barycentrics = true})
+                    .render(sphere_view(mesh, 16))
+                    .barycentric.empty());
 }
 
 TEST(Renderer, ComputesMissingNormalsAndSaysSo) {
