@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -63,6 +64,19 @@ void check_view(const View& view, int supersample) {
 
 }  // namespace
 
+std::vector<std::string> gpu_device_nodes() {
+    namespace fs = std::filesystem;
+    std::vector<std::string> nodes;
+    std::error_code ec;
+    for (fs::directory_iterator it("/dev/dri", ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename().string().starts_with("renderD"))
+            nodes.push_back(it->path().string());
+    for (const char* node : {"/dev/nvidiactl", "/dev/dxg"})
+        if (fs::exists(node, ec)) nodes.emplace_back(node);
+    std::sort(nodes.begin(), nodes.end());
+    return nodes;
+}
+
 Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count,
                         std::string* reason) {
     const auto say = [&](std::string text) {
@@ -75,6 +89,12 @@ Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count
     if (!options.device.empty() || std::getenv("GLINT_DEVICE") != nullptr) {
         say("a Vulkan device was named");
         return Backend::Vulkan;
+    }
+    const char* probe = std::getenv("GLINT_PROBE_VULKAN");
+    if (gpu_device_nodes().empty() && !(probe != nullptr && std::string(probe) == "1")) {
+        say("auto: no GPU device node (/dev/dri/renderD*, /dev/nvidiactl, /dev/dxg), using "
+            "Embree without starting Vulkan");
+        return Backend::Embree;
     }
     std::vector<DeviceInfo> devices;
     try {

@@ -8,7 +8,10 @@
 // - Embree: one primary ray per sub-sample (rtcIntersect16 on 4×4 tiles), barycentric
 //   interpolation of the vertex normals: the same Frame, the same conventions.
 // - Auto: Vulkan when a hardware GPU (discrete, integrated or virtual) is present, else
-//   Embree, which measured faster than lavapipe on CPU-only machines (see bench/).
+//   Embree, which measured faster than lavapipe on CPU-only machines (see bench/). A machine
+//   without a GPU device node (gpu_device_nodes) is not probed: asking the Vulkan loader
+//   loads every installed driver, lavapipe with LLVM among them (60 MB resident, for a
+//   device Auto never picks). GLINT_PROBE_VULKAN=1 probes anyway.
 //
 // Usage
 //   Renderer renderer(mesh, RenderOptions{.supersample = 2});
@@ -190,6 +193,10 @@ struct DeviceInfo {
 /// geometryShader feature for gl_PrimitiveID, RGBA32F / R32_UINT / D32 attachments).
 /// \throw DeviceError when no Vulkan instance can be created (no loader or no driver).
 [[nodiscard]] std::vector<DeviceInfo> list_devices();
+
+/// The device nodes through which Linux GPU drivers are reached, those present: render nodes
+/// /dev/dri/renderD* (Mesa, virtio-gpu), /dev/nvidiactl (NVIDIA), /dev/dxg (WSL).
+[[nodiscard]] std::vector<std::string> gpu_device_nodes();
 
 /// The backend Auto resolves to for a mesh of that size on this machine (see file comment);
 /// `reason` receives why.

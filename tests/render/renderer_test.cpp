@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -270,6 +271,35 @@ TEST(ResolveBackend, ExplicitChoiceWinsAndAutoSaysWhy) {
     EXPECT_FALSE(reason.empty());
     // A named device means Vulkan.
     EXPECT_EQ(resolve_backend(RenderOptions{.device = "llvmpipe"}, 10, &reason), Backend::Vulkan);
+}
+
+bool lavapipe_loaded() {
+    std::ifstream maps("/proc/self/maps");
+    std::string line;
+    while (std::getline(maps, line))
+        if (line.find("libvulkan_lvp") != std::string::npos) return true;
+    return false;
+}
+
+// Auto on a machine without GPU device nodes decides without Vulkan: no driver is loaded
+// (lavapipe would bring LLVM: 60 MB resident); GLINT_PROBE_VULKAN=1 probes as before and
+// still picks no CPU device.
+TEST(ResolveBackend, AutoWithoutGpuDeviceNodesLeavesVulkanAlone) {
+    const auto nodes = gpu_device_nodes();
+    if (!nodes.empty()) GTEST_SKIP() << "this machine has a GPU device node: " << nodes.front();
+    const bool loaded_before = lavapipe_loaded();
+    std::string reason;
+    EXPECT_EQ(resolve_backend(RenderOptions{}, 1000, &reason), Backend::Embree);
+    EXPECT_NE(reason.find("no GPU device node"), std::string::npos) << reason;
+    if (!loaded_before) {
+        EXPECT_FALSE(lavapipe_loaded()) << "the Vulkan drivers were loaded";
+    }
+    ASSERT_EQ(setenv("GLINT_PROBE_VULKAN", "1", 1), 0);
+    const Backend probed = resolve_backend(RenderOptions{}, 1000, &reason);
+    unsetenv("GLINT_PROBE_VULKAN");
+    EXPECT_EQ(probed, Backend::Embree);
+    EXPECT_EQ(reason.find("no GPU device node"), std::string::npos) << reason;
+    EXPECT_TRUE(lavapipe_loaded()) << "GLINT_PROBE_VULKAN=1 did not probe: " << reason;
 }
 
 TEST(VulkanDevice, ListsLavapipeAsUsable) {
