@@ -91,7 +91,9 @@ Backend resolve_backend(const RenderOptions& options, std::size_t triangle_count
         return Backend::Vulkan;
     }
     const char* probe = std::getenv("GLINT_PROBE_VULKAN");
-    if (gpu_device_nodes().empty() && !(probe != nullptr && std::string(probe) == "1")) {
+    // As the other GLINT_ flags: set to anything but empty or "0".
+    const bool probe_anyway = probe != nullptr && *probe != '\0' && std::string(probe) != "0";
+    if (gpu_device_nodes().empty() && !probe_anyway) {
         say("auto: no GPU device node (/dev/dri/renderD*, /dev/nvidiactl, /dev/dxg), using "
             "Embree without starting Vulkan");
         return Backend::Embree;

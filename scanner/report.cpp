@@ -21,6 +21,7 @@
 #include <iomanip>
 #include <limits>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -378,21 +379,22 @@ void write_outputs(const OutputFolder& folder, const Mesh& reference, const Anal
     // The atlas files and the report page's data are serial work (number formatting and
     // writing; the decimation of a large mesh for the page): at 2M triangles 0.9 s each, done
     // side by side. The pictures (on every worker) come after, so the picture renderer's BVH
-    // is not held with the atlas copy and the decimation (2M: peak 737 instead of ~560 MiB
-    // when all three ran at once). An exception in one job waits for the other. The "pictures"
+    // is not held with the atlas copy and the decimation (2M: peak 737 instead of ~560 MB
+    // resident when all three ran at once). An exception in one job waits for the other. The "pictures"
     // stage lets the caller hand back what the jobs freed (tools/memory.h): the page's thread
     // frees its decimation buffers into a heap of its own, which stays resident otherwise (2M:
-    // 614 instead of ~540 MiB under the pictures).
+    // 614 instead of 453 MB resident under the pictures).
     auto page_data =
         std::async(std::launch::async, [&] { return report_page_data(reference, result); });
     write_atlas_files(folder, reference, result, options);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     const std::string json_text = report_json(reference, result, options);
     write_file_atomically(folder.file("report.json"), json_text);
-    const ReportPageData page = page_data.get();
+    ReportPageData page = page_data.get();
     if (stage) stage("pictures");
     const PictureOutput pictures = write_pictures(folder, reference, result, options.exports);
-    write_file_atomically(folder.file("report.html"), report_html(page, json_text, pictures));
+    write_file_atomically(folder.file("report.html"),
+                          report_html(std::move(page), json_text, pictures));
 }
 
 }  // namespace glint

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <utility>
 
 namespace glint {
 
@@ -257,10 +258,11 @@ ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& res
     return {std::move(parts)};
 }
 
-std::string report_html(const ReportPageData& page, const std::string& report_json,
+std::string report_html(ReportPageData page, const std::string& report_json,
                         const PictureOutput& pictures) {
     GLINT_ASSERT(page.parts != nullptr, "report_html: no page data");
-    json data = page.parts->data;
+    json data = std::move(page.parts->data);
+    page.parts.reset();
     data["report"] = json::parse(report_json);
     json images = {{"mosaics", json::array()}, {"best_views", json::object()}};
     for (const auto& m : pictures.mosaics) images["mosaics"].push_back(data_uri(m));

@@ -40,15 +40,16 @@ inline constexpr std::size_t kReportPageTriangles = 250000;
 /// triangles), independent of the pictures, so it is made while they render (scanner/report.cpp).
 struct ReportPageData {
     struct Parts;
-    std::shared_ptr<const Parts> parts;
+    std::shared_ptr<Parts> parts;
 };
 
 /// \pre result from analyse() on `reference`.
 [[nodiscard]] ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
                                               std::size_t max_triangles = kReportPageTriangles);
 
-/// The page from its data, report.json's text (embedded whole) and the pictures.
-[[nodiscard]] std::string report_html(const ReportPageData& data, const std::string& report_json,
+/// The page from its data (consumed: its mesh arrays move into the page, not copied),
+/// report.json's text (embedded whole) and the pictures.
+[[nodiscard]] std::string report_html(ReportPageData data, const std::string& report_json,
                                       const PictureOutput& pictures);
 
 /// The page for a finished analysis, in one call (report_page_data, then report_html).
