@@ -106,7 +106,7 @@ std::size_t run_read_back(Setup& s, const std::vector<View>& views) {
 std::size_t run_gpu(Setup& s, const std::vector<View>& views) {
     std::size_t compared = 0;
     s.atlas->run(views,
-                 [&](std::size_t, const GpuViewSummary& summary) { compared += summary.compared; });
+                 [&](std::size_t, const ViewNumbers& summary) { compared += summary.compared; });
     benchmark::DoNotOptimize(s.atlas->read_totals());
     return compared;
 }

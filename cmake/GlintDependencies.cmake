@@ -93,7 +93,7 @@ if(GLINT_BUILD_BENCH)
   glint_require(benchmark_FOUND libbenchmark-dev)
 endif()
 # three.js (r111) and its OrbitControls from Debian's libjs-three: embedded into report.html at
-# build time (scanner/CMakeLists.txt), never fetched from the network.
+# build time (report/CMakeLists.txt), never fetched from the network.
 find_file(GLINT_THREE_JS three.min.js PATHS /usr/share/javascript/three NO_DEFAULT_PATH)
 glint_require(GLINT_THREE_JS libjs-three)
 find_file(GLINT_ORBIT_CONTROLS_JS OrbitControls.js PATHS /usr/share/javascript/three/examples/js/controls

@@ -43,9 +43,9 @@ struct DamageSpec {
 };
 
 /// Fraction of a damage's depth above which a vertex is labelled damaged.
-/// note: 10 %, the ground-truth rule of the real-data pairs (scanner/derived_pair): a vertex
+/// note: 10 %, the ground-truth rule of the real-data pairs (scenario/pair_truth): a vertex
 /// is damaged where the surface moved by more than a tenth of the damage's depth. The decision
-/// measures a region's extent the same way (scanner/decision.h, fused rule step 4); the flank
+/// measures a region's extent the same way (decision/decision.h, fused rule step 4); the flank
 /// beyond it still tilts the normals by a few degrees, but moves the surface by less than a
 /// tenth of the depth.
 inline constexpr double kDamageLabelThreshold = 0.1;

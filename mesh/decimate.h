@@ -22,7 +22,7 @@ struct DecimatedMesh {
 
 /// Triangles the simplifier works on at once (its working memory is ~60 bytes per triangle).
 /// note: 250 000 rather than 500 000: report.html's decimation runs beside the atlas files'
-/// writing (scanner/report.cpp), and with two pieces of 500 000 at a time a 2M-triangle run
+/// writing (report/report.cpp), and with two pieces of 500 000 at a time a 2M-triangle run
 /// peaked at 606 instead of 550 MiB; the page's mesh has a few more locked seams.
 inline constexpr std::size_t kDecimatePiece = 250000;
 

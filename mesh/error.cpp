@@ -25,6 +25,11 @@ OptionError OptionError::prefixed(const std::string& section) const {
                        message.rfind(key_, 0) == 0 ? section + "." + message : message);
 }
 
+std::string OptionError::named(const std::string& name) const {
+    const std::string message = what();
+    return message.rfind(key_, 0) == 0 ? name + message.substr(key_.size()) : message;
+}
+
 }  // namespace glint
 
 namespace glint::detail {

@@ -32,6 +32,9 @@ class OptionError : public InputError {
     OptionError(std::string key, double value, const std::string& rule);
     /// The same error under a section prefix: "size" → "sweep.size".
     [[nodiscard]] OptionError prefixed(const std::string& section) const;
+    /// The message with the option named as a front end spells it ("--threshold-deg",
+    /// "threshold_deg"): "<name> = <value>: <rule>"; the key stays.
+    [[nodiscard]] std::string named(const std::string& name) const;
     [[nodiscard]] const std::string& key() const noexcept { return key_; }
 
   private:

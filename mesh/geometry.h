@@ -1,4 +1,4 @@
-// Vocabulary shared by render/, registration/ and scanner/: rigid transforms, rays, cameras.
+// Vocabulary shared by render/, registration/, scanner/ and the stages above: rigid transforms, rays, cameras.
 //
 // Conventions
 // - World units are the mesh's units.

@@ -1,16 +1,18 @@
 // glint.register() and glint.analyse(): the fit with its evidence, the atlas as numpy arrays,
 // regions and the report as Python objects. The report is report.json's text
-// (scanner/report.h), parsed by Python's json module; nothing here re-computes it.
+// (report/report.h), parsed by Python's json module; nothing here re-computes it.
 #include "python/bindings.h"
 
+#include "analysis/analysis.h"
+#include "analysis/fit.h"
+#include "analysis/units.h"
 #include "mesh/atomic_file.h"
 #include "mesh/geometry.h"
 #include "python/interrupt.h"
 #include "python/keywords.h"
-#include "scanner/analysis.h"
-#include "scanner/fit.h"
-#include "scanner/report.h"
-#include "scanner/units.h"
+#include "report/inspect.h"
+#include "report/report.h"
+#include "report/run_inputs.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
@@ -34,6 +36,7 @@ struct FitHandle {
 /// glint.Analysis: one analyse() call's results.
 struct AnalysisHandle {
     AnalysisResult result;
+    std::filesystem::path output;       ///< the folder written (empty when none)
     std::shared_ptr<MeshHandle> atlas;  ///< the reference with the atlas fields (make_atlas_mesh)
     std::string report;                 ///< report.json's text
     std::string regions_csv;            ///< regions.csv's text
@@ -64,7 +67,7 @@ FitHandle register_pair(py::handle reference, py::handle examined,
                         const std::optional<std::filesystem::path>& output,
                         const py::kwargs& kwargs) {
     Keywords k;
-    apply_keywords(k, kwargs, kSurfaceKeywords | kFitKeywords | kUnitKeywords, "register");
+    apply_keywords(k, kwargs, kSurfaceKeywords | kFitGroup | kUnitGroup, "register");
     FitOptions& fit = k.analysis.fit;
     fit.mode = FitMode::Register;
     fit.validate();
@@ -83,11 +86,17 @@ FitHandle register_pair(py::handle reference, py::handle examined,
     });
 }
 
-InputRecord input_record(const char* role, const MeshHandle& h) {
-    InputRecord r{role, {}, "", h.mesh.vertex_count(), h.mesh.triangle_count()};
-    if (h.report) r.path = h.report->path;
-    else r.description = h.source;
-    return r;
+// The input as report.json records it: the file it came from, or what made it.
+RunInput run_input(const char* role, const MeshHandle& h) {
+    RunInput in;
+    in.record = {role, {}, "", h.mesh.vertex_count(), h.mesh.triangle_count()};
+    if (h.report) {
+        in.record.path = h.report->path;
+        for (const auto& w : h.report->warnings) in.warnings.push_back(h.source + ": " + w);
+    } else {
+        in.record.description = h.source;
+    }
+    return in;
 }
 
 AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_register,
@@ -95,28 +104,29 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
                             const std::optional<std::filesystem::path>& output,
                             const py::kwargs& kwargs) {
     Keywords k;
-    apply_keywords(k, kwargs, ~0u, "analyse");
-    AnalysisOptions& options = k.analysis;
-    options.fit.mode = fit_mode(do_register, fit_file);
-    if (fit_file) options.fit.fit_file = *fit_file;
+    apply_keywords(k, kwargs, kAllKeywords, "analyse");
+    InspectOptions options{k.analysis, k.exports};
+    options.analysis.fit.mode = fit_mode(do_register, fit_file);
+    if (fit_file) options.analysis.fit.fit_file = *fit_file;
     if (output) options.exports.output = *output;
-    options.exports.command_line = "python: glint.analyse(...)";
+    options.exports.replace_existing = k.force;
+    options.exports.keep_atlas = true;
     options.validate();  // before any load, as glint sweep does
     const auto ref = mesh_argument(reference, k.surface, "reference");
     const auto exa = mesh_argument(examined, k.surface, "examined");
-    options.exports.inputs = {input_record("reference", *ref), input_record("examined", *exa)};
-    if (fit_file) options.exports.inputs.push_back({"fit", *fit_file, "", 0, 0});
-    for (const auto* h : {ref.get(), exa.get()})
-        if (h->report)
-            for (const auto& w : h->report->warnings)
-                options.exports.warnings.push_back(h->source + ": " + w);
+    RunRecord record{.command_line = "python: glint.analyse(...)"};
+    record.add(run_input("reference", *ref));
+    record.add(run_input("examined", *exa));
+    if (fit_file) record.add_file("fit", *fit_file);
     return run_interruptible_value([&] {
+        Inspection inspection = inspect(ref->mesh, exa->mesh, options, record);
         AnalysisHandle a;
-        a.result = analyse(ref->mesh, exa->mesh, options);
+        a.result = std::move(inspection.analysis);
+        a.output = inspection.output;
         a.atlas = std::make_shared<MeshHandle>();
-        a.atlas->mesh = make_atlas_mesh(ref->mesh, a.result);
+        a.atlas->mesh = std::move(*inspection.atlas);
         a.atlas->source = "atlas of " + ref->source;
-        a.report = report_json(ref->mesh, a.result, options);
+        a.report = std::move(inspection.report_json);
         a.regions_csv = glint::regions_csv(a.result);
         a.fit = FitHandle{a.result.fit, a.result.unit};
         return a;
@@ -242,8 +252,8 @@ void bind_analysis_class(py::module_& m) {
         .def_property_readonly(
             "output",
             [](const AnalysisHandle& a) -> py::object {
-                if (a.result.output.empty()) return py::none();
-                return py::cast(a.result.output);
+                if (a.output.empty()) return py::none();
+                return py::cast(a.output);
             },
             "the folder written, or None")
         .def("__repr__", [](const AnalysisHandle& a) {
@@ -262,19 +272,34 @@ void bind_analysis(py::module_& m) {
     m.def(
         "register", &register_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
         py::arg("output") = py::none(),
-        ("Fits the examined surface onto the reference (robust ICP, as glint register). reference, examined: "
-         "glint.Mesh or paths. output: also write fit.json there. Keywords: " +
-         keyword_names(kSurfaceKeywords | kFitKeywords | kUnitKeywords) +
-         ". Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).")
+        ("Fits the examined surface onto the reference (robust ICP, as glint register).\n\n"
+         "reference, examined: glint.Mesh or paths. output: also write fit.json there.\n"
+         "Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).\n\n"
+         "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
+         keyword_docs(kSurfaceKeywords | kFitGroup | kUnitGroup))
             .c_str());
+    m.def("analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
+          py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
+          ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or "
+           "register=False for meshes already aligned), signed distance, sweep, decision and, with "
+           "output=, the folder glint sweep writes.\nReturns glint.Analysis. Ctrl-C stops it "
+           "(KeyboardInterrupt; nothing half-written).\n\n"
+           "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
+           keyword_docs(kAllKeywords))
+              .c_str());
     m.def(
-        "analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
-        py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
-        ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or register=False for meshes "
-         "already aligned), signed distance, sweep, decision and, with output=, the folder glint sweep writes. "
-         "Keywords: " +
-         keyword_names(~0u) +
-         ". Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written).")
+        "options",
+        [](const py::kwargs& kwargs) {
+            Keywords k;
+            apply_keywords(k, kwargs, kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword, "options");
+            k.analysis.validate();
+            k.exports.validate();
+            return json_loads(options_json(k));
+        },
+        ("The options analyse() would run with, resolved from these keywords, as a dict laid out "
+         "as a scenario file's sections (glint sweep --print-options prints the same).\n\n"
+         "Keywords:\n" +
+         keyword_docs(kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword))
             .c_str());
 }
 

@@ -2,15 +2,12 @@
 
 #include "mesh/error.h"
 #include "mesh/roi.h"
-#include "registration/icp.h"
-#include "render/context.h"
-#include "scanner/metric.h"
-#include "scanner/plan.h"
 
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -21,11 +18,12 @@ namespace glint::python {
 
 namespace {
 
-struct Keyword {
+/// A surface keyword (volume/surface.h): not an analysis option, so written here.
+struct SurfaceKeyword {
     const char* name;
-    KeywordGroup group;
     const char* expected;  ///< for the error on a wrong type
-    std::function<void(Keywords&, py::handle)> apply;
+    const char* help;
+    std::function<void(SurfaceOptions&, py::handle)> apply;
 };
 
 template <class T>
@@ -41,157 +39,209 @@ bool as<bool>(py::handle value) {
     return value.ptr() == Py_True;
 }
 
-const std::vector<Keyword>& keywords() {
-    static const std::vector<Keyword> table = {
-        // Surfaces of volumes (volume/surface.h).
-        {"iso", kSurfaceKeywords, "a number",
-         [](Keywords& k, py::handle v) { k.surface.iso = as<double>(v); }},
-        {"surface_roi", kSurfaceKeywords, "a string (sphere:… or box:…)",
-         [](Keywords& k, py::handle v) { k.surface.roi = parse_roi(as<std::string>(v)); }},
-        {"largest", kSurfaceKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.surface.largest = as<bool>(v); }},
-        {"seed", kSurfaceKeywords, "three numbers (mm)",
-         [](Keywords& k, py::handle v) {
+// A whole number: a Python int (not a bool), or a float with no fraction (2.0), never truncated.
+int as_int(py::handle value) {
+    if (PyBool_Check(value.ptr())) throw py::cast_error("a bool is not an integer");
+    if (PyFloat_Check(value.ptr())) {
+        const double d = value.cast<double>();
+        if (!(std::isfinite(d) && d == std::floor(d) && std::fabs(d) < 2e9))
+            throw py::cast_error("not a whole number");
+        return static_cast<int>(d);
+    }
+    return py::cast<int>(value);
+}
+
+const std::vector<SurfaceKeyword>& surface_keywords() {
+    static const std::vector<SurfaceKeyword> table = {
+        {"iso", "a number", "Volumes: iso value of the surface, in the volume's units",
+         [](SurfaceOptions& s, py::handle v) { s.iso = as<double>(v); }},
+        {"surface_roi", "a string (sphere:… or box:…)",
+         "Volumes: extract only inside this region (physical mm)",
+         [](SurfaceOptions& s, py::handle v) { s.roi = parse_roi(as<std::string>(v)); }},
+        {"largest", "a bool", "Volumes: keep only the largest connected surface",
+         [](SurfaceOptions& s, py::handle v) { s.largest = as<bool>(v); }},
+        {"seed", "three numbers (mm)", "Volumes: keep only the connected surface nearest x, y, z",
+         [](SurfaceOptions& s, py::handle v) {
              const auto p = as<std::array<double, 3>>(v);
-             k.surface.seed = Vec3d(p[0], p[1], p[2]);
+             s.seed = Vec3d(p[0], p[1], p[2]);
          }},
-        {"smooth", kSurfaceKeywords, "an integer",
-         [](Keywords& k, py::handle v) { k.surface.smooth_iterations = as<int>(v); }},
-        {"passband", kSurfaceKeywords, "a number",
-         [](Keywords& k, py::handle v) { k.surface.passband = as<double>(v); }},
-        {"edge", kSurfaceKeywords, "a number (mm)",
-         [](Keywords& k, py::handle v) { k.surface.edge_mm = as<double>(v); }},
-        {"tolerance", kSurfaceKeywords, "a number (mm)",
-         [](Keywords& k, py::handle v) { k.surface.tolerance_mm = as<double>(v); }},
-        // Registration (scanner/fit.h, registration/icp.h).
-        {"loss", kFitKeywords, "a string",
-         [](Keywords& k, py::handle v) {
-             k.analysis.fit.registration.loss = parse_loss(as<std::string>(v));
-         }},
-        {"fit_roi", kFitKeywords, "a string (sphere:…, box:… or mask:FILE)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.fit.registration.roi = parse_roi(as<std::string>(v));
-         }},
-        {"landmarks", kFitKeywords, "a path",
-         [](Keywords& k, py::handle v) {
-             k.analysis.fit.landmarks_file = as<std::filesystem::path>(v);
-         }},
-        {"init", kFitKeywords, "a path",
-         [](Keywords& k, py::handle v) {
-             k.analysis.fit.init_file = as<std::filesystem::path>(v);
-         }},
-        {"samples", kFitKeywords, "an integer",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.samples = as<int>(v); }},
-        {"max_iterations", kFitKeywords, "an integer",
-         [](Keywords& k, py::handle v) {
-             k.analysis.fit.registration.max_iterations = as<int>(v);
-         }},
-        {"symmetric", kFitKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.symmetric = as<bool>(v); }},
-        {"coarse", kFitKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.fit.registration.coarse = as<bool>(v); }},
-        // Units (scanner/units.h).
-        {"unit", kUnitKeywords, "a string",
-         [](Keywords& k, py::handle v) { k.analysis.units.unit = as<std::string>(v); }},
-        {"allow_scale_mismatch", kUnitKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.units.allow_scale_mismatch = as<bool>(v); }},
-        // The sweep (scanner/sweep.h, scanner/plan.h).
-        {"plan", kSweepKeywords, "a string (rotary or sphere:N)",
-         [](Keywords& k, py::handle v) {
-             parse_plan_kind(as<std::string>(v), k.analysis.sweep.plan);
-         }},
-        {"azimuth_step", kSweepKeywords, "a number (degrees)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.plan.azimuth_step_deg = as<double>(v); }},
-        {"elevations", kSweepKeywords, "a sequence of numbers (degrees)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.plan.elevations_deg = as<std::vector<double>>(v);
-         }},
-        {"zoom", kSweepKeywords, "a sequence of footprints (mesh units per pixel)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.plan.footprints = as<std::vector<double>>(v);
-         }},
-        {"roi", kSweepKeywords, "a string (sphere:…, box:… or mask:FILE)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.plan.roi = parse_roi(as<std::string>(v));
-         }},
-        {"size", kSweepKeywords, "an integer (pixels)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.plan.size = as<int>(v); }},
-        {"supersample", kSweepKeywords, "an integer",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.render.supersample = as<int>(v); }},
-        {"metric", kSweepKeywords, "a string",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.metric = parse_metric(as<std::string>(v));
-         }},
-        {"backend", kSweepKeywords, "a string (auto, vulkan, embree)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.render.backend = parse_backend(as<std::string>(v));
-         }},
-        {"device", kSweepKeywords, "a string",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.render.device = as<std::string>(v); }},
-        {"accumulate", kSweepKeywords, "a string (auto, gpu, host)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.sweep.accumulate = parse_accumulation(as<std::string>(v));
-         }},
-        {"max_incidence", kSweepKeywords, "a number (degrees)",
-         [](Keywords& k, py::handle v) { k.analysis.sweep.max_incidence_deg = as<double>(v); }},
-        // The decision (scanner/decision.h).
-        {"rule", kDecisionKeywords, "a string (fused or normal)",
-         [](Keywords& k, py::handle v) {
-             k.analysis.decision.rule = parse_decision_rule(as<std::string>(v));
-         }},
-        {"threshold_deg", kDecisionKeywords, "a number",
-         [](Keywords& k, py::handle v) { k.analysis.decision.threshold = as<double>(v); }},
-        {"noise_k", kDecisionKeywords, "a number",
-         [](Keywords& k, py::handle v) { k.analysis.decision.noise_k = as<double>(v); }},
-        {"min_threshold_deg", kDecisionKeywords, "a number",
-         [](Keywords& k, py::handle v) { k.analysis.decision.min_threshold = as<double>(v); }},
-        {"shape_threshold", kDecisionKeywords, "a number (mesh units)",
-         [](Keywords& k, py::handle v) { k.analysis.decision.shape_threshold = as<double>(v); }},
-        {"min_region_vertices", kDecisionKeywords, "a non-negative integer",
-         [](Keywords& k, py::handle v) {
-             k.analysis.decision.min_region_vertices = as<std::size_t>(v);
-         }},
-        // Exports (scanner/analysis.h).
-        {"views", kExportKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.exports.write_views = as<bool>(v); }},
-        {"exr", kExportKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.exports.write_exr = as<bool>(v); }},
-        {"force", kExportKeywords, "a bool",
-         [](Keywords& k, py::handle v) { k.analysis.exports.replace_existing = as<bool>(v); }},
+        {"smooth", "an integer", "Volumes: windowed-sinc smoothing iterations (0: none)",
+         [](SurfaceOptions& s, py::handle v) { s.smooth_iterations = as_int(v); }},
+        {"passband", "a number", "Volumes: windowed-sinc pass band (0, 2), lower smooths more",
+         [](SurfaceOptions& s, py::handle v) { s.passband = as<double>(v); }},
+        {"edge", "a number (mm)", "Volumes: decimate to this mean edge length (0: keep all)",
+         [](SurfaceOptions& s, py::handle v) { s.edge_mm = as<double>(v); }},
+        {"tolerance", "a number (mm)", "Volumes: decimation moves the surface at most this far",
+         [](SurfaceOptions& s, py::handle v) { s.tolerance_mm = as<double>(v); }},
     };
     return table;
+}
+
+// A Python value as an option's kind. bool only from True/False, integers not from bools,
+// paths from os.PathLike, lists from any sequence of numbers. \throw py::cast_error.
+OptionValue option_value(const OptionInfo& info, py::handle v) {
+    switch (info.kind) {
+        case OptionKind::Flag: return as<bool>(v);
+        case OptionKind::Integer:
+            if (PyBool_Check(v.ptr())) throw py::cast_error("a bool is not an integer");
+            if (PyFloat_Check(v.ptr())) return v.cast<double>();  // 2.0 passes, 2.5 is refused
+            return py::cast<std::int64_t>(v);
+        case OptionKind::Number:
+        case OptionKind::OptionalNumber:
+            if (PyBool_Check(v.ptr())) throw py::cast_error("a bool is not a number");
+            return py::cast<double>(v);
+        case OptionKind::Numbers:
+            if (py::isinstance<py::str>(v)) throw py::cast_error("a string is not numbers");
+            if (PyFloat_Check(v.ptr()) || PyLong_Check(v.ptr()))
+                return std::vector<double>{py::cast<double>(v)};
+            return py::cast<std::vector<double>>(v);
+        case OptionKind::Path: return py::cast<std::filesystem::path>(v).string();
+        case OptionKind::Choice:
+        case OptionKind::Text:
+        case OptionKind::Region: return py::cast<std::string>(v);
+    }
+    throw py::cast_error("unknown kind");
+}
+
+const char* kind_name(OptionKind k) {
+    switch (k) {
+        case OptionKind::Flag: return "bool";
+        case OptionKind::Integer: return "int";
+        case OptionKind::Number: return "float";
+        case OptionKind::OptionalNumber: return "float | None";
+        case OptionKind::Numbers: return "sequence of float";
+        case OptionKind::Choice: return "str";
+        case OptionKind::Text: return "str";
+        case OptionKind::Region: return "str (region)";
+        case OptionKind::Path: return "path";
+    }
+    return "?";
+}
+
+// Calls `visit(info, default text)` for each registry keyword of `groups`, in table order.
+template <class Visit>
+void for_each_registry_keyword(unsigned groups, Visit visit) {
+    const AnalysisOptions analysis;
+    const ExportOptions exports;
+    for (const auto& f : analysis_option_table())
+        if ((f.info.group & groups) != 0) visit(f.info, option_text(f.info, f.get(analysis)));
+    for (const auto& f : export_option_table())
+        if ((f.info.group & groups) != 0) visit(f.info, option_text(f.info, f.get(exports)));
+}
+
+// Applies one registry keyword; false when `name` is none of them.
+bool apply_registry_keyword(Keywords& into, const std::string& name, py::handle value,
+                            unsigned groups) {
+    if ((groups & (kUnitGroup | kFitGroup | kSweepGroup | kDecisionGroup)) != 0)
+        if (const auto* f = find_option(analysis_option_table(), name);
+            f != nullptr && (f->info.group & groups) != 0) {
+            set_option(into.analysis, *f, option_value(f->info, value));
+            return true;
+        }
+    if ((groups & kExportGroup) != 0)
+        if (const auto* f = find_option(export_option_table(), name); f != nullptr) {
+            set_option(into.exports, *f, option_value(f->info, value));
+            return true;
+        }
+    return false;
+}
+
+const OptionInfo* registry_info(const std::string& name) {
+    if (const auto* f = find_option(analysis_option_table(), name)) return &f->info;
+    if (const auto* f = find_option(export_option_table(), name)) return &f->info;
+    return nullptr;
+}
+
+// Whether a function of `groups` takes the keyword `name`.
+bool accepts(unsigned groups, const std::string& name) {
+    bool found = false;
+    if ((groups & kSurfaceKeywords) != 0)
+        for (const auto& k : surface_keywords()) found = found || name == k.name;
+    for_each_registry_keyword(groups, [&](const OptionInfo& info, const std::string&) {
+        found = found || info.name == name;
+    });
+    return found || (name == "force" && (groups & kForceKeyword) != 0);
 }
 
 }  // namespace
 
 std::string keyword_names(unsigned groups) {
     std::string names;
-    for (const Keyword& k : keywords())
-        if ((groups & k.group) != 0) names += (names.empty() ? "" : ", ") + std::string(k.name);
+    auto add = [&](std::string_view n) { names += (names.empty() ? "" : ", ") + std::string(n); };
+    if ((groups & kSurfaceKeywords) != 0)
+        for (const auto& k : surface_keywords()) add(k.name);
+    for_each_registry_keyword(groups,
+                              [&](const OptionInfo& info, const std::string&) { add(info.name); });
+    if ((groups & kForceKeyword) != 0) add("force");
     return names;
+}
+
+std::string keyword_docs(unsigned groups) {
+    std::string doc;
+    if ((groups & kSurfaceKeywords) != 0)
+        for (const auto& k : surface_keywords())
+            doc += "    " + std::string(k.name) + ": " + k.expected + " — " + k.help + "\n";
+    for_each_registry_keyword(groups, [&](const OptionInfo& info, const std::string& def) {
+        doc += "    " + std::string(info.name) + ": " + kind_name(info.kind) + " = " +
+               (def.empty() ? "None" : def) +
+               (info.unit.empty() ? "" : " [" + std::string(info.unit) + "]") + " — " +
+               std::string(info.help) + "; " + describe_expected(info) + "\n";
+    });
+    if ((groups & kForceKeyword) != 0)
+        doc +=
+            "    force: bool = False — replace an existing output folder (only once the new "
+            "results are complete)\n";
+    return doc;
 }
 
 void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups,
                     const std::string& function) {
     for (const auto& [key, value] : kwargs) {
         const auto name = py::cast<std::string>(key);
-        const Keyword* found = nullptr;
-        for (const Keyword& k : keywords())
-            if ((groups & k.group) != 0 && name == k.name) found = &k;
-        if (found == nullptr)
-            throw py::type_error(function + "() got an unexpected keyword argument '" + name +
-                                 "'; it takes: " + keyword_names(groups));
-        if (value.is_none()) continue;  // None: the library's default
+        if (value.is_none()) {
+            // None: the library's default. An unknown keyword is still an error.
+            if (!accepts(groups, name))
+                throw py::type_error(function + "() got an unexpected keyword argument '" + name +
+                                     "'; it takes: " + keyword_names(groups));
+            continue;
+        }
         try {
-            found->apply(into, value);
+            if (apply_registry_keyword(into, name, value, groups)) continue;
+            if (name == "force" && (groups & kForceKeyword) != 0) {
+                into.force = as<bool>(value);
+                continue;
+            }
+            const SurfaceKeyword* surface = nullptr;
+            if ((groups & kSurfaceKeywords) != 0)
+                for (const auto& k : surface_keywords())
+                    if (name == k.name) surface = &k;
+            if (surface == nullptr)
+                throw py::type_error(function + "() got an unexpected keyword argument '" + name +
+                                     "'; it takes: " + keyword_names(groups));
+            try {
+                surface->apply(into.surface, value);
+            } catch (const py::cast_error&) {
+                throw InputError(function + ": " + name + " = " +
+                                 py::cast<std::string>(py::repr(value)) + ": expected " +
+                                 surface->expected);
+            }
         } catch (const py::cast_error&) {
+            const OptionInfo* info = registry_info(name);
             throw InputError(function + ": " + name + " = " +
                              py::cast<std::string>(py::repr(value)) + ": expected " +
-                             found->expected);
+                             (info ? describe_expected(*info) : std::string("a bool")));
+        } catch (const OptionError& e) {
+            // The registry names the option by its flag or key; Python names the keyword.
+            const OptionInfo* info = registry_info(name);
+            throw InputError(function + ": " + name + " = " +
+                             py::cast<std::string>(py::repr(value)) + ": expected " +
+                             (info ? describe_expected(*info) : std::string(e.what())));
         } catch (const InputError& e) {
             throw InputError(function + ": " + name + ": " + e.what());
         }
     }
 }
+
+std::string options_json(const Keywords& k) { return to_json(k.analysis, k.exports); }
 
 }  // namespace glint::python

@@ -1,13 +1,15 @@
 // Keyword arguments of the Python functions → glint's option structs.
 //
-// Each keyword sets one field through the parser the command line and scenario files use
-// (parse_roi, parse_metric, …), so the three agree on spellings; a keyword left out keeps the
-// library's default (there are no defaults in Python to drift from C++). The keywords are the
-// command line's flags without dashes, dashes as underscores (--azimuth-step → azimuth_step);
-// glint sweep's --fit-roi is fit_roi everywhere (the sweep's own ROI is roi).
+// The analysis and export keywords are generated from the option registry
+// (analysis/option_registry.h): one keyword per option, with its type, range and choices
+// checked as the command line checks them, and documented in help() with its default and unit.
+// A keyword left out keeps the library's default (there are no defaults in Python to drift from
+// C++). The surface keywords (iso, …) are those of volume/surface.h.
 #pragma once
 
-#include "scanner/analysis.h"
+#include "analysis/analysis.h"
+#include "analysis/option_registry.h"
+#include "report/export_options.h"
 #include "volume/surface.h"
 
 #include <pybind11/pybind11.h>
@@ -19,24 +21,22 @@ namespace glint::python {
 /// What keywords can set.
 struct Keywords {
     AnalysisOptions analysis;
+    ExportOptions exports;
     SurfaceOptions surface;
+    bool force = false;  ///< replace an existing output folder
 };
 
-/// Which keywords a function accepts.
+/// Which keywords a function accepts: the registry's groups (kUnitGroup, kFitGroup,
+/// kSweepGroup, kDecisionGroup, kExportGroup), and these.
 enum KeywordGroup : unsigned {
     kSurfaceKeywords =
-        1u << 0,  ///< iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
-    kFitKeywords =
-        1u << 1,  ///< loss, fit_roi, landmarks, init, samples, max_iterations, symmetric, coarse
-    kUnitKeywords = 1u << 2,  ///< unit, allow_scale_mismatch
-    kSweepKeywords =
-        1u << 3,  ///< plan, azimuth_step, elevations, zoom, roi, size, supersample, metric,
-                  ///< backend, device, max_incidence
-    kDecisionKeywords =
-        1u << 4,  ///< rule, threshold_deg, noise_k, min_threshold_deg, shape_threshold,
-                  ///< min_region_vertices
-    kExportKeywords = 1u << 5,  ///< views, exr, force
+        1u << 8,  ///< iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
+    kForceKeyword = 1u << 9,  ///< force
 };
+
+/// Every keyword of `analyse()`.
+inline constexpr unsigned kAllKeywords = kUnitGroup | kFitGroup | kSweepGroup | kDecisionGroup |
+                                         kExportGroup | kSurfaceKeywords | kForceKeyword;
 
 /// Applies `kwargs` to `into`. \throw pybind11::type_error for a keyword the function does not
 /// take (naming the ones it does); InputError naming the keyword for a value of the wrong type
@@ -44,7 +44,13 @@ enum KeywordGroup : unsigned {
 void apply_keywords(Keywords& into, const pybind11::kwargs& kwargs, unsigned groups,
                     const std::string& function);
 
-/// The keywords of `groups`, comma-separated (for docstrings and errors).
+/// The keywords of `groups`, comma-separated (for errors).
 [[nodiscard]] std::string keyword_names(unsigned groups);
+
+/// The keywords of `groups`, one per line with its type, default, unit and help (docstrings).
+[[nodiscard]] std::string keyword_docs(unsigned groups);
+
+/// The resolved options as the JSON --print-options prints (glint.options()).
+[[nodiscard]] std::string options_json(const Keywords& keywords);
 
 }  // namespace glint::python

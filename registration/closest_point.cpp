@@ -169,8 +169,11 @@ ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow)
     rtcSetDeviceErrorFunction(impl_->device, embree_error, &error);
     impl_->scene = rtcNewScene(impl_->device);
     // note: the compact BVH: on 2M triangles 58 MB less (134 instead of 192 MB for the index)
-    // and point queries no slower (0.31–0.35 s for 1M queries either way).
-    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_COMPACT);
+    // and point queries no slower (0.31–0.35 s for 1M queries either way). Robust: picking
+    // rays are watertight, so a ray through a vertex or an edge (a landmark picked exactly at a
+    // vertex) cannot fall through between its triangles; without it, on AVX2 machines, such a
+    // ray hit the far side of the blob in ResolveLandmarks' test (AVX-512 happened to close it).
+    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_COMPACT | RTC_SCENE_FLAG_ROBUST);
     // note: medium, not high: on 2M triangles the high-quality build (spatial splits) took 1.2 s
     // more per index and saved a quarter of the query time, ~0.1 s over a whole registration.
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);

@@ -1,5 +1,5 @@
 // Landmark pairs: a closed-form starting pose from ≥ 3 corresponding points, and the JSON
-// file format users write them in (points, or pixels picked in named views; scanner/
+// file format users write them in (points, or pixels picked in named views; analysis/
 // landmarks.h turns picked pixels into points).
 #pragma once
 
@@ -17,7 +17,7 @@ namespace glint {
                                   const std::vector<Vec3d>& reference);
 
 /// A view of one mesh as `glint pick` frames it (an orthographic view around the mesh's
-/// bounding sphere; registration/ does not frame views, scanner/landmarks.h resolves them).
+/// bounding sphere; registration/ does not frame views, analysis/landmarks.h resolves them).
 struct LandmarkView {
     double azimuth_deg = 0.0;
     double elevation_deg = 0.0;

@@ -27,12 +27,23 @@ const detail::VulkanMesh* GpuAtlas::vulkan_mesh(const Renderer& renderer) {
     return renderer.backend_ ? renderer.backend_->vulkan_mesh() : nullptr;
 }
 
+bool has_gpu_kernel(Metric metric) {
+    switch (metric) {
+        case Metric::AngleDeg:             // GLINT_ATLAS_METRIC 0 in shaders/atlas_pixels.comp
+        case Metric::RgbAbs: return true;  // GLINT_ATLAS_METRIC_RGB
+    }
+    return false;  // a metric added without a kernel
+}
+
 bool GpuAtlas::supported(const Renderer& reference, const Renderer& examined,
                          const GpuAtlasOptions& options, std::string* why) {
     const auto no = [&](std::string reason) {
         if (why != nullptr) *why = std::move(reason);
         return false;
     };
+    if (!has_gpu_kernel(options.metric))
+        return no("metric " + std::to_string(static_cast<int>(options.metric)) +
+                  " has no GPU kernel (the device would fold another metric)");
     const detail::VulkanMesh* ref = vulkan_mesh(reference);
     const detail::VulkanMesh* exa = vulkan_mesh(examined);
     if (ref == nullptr || exa == nullptr) return no("the renderers do not use the Vulkan backend");
@@ -83,7 +94,7 @@ const GpuAtlasTimings& GpuAtlas::timings() const {
     return impl_->timings();
 }
 
-std::vector<GpuAtlasTotals> GpuAtlas::read_totals() {
+std::vector<AtlasTotals> GpuAtlas::read_totals() {
     GLINT_ASSERT(impl_ != nullptr, "read_totals on a moved-from GpuAtlas");
     return impl_->read_totals();
 }

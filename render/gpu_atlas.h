@@ -11,7 +11,7 @@
 //                        (silhouette, angle, signed depth, the metric), and the scatter of the
 //                        pixel's value onto its reference triangle's vertices (barycentric
 //                        weights of the pixel-centre ray, incidence rule) with atomics; the
-//                        view's numbers (GpuViewSummary) reduced per workgroup.
+//                        view's numbers (ViewNumbers) reduced per workgroup.
 //   atlas_vertices.comp  per reference vertex: the gather of vertices that no pixel centre fell
 //                        on, and the fold of this view's per-vertex maximum and most frontal
 //                        observation into the sweep's (first view wins ties, as on the CPU).
@@ -22,7 +22,7 @@
 // Precision (what differs from the CPU path, and by how much):
 // - sums (weight, weight·value, missing weight, weight·signed depth) are 64-bit fixed point
 //   accumulated with integer atomics, so they do not depend on the order the device runs in;
-//   the scale is the largest power of two for which no sum can overflow (GpuAtlasTotals::
+//   the scale is the largest power of two for which no sum can overflow (AtlasTotals::
 //   *_resolution give the step: each observation is rounded to half a step, where the CPU
 //   rounds its double sums to half an ulp);
 // - everything else is computed with the CPU path's operations in the same order (float where
@@ -32,10 +32,12 @@
 //   pixel angle may differ from the CPU's by one float ulp. Devices whose double division and
 //   square root are not correctly rounded differ by a few more ulps.
 //
-// Requirements: the Vulkan backend, both renderers on one context, world-space normals, and a
-// device with shaderFloat64, shaderInt64 and shaderBufferInt64Atomics (GpuAtlas::supported()).
+// Requirements: the Vulkan backend, both renderers on one context, world-space normals, a metric
+// with a kernel here (has_gpu_kernel), and a device with shaderFloat64, shaderInt64 and
+// shaderBufferInt64Atomics (GpuAtlas::supported()).
 #pragma once
 
+#include "render/atlas_totals.h"
 #include "render/renderer.h"
 #include "render/view.h"
 
@@ -49,14 +51,12 @@
 
 namespace glint {
 
-/// The per-pixel deviation the device folds (scanner/metric.h describes both for users).
-enum class GpuMetric {
-    AngleDeg,  ///< angle between the two unit normals, degrees
-    RgbAbs,    ///< mean |ΔR|, |ΔG|, |ΔB| of the 8-bit normal colours, 0…255
-};
+/// Whether the passes compute `metric` on the device (a metric without a kernel here makes
+/// GpuAtlas::supported() refuse, naming it, rather than fold another metric).
+[[nodiscard]] bool has_gpu_kernel(Metric metric);
 
 struct GpuAtlasOptions {
-    GpuMetric metric = GpuMetric::AngleDeg;
+    Metric metric = Metric::AngleDeg;
     /// Value of a reference pixel with no examined surface behind it.
     float missing_value = 90.0f;
     /// A pixel counts as covered (compared, scattered) at this share of its sub-samples.
@@ -72,34 +72,6 @@ struct GpuAtlasOptions {
     void validate() const;
 };
 
-/// What one view showed (scanner/sweep.h's ViewSummary without the index).
-struct GpuViewSummary {
-    std::size_t reference_pixels = 0;  ///< reference pixels covered at min_coverage
-    std::size_t compared = 0;
-    std::size_t reference_only = 0;
-    std::size_t examined_only = 0;
-    double max_angle_deg = 0.0;
-    double mean_angle_deg = 0.0;  ///< fixed-point sum / compared (step angle_resolution)
-};
-
-/// Per-vertex totals of one zoom level: the state of scanner's AtlasAccumulator.
-struct GpuAtlasTotals {
-    std::vector<float> max;              ///< largest value at the vertex's nearest pixels (0: none)
-    std::vector<float> depth_at_max;     ///< signed depth there (NaN: missing surface)
-    std::vector<std::int32_t> max_view;  ///< -1: none
-    std::vector<double> weight;          ///< Σ w
-    std::vector<double> value_sum;       ///< Σ w·value
-    std::vector<double> missing_weight;  ///< Σ w where no examined surface was behind the pixel
-    std::vector<double> depth_sum;       ///< Σ w·signed depth
-    std::vector<double> depth_weight;    ///< Σ w where the depth was finite (= weight − missing)
-    std::vector<std::uint32_t> count;    ///< observations
-    std::vector<float> best_cos;         ///< most frontal cos(incidence) (-2: none)
-    std::vector<std::int32_t> best_view;  ///< -1: none
-    double weight_resolution = 0.0;       ///< fixed-point step of weight and missing_weight
-    double value_resolution = 0.0;        ///< of value_sum
-    double depth_resolution = 0.0;        ///< of depth_sum
-};
-
 /// Device time of the last run() by stage, from timestamps written between them (each stage
 /// from the end of the one before, so waits on the previous view are not counted). Zero and
 /// measured = false when the queue writes no timestamps.
@@ -113,7 +85,7 @@ struct GpuAtlasTimings {
 
 /// Called in view order after the device finished a view: its index in the span given to
 /// run() and its numbers. May throw to stop the run (the device is drained first).
-using GpuViewConsumer = std::function<void(std::size_t view_index, const GpuViewSummary& summary)>;
+using GpuViewConsumer = std::function<void(std::size_t view_index, const ViewNumbers& summary)>;
 
 namespace detail {
 class GpuAtlasImpl;
@@ -148,7 +120,7 @@ class GpuAtlas {
     void run(std::span<const View> views, const GpuViewConsumer& consumer = {});
 
     /// Reads the totals of every zoom level back (once per sweep). \throw DeviceError.
-    [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
+    [[nodiscard]] std::vector<AtlasTotals> read_totals();
 
     /// Where the device spent the last run()'s time (benchmarks; see GpuAtlasTimings).
     [[nodiscard]] const GpuAtlasTimings& timings() const;

@@ -5,48 +5,40 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace glint {
 
 AtlasAccumulator::AtlasAccumulator(const Mesh& reference, double footprint)
     : mesh_(&reference),
       footprint_(footprint),
-      max_(reference.vertex_count(), 0.0f),
-      depth_at_max_(reference.vertex_count(), 0.0f),
-      sum_(reference.vertex_count(), 0.0),
-      weight_(reference.vertex_count(), 0.0),
-      depth_sum_(reference.vertex_count(), 0.0),
-      depth_weight_(reference.vertex_count(), 0.0),
-      missing_weight_(reference.vertex_count(), 0.0),
-      count_(reference.vertex_count(), 0u),
-      best_cos_(reference.vertex_count(), -2.0f),
-      best_view_(reference.vertex_count(), -1),
-      max_view_(reference.vertex_count(), -1) {}
+      totals_(AtlasTotals::none(reference.vertex_count())) {}
 
 void AtlasAccumulator::observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s,
                                std::int32_t view_index) {
-    ++count_[v];
-    if (s.cos_incidence > best_cos_[v]) {
-        best_cos_[v] = s.cos_incidence;
-        best_view_[v] = view_index;
+    AtlasTotals& t = totals_;
+    ++t.count[v];
+    if (s.cos_incidence > t.best_cos[v]) {
+        t.best_cos[v] = s.cos_incidence;
+        t.best_view[v] = view_index;
     }
     if (!s.valid) return;
-    weight_[v] += w;
-    sum_[v] += static_cast<double>(w) * s.value;
-    if (s.missing) missing_weight_[v] += w;
+    t.weight[v] += w;
+    t.value_sum[v] += static_cast<double>(w) * s.value;
+    if (s.missing) t.missing_weight[v] += w;
     if (std::isfinite(s.signed_depth)) {
-        depth_weight_[v] += w;
-        depth_sum_[v] += static_cast<double>(w) * s.signed_depth;
+        t.depth_weight[v] += w;
+        t.depth_sum[v] += static_cast<double>(w) * s.signed_depth;
     }
-    if (nearest && (s.value > max_[v] || max_view_[v] < 0)) {
-        max_[v] = s.value;
-        depth_at_max_[v] = s.signed_depth;
-        max_view_[v] = view_index;
+    if (nearest && (s.value > t.value_max[v] || t.max_view[v] < 0)) {
+        t.value_max[v] = s.value;
+        t.depth_at_max[v] = s.signed_depth;
+        t.max_view[v] = view_index;
     }
 }
 
 void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index) {
-    add(s, view_index, 0, static_cast<std::uint32_t>(max_.size()));
+    add(s, view_index, 0, static_cast<std::uint32_t>(totals_.size()));
 }
 
 void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index, std::uint32_t first,
@@ -66,54 +58,59 @@ void AtlasAccumulator::add(const AtlasSample& s, std::int32_t view_index, std::u
 }
 
 void AtlasAccumulator::add_vertex(std::uint32_t v, const AtlasSample& s, std::int32_t view_index) {
-    GLINT_ASSERT(v < max_.size(), "vertex beyond the reference mesh");
+    GLINT_ASSERT(v < totals_.size(), "vertex beyond the reference mesh");
     observe(v, 1.0f, true, s, view_index);
 }
 
-void AtlasAccumulator::merge(const AtlasAccumulator& o) {
-    GLINT_ASSERT(o.mesh_ == mesh_, "merging atlases of different meshes");
-    for (std::size_t v = 0; v < max_.size(); ++v) {
-        count_[v] += o.count_[v];
-        sum_[v] += o.sum_[v];
-        weight_[v] += o.weight_[v];
-        depth_sum_[v] += o.depth_sum_[v];
-        depth_weight_[v] += o.depth_weight_[v];
-        missing_weight_[v] += o.missing_weight_[v];
-        if (o.best_cos_[v] > best_cos_[v]) {
-            best_cos_[v] = o.best_cos_[v];
-            best_view_[v] = o.best_view_[v];
+void AtlasAccumulator::merge(const AtlasAccumulator& other) {
+    GLINT_ASSERT(other.mesh_ == mesh_, "merging atlases of different meshes");
+    AtlasTotals& t = totals_;
+    const AtlasTotals& o = other.totals_;
+    for (std::size_t v = 0; v < t.size(); ++v) {
+        t.count[v] += o.count[v];
+        t.value_sum[v] += o.value_sum[v];
+        t.weight[v] += o.weight[v];
+        t.depth_sum[v] += o.depth_sum[v];
+        t.depth_weight[v] += o.depth_weight[v];
+        t.missing_weight[v] += o.missing_weight[v];
+        if (o.best_cos[v] > t.best_cos[v]) {
+            t.best_cos[v] = o.best_cos[v];
+            t.best_view[v] = o.best_view[v];
         }
-        if (o.max_view_[v] >= 0 && (max_view_[v] < 0 || o.max_[v] > max_[v])) {
-            max_[v] = o.max_[v];
-            depth_at_max_[v] = o.depth_at_max_[v];
-            max_view_[v] = o.max_view_[v];
+        if (o.max_view[v] >= 0 && (t.max_view[v] < 0 || o.value_max[v] > t.value_max[v])) {
+            t.value_max[v] = o.value_max[v];
+            t.depth_at_max[v] = o.depth_at_max[v];
+            t.max_view[v] = o.max_view[v];
         }
     }
 }
 
-ZoomAtlas AtlasAccumulator::finish() const {
+ZoomAtlas AtlasAccumulator::finish() const { return finish_atlas(totals_, footprint_); }
+
+ZoomAtlas finish_atlas(AtlasTotals t, double footprint) {
     ZoomAtlas a;
-    a.footprint = footprint_;
-    const std::size_t n = max_.size();
-    a.value_max = max_;
-    a.depth_at_max = depth_at_max_;
-    a.count = count_;
-    a.best_view = best_view_;
-    a.max_view = max_view_;
+    a.footprint = footprint;
+    const std::size_t n = t.size();
     a.value_mean.resize(n);
     a.weight.resize(n);
     a.missing.resize(n);
     a.best_cos.resize(n);
     a.depth_mean.resize(n);
     for (std::size_t v = 0; v < n; ++v) {
-        a.weight[v] = static_cast<float>(weight_[v]);
-        a.value_mean[v] = weight_[v] > 0 ? static_cast<float>(sum_[v] / weight_[v]) : 0.0f;
-        a.missing[v] = weight_[v] > 0 ? static_cast<float>(missing_weight_[v] / weight_[v]) : 0.0f;
-        a.depth_mean[v] = depth_weight_[v] > 0
-                              ? static_cast<float>(depth_sum_[v] / depth_weight_[v])
+        const double w = t.weight[v];
+        a.weight[v] = static_cast<float>(w);
+        a.value_mean[v] = w > 0 ? static_cast<float>(t.value_sum[v] / w) : 0.0f;
+        a.missing[v] = w > 0 ? static_cast<float>(t.missing_weight[v] / w) : 0.0f;
+        a.depth_mean[v] = t.depth_weight[v] > 0
+                              ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
                               : std::numeric_limits<float>::quiet_NaN();
-        a.best_cos[v] = best_view_[v] >= 0 ? best_cos_[v] : 0.0f;
+        a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
     }
+    a.value_max = std::move(t.value_max);
+    a.depth_at_max = std::move(t.depth_at_max);
+    a.count = std::move(t.count);
+    a.best_view = std::move(t.best_view);
+    a.max_view = std::move(t.max_view);
     return a;
 }
 

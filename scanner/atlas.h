@@ -8,6 +8,7 @@
 #pragma once
 
 #include "mesh/mesh.h"
+#include "render/atlas_totals.h"
 
 #include <array>
 #include <cstdint>
@@ -31,6 +32,10 @@ struct ZoomAtlas {
     std::vector<std::int32_t> best_view;  ///< view index of that observation (-1 = unseen)
     std::vector<std::int32_t> max_view;   ///< view index where the max was seen (-1 = unseen)
 };
+
+/// The atlas of one zoom level from its running totals, by either path: means are the sums
+/// over their weights (0 where unseen; depth NaN where no depth was seen).
+[[nodiscard]] ZoomAtlas finish_atlas(AtlasTotals totals, double footprint);
 
 /// One observation: a pixel on a triangle, or (gathering) a single vertex.
 struct AtlasSample {
@@ -58,8 +63,11 @@ class AtlasAccumulator {
     void add_vertex(std::uint32_t vertex, const AtlasSample& sample, std::int32_t view_index);
     /// Merges another accumulator of the same mesh and zoom.
     void merge(const AtlasAccumulator& other);
-    /// Final per-vertex arrays.
+    /// Final per-vertex arrays (finish_atlas of the totals).
     [[nodiscard]] ZoomAtlas finish() const;
+
+    /// The running totals (the GPU path reads the same state back from the device).
+    [[nodiscard]] const AtlasTotals& totals() const { return totals_; }
 
   private:
     void observe(std::uint32_t v, float w, bool nearest, const AtlasSample& s,
@@ -67,17 +75,7 @@ class AtlasAccumulator {
 
     const Mesh* mesh_;
     double footprint_;
-    std::vector<float> max_;
-    std::vector<float> depth_at_max_;
-    std::vector<double> sum_;
-    std::vector<double> weight_;
-    std::vector<double> depth_sum_;
-    std::vector<double> depth_weight_;
-    std::vector<double> missing_weight_;
-    std::vector<std::uint32_t> count_;
-    std::vector<float> best_cos_;
-    std::vector<std::int32_t> best_view_;
-    std::vector<std::int32_t> max_view_;
+    AtlasTotals totals_;
 };
 
 }  // namespace glint

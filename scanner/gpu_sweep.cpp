@@ -7,7 +7,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace glint {
@@ -38,40 +37,12 @@ double seconds_since(Clock::time_point t0) {
 
 GpuAtlasOptions atlas_options(const SweepPlan& plan, const SweepOptions& options) {
     return GpuAtlasOptions{
-        .metric = options.metric == Metric::RgbAbs ? GpuMetric::RgbAbs : GpuMetric::AngleDeg,
+        .metric = options.metric,
         .missing_value = describe(options.metric).missing_value,
         .min_coverage = options.compare.min_coverage,
         .min_cos_incidence = std::cos(options.max_incidence_deg * std::numbers::pi / 180.0),
         .framed_radius = plan.radius,
         .zoom_count = static_cast<int>(plan.footprints.size())};
-}
-
-/// AtlasAccumulator::finish over the device's totals.
-ZoomAtlas zoom_atlas(GpuAtlasTotals&& t, double footprint) {
-    ZoomAtlas a;
-    a.footprint = footprint;
-    const std::size_t n = t.max.size();
-    a.value_mean.resize(n);
-    a.weight.resize(n);
-    a.missing.resize(n);
-    a.best_cos.resize(n);
-    a.depth_mean.resize(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        const double w = t.weight[v];
-        a.weight[v] = static_cast<float>(w);
-        a.value_mean[v] = w > 0 ? static_cast<float>(t.value_sum[v] / w) : 0.0f;
-        a.missing[v] = w > 0 ? static_cast<float>(t.missing_weight[v] / w) : 0.0f;
-        a.depth_mean[v] = t.depth_weight[v] > 0
-                              ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
-                              : std::numeric_limits<float>::quiet_NaN();
-        a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
-    }
-    a.value_max = std::move(t.max);
-    a.depth_at_max = std::move(t.depth_at_max);
-    a.count = std::move(t.count);
-    a.best_view = std::move(t.best_view);
-    a.max_view = std::move(t.max_view);
-    return a;
 }
 
 }  // namespace
@@ -96,28 +67,25 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer,
 
     const DeviationMap no_deviation;
     const auto t_run = Clock::now();
-    atlas.run(views, [&](std::size_t i, const GpuViewSummary& g) {
+    atlas.run(views, [&](std::size_t i, const ViewNumbers& g) {
         throw_if_cancelled();
         const PlannedView& pv = plan.views[i];
-        result.views.push_back(ViewSummary{.index = pv.view.index,
-                                           .reference_pixels = g.reference_pixels,
-                                           .compared = g.compared,
-                                           .reference_only = g.reference_only,
-                                           .examined_only = g.examined_only,
-                                           .max_angle_deg = g.max_angle_deg,
-                                           .mean_angle_deg = g.mean_angle_deg});
+        ViewSummary summary;
+        static_cast<ViewNumbers&>(summary) = g;
+        summary.index = pv.view.index;
+        result.views.push_back(summary);
         if (observer) observer(pv, no_deviation);
     });
     result.render_seconds = seconds_since(t_run);
     require_overlap(result.views);
     const auto t_read = Clock::now();
-    std::vector<GpuAtlasTotals> totals = atlas.read_totals();
+    std::vector<AtlasTotals> totals = atlas.read_totals();
     GLINT_ASSERT(totals.size() == plan.footprints.size(), "one atlas per zoom");
-    GLINT_ASSERT(totals.empty() || totals[0].max.size() == reference.vertex_count(),
+    GLINT_ASSERT(totals.empty() || totals[0].size() == reference.vertex_count(),
                  "atlas does not match the mesh");
     for (std::size_t z = 0; z < totals.size(); ++z) {
         SweepZoom zoom;
-        zoom.atlas = zoom_atlas(std::move(totals[z]), plan.footprints[z]);
+        zoom.atlas = finish_atlas(std::move(totals[z]), plan.footprints[z]);
         zoom.coverage = coverage_of(reference, zoom.atlas, plan.options.roi);
         result.zooms.push_back(std::move(zoom));
     }

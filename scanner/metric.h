@@ -10,6 +10,7 @@
 //          8-bit normal colours (rgb = 0.5·n + 0.5 quantised), 0…255
 #pragma once
 
+#include "render/atlas_totals.h"  // enum class Metric
 #include "scanner/compare.h"
 
 #include <span>
@@ -18,11 +19,6 @@
 #include <vector>
 
 namespace glint {
-
-enum class Metric {
-    AngleDeg,  ///< see file comment
-    RgbAbs,    ///< see file comment
-};
 
 struct MetricDescriptor {
     Metric id = Metric::AngleDeg;

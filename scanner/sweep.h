@@ -12,8 +12,8 @@
 // and the per-view exports read (ViewMaps, scanner/backproject.h). With Vulkan the frames are
 // read back whole and handed on by bands. The atlas is the same either way, bit for bit.
 //
-// The decision (floors, regions) is scanner/decision.h's; the whole pipeline (fit, distance,
-// sweep, decision, exports) is scanner/analysis.h's.
+// The decision (floors, regions) is decision/decision.h's; the whole pipeline (fit, distance,
+// sweep, decision, exports) is analysis/analysis.h's.
 #pragma once
 
 #include "mesh/mesh.h"
@@ -59,14 +59,9 @@ struct SweepOptions {
 };
 
 /// What one view showed (the view itself is SweepPlan::views[index]).
-struct ViewSummary {
+/// One view's numbers (render/atlas_totals.h, the same on both paths) and which view it was.
+struct ViewSummary : ViewNumbers {
     int index = 0;
-    std::size_t reference_pixels = 0;  ///< fully covered in the reference frame
-    std::size_t compared = 0;
-    std::size_t reference_only = 0;
-    std::size_t examined_only = 0;
-    double max_angle_deg = 0.0;
-    double mean_angle_deg = 0.0;
 };
 
 /// The atlas and coverage of one zoom level.

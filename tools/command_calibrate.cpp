@@ -3,10 +3,10 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/units.h"
-#include "scanner/calibrate.h"
-#include "scanner/scenario.h"
-#include "tools/analysis_flags.h"
+#include "report/calibration_file.h"
+#include "scenario/scenario.h"
 #include "tools/command.h"
+#include "tools/option_flags.h"
 
 #include <cstdio>
 #include <cstdlib>

@@ -1,9 +1,9 @@
 // glint compare FRAME_A FRAME_B -o diff.exr|png: per-pixel comparison of two frames rendered
 // earlier by `glint render` (EXR), same size and view.
 #include "mesh/error.h"
+#include "report/frame_file.h"
+#include "report/images.h"
 #include "scanner/compare.h"
-#include "scanner/frame_file.h"
-#include "scanner/images.h"
 #include "scanner/metric.h"
 #include "tools/command.h"
 

@@ -1,8 +1,8 @@
 // glint pick MESH --azimuth A --elevation E --pixel u,v: which surface point a pixel shows.
+#include "analysis/landmarks.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "registration/closest_point.h"
-#include "scanner/landmarks.h"
 #include "tools/command.h"
 
 #include <nlohmann/json.hpp>
@@ -25,7 +25,7 @@ struct PickArgs {
 
 void run(const PickArgs& a) {
     const LoadedMesh m = load_mesh(a.mesh);
-    // note: the framing lives in scanner/landmarks.h so that landmark pixels in
+    // note: the framing lives in analysis/landmarks.h so that landmark pixels in
     // `glint register --landmarks` resolve exactly as this command picks them.
     const View view = pick_view(m.mesh, {.azimuth_deg = a.azimuth,
                                          .elevation_deg = a.elevation,

@@ -1,14 +1,14 @@
 // glint register REF EXA … -o fit.json: rigid fit of the examined mesh onto the reference
-// (scanner/fit.h: the same fit `glint sweep --register` and scenarios run).
+// (analysis/fit.h: the same fit `glint sweep --register` and scenarios run).
+#include "analysis/fit.h"
+#include "analysis/units.h"
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/units.h"
 #include "mesh/write.h"
-#include "scanner/fit.h"
-#include "scanner/units.h"
-#include "tools/analysis_flags.h"
 #include "tools/command.h"
+#include "tools/option_flags.h"
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 
@@ -23,8 +23,7 @@ struct RegisterArgs {
     std::string reference;
     std::string examined;
     SurfaceOptions surface;
-    FitOptions fit;
-    UnitOptions units;
+    AnalysisOptions options;  ///< its fit and units (the registry's flags bind the whole)
     std::string roi_mask;
     std::string output;
     std::string apply;
@@ -43,15 +42,15 @@ void print_result(const RegistrationResult& r, const std::string& output, const 
 }
 
 void run(RegisterArgs& a) {
-    FitOptions& fit = a.fit;
+    FitOptions& fit = a.options.fit;
     fit.mode = FitMode::Register;
     if (!a.roi_mask.empty()) fit.registration.roi = parse_roi("mask:" + a.roi_mask);
     fit.validate();
-    a.units.validate();
+    a.options.units.validate();
     const LoadedSurface ref = load_surface(a.reference, a.surface);
     LoadedSurface exa = load_surface(a.examined, a.surface);
     // Sizes checked before the fit; files in two stated units are fitted in the reference's.
-    const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.units);
+    const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.options.units);
     scale_to_analysis_unit(exa.mesh, units);
     if (!global_flags().quiet)
         for (const auto& w : units.warnings)
@@ -76,12 +75,20 @@ void setup(CLI::App& app) {
     cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
     cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
     add_surface_flags(*cmd, a.surface);
-    add_fit_flags(*cmd, a.fit, "--roi", false);
+    add_analysis_flags(*cmd, a.options, kFitGroup | kUnitGroup);
     cmd->add_option("--roi-mask", a.roi_mask,
                     "Fit only where FILE.ply[:SCALAR] (the reference's vertices) has a "
-                    "non-zero label (or scalar); the same as --roi mask:FILE[:SCALAR]")
-        ->excludes("--roi");
-    add_unit_flags(*cmd, a.units);
+                    "non-zero label (or scalar); the same as --fit-roi mask:FILE[:SCALAR]")
+        ->excludes("--fit-roi");
+    // note: `register --roi` was the fit region before the flags came from one registry, where
+    // --roi is the analysed region; the old spelling says so instead of meaning something else.
+    cmd->add_option_function<std::string>(
+           "--roi",
+           [](const std::string&) {
+               throw InputError("register: --roi is now --fit-roi (the region the fit uses)");
+           },
+           "Renamed: --fit-roi")
+        ->group("");
     cmd->add_option("-o,--output", a.output, "fit.json")->required();
     cmd->add_option("--apply", a.apply, "Also write the fitted examined mesh (.ply or .vtk)");
     cmd->callback([] { run(a); });

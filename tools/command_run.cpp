@@ -1,10 +1,10 @@
 // glint run SCENARIO… and glint eval SCENARIO…|FOLDER: scenarios end to end, and scored.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
-#include "scanner/run_scenario.h"
-#include "scanner/scenario.h"
-#include "tools/analysis_flags.h"
+#include "scenario/run_scenario.h"
+#include "scenario/scenario.h"
 #include "tools/command.h"
+#include "tools/option_flags.h"
 #include "tools/progress.h"
 
 #include <nlohmann/json.hpp>
@@ -32,7 +32,7 @@ struct RunArgs {
     bool full = false;
     bool print = false;
     bool force = false;
-    UnitOptions units;
+    AnalysisOptions units;  ///< only its units are set (--unit, --allow-scale-mismatch)
 };
 
 fs::path data_root_of(const RunArgs& a) {
@@ -150,8 +150,8 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         options.output_root = a.output;
         options.write_views = a.views;
         options.replace_existing = a.force;
-        options.unit = a.units.unit;
-        options.allow_scale_mismatch = a.units.allow_scale_mismatch;
+        options.unit = a.units.units.unit;
+        options.allow_scale_mismatch = a.units.units.allow_scale_mismatch;
         options.command_line = global_flags().command_line;
         options.progress = [&](std::size_t done, std::size_t total) {
             bar.set_total(total);
@@ -307,7 +307,7 @@ void add_common(CLI::App* cmd, RunArgs& a) {
     cmd->add_flag(
         "--force", a.force,
         "Replace existing atlas folders of these scenarios (each once its run completes)");
-    add_unit_flags(*cmd, a.units);
+    add_analysis_flags(*cmd, a.units, kUnitGroup);
 }
 
 void setup(CLI::App& app) {

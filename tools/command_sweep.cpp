@@ -1,14 +1,15 @@
-// glint sweep REF EXA …: the rotary scan end to end (scanner/analysis.h): fit, distance,
+// glint sweep REF EXA …: the rotary scan end to end (analysis/analysis.h): fit, distance,
 // sweep, decision, exports.
+#include "analysis/analysis.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/units.h"
-#include "scanner/analysis.h"
-#include "scanner/calibrate.h"
-#include "scanner/report.h"
-#include "tools/analysis_flags.h"
+#include "report/calibration_file.h"
+#include "report/inspect.h"
+#include "report/run_inputs.h"
 #include "tools/command.h"
 #include "tools/memory.h"
+#include "tools/option_flags.h"
 #include "tools/progress.h"
 #include "tools/surface_flags.h"
 #include "volume/load.h"
@@ -29,18 +30,15 @@ struct SweepArgs {
     std::string reference;
     std::string examined;
     SurfaceOptions surface;
-    AnalysisOptions options;
-    bool no_views = false;
-    bool exr = false;
-    bool no_exr = false;  // the default since EXRs became opt-in; accepted for scripts
-    std::string atlas_formats = "ply,vtk,vtp";
+    InspectOptions options;
     std::string calibration;
     std::string output;
     bool print = false;
     bool force = false;
 };
 
-void print_summary(const AnalysisResult& r) {
+void print_summary(const Inspection& inspection) {
+    const AnalysisResult& r = inspection.analysis;
     const MetricDescriptor& m = describe(r.sweep.options.metric);
     const std::string sym(m.symbol);
     const std::string& u = r.unit;
@@ -68,44 +66,34 @@ void print_summary(const AnalysisResult& r) {
     if (!r.swap_hint.empty()) std::printf("warning: %s\n", r.swap_hint.c_str());
     std::printf(
         "%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
-        r.sweep.views.size(), r.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
-        r.sweep.renderer.device_name.c_str(), r.output.string().c_str(),
-        (r.output / "report.html").string().c_str());
+        r.sweep.views.size(), inspection.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
+        r.sweep.renderer.device_name.c_str(), inspection.output.string().c_str(),
+        (inspection.output / "report.html").string().c_str());
 }
 
 void run(SweepArgs& a) {
-    AnalysisOptions& options = a.options;
+    InspectOptions& options = a.options;
     if (!a.calibration.empty()) {
         // The calibrated zoom and threshold: only deformations larger than the referential
         // one show.
         const Calibration c = read_calibration(a.calibration);
-        options.sweep.plan.footprints = {c.footprint};
-        options.decision.threshold = c.threshold_deg;
+        options.analysis.sweep.plan.footprints = {c.footprint};
+        options.analysis.decision.threshold = c.threshold_deg;
     }
     options.exports.output = a.output;
     options.exports.replace_existing = a.force;
-    options.exports.write_views = !a.no_views;
-    options.exports.write_exr = a.exr && !a.no_exr;
-    options.exports.atlas_files = parse_atlas_files(a.atlas_formats, "--atlas-formats");
-    options.exports.command_line = global_flags().command_line;
     options.validate();
     if (a.print) {
-        print_options(options);
+        print_options(options.analysis, options.exports);
         return;
     }
-    auto [ref, exa] = load_pair(a.reference, a.examined, a.surface);
-    ExportOptions& e = options.exports;
-    auto described = [](const LoadedSurface& s) {
-        return s.surface ? "surface of a volume: " + describe(*s.surface) : "";
-    };
-    e.inputs.push_back({"reference", a.reference, described(ref), ref.mesh.vertex_count(),
-                        ref.mesh.triangle_count()});
-    e.inputs.push_back({"examined", a.examined, described(exa), exa.mesh.vertex_count(),
-                        exa.mesh.triangle_count()});
-    if (!options.fit.fit_file.empty()) e.inputs.push_back({"fit", options.fit.fit_file, "", 0, 0});
-    if (!a.calibration.empty()) e.inputs.push_back({"calibration", a.calibration, "", 0, 0});
-    for (const auto* r : {&ref.report, &exa.report})
-        for (const auto& w : r->warnings) e.warnings.push_back(r->path.string() + ": " + w);
+    auto [ref, exa] = load_run_pair(a.reference, a.examined, a.surface);
+    RunRecord record{.command_line = global_flags().command_line};
+    record.add(ref);
+    record.add(exa);
+    if (!options.analysis.fit.fit_file.empty())
+        record.add_file("fit", options.analysis.fit.fit_file);
+    if (!a.calibration.empty()) record.add_file("calibration", a.calibration);
 
     std::optional<ProgressBar> bar;
     AnalysisObserver observer;
@@ -114,9 +102,9 @@ void run(SweepArgs& a) {
         if (!bar) bar.emplace("sweep", total);
         bar->update(done);
     };
-    const AnalysisResult result = analyse(ref.mesh, std::move(exa.mesh), options, observer);
+    const Inspection result = inspect(ref.mesh, std::move(exa.mesh), options, record, observer);
     if (bar) bar->finish();
-    if (global_flags().json) std::cout << report_json(ref.mesh, result, options);
+    if (global_flags().json) std::cout << result.report_json;
     else if (!global_flags().quiet) print_summary(result);
 }
 
@@ -127,25 +115,14 @@ void setup(CLI::App& app) {
     cmd->add_option("REF", a.reference, "Reference mesh, or volume with --iso")->required();
     cmd->add_option("EXA", a.examined, "Examined mesh, or volume with --iso")->required();
     add_surface_flags(*cmd, a.surface);
-    add_fit_flags(*cmd, a.options.fit, "--fit-roi");
-    add_sweep_flags(*cmd, a.options);
-    cmd->add_flag("--no-views", a.no_views, "Do not write per-view PNG heat maps");
-    auto* exr = cmd->add_flag(
-        "--exr", a.exr,
-        "Also write per-view EXR files with every pixel's comparison (a GPU sweep then reads "
-        "its frames back)");
-    cmd->add_flag("--no-exr", a.no_exr, "No per-view EXR files (the default; kept for scripts)")
-        ->excludes(exr);
-    cmd->add_option(
-           "--atlas-formats", a.atlas_formats,
-           "Atlas files to write, comma-separated: ply (MeshLab, CloudCompare), vtk (legacy "
-           "ASCII: ParaView, Slicer, CloudCompare), vtp (ParaView, Slicer); default all three")
-        ->capture_default_str();
+    add_fit_mode_flags(*cmd, a.options.analysis.fit);
+    add_analysis_flags(*cmd, a.options.analysis, kFitGroup | kSweepGroup | kDecisionGroup);
+    add_option_flags(*cmd, a.options.exports, export_option_table(), kExportGroup);
     cmd->add_option("--calibration", a.calibration,
                     "calibration.json from glint calibrate: its zoom and threshold")
         ->excludes("--zoom")
         ->excludes("--threshold-deg");
-    add_unit_flags(*cmd, a.options.units);
+    add_analysis_flags(*cmd, a.options.analysis, kUnitGroup);
     cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")
         ->required();
     cmd->add_flag("--force", a.force,

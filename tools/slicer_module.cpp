@@ -2,15 +2,17 @@
 // apart from glint's own commands (tools/slicer_module.h).
 #include "tools/slicer_module.h"
 
-#include "mesh/units.h"
+#include "analysis/analysis.h"
+#include "analysis/option_registry.h"
 #include "mesh/version.h"
 #include "registration/icp.h"
 #include "render/context.h"
-#include "scanner/analysis.h"
+#include "report/report_html.h"
 #include "scanner/metric.h"
-#include "scanner/report_html.h"
 #include "tools/slicer_parameters.h"
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -24,22 +26,6 @@ std::string number(double v) {
     char b[32];
     std::snprintf(b, sizeof b, "%.10g", v);
     return b;
-}
-
-std::string joined(const std::vector<double>& values) {
-    std::string out;
-    for (double v : values) out += (out.empty() ? "" : ",") + number(v);
-    return out;
-}
-
-std::vector<std::string> split(const std::string& text, const std::string& separator) {
-    std::vector<std::string> out;
-    std::size_t start = 0;
-    for (std::size_t at; (at = text.find(separator, start)) != std::string::npos;
-         start = at + separator.size())
-        out.push_back(text.substr(start, at - start));
-    out.push_back(text.substr(start));
-    return out;
 }
 
 SlicerGroup surfaces_group() {
@@ -92,134 +78,97 @@ SlicerGroup surfaces_group() {
           .file_extensions = ".png"}}};
 }
 
-SlicerGroup fit_group(const AnalysisOptions& d) {
-    return {
-        "Fit",
-        "How the examined surface is brought into the reference's frame.",
-        false,
+// Slicer's step for a slider over [min, max]: a power of ten about a hundredth of the range.
+double slider_step(const OptionInfo& info) {
+    if (info.kind == OptionKind::Integer) return 1;
+    const double span = info.max - info.min;
+    return std::pow(10.0, std::floor(std::log10(span / 100.0)));
+}
+
+// One registry option as a Slicer parameter. A flag that is on by default becomes its negation
+// (noCoarse): Slicer passes a boolean only when it is true, so an on-by-default flag could not
+// be turned off otherwise. An optional number is 0 when unset (Slicer always passes a value).
+SlicerParameter registry_parameter(const OptionInfo& info, const OptionValue& current) {
+    SlicerParameter p{.name = std::string(info.slicer),
+                      .longflag = std::string(info.slicer),
+                      .label = std::string(info.label),
+                      .description = std::string(info.help) + "."};
+    if (!info.unit.empty()) p.label += " (" + std::string(info.unit) + ")";
+    const std::string shown = option_text(info, current);
+    const bool bounded = std::isfinite(info.min) && std::isfinite(info.max);
+    switch (info.kind) {
+        case OptionKind::Flag:
+            p.tag = "boolean";
+            if (shown == "true") {
+                p.name = p.longflag =
+                    "no" +
+                    std::string(1, static_cast<char>(
+                                       std::toupper(static_cast<unsigned char>(info.slicer[0])))) +
+                    std::string(info.slicer.substr(1));
+                p.label = "No " + std::string(info.label) + " (on by default)";
+            }
+            p.default_value = "false";
+            break;
+        case OptionKind::Integer:
+            p.tag = "integer";
+            p.default_value = shown;
+            if (bounded) p.constraints = std::array<double, 3>{info.min, info.max, 1};
+            break;
+        case OptionKind::Number:
+            p.tag = "double";
+            p.default_value = shown;
+            if (bounded)
+                p.constraints = std::array<double, 3>{info.min, info.max, slider_step(info)};
+            break;
+        case OptionKind::OptionalNumber:
+            p.tag = "double";
+            p.default_value = shown.empty() ? "0" : shown;
+            p.description += " 0: measured from the run.";
+            break;
+        case OptionKind::Numbers:
+            p.tag = "double-vector";
+            p.default_value = shown;
+            break;
+        case OptionKind::Choice:
+            p.tag = "string-enumeration";
+            p.elements = info.choices;
+            if (info.may_be_unset) p.elements.insert(p.elements.begin(), "auto");
+            p.default_value = shown.empty() ? "auto" : shown;
+            break;
+        case OptionKind::Path:
+            p.tag = "file";
+            p.channel = "input";
+            p.file_extensions = ".json";
+            break;
+        case OptionKind::Text:
+        case OptionKind::Region:
+            p.tag = "string";
+            p.default_value = shown;
+            break;
+    }
+    return p;
+}
+
+SlicerGroup registry_group(std::string label, std::string description, bool advanced,
+                           unsigned groups, std::vector<SlicerParameter> first = {}) {
+    const AnalysisOptions defaults;
+    SlicerGroup g{std::move(label), std::move(description), advanced, std::move(first)};
+    for (const auto& f : analysis_option_table())
+        if ((f.info.group & groups) != 0)
+            g.parameters.push_back(registry_parameter(f.info, f.get(defaults)));
+    return g;
+}
+
+SlicerGroup fit_group() {
+    return registry_group(
+        "Fit", "How the examined surface is brought into the reference's frame.", false, kFitGroup,
         {{.tag = "boolean",
           .name = "register",
           .longflag = "register",
           .label = "Register",
           .description =
               "Fit the examined surface onto the reference (robust ICP); off: they are already aligned.",
-          .default_value = "true"},
-         {.tag = "string-enumeration",
-          .name = "loss",
-          .longflag = "loss",
-          .label = "Robust loss",
-          .description = "Registration loss (damage must not pull the fit).",
-          .default_value = to_string(d.fit.registration.loss),
-          .elements = {"cauchy", "huber", "tukey", "none"}},
-         {.tag = "string",
-          .name = "fitRoi",
-          .longflag = "fitRoi",
-          .label = "Fit region",
-          .description =
-              "Fit only on this stable region: sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1 (empty: all)."}}};
-}
-
-SlicerGroup sweep_group(const AnalysisOptions& d) {
-    std::vector<std::string> metric_names, backends{"auto", "embree", "vulkan"};
-    for (const auto& m : metrics()) metric_names.emplace_back(m.name);
-    const SweepPlanOptions& p = d.sweep.plan;
-    return {
-        "Sweep",
-        "The virtual rotary scanner: views, image size, metric.",
-        false,
-        {{.tag = "integer",
-          .name = "size",
-          .longflag = "size",
-          .label = "Image size",
-          .description = "Pixels across a frame of the whole surface.",
-          .default_value = std::to_string(p.size),
-          .constraints = std::array<double, 3>{32, 4096, 32}},
-         {.tag = "double",
-          .name = "azimuthStep",
-          .longflag = "azimuthStep",
-          .label = "Azimuth step (deg)",
-          .description = "Angle between two views around the surface.",
-          .default_value = number(p.azimuth_step_deg),
-          .constraints = std::array<double, 3>{1, 360, 1}},
-         {.tag = "double-vector",
-          .name = "elevations",
-          .longflag = "elevations",
-          .label = "Elevations (deg)",
-          .description = "Elevation rings, comma-separated, each in [-90, 90].",
-          .default_value = joined(p.elevations_deg)},
-         {.tag = "integer",
-          .name = "supersample",
-          .longflag = "supersample",
-          .label = "Supersampling",
-          .description = "s x s sub-samples per pixel (footprint averaging).",
-          .default_value = std::to_string(d.sweep.render.supersample),
-          .constraints = std::array<double, 3>{1, 8, 1}},
-         {.tag = "string",
-          .name = "roi",
-          .longflag = "roi",
-          .label = "Analysed region",
-          .description =
-              "Analyse only part of the surface: sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1 (empty: all)."},
-         {.tag = "string-enumeration",
-          .name = "metric",
-          .longflag = "metric",
-          .label = "Metric",
-          .description =
-              "angle: degrees between normals; rgb: the paper's 8-bit colour difference.",
-          .default_value = to_string(d.sweep.metric),
-          .elements = metric_names},
-         {.tag = "string-enumeration",
-          .name = "backend",
-          .longflag = "backend",
-          .label = "Renderer",
-          .description = "auto: Vulkan on a GPU, else Embree on the CPU.",
-          .default_value = to_string(d.sweep.render.backend),
-          .elements = backends}}};
-}
-
-SlicerGroup decision_group(const AnalysisOptions& d) {
-    std::vector<std::string> units{"auto"};
-    for (const auto& u : split(known_units(), ", ")) units.push_back(u);
-    return {
-        "Decision",
-        "What counts as damage; 0 for a threshold means the floor measured from the run itself.",
-        true,
-        {{.tag = "string-enumeration",
-          .name = "rule",
-          .longflag = "rule",
-          .label = "Rule",
-          .description = "fused: normal and shape evidence; normal: the paper's angle-only rule.",
-          .default_value = to_string(d.decision.rule),
-          .elements = {"fused", "normal"}},
-         {.tag = "double",
-          .name = "thresholdDeg",
-          .longflag = "thresholdDeg",
-          .label = "Normal threshold",
-          .description = "In the metric's unit; 0: the run's noise floor.",
-          .default_value = "0",
-          .constraints = std::array<double, 3>{0, 90, 0.5}},
-         {.tag = "double",
-          .name = "shapeThreshold",
-          .longflag = "shapeThreshold",
-          .label = "Shape threshold",
-          .description = "In mesh units; 0: the run's floor.",
-          .default_value = "0",
-          .constraints = std::array<double, 3>{0, 1000, 0.01}},
-         {.tag = "integer",
-          .name = "minRegionVertices",
-          .longflag = "minRegionVertices",
-          .label = "Smallest region (vertices)",
-          .description = "Smaller groups are dropped.",
-          .default_value = std::to_string(d.decision.min_region_vertices),
-          .constraints = std::array<double, 3>{1, 10000, 1}},
-         {.tag = "string-enumeration",
-          .name = "unit",
-          .longflag = "unit",
-          .label = "Length unit",
-          .description =
-              "The unit both models are in (Slicer's models are in mm); auto: what the files state.",
-          .default_value = "mm",
-          .elements = units}}};
+          .default_value = "true"}});
 }
 
 SlicerGroup results_group() {
@@ -275,10 +224,16 @@ void write_parameter(std::ostringstream& x, const SlicerParameter& p) {
 
 const std::vector<SlicerGroup>& slicer_groups() {
     static const std::vector<SlicerGroup> groups = [] {
-        const AnalysisOptions defaults;
-        return std::vector<SlicerGroup>{surfaces_group(), fit_group(defaults),
-                                        sweep_group(defaults), decision_group(defaults),
-                                        results_group()};
+        return std::vector<SlicerGroup>{
+            surfaces_group(), fit_group(),
+            registry_group("Sweep", "The virtual rotary scanner: views, image size, metric.", false,
+                           kSweepGroup),
+            registry_group("Decision",
+                           "What counts as damage; 0 for a threshold means the floor measured "
+                           "from the run itself. Length unit: auto is what the files state (Slicer "
+                           "writes its models in mm).",
+                           true, kDecisionGroup | kUnitGroup),
+            results_group()};
     }();
     return groups;
 }

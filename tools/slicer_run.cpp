@@ -1,6 +1,8 @@
 // A Slicer call: parse the flags and index arguments of the description, run the sweep,
 // put atlas / regions / mosaic where Slicer asked, write the return parameters, and report
 // progress on stdout (tools/slicer_module.h).
+#include "analysis/analysis.h"
+#include "analysis/option_registry.h"
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
@@ -8,7 +10,8 @@
 #include "mesh/roi.h"
 #include "registration/icp.h"
 #include "render/context.h"
-#include "scanner/analysis.h"
+#include "report/inspect.h"
+#include "report/run_inputs.h"
 #include "scanner/metric.h"
 #include "tools/command.h"
 #include "tools/memory.h"
@@ -19,9 +22,11 @@
 #include <CLI/CLI.hpp>
 
 #include <unistd.h>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -84,66 +89,50 @@ SlicerCall parse(int argc, char** argv) {
     return call;
 }
 
-double number_of(const SlicerCall& c, const std::string& name) {
-    const std::string& text = c.values.at(name);
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || !std::isfinite(v))
-        throw InputError("Slicer module: --" + name + " \"" + text + "\": expected a number");
-    return v;
-}
-
-int integer_of(const SlicerCall& c, const std::string& name) {
-    const double v = number_of(c, name);
-    if (v != std::floor(v) || std::fabs(v) > 1e9)
-        throw InputError("Slicer module: --" + name + " \"" + c.values.at(name) +
-                         "\": expected an integer");
-    return static_cast<int>(v);
-}
-
-std::vector<double> numbers_of(const SlicerCall& c, const std::string& name) {
-    std::vector<double> out;
-    SlicerCall one;
-    std::string text = c.values.at(name);
-    for (std::size_t start = 0;;) {
-        const std::size_t comma = text.find(',', start);
-        one.values[name] =
-            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-        out.push_back(number_of(one, name));
-        if (comma == std::string::npos) break;
-        start = comma + 1;
-    }
-    return out;
-}
-
-// Every parameter Slicer passed, into the options glint sweep would build (zero thresholds and
-// an "auto" unit keep the library's defaults: Slicer always passes a value).
-AnalysisOptions options_from(const SlicerCall& c) {
-    AnalysisOptions o;
-    auto has = [&](const char* name) { return c.values.count(name) != 0; };
+// Every parameter Slicer passed, through the option registry, into the options glint sweep
+// would build. Slicer always passes a value: an optional number at 0 and the unit "auto" keep
+// the library's defaults, and a boolean is passed only when true (an on-by-default flag is its
+// negation, "noCoarse"; tools/slicer_module.cpp).
+InspectOptions options_from(const SlicerCall& c) {
+    InspectOptions io;
+    AnalysisOptions& o = io.analysis;
     o.fit.mode = c.booleans.at("register") ? FitMode::Register : FitMode::Identity;
-    if (has("loss")) o.fit.registration.loss = parse_loss(c.values.at("loss"));
-    if (has("fitRoi") && !c.values.at("fitRoi").empty())
-        o.fit.registration.roi = parse_roi(c.values.at("fitRoi"));
-    if (has("size")) o.sweep.plan.size = integer_of(c, "size");
-    if (has("azimuthStep")) o.sweep.plan.azimuth_step_deg = number_of(c, "azimuthStep");
-    if (has("elevations")) o.sweep.plan.elevations_deg = numbers_of(c, "elevations");
-    if (has("supersample")) o.sweep.render.supersample = integer_of(c, "supersample");
-    if (has("roi") && !c.values.at("roi").empty()) o.sweep.plan.roi = parse_roi(c.values.at("roi"));
-    if (has("metric")) o.sweep.metric = parse_metric(c.values.at("metric"));
-    if (has("backend")) o.sweep.render.backend = parse_backend(c.values.at("backend"));
-    if (has("rule")) o.decision.rule = parse_decision_rule(c.values.at("rule"));
-    if (has("thresholdDeg") && number_of(c, "thresholdDeg") != 0.0)
-        o.decision.threshold = number_of(c, "thresholdDeg");
-    if (has("shapeThreshold") && number_of(c, "shapeThreshold") != 0.0)
-        o.decision.shape_threshold = number_of(c, "shapeThreshold");
-    if (has("minRegionVertices"))
-        o.decision.min_region_vertices =
-            static_cast<std::size_t>(integer_of(c, "minRegionVertices"));
-    if (has("unit") && c.values.at("unit") != "auto") o.units.unit = c.values.at("unit");
-    o.exports.write_views = false;
-    o.exports.write_exr = false;
-    return o;
+    const AnalysisOptions defaults;
+    for (const auto& f : analysis_option_table()) {
+        const std::string name(f.info.slicer);
+        try {
+            if (f.info.kind == OptionKind::Flag) {
+                const bool on_by_default = std::get<bool>(f.get(defaults));
+                const std::string passed =
+                    on_by_default ? "no" +
+                                        std::string(1, static_cast<char>(std::toupper(
+                                                           static_cast<unsigned char>(name[0])))) +
+                                        name.substr(1)
+                                  : name;
+                const auto it = c.booleans.find(passed);
+                if (it != c.booleans.end() && it->second) set_option(o, f, !on_by_default);
+                continue;
+            }
+            const auto it = c.values.find(name);
+            if (it == c.values.end()) continue;
+            std::string text = it->second;
+            if (f.info.kind == OptionKind::OptionalNumber &&
+                std::strtod(text.c_str(), nullptr) == 0.0)
+                text.clear();
+            if (f.info.kind == OptionKind::Choice && f.info.may_be_unset && text == "auto")
+                text.clear();
+            set_option(o, f, parse_option_text(f.info, text));
+        } catch (const OptionError& e) {
+            throw InputError("Slicer module: " + e.named("--" + name));
+        } catch (const InputError& e) {
+            throw InputError("Slicer module: --" + name + ": " + e.what());
+        }
+    }
+    // Slicer writes its models in millimetres (LPS): what a file stating its unit would say.
+    if (o.units.unit.empty()) o.units.unit = "mm";
+    io.exports.write_views = false;
+    io.exports.write_exr = false;
+    return io;
 }
 
 // Slicer reads the last of each tag it finds on stdout; every line is flushed at once.
@@ -239,35 +228,34 @@ void run_slicer_module(int argc, char** argv) {
         std::fputs(slicer_xml().c_str(), stdout);
         return;
     }
-    AnalysisOptions options = options_from(call);
+    InspectOptions options = options_from(call);
     const fs::path atlas = call.positional[2];
     ScratchFolder scratch{atlas.parent_path() / (".glint-slicer-" + std::to_string(::getpid()) +
                                                  "-" + atlas.filename().string())};
     options.exports.output = scratch.path;
-    options.exports.command_line = global_flags().command_line;
     options.validate();
     SlicerProgress progress;
-    const LoadedSurface ref = load_surface(call.positional[0], {});
-    LoadedSurface exa = load_surface(call.positional[1], {});
-    options.exports.inputs = {
-        {"reference", call.positional[0], "", ref.mesh.vertex_count(), ref.mesh.triangle_count()},
-        {"examined", call.positional[1], "", exa.mesh.vertex_count(), exa.mesh.triangle_count()}};
+    const RunInput ref = load_run_input("reference", call.positional[0], {});
+    RunInput exa = load_run_input("examined", call.positional[1], {});
+    RunRecord record{.command_line = global_flags().command_line};
+    record.add(ref);
+    record.add(exa);
     AnalysisObserver observer;
     observer.stage = [&](std::string_view s) {
         give_back_free_memory();
         progress.stage(s);
     };
     observer.views = [&](std::size_t done, std::size_t total) { progress.views(done, total); };
-    const AnalysisResult result = analyse(ref.mesh, std::move(exa.mesh), options, observer);
+    const Inspection result = inspect(ref.mesh, std::move(exa.mesh), options, record, observer);
     deliver(result.output, "atlas.vtp", atlas.string());
     if (call.values.count("regions") != 0)
         deliver(result.output, "regions.csv", call.values.at("regions"));
     if (call.values.count("mosaic") != 0)
         deliver(result.output, "mosaic_z0.png", call.values.at("mosaic"));
     if (!call.return_file.empty())
-        write_file_atomically(call.return_file, return_parameters(result));
+        write_file_atomically(call.return_file, return_parameters(result.analysis));
     progress.finish();
-    for (const auto& w : result.warnings) std::printf("warning: %s\n", w.c_str());
+    for (const auto& w : result.analysis.warnings) std::printf("warning: %s\n", w.c_str());
 }
 
 }  // namespace glint::cli

@@ -2,10 +2,7 @@
 
 #include "mesh/error.h"
 
-#include <cstdio>
-#include <exception>
 #include <sstream>
-#include <thread>
 
 namespace glint::cli {
 
@@ -48,44 +45,6 @@ void add_surface_flags(CLI::App& cmd, SurfaceOptions& o, const std::string& roi_
            "--tolerance", o.tolerance_mm,
            "Volumes: decimation moves the surface at most this far, mm (0: a quarter of the smallest spacing)")
         ->capture_default_str();
-}
-
-std::string describe(const SurfaceReport& r) {
-    char line[320];
-    std::snprintf(
-        line, sizeof line,
-        "%zu x %zu x %zu voxels of %.4g x %.4g x %.4g mm, iso %.6g (data %.6g … %.6g): %zu triangles, %zu of "
-        "%zu component(s), %.2f s",
-        r.voxels[0], r.voxels[1], r.voxels[2], r.spacing.x(), r.spacing.y(), r.spacing.z(), r.iso,
-        static_cast<double>(r.range[0]), static_cast<double>(r.range[1]), r.triangles,
-        r.components_kept, r.components_found, r.seconds);
-    return line;
-}
-
-std::pair<LoadedSurface, LoadedSurface> load_pair(const std::string& reference,
-                                                  const std::string& examined,
-                                                  const SurfaceOptions& surface) {
-    if (is_volume_path(reference) || is_volume_path(examined))
-        return {load_surface(reference, surface), load_surface(examined, surface)};
-    LoadedSurface exa;
-    std::exception_ptr exa_error;
-    std::thread other([&] {
-        try {
-            exa = load_surface(examined, surface);
-        } catch (...) {
-            exa_error = std::current_exception();
-        }
-    });
-    LoadedSurface ref;
-    try {
-        ref = load_surface(reference, surface);
-    } catch (...) {
-        other.join();
-        throw;
-    }
-    other.join();
-    if (exa_error) std::rethrow_exception(exa_error);
-    return {std::move(ref), std::move(exa)};
 }
 
 }  // namespace glint::cli

@@ -191,4 +191,16 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
     return out;
 }
 
+std::string describe(const SurfaceReport& r) {
+    char line[320];
+    std::snprintf(
+        line, sizeof line,
+        "%zu x %zu x %zu voxels of %.4g x %.4g x %.4g mm, iso %.6g (data %.6g … %.6g): %zu triangles, %zu of "
+        "%zu component(s), %.2f s",
+        r.voxels[0], r.voxels[1], r.voxels[2], r.spacing.x(), r.spacing.y(), r.spacing.z(), r.iso,
+        static_cast<double>(r.range[0]), static_cast<double>(r.range[1]), r.triangles,
+        r.components_kept, r.components_found, r.seconds);
+    return line;
+}
+
 }  // namespace glint

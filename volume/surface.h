@@ -66,4 +66,8 @@ struct ExtractedSurface {
 /// an empty result (says which step emptied it); all naming the volume's path.
 [[nodiscard]] ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& options);
 
+/// A one-line summary of a surface extracted from a volume ("256 x 256 x 113 voxels of …, iso
+/// 1250 (data 0 … 3272): 569526 triangles, 1 of 356 component(s), 1.40 s").
+[[nodiscard]] std::string describe(const SurfaceReport& report);
+
 }  // namespace glint

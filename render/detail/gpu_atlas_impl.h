@@ -53,7 +53,7 @@ class GpuAtlasImpl {
     GpuAtlasImpl& operator=(const GpuAtlasImpl&) = delete;
 
     void run(std::span<const View> views, const GpuViewConsumer& consumer);
-    [[nodiscard]] std::vector<GpuAtlasTotals> read_totals();
+    [[nodiscard]] std::vector<AtlasTotals> read_totals();
     [[nodiscard]] const GpuAtlasTimings& timings() const { return timings_; }
 
   private:
@@ -96,10 +96,10 @@ class GpuAtlasImpl {
     void record(Slot& slot, const View& view, bool clear_first);
     void record_clear(VkCommandBuffer cmd);
     void wait(Slot& slot);
-    [[nodiscard]] GpuViewSummary finish(Slot& slot);
+    [[nodiscard]] ViewNumbers finish(Slot& slot);
     void add_timings(const Slot& slot);
-    [[nodiscard]] std::vector<GpuAtlasTotals> totals_from(const std::int64_t* sums,
-                                                          const std::uint32_t* words) const;
+    [[nodiscard]] std::vector<AtlasTotals> totals_from(const std::int64_t* sums,
+                                                       const std::uint32_t* words) const;
     void wait_all() noexcept;
 
     VulkanMesh reference_;

@@ -102,7 +102,7 @@ void GpuAtlasImpl::write_params(Slot& slot, const View& view, const Scales& scal
     p.size[2] = static_cast<std::uint32_t>(supersample_);
     p.size[3] = vertices;
     p.mode[0] = (ortho ? 0u : GLINT_ATLAS_PERSPECTIVE) |
-                (options_.metric == GpuMetric::RgbAbs ? GLINT_ATLAS_METRIC_RGB : 0u);
+                (options_.metric == Metric::RgbAbs ? GLINT_ATLAS_METRIC_RGB : 0u);
     p.mode[1] = zoom * GLINT_SUM_FIELDS * vertices;
     p.mode[2] = zoom * GLINT_WORD_FIELDS * vertices;
     p.view[0] = view.index;
@@ -223,12 +223,12 @@ void GpuAtlasImpl::wait(Slot& slot) {
     slot.busy = false;
 }
 
-GpuViewSummary GpuAtlasImpl::finish(Slot& slot) {
+ViewNumbers GpuAtlasImpl::finish(Slot& slot) {
     wait(slot);
     if (slot.timestamps != VK_NULL_HANDLE) add_timings(slot);
     ViewTotals t{};
     std::memcpy(&t, slot.summary_host.mapped, sizeof(t));
-    GpuViewSummary s;
+    ViewNumbers s;
     s.reference_pixels = t.reference_pixels;
     s.compared = t.compared;
     s.reference_only = t.reference_only;
@@ -262,7 +262,7 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
         for (std::size_t i = 0; i < views.size(); ++i) {
             Slot& slot = slots_[i % slots_.size()];
             if (slot.busy) {
-                const GpuViewSummary summary = finish(slot);
+                const ViewNumbers summary = finish(slot);
                 if (consumer) consumer(slot.view, summary);
             }
             const View& view = views[i];
@@ -279,7 +279,7 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
              i < views.size(); ++i) {
             Slot& slot = slots_[i % slots_.size()];
             if (!slot.busy) continue;
-            const GpuViewSummary summary = finish(slot);
+            const ViewNumbers summary = finish(slot);
             if (consumer) consumer(slot.view, summary);
         }
     } catch (...) {
@@ -289,13 +289,13 @@ void GpuAtlasImpl::run(std::span<const View> views, const GpuViewConsumer& consu
     has_run_ = true;
 }
 
-std::vector<GpuAtlasTotals> GpuAtlasImpl::read_totals() {
+std::vector<AtlasTotals> GpuAtlasImpl::read_totals() {
     GLINT_ASSERT(has_run_, "GPU atlas totals read before run()");
     const VkDevice dev = device_->device();
     Buffer staging = make_buffer(dev, device_->physical(), sums_.size + words_.size,
                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, kHostMemory,
                                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
-    std::vector<GpuAtlasTotals> out;
+    std::vector<AtlasTotals> out;
     try {
         Slot& slot = slots_[0];
         begin(slot.cmd);
@@ -326,12 +326,12 @@ std::vector<GpuAtlasTotals> GpuAtlasImpl::read_totals() {
     return out;
 }
 
-std::vector<GpuAtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums,
-                                                      const std::uint32_t* words) const {
+std::vector<AtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums,
+                                                   const std::uint32_t* words) const {
     const std::size_t n = reference_.buffers.vertex_count;
-    std::vector<GpuAtlasTotals> out(static_cast<std::size_t>(options_.zoom_count));
+    std::vector<AtlasTotals> out(static_cast<std::size_t>(options_.zoom_count));
     for (std::size_t z = 0; z < out.size(); ++z) {
-        GpuAtlasTotals& t = out[z];
+        AtlasTotals& t = out[z];
         const Scales& sc = scales_[z];
         const std::int64_t* sum = sums + z * GLINT_SUM_FIELDS * n;
         const std::uint32_t* word = words + z * GLINT_WORD_FIELDS * n;
@@ -340,7 +340,7 @@ std::vector<GpuAtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums,
         t.weight_resolution = 1.0 / sc.weight;
         t.value_resolution = 1.0 / sc.value;
         t.depth_resolution = 1.0 / sc.depth;
-        t.max.resize(n);
+        t.value_max.resize(n);
         t.depth_at_max.resize(n);
         t.max_view.resize(n);
         t.weight.resize(n);
@@ -352,7 +352,7 @@ std::vector<GpuAtlasTotals> GpuAtlasImpl::totals_from(const std::int64_t* sums,
         t.best_cos.resize(n);
         t.best_view.resize(n);
         for (std::size_t v = 0; v < n; ++v) {
-            t.max[v] = std::bit_cast<float>(word_field(GLINT_WORD_MAX)[v]);
+            t.value_max[v] = std::bit_cast<float>(word_field(GLINT_WORD_MAX)[v]);
             t.depth_at_max[v] = std::bit_cast<float>(word_field(GLINT_WORD_DEPTH_AT_MAX)[v]);
             t.max_view[v] = std::bit_cast<std::int32_t>(word_field(GLINT_WORD_MAX_VIEW)[v]);
             t.best_cos[v] = std::bit_cast<float>(word_field(GLINT_WORD_BEST_COS)[v]);

@@ -56,7 +56,7 @@ TEST(GpuAtlas, FindsNoDeviationBetweenASurfaceAndItself) {
     GpuAtlas atlas(a, b, GpuAtlasOptions{.framed_radius = 1.0});
     const std::vector<View> views = ring(sphere, 48, 6);
     std::size_t calls = 0;
-    atlas.run(views, [&](std::size_t i, const GpuViewSummary& s) {
+    atlas.run(views, [&](std::size_t i, const ViewNumbers& s) {
         EXPECT_EQ(i, calls++);
         EXPECT_GT(s.reference_pixels, 400u);  // the framed sphere is ~26 pixels across
         EXPECT_EQ(s.compared, s.reference_pixels);
@@ -73,14 +73,14 @@ TEST(GpuAtlas, FindsNoDeviationBetweenASurfaceAndItself) {
         EXPECT_GT(timings.pixels_s, 0.0);
         EXPECT_GE(timings.vertices_s, 0.0);
     }
-    const std::vector<GpuAtlasTotals> totals = atlas.read_totals();
+    const std::vector<AtlasTotals> totals = atlas.read_totals();
     ASSERT_EQ(totals.size(), 1u);
-    const GpuAtlasTotals& t = totals[0];
+    const AtlasTotals& t = totals[0];
     std::size_t seen = 0;
     for (std::size_t v = 0; v < sphere.vertex_count(); ++v) {
         if (t.count[v] == 0) continue;
         ++seen;
-        EXPECT_LT(t.max[v], 1e-4f);
+        EXPECT_LT(t.value_max[v], 1e-4f);
         EXPECT_LT(t.value_sum[v], 1e-4 * t.weight[v]);
         EXPECT_EQ(t.missing_weight[v], 0.0);
         EXPECT_EQ(t.depth_sum[v], 0.0);
@@ -110,13 +110,13 @@ TEST(GpuAtlas, MeasuresNormalsTurnedByAKnownAngle) {
                                                   .width = 48,
                                                   .height = 48,
                                                   .index = i}));
-    atlas.run(views, [&](std::size_t, const GpuViewSummary& s) {
+    atlas.run(views, [&](std::size_t, const ViewNumbers& s) {
         EXPECT_GT(s.compared, 500u);
         EXPECT_EQ(s.reference_only + s.examined_only, 0u);
         EXPECT_NEAR(s.mean_angle_deg, 12.0, 1e-4);
         EXPECT_NEAR(s.max_angle_deg, 12.0, 1e-4);
     });
-    const GpuAtlasTotals t = atlas.read_totals()[0];
+    const AtlasTotals t = atlas.read_totals()[0];
     std::size_t seen = 0;
     for (std::size_t v = 0; v < plane.vertex_count(); ++v) {
         if (!(t.weight[v] > 0.0)) continue;
@@ -124,7 +124,7 @@ TEST(GpuAtlas, MeasuresNormalsTurnedByAKnownAngle) {
         EXPECT_NEAR(t.value_sum[v] / t.weight[v], 12.0, 1e-4);
         // The maximum goes only to the vertex nearest a pixel (atlas.h): not every seen one.
         if (t.max_view[v] >= 0) {
-            EXPECT_NEAR(t.max[v], 12.0f, 1e-4f);
+            EXPECT_NEAR(t.value_max[v], 12.0f, 1e-4f);
         }
         EXPECT_EQ(t.missing_weight[v], 0.0);
         EXPECT_EQ(t.depth_sum[v], 0.0);  // the same surface: no depth difference
@@ -144,12 +144,12 @@ TEST(GpuAtlas, MeasuresAnOutwardShiftAndTheRimItAdds) {
     Renderer b(context, examined, FrameOptions{.supersample = 1});
     GpuAtlas atlas(a, b, GpuAtlasOptions{.framed_radius = 1.1});
     std::size_t examined_only = 0;
-    atlas.run(ring(examined, 64, 4), [&](std::size_t, const GpuViewSummary& s) {
+    atlas.run(ring(examined, 64, 4), [&](std::size_t, const ViewNumbers& s) {
         examined_only += s.examined_only;
         EXPECT_EQ(s.reference_only, 0u);
     });
     EXPECT_GT(examined_only, 100u);
-    const GpuAtlasTotals t = atlas.read_totals()[0];
+    const AtlasTotals t = atlas.read_totals()[0];
     std::size_t seen = 0;
     for (std::size_t v = 0; v < sphere.vertex_count(); ++v) {
         if (!(t.depth_weight[v] > 0.0)) continue;
@@ -174,9 +174,9 @@ TEST(GpuAtlas, RunsAgainFromClearedTotalsAndKeepsZoomsApart) {
     GpuAtlas atlas(a, b, GpuAtlasOptions{.framed_radius = 1.0, .zoom_count = 2});
     const std::vector<View> views = ring(sphere, 40, 4, 1);  // zoom 1 only
     atlas.run(views);
-    const std::vector<GpuAtlasTotals> first = atlas.read_totals();
+    const std::vector<AtlasTotals> first = atlas.read_totals();
     atlas.run(views);
-    const std::vector<GpuAtlasTotals> second = atlas.read_totals();
+    const std::vector<AtlasTotals> second = atlas.read_totals();
     ASSERT_EQ(first.size(), 2u);
     EXPECT_EQ(first[1].count, second[1].count);
     EXPECT_EQ(first[1].value_sum, second[1].value_sum);
@@ -203,6 +203,12 @@ TEST(GpuAtlas, RefusesWhatItCannotDo) {
     Renderer va(vk, sphere), vb(vk, sphere);
     Renderer view_space(vk, sphere, FrameOptions{.normal_space = NormalSpace::View});
     EXPECT_FALSE(GpuAtlas::supported(va, view_space, {}, &why));
+    // A metric without a kernel is refused by name, never folded as another metric.
+    EXPECT_TRUE(has_gpu_kernel(Metric::AngleDeg) && has_gpu_kernel(Metric::RgbAbs));
+    const auto unknown = static_cast<Metric>(99);
+    EXPECT_FALSE(has_gpu_kernel(unknown));
+    EXPECT_FALSE(GpuAtlas::supported(va, vb, GpuAtlasOptions{.metric = unknown}, &why));
+    EXPECT_NE(why.find("no GPU kernel"), std::string::npos) << why;
     EXPECT_THROW(GpuAtlas(va, vb, GpuAtlasOptions{.missing_value = -1.0f}), OptionError);
     GpuAtlas atlas(va, vb, {});
     EXPECT_THROW(atlas.run(ring(sphere, 16, 1, 3)), InputError);  // zoom 3 of 1

@@ -13,7 +13,7 @@
 //   ≤ 1.2e-13 for the means of the metric, ≤ 5e-10 for the signed depth, 0 for the weights.
 // - a view's mean angle: its fixed-point sum has a step of 2^-(54 − log2 pixels) degrees.
 #include "scanner/gpu_sweep.h"
-#include "scanner/analysis.h"
+
 #include "scanner/sweep.h"
 
 #include "mesh/cancel.h"
@@ -246,51 +246,6 @@ TEST(GpuSweep, GivesTheReadBackAtlasWhereTheExaminedSurfaceIsMissing) {
     expect_same_sweep(h, g, 180.0, "angle, missing surface, s=3, 96²");
     EXPECT_GT(*std::max_element(g.zooms[0].atlas.missing.begin(), g.zooms[0].atlas.missing.end()),
               0.5f);
-}
-
-TEST(GpuSweep, DecidesTheSameRegions) {
-    const Pair& p = pair();
-    AnalysisOptions o;
-    o.fit.mode = FitMode::Identity;
-    o.sweep = vulkan_options(Accumulation::Auto);  // no output folder: the GPU path
-    const AnalysisResult g = analyse(p.reference, p.examined, o);
-    o.sweep.accumulate = Accumulation::Host;
-    const AnalysisResult h = analyse(p.reference, p.examined, o);
-    ASSERT_TRUE(g.sweep.on_gpu);
-    ASSERT_FALSE(h.sweep.on_gpu);
-    ASSERT_EQ(g.decisions.size(), h.decisions.size());
-    const ZoomDecision& dg = g.decisions[0];
-    const ZoomDecision& dh = h.decisions[0];
-    ASSERT_EQ(dh.regions.regions.size(), 1u);  // the dent
-    EXPECT_EQ(dg.regions.regions.size(), dh.regions.regions.size());
-    EXPECT_EQ(dg.regions.region_of_vertex, dh.regions.region_of_vertex);
-    EXPECT_EQ(dg.normal.value, dh.normal.value);
-    EXPECT_EQ(dg.regions.regions[0].kind, dh.regions.regions[0].kind);
-    EXPECT_NEAR(dg.regions.regions[0].max_value, dh.regions.regions[0].max_value, 1e-4);
-}
-
-TEST(GpuSweep, ReadsFramesBackOnlyWhenPerViewExrsAreWritten) {
-    const Pair& p = pair();
-    const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "gpu_sweep";
-    std::filesystem::create_directories(dir);
-    AnalysisOptions o;
-    o.fit.mode = FitMode::Identity;
-    o.sweep = vulkan_options(Accumulation::Auto);
-    o.sweep.plan.size = 48;
-    o.exports.write_views = false;
-    o.exports.replace_existing = true;
-    o.exports.write_exr = true;
-    o.exports.output = dir / "with_exr";
-    const AnalysisResult with_exr = analyse(p.reference, p.examined, o);
-    EXPECT_FALSE(with_exr.sweep.on_gpu);
-    EXPECT_NE(with_exr.sweep.accumulation_note.find("EXR"), std::string::npos);
-    EXPECT_TRUE(std::filesystem::exists(dir / "with_exr" / "views" / "z0_az000.0_el-30.0.exr"));
-    o.exports.write_exr = false;
-    o.exports.output = dir / "without_exr";
-    const AnalysisResult without = analyse(p.reference, p.examined, o);
-    EXPECT_TRUE(without.sweep.on_gpu) << without.sweep.accumulation_note;
-    EXPECT_EQ(without.decisions[0].regions.region_of_vertex,
-              with_exr.decisions[0].regions.region_of_vertex);
 }
 
 TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {

@@ -207,4 +207,4 @@ def test_bad_value_is_refused_naming_the_flag(description, tmp_path):
                              {"atlas": tmp_path / "atlas.vtp"}, tmp_path / "r.params")
     command[command.index("--size") + 1] = "big"
     done = subprocess.run(command, capture_output=True, text=True)
-    assert done.returncode == 2 and "--size \"big\": expected a number" in done.stderr
+    assert done.returncode == 2 and "--size = \"big\": expected an integer in [8, 4096] (px)" in done.stderr

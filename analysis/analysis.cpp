@@ -1,0 +1,160 @@
+#include "analysis/analysis.h"
+
+#include "mesh/cancel.h"
+#include "mesh/error.h"
+#include "mesh/normals.h"
+#include "render/context.h"
+
+#include <chrono>
+#include <cstdio>
+#include <future>
+#include <optional>
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void announce(const AnalysisObserver& observer, std::string_view stage) {
+    throw_if_cancelled();
+    if (observer.stage) observer.stage(stage);
+}
+
+// The fit, refused when a registration did not converge: a sweep from a wrong pose would
+// report the misfit as damage.
+FitOutcome fit_or_refuse(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+    FitOutcome fit = fit_examined(reference, examined, options);
+    if (!fit.converged)
+        throw InputError(
+            "registration of the examined mesh onto the reference did not converge (" +
+            (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
+            "); the meshes may not overlap: give a fit file or start from landmarks (glint register)");
+    return fit;
+}
+
+// The plan's ROI with its mask read (a sweep ROI may be a vertex mask file).
+SweepPlanOptions resolved_plan(const SweepPlanOptions& plan, std::size_t vertex_count) {
+    SweepPlanOptions p = plan;
+    if (p.roi && p.roi->needs_mask()) read_roi_mask(*p.roi, vertex_count);
+    return p;
+}
+
+// A reference and examined given the wrong way round (the intact surface as EXA, the
+// resected one as REF): the examined has surface the reference lacks, which the atlas on the
+// reference cannot show as a loss: no region, or gains only. Only a hint (a growth can look
+// the same), given when the examined surface is 10 % larger and no region at zoom 0 is a
+// loss. note: 10 % because two scans of one surface differ by a few %.
+std::string swap_hint(const Mesh& reference, double exa_area, const AnalysisResult& result) {
+    if (result.decisions.empty()) return "";
+    for (const auto& r : result.decisions[0].regions.regions)
+        if (r.kind != RegionKind::Bump) return "";
+    const double ref_area = surface_area(reference);
+    if (!(exa_area > 1.1 * ref_area)) return "";
+    char b[240];
+    std::snprintf(
+        b, sizeof b,
+        "the examined surface is %.0f%% larger than the reference and no region is a loss: "
+        "are REF and EXA swapped? (REF is the surface before, EXA the one examined)",
+        100.0 * (exa_area / ref_area - 1.0));
+    return b;
+}
+
+// The sweep of the fitted pair, each view handed to the observer on the way.
+void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options,
+                const AnalysisObserver& observer, AnalysisResult& result) {
+    const SweepPlan plan =
+        make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
+    std::size_t done = 0;
+    result.sweep = run_sweep(reference, fitted, plan, options.sweep,
+                             [&](const PlannedView& v, const DeviationMap& d) {
+                                 if (observer.view) observer.view(v, d);
+                                 if (observer.views) observer.views(++done, plan.views.size());
+                             });
+}
+
+// One decision per zoom from the atlas and the shape evidence; their warnings named by zoom.
+void decide_step(const Mesh& reference, const AnalysisOptions& options, AnalysisResult& result) {
+    for (const auto& zoom : result.sweep.zooms) {
+        const DecisionEvidence evidence{.atlas = &zoom.atlas,
+                                        .coverage = &zoom.coverage,
+                                        .distance = &result.distance,
+                                        .tolerance = &result.tolerance,
+                                        .at_border = &result.at_border,
+                                        .metric = options.sweep.metric,
+                                        .size = result.size};
+        result.decisions.push_back(decide(reference, evidence, options.decision));
+        for (const auto& w : result.decisions.back().warnings)
+            result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " +
+                                      w);
+    }
+}
+
+}  // namespace
+
+AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOptions& options,
+                       const AnalysisObserver& observer) {
+    const auto t_start = Clock::now();
+    options.validate();
+    std::optional<Mesh> with_normals;
+    if (!reference_in.has_normals()) {
+        with_normals = reference_in;
+        compute_vertex_normals(*with_normals);
+    }
+    const Mesh& reference = with_normals ? *with_normals : reference_in;
+    // Units and sizes, checked before the long work.
+    AnalysisResult result;
+    result.units = resolve_units(reference, examined, options.units);
+    result.unit = result.units.unit;
+    if (result.units.examined_scale != 1.0) scale_to_analysis_unit(examined, result.units);
+    result.size = bounds(reference).diagonal();
+    result.warnings = result.units.warnings;
+    // The render device is opened while the fit runs: choosing it loads the Vulkan drivers
+    // (lavapipe brings LLVM), 0.05-0.1 s on a CPU machine and more where a GPU starts. The
+    // sweep takes the same shared context (render/context.h); a failure here is left for the
+    // sweep to report.
+    auto device = std::async(std::launch::async, [render = options.sweep.render.context_options()] {
+        try {
+            (void)shared_render_context(render);
+        } catch (const std::exception&) {
+        }
+    });
+    announce(observer, "fit");
+    auto t = Clock::now();
+    result.fit = fit_or_refuse(reference, examined, options.fit);
+    for (const auto& w : result.fit.warnings) result.warnings.push_back(w);
+    const double examined_area = surface_area(examined);
+    // The examined mesh becomes the fitted one in place (it is this call's own copy).
+    Mesh& fitted = examined;
+    transform_mesh(fitted, result.fit.reference_from_examined);
+    result.fit_seconds = seconds_since(t);
+
+    announce(observer, "distance");
+    t = Clock::now();
+    ShapeEvidence shape = measure_shape(reference, fitted);
+    result.distance = std::move(shape.distance);
+    result.tolerance = std::move(shape.tolerance);
+    result.at_border = std::move(shape.at_border);
+    result.distance_seconds = seconds_since(t);
+
+    announce(observer, "sweep");
+    device.wait();
+    sweep_step(reference, fitted, options, observer, result);
+    fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
+
+    announce(observer, "decide");
+    t = Clock::now();
+    decide_step(reference, options, result);
+    result.decision_seconds = seconds_since(t);
+    result.swap_hint = swap_hint(reference, examined_area, result);
+    if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
+
+    result.total_seconds = seconds_since(t_start);
+    return result;
+}
+
+}  // namespace glint

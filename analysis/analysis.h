@@ -1,0 +1,86 @@
+// One analysis pipeline: fit → signed distance → plan → sweep → decide. It writes no file:
+// a run with outputs (output folder, atlas files, pictures, report.json) is report/inspect.h's.
+//
+// Every caller — `glint sweep`, `glint calibrate`, scenario runs, Python — fills one
+// AnalysisOptions (its fields are declared once, in analysis/option_registry.h) and calls
+// analyse(); nothing else assembles the pipeline. validate() checks every option before any
+// mesh is loaded and names the bad one by its scenario key (OptionError::key), so a scenario
+// file can point at its line.
+//
+//   reference ─┐
+//   examined ──┴─▶ fit (analysis/fit.h) ─▶ fitted examined ─▶ signed distance (shape evidence)
+//                                              │
+//   plan (scanner/plan.h) ─▶ sweep (scanner/sweep.h): atlas + coverage per zoom
+//                                              │
+//   decide (decision/decision.h) per zoom ─▶ floors + regions
+#pragma once
+
+#include "analysis/fit.h"
+#include "analysis/units.h"
+#include "decision/decision.h"
+#include "mesh/mesh.h"
+#include "scanner/sweep.h"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace glint {
+
+struct AnalysisOptions {
+    UnitOptions units;
+    FitOptions fit;
+    SweepOptions sweep;
+    DecisionOptions decision;
+
+    /// Every option, before anything is loaded. \throw OptionError naming the key.
+    void validate() const;
+};
+
+struct AnalysisResult {
+    FitOutcome fit;
+    std::vector<float> distance;  ///< per reference vertex, signed (negative = loss)
+    std::vector<float>
+        tolerance;  ///< per reference vertex, tessellation tolerance (analysis/fit.h)
+    std::vector<std::uint8_t>
+        at_border;  ///< per reference vertex, closest examined point on a border
+    SweepResult sweep;
+    std::vector<ZoomDecision> decisions;  ///< one per zoom level
+    double size = 0.0;                    ///< bounding diagonal of the reference (mesh units)
+    std::string unit;      ///< of every length reported ("" = unknown; analysis/units.h)
+    UnitResolution units;  ///< how the unit was found, both sizes
+    std::vector<std::string> warnings;  ///< unit, fit and decision warnings
+    /// Non-empty when REF and EXA look swapped (no region a loss, the examined surface
+    /// > 10 % larger): a hint for people, also in warnings.
+    std::string swap_hint;
+    double fit_seconds = 0.0;
+    double distance_seconds = 0.0;
+    double decision_seconds = 0.0;
+    double total_seconds = 0.0;
+};
+
+/// Progress of a long analysis, and the sweep's views as they are compared; every member may
+/// be empty.
+struct AnalysisObserver {
+    /// "fit", "distance", "sweep", "decide" (report/inspect.h adds "export" and "pictures").
+    std::function<void(std::string_view stage)> stage;
+    std::function<void(std::size_t done, std::size_t total)> views;
+    /// Each view's deviation map while it is valid (per-view exports); on the GPU path the map
+    /// is empty (scanner/sweep.h ViewObserver).
+    ViewObserver view;
+};
+
+/// Runs the pipeline. The reference must have vertex normals (loaded meshes do). The examined
+/// mesh is taken by value and fitted in place: a caller done with it moves it in, and the
+/// largest meshes are not held twice.
+/// \throw OptionError invalid options; InputError meshes whose sizes differ by more than
+/// kMaxScaleRatio (unless allowed), a fit that did not converge, surfaces that do not overlap;
+/// IoError (a fit or landmarks file unreadable), DeviceError; Cancelled.
+[[nodiscard]] AnalysisResult analyse(const Mesh& reference, Mesh examined,
+                                     const AnalysisOptions& options,
+                                     const AnalysisObserver& observer = {});
+
+}  // namespace glint

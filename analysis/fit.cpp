@@ -1,0 +1,245 @@
+#include "analysis/fit.h"
+
+#include "analysis/landmarks.h"
+#include "mesh/components.h"
+#include "mesh/error.h"
+#include "registration/closest_point.h"
+#include "registration/fit_io.h"
+#include "registration/landmarks.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint {
+
+namespace {
+
+// The starting pose from landmark pairs (points kept, picked pixels resolved).
+Rigid landmark_start(const Mesh& reference, const Mesh& examined,
+                     const std::filesystem::path& file) {
+    const std::vector<LandmarkPair> pairs = read_landmarks(file.string());
+    const std::string source = "landmarks \"" + file.string() + "\"";
+    // Indexes only when some side is a picked pixel (building one costs a BVH).
+    const bool has_pixels = std::any_of(pairs.begin(), pairs.end(), [](const LandmarkPair& p) {
+        return !p.examined.point || !p.reference.point;
+    });
+    ResolvedLandmarks points;
+    if (has_pixels) {
+        points = resolve_landmarks(pairs, ClosestPointIndex(reference), ClosestPointIndex(examined),
+                                   source);
+    } else {
+        for (const auto& p : pairs) {
+            points.examined.push_back(*p.examined.point);
+            points.reference.push_back(*p.reference.point);
+        }
+    }
+    try {
+        return fit_landmarks(points.examined, points.reference);
+    } catch (const InputError& e) {
+        throw InputError(source + ": " + e.what());
+    }
+}
+
+FitOutcome register_examined(const Mesh& reference, const Mesh& examined,
+                             const FitOptions& options) {
+    RegistrationOptions o = options.registration;
+    RegistrationSources sources;
+    if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
+    if (!options.init_file.empty()) {
+        o.initial = read_fit(options.init_file.string());
+        sources.init_file = options.init_file.string();
+    }
+    if (!options.landmarks_file.empty()) {
+        o.initial = landmark_start(reference, examined, options.landmarks_file);
+        sources.landmarks_file = options.landmarks_file.string();
+    }
+    FitOutcome out;
+    out.mode = FitMode::Register;
+    const RegistrationResult r = register_meshes(reference, examined, o);
+    out.reference_from_examined = r.reference_from_examined;
+    out.converged = r.converged;
+    out.json = to_json(r, o, sources);
+    out.registration = r;
+    if (!r.converged)
+        out.warnings.push_back("registration did not converge: " + r.termination_detail);
+    return out;
+}
+
+}  // namespace
+
+FitMode parse_fit_mode(const std::string& text) {
+    if (text == "identity") return FitMode::Identity;
+    if (text == "file") return FitMode::File;
+    if (text == "register") return FitMode::Register;
+    if (text == "truth") return FitMode::Truth;
+    throw InputError("fit mode \"" + text + "\": expected register, identity, truth or file");
+}
+
+std::string to_string(FitMode mode) {
+    switch (mode) {
+        case FitMode::Identity: return "identity";
+        case FitMode::File: return "file";
+        case FitMode::Register: return "register";
+        case FitMode::Truth: return "truth";
+    }
+    return "?";
+}
+
+void FitOptions::validate() const {
+    try {
+        registration.validate();
+    } catch (const OptionError& e) {
+        throw e.prefixed("registration");
+    }
+    if (mode == FitMode::File && fit_file.empty())
+        throw OptionError("registration.mode", "file", "needs a fit file (--fit FILE)");
+    if (mode != FitMode::File && !fit_file.empty())
+        throw OptionError("registration.fit", "\"" + fit_file.string() + "\"",
+                          "a fit file is given but the fit mode is " + to_string(mode));
+    // note: both would set the starting pose; composing them (landmarks picked on an
+    // already-moved mesh?) has no single obvious meaning, so the user must choose.
+    if (!landmarks_file.empty() && !init_file.empty())
+        throw OptionError("registration.landmarks", "\"" + landmarks_file.string() + "\"",
+                          "landmarks and an initial pose \"" + init_file.string() +
+                              "\" both set the starting pose: give one of them");
+    if ((!landmarks_file.empty() || !init_file.empty()) && mode != FitMode::Register)
+        throw OptionError(
+            "registration.mode", to_string(mode),
+            "landmarks and an initial pose start a registration (mode register, --register)");
+}
+
+FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+    options.validate();
+    FitOutcome out;
+    out.mode = options.mode;
+    switch (options.mode) {
+        case FitMode::Identity:
+            out.json =
+                R"({"mode": "identity", "note": "the meshes were taken as already aligned"})";
+            out.warnings.push_back(
+                "no fit requested (--fit or --register): the meshes are taken as already aligned");
+            return out;
+        case FitMode::Truth: {
+            out.reference_from_examined = options.truth;
+            RegistrationResult r;
+            r.reference_from_examined = options.truth;
+            r.examined_from_reference = options.truth.inverse();
+            r.converged = true;
+            r.termination = "known transform (scenario ground truth)";
+            out.json = to_json(r, options.registration);
+            out.registration = r;
+            return out;
+        }
+        case FitMode::File:
+            out.reference_from_examined = read_fit(options.fit_file.string());
+            out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
+            return out;
+        case FitMode::Register: return register_examined(reference, examined, options);
+    }
+    return out;
+}
+
+namespace {
+
+// Per vertex of a mesh: the longest edge at it (h) and its sharpness θ, the largest angle
+// between its vertex normal and the normals of the triangles around it (radians).
+struct LocalShape {
+    std::vector<float> edge;
+    std::vector<float> sharpness;
+};
+
+LocalShape local_shape(const Mesh& m) {
+    LocalShape out{std::vector<float>(m.vertex_count(), 0.0f),
+                   std::vector<float>(m.vertex_count(), 0.0f)};
+    // note: the largest angle is the arc cosine of the smallest cosine (acos decreases): one
+    // acos per vertex instead of one per corner, the same value.
+    std::vector<float> min_cos(m.vertex_count(), 1.0f);
+    for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+        const auto& tri = m.triangles[t];
+        const Vec3f n = face_normal(m, t);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto a = tri[k], b = tri[(k + 1) % 3];
+            const float h = (m.positions[a] - m.positions[b]).norm();
+            out.edge[a] = std::max(out.edge[a], h);
+            out.edge[b] = std::max(out.edge[b], h);
+            if (n.squaredNorm() == 0.0f) continue;  // a degenerate triangle has no direction
+            min_cos[a] = std::min(min_cos[a], std::clamp(m.normals[a].dot(n), -1.0f, 1.0f));
+        }
+    }
+    for (std::size_t v = 0; v < m.vertex_count(); ++v) out.sharpness[v] = std::acos(min_cos[v]);
+    return out;
+}
+
+// How far the examined surface bulges out of its flat triangle at the closest point, along the
+// triangle's outward normal: Phong tessellation (each corner's tangent plane, blended by the
+// barycentric weights, shape factor 3/4) stands in for the smooth surface the triangle is a
+// chord of. The examined vertices lie on the surface, its flat interiors do not: on a convex
+// part a reference vertex lies outside the chord by about its sagitta.
+double curved_offset(const Mesh& exa, const Triangle& t, const ClosestPoint& c) {
+    constexpr double kShape = 0.75;
+    const Vec3d& p = c.point;
+    Vec3d blended{0, 0, 0};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const Vec3d corner = exa.positions[t[k]].cast<double>();
+        const Vec3d n = exa.normals[t[k]].cast<double>();
+        blended += c.barycentric[static_cast<Eigen::Index>(k)] * (p - (p - corner).dot(n) * n);
+    }
+    const Vec3d a = exa.positions[t[0]].cast<double>(), b = exa.positions[t[1]].cast<double>(),
+                d = exa.positions[t[2]].cast<double>();
+    const Vec3d face = (b - a).cross(d - a);
+    if (face.squaredNorm() == 0.0) return 0.0;
+    return kShape * (blended - p).dot(face.normalized());
+}
+
+}  // namespace
+
+ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
+    GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
+    const ClosestPointIndex index = ClosestPointIndex::borrowing(fitted_examined);
+    const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
+    const std::size_t n = reference.vertex_count();
+    const auto border = border_vertices(exa);
+    const LocalShape ref_shape = local_shape(reference);
+    const LocalShape exa_shape = local_shape(exa);
+    ShapeEvidence e;
+    e.distance.resize(n);
+    e.tolerance.resize(n);
+    e.at_border.assign(n, 0);
+    // note: each vertex's closest point is used where it is found, not gathered first: a
+    // ClosestPoint is 112 bytes, 112 MB at 1M vertices on top of the index at this stage's
+    // peak (issue 13: peak memory at 2M triangles). Chunks of 512 neighbouring vertices keep
+    // the BVH nodes they visit in cache (as ClosestPointIndex::closest does).
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, 512),
+        [&](const tbb::blocked_range<std::size_t>& range) {
+            for (std::size_t v = range.begin(); v != range.end(); ++v) {
+                const ClosestPoint c = index.closest(reference.positions[v].cast<double>());
+                // A reference vertex outside the examined surface (positive) means the examined
+                // surface lies inside: a loss. Negate so that negative = loss, as in the atlas.
+                const auto& t = exa.triangles[c.triangle];
+                e.distance[v] = static_cast<float>(-(c.signed_distance - curved_offset(exa, t, c)));
+                // The examined triangle's size decides how far it can cut a corner of the reference
+                // (its vertices lie on the surface, its interior does not); the sharper of the two
+                // surfaces there decides how much it turns.
+                float h = 0.0f, theta = ref_shape.sharpness[v];
+                for (const auto corner : t) {
+                    h = std::max(h, exa_shape.edge[corner]);
+                    theta = std::max(theta, exa_shape.sharpness[corner]);
+                }
+                e.tolerance[v] = static_cast<float>(kTessellationTolerance) * h * theta;
+                // On the border: every corner the closest point depends on is a border vertex.
+                // note: 1e-9 separates a true zero barycentric weight from rounding.
+                bool on_border = c.feature != ClosestFeature::Face;
+                for (std::size_t k = 0; k < 3 && on_border; ++k)
+                    if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]])
+                        on_border = false;
+                e.at_border[v] = on_border ? 1 : 0;
+            }
+        });
+    return e;
+}
+
+}  // namespace glint

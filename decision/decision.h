@@ -1,0 +1,129 @@
+// The decision: which parts of the reference surface are damaged, from the evidence a run
+// measured, against floors the run estimates from its own undamaged majority.
+//
+// Evidence per reference vertex and zoom:
+//   normal  the metric's footprint-averaged per-vertex mean (ZoomAtlas::value_mean): the
+//           paper's signal; its floor says how much two renderings of the same surface differ
+//           (tessellation, registration, noise) at this zoom;
+//   shape   the signed distance to the fitted examined surface (mesh units; negative = loss),
+//           from analysis/fit.h; its floor says how far two tessellations of one surface lie
+//           apart.
+// A floor is robust: median + k·1.4826·MAD over the seen vertices (1.4826 makes the MAD a
+// consistent estimate of σ for Gaussian noise), never below a stated minimum; a floor above
+// a plausible limit is capped and reported, never silently absurd.
+//
+// Rules:
+//   normal  the paper's rule: a seen vertex whose normal evidence reaches its floor is
+//           damaged; regions are its connected groups.
+//   fused   both kinds of evidence, each against its floor:
+//           1. shape excess e = sign(d)·max(0, |d| − tolerance): the signed distance beyond
+//              what the two tessellations may differ by (analysis/fit.h ShapeEvidence);
+//           2. candidates: seen vertices whose excess of one sign reaches the lower shape
+//              floor, grouped through mesh edges;
+//           3. growth: from the vertices of each group whose excess reaches the shape floor
+//              (so tessellation-only normal differences do not count), the extent grows
+//              through connected vertices whose signed distance reaches a tenth
+//              (grow_fraction) of the group's peak and the lower shape floor, and, below
+//              1.5 times that reach, half the local tessellation tolerance — where the shape
+//              changed, not only its steep rim;
+//           4. the grown extent is a region only when its normal deviation reaches the
+//              normal floor's lower level (so isolated distance speckle from noise does not
+//              count; a smooth dent turns the normals most on its flanks, not at its core);
+//           5. where the examined surface is missing (views found no surface behind the
+//              reference, or the closest examined point lies on a border with a large
+//              distance) the region is "missing surface", not a dent or a bump.
+#pragma once
+
+#include "decision/regions.h"
+#include "mesh/mesh.h"
+#include "scanner/atlas.h"
+#include "scanner/coverage.h"
+#include "scanner/metric.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class DecisionRule { Normal, Fused };
+/// "normal" / "fused". \throw InputError.
+[[nodiscard]] DecisionRule parse_decision_rule(const std::string& text);
+[[nodiscard]] std::string to_string(DecisionRule rule);
+
+struct DecisionOptions {
+    DecisionRule rule = DecisionRule::Fused;
+    /// Normal evidence: the threshold given (metric units: degrees for angle); else the floor.
+    std::optional<double> threshold;
+    double noise_k = 6.0;        ///< normal floor: median + k·1.4826·MAD …
+    double min_threshold = 2.0;  ///< … never below this (metric units; see README)
+    /// A normal floor above this (degrees; scaled to the metric by its colour range) is
+    /// implausible: most of the surface would then differ. It is capped and reported.
+    double max_plausible_threshold_deg = 20.0;
+    /// Shape evidence: the floor given (mesh units); else estimated.
+    std::optional<double> shape_threshold;
+    double shape_k = 6.0;      ///< shape floor: median + k·1.4826·MAD of |shape excess| …
+    double shape_low_k = 3.0;  ///< lower (hysteresis) floor: median + k_low·1.4826·MAD
+    /// … never below this share of the bounding diagonal (the distance's numerical noise).
+    double min_shape_fraction = 1e-5;
+    /// A shape floor above this share of the bounding diagonal is implausible (capped, reported).
+    double max_plausible_shape_fraction = 0.01;
+    /// Hysteresis: a region grows from its strong evidence through connected vertices whose
+    /// shape change is at least this share of the region's peak (and above the lower floor).
+    double grow_fraction = 0.1;
+    std::size_t min_region_vertices = 3;
+    bool fill_holes = true;
+
+    /// \throw InputError naming the field, its value and the rule.
+    void validate() const;
+};
+
+/// A floor and how it was obtained.
+struct Floor {
+    double value = 0.0;  ///< the threshold used (metric units, or mesh units for shape)
+    double low =
+        0.0;  ///< lower level (k = shape_low_k): shape growth; normal corroboration in the fused rule
+    double median = 0.0;
+    double mad = 0.0;  ///< raw median absolute deviation
+    double k = 0.0;
+    double minimum = 0.0;
+    bool given = false;        ///< set by the user, not estimated
+    bool implausible = false;  ///< the estimate exceeded the plausible limit and was capped
+    std::string rule;          ///< one line: how it was obtained
+    std::string note;          ///< why it is implausible (empty otherwise)
+};
+
+/// Robust floor of values[i] over use[i] != 0 (see file comment), capped at `plausible_max`.
+[[nodiscard]] Floor robust_floor(const std::vector<float>& values,
+                                 const std::vector<std::uint8_t>& use, double k, double minimum,
+                                 double plausible_max);
+
+/// What the decision read.
+struct DecisionEvidence {
+    const ZoomAtlas* atlas = nullptr;    ///< normal evidence and view of the maxima
+    const Coverage* coverage = nullptr;  ///< seen mask
+    const std::vector<float>* distance =
+        nullptr;  ///< shape evidence (may be null: normal rule only)
+    const std::vector<float>* tolerance =
+        nullptr;  ///< tessellation tolerance of the distance (may be null)
+    const std::vector<std::uint8_t>* at_border =
+        nullptr;  ///< closest examined point on a border (may be null)
+    Metric metric = Metric::AngleDeg;
+    double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
+};
+
+struct ZoomDecision {
+    DecisionRule rule = DecisionRule::Normal;
+    std::string rule_text;  ///< one line stating the rule applied
+    Floor normal;
+    Floor shape;  ///< unset (rule empty) for the normal rule
+    RegionResult regions;
+    std::vector<std::size_t> histogram;  ///< normal evidence of seen vertices (metric's bins)
+    std::vector<std::string> warnings;   ///< implausible floors, fallbacks
+};
+
+/// Applies the rule to one zoom level. \throw InputError invalid options.
+[[nodiscard]] ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
+                                  const DecisionOptions& options);
+
+}  // namespace glint

@@ -1,0 +1,152 @@
+#include "decision/regions.h"
+
+#include "mesh/components.h"
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint {
+
+std::string to_string(RegionKind kind) {
+    switch (kind) {
+        case RegionKind::Dent: return "dent";
+        case RegionKind::Bump: return "bump";
+        case RegionKind::MissingSurface: return "missing surface";
+    }
+    return "?";
+}
+
+namespace {
+
+// Marks as damaged every undamaged, seen group that touches only one damaged group, no
+// unseen vertex and no mesh border, and is smaller (in vertices) than that group.
+std::size_t fill_enclosed_holes(const Mesh& mesh, const std::vector<std::uint8_t>& seen,
+                                std::vector<std::uint8_t>& damaged) {
+    const std::size_t n = mesh.vertex_count();
+    std::vector<std::int32_t> group, hole;
+    const std::size_t groups = masked_components(mesh, damaged, group);
+    std::vector<std::uint8_t> candidate(n);
+    for (std::size_t v = 0; v < n; ++v) candidate[v] = !damaged[v] && seen[v];
+    const std::size_t holes = masked_components(mesh, candidate, hole);
+    constexpr std::int32_t kOpen = -2;  // touches several groups, an unseen vertex or a border
+    std::vector<std::int32_t> neighbour(holes, -1);
+    std::vector<std::size_t> hole_size(holes, 0), group_size(groups, 0);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (hole[v] >= 0) ++hole_size[static_cast<std::size_t>(hole[v])];
+        if (group[v] >= 0) ++group_size[static_cast<std::size_t>(group[v])];
+    }
+    auto touch = [&](std::int32_t h, std::int32_t other) {
+        auto& nb = neighbour[static_cast<std::size_t>(h)];
+        if (nb == kOpen) return;
+        if (other < 0) nb = kOpen;  // an unseen vertex: not enclosed
+        else if (nb == -1) nb = other;
+        else if (nb != other) nb = kOpen;
+    };
+    for (const auto& tri : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto a = tri[k], b = tri[(k + 1) % 3];
+            if (hole[a] >= 0 && hole[b] < 0) touch(hole[a], group[b]);
+            if (hole[b] >= 0 && hole[a] < 0) touch(hole[b], group[a]);
+        }
+    const auto border = border_vertices(mesh);
+    for (std::size_t v = 0; v < n; ++v)
+        if (border[v] && hole[v] >= 0) neighbour[static_cast<std::size_t>(hole[v])] = kOpen;
+    std::size_t filled = 0;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (hole[v] < 0) continue;
+        const auto h = static_cast<std::size_t>(hole[v]);
+        const std::int32_t g = neighbour[h];
+        if (g >= 0 && hole_size[h] < group_size[static_cast<std::size_t>(g)]) {
+            damaged[v] = 1;
+            ++filled;
+        }
+    }
+    return filled;
+}
+
+struct Accumulated {
+    Region r;
+    double value_area = 0.0;
+    double shape_area = 0.0;  // area with a known shape change
+    double missing_area = 0.0;
+    double best_value = -1.0;
+    Vec3d centroid_sum{0, 0, 0};
+    std::vector<std::uint32_t> vertices;
+};
+
+void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
+                const RegionFields& f) {
+    const double value = (*f.value)[v];
+    g.vertices.push_back(static_cast<std::uint32_t>(v));
+    g.r.area += area;
+    g.value_area += area * value;
+    g.centroid_sum += area * mesh.positions[v].cast<double>();
+    g.r.max_value = std::max(g.r.max_value, value);
+    if (f.shape && std::isfinite((*f.shape)[v])) {
+        const double d = (*f.shape)[v];
+        if (std::abs(d) > std::abs(g.r.peak_depth)) g.r.peak_depth = d;
+        g.r.volume += area * d;
+        g.shape_area += area;
+    }
+    if (f.missing) g.missing_area += area * (*f.missing)[v];
+    if (f.view && value > g.best_value) {
+        g.best_value = value;
+        g.r.best_view = (*f.view)[v];
+    }
+}
+
+void finish(Accumulated& g, const RegionOptions& options) {
+    g.r.vertex_count = g.vertices.size();
+    g.r.mean_value = g.r.area > 0 ? g.value_area / g.r.area : 0.0;
+    g.r.mean_depth = g.shape_area > 0 ? g.r.volume / g.shape_area : 0.0;
+    g.r.missing_fraction = g.r.area > 0 ? g.missing_area / g.r.area : 0.0;
+    g.r.centroid = g.r.area > 0 ? Vec3d(g.centroid_sum / g.r.area) : Vec3d::Zero();
+    if (g.r.missing_fraction > options.missing_majority) g.r.kind = RegionKind::MissingSurface;
+    else g.r.kind = g.r.peak_depth < 0 ? RegionKind::Dent : RegionKind::Bump;
+}
+
+}  // namespace
+
+RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
+                          const std::vector<std::uint8_t>& seen, const RegionFields& fields,
+                          const RegionOptions& options) {
+    const std::size_t n = mesh.vertex_count();
+    GLINT_ASSERT(fields.value && fields.value->size() == n, "value field does not match the mesh");
+    GLINT_ASSERT(seen.size() == n && damaged.size() == n, "masks do not match the mesh");
+    GLINT_ASSERT(!fields.shape || fields.shape->size() == n, "shape field does not match the mesh");
+    RegionResult result;
+    for (std::size_t v = 0; v < n; ++v) {
+        damaged[v] = damaged[v] && seen[v];
+        result.damaged_vertices += damaged[v];
+    }
+    if (options.fill_holes) result.filled_vertices = fill_enclosed_holes(mesh, seen, damaged);
+    std::vector<std::int32_t> group;
+    const std::size_t count = masked_components(mesh, damaged, group);
+    const auto areas = vertex_areas(mesh);
+    std::vector<Accumulated> groups(count);
+    for (std::size_t v = 0; v < n; ++v)
+        if (group[v] >= 0)
+            accumulate(groups[static_cast<std::size_t>(group[v])], mesh, v, areas[v], fields);
+    std::vector<Accumulated*> kept;
+    for (auto& g : groups) {
+        if (g.vertices.size() < options.min_vertices) {
+            ++result.dropped_small;
+            continue;
+        }
+        finish(g, options);
+        kept.push_back(&g);
+    }
+    std::stable_sort(kept.begin(), kept.end(), [](const Accumulated* a, const Accumulated* b) {
+        return a->r.area > b->r.area;
+    });
+    result.region_of_vertex.assign(n, 0);
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+        kept[i]->r.id = static_cast<std::int32_t>(i + 1);
+        for (auto v : kept[i]->vertices) result.region_of_vertex[v] = kept[i]->r.id;
+        result.regions.push_back(kept[i]->r);
+    }
+    return result;
+}
+
+}  // namespace glint

@@ -1,0 +1,75 @@
+// Damaged vertices grouped into connected regions over the reference mesh, and measured.
+#pragma once
+
+#include "mesh/mesh.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class RegionKind {
+    Dent,  ///< loss: the examined surface lies inside the reference (negative shape change)
+    Bump,  ///< gain: the examined surface lies outside (positive shape change)
+    MissingSurface,  ///< the examined mesh has no surface there (a hole, a cut, an unscanned part)
+};
+
+struct Region {
+    std::int32_t id = 0;  ///< 1-based; 0 in region_of_vertex means none
+    std::size_t vertex_count = 0;
+    double area = 0.0;        ///< mesh units², sum of the vertices' dual areas
+    double max_value = 0.0;   ///< the metric's largest per-vertex mean in the region
+    double mean_value = 0.0;  ///< the metric, area-weighted mean
+    double peak_depth = 0.0;  ///< signed shape change of largest magnitude (mesh units; neg = loss)
+    double mean_depth = 0.0;  ///< area-weighted mean signed shape change (mesh units)
+    double volume = 0.0;      ///< Σ area·shape change (mesh units³; neg = volume lost)
+    double missing_fraction = 0.0;  ///< area share whose observations found no examined surface
+    Vec3d centroid{0, 0, 0};        ///< area-weighted, reference coordinates
+    std::int32_t best_view = -1;    ///< view where the region's strongest deviation was seen
+    RegionKind kind = RegionKind::Dent;
+    std::string evidence;  ///< why the decision admitted it (filled by decision/decision.cpp)
+};
+
+/// Per reference vertex fields the statistics read (each one value per vertex; optional
+/// ones may be null).
+struct RegionFields {
+    const std::vector<float>* value = nullptr;  ///< the metric's per-vertex mean (required)
+    const std::vector<float>* shape = nullptr;  ///< signed shape change (mesh units; NaN = unknown)
+    const std::vector<float>* missing =
+        nullptr;  ///< share of observations without examined surface
+    const std::vector<std::int32_t>* view = nullptr;  ///< view of the vertex's maximum
+};
+
+struct RegionOptions {
+    std::size_t min_vertices = 3;  ///< smaller groups are dropped (counted in dropped_small)
+    /// Fill holes: a group of undamaged seen vertices enclosed by one region and smaller than
+    /// it joins that region. The floor of a dent keeps its normal (its tilt is zero at the
+    /// deepest point), so normal evidence marks a ring; the ring's inside is damaged too.
+    bool fill_holes = true;
+    /// A region whose observations found no examined surface on more than this share of its
+    /// area is MissingSurface, whatever the sign of its shape change.
+    double missing_majority = 0.5;
+};
+
+struct RegionResult {
+    std::vector<Region> regions;  ///< sorted by area, largest first; ids follow
+    std::vector<std::int32_t> region_of_vertex;
+    std::size_t damaged_vertices = 0;  ///< in the mask given (before filling and dropping)
+    std::size_t dropped_small = 0;     ///< groups below min_vertices
+    std::size_t filled_vertices = 0;   ///< vertices added by hole filling
+};
+
+/// Connected components (through mesh edges) of the damaged vertices (`damaged[v]` != 0,
+/// only seen ones count), with their statistics. Kind: MissingSurface by majority (see
+/// RegionOptions), else the sign of the peak shape change, so a region's kind never
+/// contradicts its reported depth.
+[[nodiscard]] RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
+                                        const std::vector<std::uint8_t>& seen,
+                                        const RegionFields& fields,
+                                        const RegionOptions& options = {});
+
+/// "dent", "bump", "missing surface".
+[[nodiscard]] std::string to_string(RegionKind kind);
+
+}  // namespace glint

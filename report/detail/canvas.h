@@ -1,0 +1,95 @@
+// Drawing for glint's pictures on OpenImageIO images (private to report/): text in DejaVu
+// Sans, the diverging colour map of the signed shape change, boxes, PNG encoding. Everything
+// is ImageBufAlgo (render_text, render_box, color_map, fill); only what OIIO lacks is written
+// by hand elsewhere (shading, hatching, region contours: report/detail/surface_paint.h).
+#pragma once
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace glint::detail {
+
+using Rgb = std::array<float, 3>;
+
+/// Colours of the pictures (linear values written as 8-bit PNG).
+inline constexpr Rgb kBackground{0.125f, 0.135f, 0.155f};
+inline constexpr Rgb kText{0.93f, 0.93f, 0.93f};
+inline constexpr Rgb kDimText{0.68f, 0.70f, 0.74f};
+inline constexpr Rgb kOutline{0.02f, 0.02f, 0.02f};
+inline constexpr Rgb kUnseen{0.60f, 0.60f, 0.60f};
+inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
+
+/// The diverging map of signed shape change, low (loss, blue) → 0 (near white) → high
+/// (gain, red): ColorBrewer's RdBu with 9 classes, reversed so blue is negative. 9 knots × 3
+/// channels for ImageBufAlgo::color_map.
+[[nodiscard]] std::span<const float> diverging_knots();
+
+/// Colours `values` (one per pixel of a width × height image) on the diverging map with the
+/// symmetric range [−limit, +limit] (values beyond are clamped; NaN maps to 0). RGB float.
+[[nodiscard]] OIIO::ImageBuf diverging_image(const std::vector<float>& values, int width,
+                                             int height, double limit);
+
+/// The diverging map as a table for per-pixel use: ImageBufAlgo::color_map evaluated once at
+/// kEntries + 1 evenly spaced points of [0, 1]. The map is linear between its 9 knots, which
+/// fall on table points (kEntries is a multiple of 8), so interpolating the table gives the
+/// map's own colours (to float rounding) without an image per picture.
+class DivergingTable {
+  public:
+    static constexpr int kEntries = 1024;
+    static_assert(kEntries % 8 == 0, "the map's knots must fall on table points");
+    /// The table (built on first use; thread-safe).
+    [[nodiscard]] static const DivergingTable& get();
+    /// The colour of `value` in the range ±limit (clamped; NaN maps to 0, as diverging_image).
+    [[nodiscard]] Rgb operator()(float value, double limit) const;
+
+  private:
+    DivergingTable();
+    std::vector<float> rgb_;  ///< (kEntries + 1) × 3
+};
+
+/// A colour channel (0…1) as an 8-bit value, rounded as OpenImageIO converts.
+[[nodiscard]] inline std::uint8_t to_byte(float v) {
+    return static_cast<std::uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+}
+
+/// A width × height RGB image of 8 bits per channel (what the PNG pictures store: drawing,
+/// copying and encoding need no conversion) filled with `colour`.
+[[nodiscard]] OIIO::ImageBuf canvas(int width, int height, Rgb colour = kBackground);
+
+/// Whether the DejaVu font was found (text is decoration: without it pictures are unlabelled).
+[[nodiscard]] bool has_font();
+
+/// Text with its baseline-left (or the alignment given) at (x, y); `shadow` > 0 draws a dark
+/// halo of that radius so the text reads on any colour. ASCII only: OpenImageIO 2.4's
+/// render_text keeps 7 bits of each code point ("°" is drawn as "0", "±" as "1").
+void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size,
+               Rgb colour = kText,
+               OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left,
+               int shadow = 0);
+
+/// Width in pixels of `text` at `size` (an estimate when no font is found).
+[[nodiscard]] int text_width(std::string_view text, int size);
+
+/// A box from (x0, y0) to (x1, y1) inclusive, filled or outlined.
+void draw_box(OIIO::ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, bool fill);
+
+/// A number on a small white tag with a dark border, centred on (x, y): the id of a region.
+void draw_tag(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size);
+
+/// The image as PNG bytes (8 bits per channel; an 8-bit image is written as it is).
+/// \throw IoError with OIIO's message.
+[[nodiscard]] std::string encode_png(const OIIO::ImageBuf& image);
+
+/// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set.
+[[nodiscard]] std::string format_number(double value, bool sign = false);
+
+}  // namespace glint::detail

@@ -1,0 +1,140 @@
+#include "report/detail/legend.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace glint::detail {
+
+using OIIO::ImageBuf;
+namespace IBA = OIIO::ImageBufAlgo;
+
+namespace {
+
+constexpr int kFont = 13;
+constexpr int kLine = 18;  // px per text line
+constexpr int kBarWidth = 20;
+constexpr int kMinBar = 120;
+constexpr int kMaxBar = 260;
+constexpr int kSwatches = 2 * kLine + 8;
+
+// The bar, high values at the top: pixel row of value v.
+int bar_row(double v, double limit, int top, int height) {
+    const double t = std::clamp(0.5 - 0.5 * v / limit, 0.0, 1.0);
+    return top + static_cast<int>(std::lround(t * (height - 1)));
+}
+
+void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c) {
+    std::vector<float> ramp(static_cast<std::size_t>(height) * kBarWidth);
+    for (int y = 0; y < height; ++y)
+        for (int i = 0; i < kBarWidth; ++i)
+            ramp[static_cast<std::size_t>(y * kBarWidth + i)] =
+                static_cast<float>(c.limit * (1.0 - 2.0 * y / std::max(1, height - 1)));
+    IBA::paste(dst, x, top, 0, 0, diverging_image(ramp, kBarWidth, height, c.limit));
+    draw_box(dst, x - 1, top - 1, x + kBarWidth, top + height, kDimText, false);
+    const std::string unit = " " + c.unit;
+    for (int k = -2; k <= 2; ++k) {
+        const double v = c.limit * k / 2.0;
+        const int row = bar_row(v, c.limit, top, height);
+        IBA::render_line(dst, x + kBarWidth, row, x + kBarWidth + 5, row, kText);
+        draw_text(dst, x + kBarWidth + 9, row + kFont / 2 - 1,
+                  format_number(v, true) + (k == 2 ? unit : ""), kFont);
+    }
+    if (c.shape_floor > 0 && c.shape_floor < c.limit) {
+        // The shape floor: below it a change is not told apart from tessellation and noise.
+        for (double v : {c.shape_floor, -c.shape_floor}) {
+            const int row = bar_row(v, c.limit, top, height);
+            IBA::render_line(dst, x - 4, row, x + kBarWidth - 1, row, kOutline);
+        }
+    }
+}
+
+void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
+    // Unseen: the hatching the pictures use.
+    const int s = kLine - 4;
+    for (int j = 0; j < s; ++j)
+        for (int i = 0; i < s; ++i) {
+            const float* g = ((i + j) % 7 < 2) ? kUnseenStripe.data() : kUnseen.data();
+            if (x + i < dst.spec().width && y + j < dst.spec().height)
+                dst.setpixel(x + i, y + j, g, 3);
+        }
+    draw_text(dst, x + s + 8, y + s - 2,
+              roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
+    const int y2 = y + kLine + 6;
+    draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
+    draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
+    draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);
+    draw_tag(dst, x + s + 14, y2 + s / 2, "1", kFont - 2);
+    draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kFont);
+}
+
+}  // namespace
+
+int legend_min_height(const LegendContent& c) {
+    // (two lines each for the range and the shape floor when they wrap)
+    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches +
+           static_cast<int>(c.lines.size() + 4) * kLine + 10;
+}
+
+void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
+    const int x0 = x + 12;
+    int cy = y + 10 + kFont;
+    draw_text(dst, x0, cy, "signed shape change (" + c.unit + ")", kFont + 1);
+    cy += kLine;
+    draw_text(dst, x0, cy, "gain (bump)", kFont, {0.94f, 0.55f, 0.50f});
+    cy += 8;
+    const int fixed = legend_min_height(c) - kMinBar;
+    const int bar =
+        std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLine, kMinBar, kMaxBar);
+    draw_bar(dst, x0 + 4, cy, bar, c);
+    cy += bar + kLine;
+    draw_text(dst, x0, cy, "loss (dent)", kFont, {0.55f, 0.72f, 0.95f});
+    cy += 12;
+    draw_swatches(dst, x0, cy, c.roi);
+    cy += kSwatches + kLine;
+    std::vector<std::string> lines = c.lines;
+    lines.insert(lines.begin(), "range +/-" + format_number(c.limit) + " " + c.unit +
+                                    (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
+    if (c.shape_floor > 0)
+        lines.insert(lines.begin() + 1,
+                     "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
+                         (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
+    for (const auto& l : lines) {
+        // A line too wide for the panel goes on two, its parenthesis on the second.
+        const auto cut = l.rfind(" (");
+        const bool wrap = text_width(l, kFont - 1) > kLegendWidth - 20 && cut != std::string::npos;
+        draw_text(dst, x0, cy, wrap ? l.substr(0, cut) : l, kFont - 1, kDimText);
+        cy += kLine - 2;
+        if (!wrap) continue;
+        draw_text(dst, x0 + 10, cy, l.substr(cut + 1), kFont - 1, kDimText);
+        cy += kLine - 2;
+    }
+    if (c.regions.empty()) {
+        draw_text(dst, x0, cy + 4, "no region", kFont);
+        return;
+    }
+    cy += 4;
+    for (std::size_t i = 0; i < c.regions.size(); ++i) {
+        if (cy + kLine > y + height && i + 1 < c.regions.size()) {
+            draw_text(dst, x0, cy,
+                      "... " + std::to_string(c.regions.size() - i) + " more (regions.csv)",
+                      kFont - 1);
+            break;
+        }
+        draw_text(dst, x0, cy, c.regions[i], kFont - 1);
+        cy += kLine - 1;
+    }
+}
+
+ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
+                      const LegendContent& legend) {
+    const int h = kTitleHeight + std::max(picture_h, legend_min_height(legend));
+    ImageBuf sheet = canvas(picture_w + kLegendWidth, h);
+    draw_title(sheet, title);
+    draw_legend(sheet, picture_w, kTitleHeight, h - kTitleHeight, legend);
+    return sheet;
+}
+
+void draw_title(ImageBuf& sheet, const std::string& title) { draw_text(sheet, 8, 20, title, 15); }
+
+}  // namespace glint::detail

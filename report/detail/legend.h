@@ -1,0 +1,44 @@
+// The legend every picture carries (private to report/): a colour bar of the signed shape
+// change with ticks and its unit, the shape floor marked on it, swatches for unseen surface
+// and region outlines, the thresholds and floors, and the regions by number.
+#pragma once
+
+#include "report/detail/canvas.h"
+
+#include <string>
+#include <vector>
+
+namespace glint::detail {
+
+struct LegendContent {
+    double limit = 1.0;        ///< colour range ±limit, mesh units
+    std::string limit_source;  ///< why this range ("largest region peak", …)
+    double shape_floor = 0.0;  ///< marked on the bar when > 0 and inside the range
+    std::string unit;          ///< length unit shown ("mm"; "units" when unknown)
+    bool roi = false;          ///< the sweep analysed a part only: outside it counts as unseen
+    std::vector<std::string> lines;    ///< thresholds and floors, one per line
+    std::vector<std::string> regions;  ///< "1 dent −0.41 mm, 12.3 mm²", in id order
+};
+
+/// Height of the title line above every picture, pixels.
+inline constexpr int kTitleHeight = 30;
+
+/// Width of the legend panel, pixels.
+inline constexpr int kLegendWidth = 290;
+
+/// Smallest height that shows the bar, swatches and lines (regions are cut to what fits).
+[[nodiscard]] int legend_min_height(const LegendContent& content);
+
+/// Draws the legend into the panel at (x, y) of the given height.
+void draw_legend(OIIO::ImageBuf& dst, int x, int y, int height, const LegendContent& content);
+
+/// A picture's canvas: the title line on top, the legend panel on the right; the picture
+/// (picture_w × picture_h) goes at (0, kTitleHeight). An empty title leaves the title line
+/// blank: draw_title() writes it into a copy (one legend drawn for many pictures).
+[[nodiscard]] OIIO::ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
+                                          const LegendContent& legend);
+
+/// The title line of a framed sheet.
+void draw_title(OIIO::ImageBuf& sheet, const std::string& title);
+
+}  // namespace glint::detail

@@ -1,0 +1,69 @@
+// A rendered view of the reference surface painted for people (private to report/):
+//
+//   colour   the signed shape change on the diverging map (blue loss, white 0, red gain),
+//            symmetric range ±limit mesh units;
+//   shading  Lambert from the rendered normal, one light from the upper left behind the
+//            viewer (the paper's fixed light, render/shade.h), so the surface form shows;
+//   unseen   vertices no view saw: grey with dark diagonal hatching;
+//   regions  outlined where a pixel's region differs from a neighbour's, with an anchor per
+//            region (the region pixel nearest its pixel centroid) for its number.
+//
+// Per-pixel values come from the frame's primitive ids: the pixel centre's barycentric
+// weights in its triangle (the ray caster's, Frame::barycentric, where the frame has them;
+// else from the projected corners, exact for orthographic views) interpolate the per-vertex
+// distance, and the corner with the largest weight gives the
+// region and the seen flag, so outlines follow the vertices' dual cells.
+#pragma once
+
+#include "mesh/mesh.h"
+#include "render/frame.h"
+#include "render/view.h"
+#include "report/detail/canvas.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace glint::detail {
+
+/// Per-vertex fields a picture shows (each one value per reference vertex).
+struct SurfaceFields {
+    std::span<const float> distance;       ///< signed shape change, mesh units (NaN = unknown)
+    std::span<const std::int32_t> region;  ///< region id, 0 = none
+    std::span<const std::uint8_t> seen;    ///< 0 = unseen (hatched)
+};
+
+/// Where a region's number goes in one picture.
+struct RegionAnchor {
+    std::int32_t id = 0;
+    int x = 0;
+    int y = 0;
+    std::size_t pixels = 0;  ///< pixels of the region visible in the picture
+    int min_x = 0, min_y = 0, max_x = 0, max_y = 0;  ///< bounding box of those pixels
+};
+
+struct PaintedSurface {
+    OIIO::ImageBuf image;               ///< RGB, 8 bits per channel, the frame's size
+    std::vector<RegionAnchor> anchors;  ///< regions visible, by id
+};
+
+struct PaintStyle {
+    double limit = 1.0;     ///< colour range ±limit (mesh units), > 0
+    int outline_width = 2;  ///< 1: the region side of the contour only; 2: both sides
+    int hatch_period = 7;   ///< pixels between hatching stripes
+    Rgb background = kBackground;
+};
+
+/// Paints `frame` (rendered from `view` of `mesh`) as described above.
+/// \pre fields sized as the mesh's vertices; frame from a renderer of `mesh`.
+[[nodiscard]] PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& view,
+                                           const SurfaceFields& fields, const PaintStyle& style);
+
+/// Draws each anchor with at least `min_pixels` pixels as a numbered tag beside its region's
+/// bounding box (right, else left; on the anchor when neither fits the picture's `width`), for
+/// a picture pasted at (x0, y0).
+void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width,
+                         const std::vector<RegionAnchor>& anchors, int font_size,
+                         std::size_t min_pixels);
+
+}  // namespace glint::detail

@@ -1,0 +1,64 @@
+// What a run with outputs writes (report/inspect.h): the output folder and which files go in it.
+#pragma once
+
+#include "analysis/analysis.h"
+#include "analysis/option_registry.h"
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace glint {
+
+/// Which atlas files a run writes (all three by default): atlas.ply (MeshLab, CloudCompare,
+/// Open3D), atlas.vtk (legacy ASCII: ParaView, 3D Slicer, CloudCompare), atlas.vtp (VTK XML:
+/// ParaView, 3D Slicer). On a 2M-triangle mesh they are 129, 212 and 126 MB.
+struct AtlasFiles {
+    bool ply = true;
+    bool vtk = true;
+    bool vtp = true;
+    [[nodiscard]] bool operator==(const AtlasFiles&) const = default;
+};
+
+/// "ply,vtp" → those files. \throw OptionError naming `key` for an unknown or repeated name or
+/// an empty list.
+[[nodiscard]] AtlasFiles parse_atlas_files(std::string_view list, const std::string& key);
+
+/// "ply,vtk,vtp": the names of the files written, in that order.
+[[nodiscard]] std::string to_string(const AtlasFiles& files);
+
+struct ExportOptions {
+    /// The output folder (written complete or not at all, report/output_folder.h); empty:
+    /// nothing is written.
+    std::filesystem::path output;
+    bool write_views = true;  ///< per-view PNG heat maps
+    /// Per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back).
+    bool write_exr = false;
+    AtlasFiles atlas_files;  ///< atlas.ply / atlas.vtk / atlas.vtp
+    /// An existing output folder is replaced (atomically, when the run completes); false:
+    /// it is refused before anything is loaded (--force).
+    bool replace_existing = false;
+    int mosaic_tile = 128;  ///< mosaic thumbnail size, pixels
+    /// Per-vertex scalars added to the atlas files as they are (e.g. a scenario's ground
+    /// truth, "truth_damage" and "truth_distance", to be seen beside glint's own fields in a
+    /// viewer); each holds one value per reference vertex.
+    std::vector<std::pair<std::string, std::vector<float>>> extra_scalars;
+    /// Keep the atlas mesh (the reference with every atlas field) in the result (Python's
+    /// Analysis.atlas); otherwise it lives only while its files are written.
+    bool keep_atlas = false;
+
+    /// \throw OptionError; InputError when the output folder exists and may not be replaced.
+    void validate() const;
+};
+
+/// The export options of the command line, Python and the JSON (analysis/option_registry.h;
+/// scenario files do not set them).
+[[nodiscard]] const std::vector<OptionField<ExportOptions>>& export_option_table();
+
+/// The options as JSON text (report.json's "analysis", --print-options; two callers that mean
+/// the same run produce the same text).
+[[nodiscard]] std::string to_json(const AnalysisOptions& options, const ExportOptions& exports);
+
+}  // namespace glint

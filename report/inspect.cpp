@@ -1,0 +1,93 @@
+#include "report/inspect.h"
+
+#include "mesh/cancel.h"
+#include "report/output_folder.h"
+#include "report/report.h"
+#include "report/view_exports.h"
+
+#include <chrono>
+#include <optional>
+#include <utility>
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Per-view EXRs hold every pixel's comparison, so those sweeps read their frames back; the
+// report says why the comparison left the GPU.
+AnalysisOptions analysis_for(const InspectOptions& options, bool writes_exr) {
+    AnalysisOptions a = options.analysis;
+    if (writes_exr && a.sweep.accumulate == Accumulation::Auto)
+        a.sweep.accumulate = Accumulation::Host;
+    return a;
+}
+
+void note_accumulation(const InspectOptions& options, const AnalysisOptions& used, bool writes_exr,
+                       AnalysisResult& result) {
+    if (writes_exr && result.sweep.on_gpu)
+        result.warnings.push_back(
+            "per-view EXRs not written: the sweep compared on the GPU (accumulate = gpu) and "
+            "no pixel came back; accumulate = auto or host writes them");
+    if (used.sweep.accumulate != options.analysis.sweep.accumulate &&
+        result.sweep.renderer.backend == Backend::Vulkan)
+        result.sweep.accumulation_note =
+            "per-view EXRs hold every pixel's comparison: frames read back (without "
+            "--exr compare stays on the GPU)";
+}
+
+}  // namespace
+
+void InspectOptions::validate() const {
+    analysis.validate();
+    exports.validate();
+}
+
+Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& options,
+                   const RunRecord& record, const AnalysisObserver& observer) {
+    const auto t_start = Clock::now();
+    options.validate();
+    // The output location is checked (and its staging folder made) before the long work.
+    std::optional<OutputFolder> folder;
+    if (!options.exports.output.empty())
+        folder.emplace(options.exports.output, options.exports.replace_existing);
+    const bool writes_exr = folder && options.exports.write_exr;
+    const AnalysisOptions used = analysis_for(options, writes_exr);
+
+    std::optional<ViewExporter> exporter;
+    if (writes_exr) exporter.emplace(*folder, used.sweep.metric, options.exports);
+    AnalysisObserver observed = observer;
+    observed.view = [&](const PlannedView& v, const DeviationMap& d) {
+        if (exporter && d.width > 0) exporter->add(v, d);
+        if (observer.view) observer.view(v, d);
+    };
+    Inspection out;
+    out.analysis = analyse(reference, std::move(examined), used, observed);
+    note_accumulation(options, used, writes_exr, out.analysis);
+    auto& warnings = out.analysis.warnings;
+    warnings.insert(warnings.begin(), record.warnings.begin(), record.warnings.end());
+
+    throw_if_cancelled();
+    if (observer.stage) observer.stage("export");
+    const auto t = Clock::now();
+    out.analysis.total_seconds = seconds_since(t_start);
+    out.report_json = report_json(reference, out.analysis, options, record);
+    if (folder) {
+        out.atlas = write_outputs(*folder, reference, out.analysis, options.exports, record,
+                                  out.report_json, observer.stage);
+        folder->commit();
+        out.output = folder->target();
+    } else if (options.exports.keep_atlas) {
+        out.atlas = make_atlas_mesh(reference, out.analysis);
+    }
+    out.export_seconds = seconds_since(t);
+    out.total_seconds = seconds_since(t_start);
+    return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,52 @@
+// A run with outputs: analyse() (analysis/analysis.h) and everything around it that touches
+// files: the output folder, per-view exports, atlas files, pictures, report.json and
+// report.html. Every front end (glint sweep, the Slicer module, Python, scenarios) runs an
+// inspection through inspect(); nothing else assembles the outputs.
+//
+//   RunRecord (report/run_inputs.h) ─┐
+//   reference, examined ─────────────┴▶ analyse ─▶ atlas files, regions.csv, report.json
+//                                        │ views   (report/report.h), pictures, report.html
+//                                        ▼
+//                                   views/*.exr (report/view_exports.h)
+//
+// The output folder appears complete or not at all (report/output_folder.h); it is checked
+// before anything is analysed.
+#pragma once
+
+#include "analysis/analysis.h"
+#include "mesh/mesh.h"
+#include "report/export_options.h"
+#include "report/run_inputs.h"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace glint {
+
+struct InspectOptions {
+    AnalysisOptions analysis;
+    ExportOptions exports;
+    /// Every option, before anything is loaded. \throw OptionError naming the key; InputError
+    /// an output folder that exists and may not be replaced.
+    void validate() const;
+};
+
+struct Inspection {
+    AnalysisResult analysis;       ///< warnings: the run record's, then the analysis'
+    std::filesystem::path output;  ///< the folder written (empty when none)
+    std::string report_json;       ///< report.json's text (made also when nothing is written)
+    std::optional<Mesh> atlas;     ///< the atlas mesh, with ExportOptions::keep_atlas
+    double export_seconds = 0.0;
+    double total_seconds = 0.0;  ///< the whole inspection, exports included
+};
+
+/// Analyses the pair and writes the outputs. `observer.stage` also hears "export" and
+/// "pictures" (before the pictures, after the other files).
+/// \throw as analyse(); InputError an output folder that exists and may not be replaced;
+/// IoError writing; Cancelled (nothing half-written is left).
+[[nodiscard]] Inspection inspect(const Mesh& reference, Mesh examined,
+                                 const InspectOptions& options, const RunRecord& record,
+                                 const AnalysisObserver& observer = {});
+
+}  // namespace glint

@@ -1,0 +1,61 @@
+// Pictures people read (issue 14): every image a sweep writes shows the reference surface
+// shaded, the signed shape change on a diverging map with a symmetric scale in mesh units
+// (blue = loss, white = none, red = gain), regions outlined and numbered with the ids of
+// regions.csv / report.json, unseen parts hatched, and a legend with the unit, the floors and
+// the regions:
+//
+//   views/z<k>_az<A>_el<E>.png   each view of the sweep (ExportOptions::write_views)
+//   mosaic_z<k>.png              every view of zoom k, azimuth across, elevation down
+//   atlas.png                    the atlas (zoom 0) from six directions along the axes
+//
+// They are drawn after the decision (regions are known only then) from the reference alone:
+// its frames are rendered again on the CPU (Embree, render/renderer.h, one ray per pixel),
+// per-pixel values come from the frame's primitive ids (report/detail/surface_paint.h).
+// Pictures are rendered at the size they are shown (mosaic tiles at the tile size), so nothing
+// full-size is resized.
+#pragma once
+
+#include "analysis/analysis.h"
+#include "mesh/mesh.h"
+#include "render/view.h"
+#include "report/export_options.h"
+#include "report/output_folder.h"
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+/// The colour range of the signed shape change every picture and the atlas colours use.
+struct ShapeScale {
+    double limit = 1.0;  ///< colour range ±limit, mesh units (> 0)
+    std::string source;  ///< how it was chosen, for the legend
+    double floor = 0.0;  ///< zoom 0's shape floor (0 when the rule has none)
+};
+
+/// The range: the median |peak depth| of zoom 0's dent and bump regions (the peak of a single
+/// region), else the 99th percentile of |distance| over seen vertices; at least twice the
+/// shape floor (so noise stays pale); rounded up to 1, 1.5, 2, 2.5, 3, 4, 5, 6 or 8 × 10^k.
+[[nodiscard]] ShapeScale shape_scale(const AnalysisResult& result);
+
+/// File name stem of a view's pictures and numbers: "z0_az030.0_el+30.0".
+[[nodiscard]] std::string view_file_stem(const View& view);
+
+/// What the report page embeds.
+struct PictureOutput {
+    std::map<int, std::string> best_views;  ///< PNG bytes of the regions' best views, by view index
+    std::vector<std::string> mosaics;       ///< PNG bytes of mosaic_z<k>.png, per zoom
+};
+
+/// Best views kept for the report page, at most (the largest regions' first).
+inline constexpr std::size_t kMaxBestViews = 24;
+
+/// Writes the pictures above into the folder; `reference_name` (the file name, or "") titles
+/// atlas.png. \throw IoError, DeviceError (rendering).
+[[nodiscard]] PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
+                                           const AnalysisResult& result,
+                                           const ExportOptions& options,
+                                           const std::string& reference_name = {});
+
+}  // namespace glint

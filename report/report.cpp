@@ -1,0 +1,408 @@
+#include "report/report.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/units.h"
+#include "mesh/version.h"
+#include "mesh/write.h"
+#include "report/images.h"
+#include "report/pictures.h"
+#include "report/report_html.h"
+#include "scanner/coverage.h"
+
+#include <openssl/evp.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <future>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+json vec_json(const Vec3d& v) { return json::array({v.x(), v.y(), v.z()}); }
+
+// JSON has no NaN: report non-finite numbers as null.
+json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string zoom_suffix(std::size_t z) { return "_z" + std::to_string(z); }
+
+json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m,
+                 double peak_value) {
+    const std::string u = "_" + std::string(m.unit);
+    const std::string nu = "_" + std::string(m.name) + u;
+    json j = {
+        {"id", r.id},
+        {"kind", to_string(r.kind)},
+        {"vertices", r.vertex_count},
+        {"area", r.area},
+        {"max" + u, r.max_value},  // kept for readers: the largest per-vertex mean (max_mean_…)
+        {"mean" + u, r.mean_value},
+        {"max_mean" + nu, r.max_value},
+        {"mean" + nu, r.mean_value},
+        {"max" + nu, number(peak_value)},
+        {"peak_depth", number(r.peak_depth)},
+        {"mean_depth", number(r.mean_depth)},
+        {"volume", number(r.volume)},
+        {"missing_fraction", r.missing_fraction},
+        {"centroid", vec_json(r.centroid)},
+        {"evidence", r.evidence},
+        {"best_view", r.best_view}};
+    if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {
+        const auto& v = plan.views[static_cast<std::size_t>(r.best_view)].view;
+        j["best_view_azimuth_deg"] = v.azimuth_deg;
+        j["best_view_elevation_deg"] = v.elevation_deg;
+    }
+    return j;
+}
+
+// The largest per-vertex maximum (the strongest pixel deviation seen) in each region, by
+// region id; NaN for a region without seen vertices.
+std::vector<double> region_peak_values(const AnalysisResult& result, std::size_t z) {
+    const auto& d = result.decisions[z];
+    const auto& atlas = result.sweep.zooms[z].atlas;
+    const auto& seen = result.sweep.zooms[z].coverage.seen;
+    std::vector<double> peak(d.regions.regions.size() + 1, std::nan(""));
+    for (std::size_t v = 0; v < d.regions.region_of_vertex.size(); ++v) {
+        const auto id = d.regions.region_of_vertex[v];
+        if (id <= 0 || static_cast<std::size_t>(id) >= peak.size() || !seen[v]) continue;
+        double& p = peak[static_cast<std::size_t>(id)];
+        p = std::isnan(p) ? atlas.value_max[v]
+                          : std::max(p, static_cast<double>(atlas.value_max[v]));
+    }
+    return peak;
+}
+
+json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& plan) {
+    const UnseenSummary u = unseen_patches(reference, z.coverage.seen, plan.options.roi);
+    json list = json::array();
+    for (const auto& p : u.patches) {
+        if (list.size() >= 50) break;
+        list.push_back(
+            {{"vertices", p.vertices}, {"area", p.area}, {"centroid", vec_json(p.centroid)}});
+    }
+    return {{"vertices", u.vertices},
+            {"area", u.area},
+            {"patches", u.patches.size()},
+            {"largest_patches", list}};
+}
+
+json floor_json(const Floor& f) {
+    return {{"value", f.value},   {"low", f.low},
+            {"median", f.median}, {"mad", f.mad},
+            {"k", f.k},           {"minimum", f.minimum},
+            {"given", f.given},   {"implausible", f.implausible},
+            {"rule", f.rule},     {"note", f.note}};
+}
+
+json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
+    const auto& plan = result.sweep.plan;
+    const auto& sz = result.sweep.zooms[z];
+    const auto& d = result.decisions[z];
+    const MetricDescriptor& m = describe(result.sweep.options.metric);
+    const std::string u = "_" + std::string(m.unit);
+    json regions = json::array();
+    const std::vector<double> peaks = region_peak_values(result, z);
+    for (const auto& r : d.regions.regions)
+        regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)]));
+    json j = {{"zoom", z},
+              {"footprint", plan.footprints[z]},
+              {"image_size", plan.sizes[z]},
+              {"coverage", sz.coverage.fraction},
+              {"unseen", unseen_json(reference, sz, plan)},
+              {"rule", to_string(d.rule)},
+              {"rule_text", d.rule_text},
+              {"threshold" + u, d.normal.value},
+              {"normal_floor", floor_json(d.normal)},
+              {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
+              {"damaged_vertices", d.regions.damaged_vertices},
+              {"filled_vertices", d.regions.filled_vertices},
+              {"dropped_small_groups", d.regions.dropped_small},
+              {"regions", regions},
+              {"histogram",
+               {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
+                {"bin_width", m.histogram_bin},
+                {"unit", std::string(m.unit)},
+                {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
+                {"counts", d.histogram}}},
+              {"warnings", d.warnings}};
+    return j;
+}
+
+json inputs_json(const std::vector<InputRecord>& inputs) {
+    json list = json::array();
+    for (const auto& in : inputs) {
+        json j = {{"role", in.role}, {"vertices", in.vertices}, {"triangles", in.triangles}};
+        if (!in.path.empty()) {
+            j["path"] = in.path.string();
+            j["sha256"] = sha256_file(in.path);
+        }
+        if (!in.description.empty()) j["description"] = in.description;
+        list.push_back(j);
+    }
+    return list;
+}
+
+json plan_json(const SweepPlan& plan) {
+    return {{"footprints", plan.footprints},     {"image_sizes", plan.sizes},
+            {"target", vec_json(plan.target)},   {"radius", plan.radius},
+            {"roi_vertices", plan.roi_vertices}, {"views", plan.views.size()}};
+}
+
+json views_json(const SweepResult& s) {
+    json views = json::array();
+    for (const auto& v : s.views) {
+        const View& pv = s.plan.views[static_cast<std::size_t>(v.index)].view;
+        views.push_back({{"index", v.index},
+                         {"azimuth_deg", pv.azimuth_deg},
+                         {"elevation_deg", pv.elevation_deg},
+                         {"zoom", pv.zoom_index},
+                         {"reference_pixels", v.reference_pixels},
+                         {"compared", v.compared},
+                         {"reference_only", v.reference_only},
+                         {"examined_only", v.examined_only},
+                         {"max_angle_deg", v.max_angle_deg},
+                         {"mean_angle_deg", v.mean_angle_deg}});
+    }
+    return views;
+}
+
+// What every length in this report is measured in, and how that was found.
+json units_json(const AnalysisResult& r) {
+    const std::string u = r.unit.empty() ? "units" : r.unit;
+    return {{"length", u},
+            {"area", u + "²"},
+            {"volume", u + "³"},
+            {"known", !r.unit.empty()},
+            {"note",
+             r.unit.empty()
+                 ? "unknown: the files state no unit and none was given (--unit, scenario key unit)"
+                 : "every length, area and volume in this report (depths, distances, footprints, "
+                   "centroids, sizes) is in " +
+                       r.unit},
+            {"reference_size", r.units.reference_size},
+            {"examined_size", r.units.examined_size},
+            {"examined_scale", r.units.examined_scale}};
+}
+
+}  // namespace
+
+std::string sha256_file(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("cannot read \"" + path.string() + "\" to checksum it");
+    EVP_MD_CTX* ctx = EVP_MD_CTX_new();
+    if (!ctx) throw IoError("SHA-256: cannot create a digest context");
+    EVP_DigestInit_ex(ctx, EVP_sha256(), nullptr);
+    std::vector<char> buf(1 << 16);
+    while (in) {
+        in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+        EVP_DigestUpdate(ctx, buf.data(), static_cast<std::size_t>(in.gcount()));
+    }
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int len = 0;
+    EVP_DigestFinal_ex(ctx, digest, &len);
+    EVP_MD_CTX_free(ctx);
+    std::ostringstream hex;
+    for (unsigned int i = 0; i < len; ++i)
+        hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
+    return hex.str();
+}
+
+std::string atlas_quality_scalar(const AnalysisResult& result) {
+    return std::string(describe(result.sweep.options.metric).name) + "_mean" + zoom_suffix(0);
+}
+
+Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
+    Mesh atlas = reference;
+    atlas.unit = result.unit;
+    atlas.scalars.clear();
+    atlas.labels.clear();
+    const std::size_t n = reference.vertex_count();
+    const std::string metric(describe(result.sweep.options.metric).name);
+    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+        const auto& sz = result.sweep.zooms[z];
+        const auto& a = sz.atlas;
+        std::vector<float> max(n), mean(n), depth(n), missing(n), count(n), seen(n), region(n);
+        for (std::size_t v = 0; v < n; ++v) {
+            const bool s = sz.coverage.seen[v] != 0;
+            max[v] = s ? a.value_max[v] : kNaN;
+            mean[v] = s ? a.value_mean[v] : kNaN;
+            depth[v] = s ? a.depth_mean[v] : kNaN;
+            missing[v] = s ? a.missing[v] : kNaN;
+            count[v] = static_cast<float>(a.count[v]);
+            seen[v] = s ? 1.0f : 0.0f;
+            region[v] = static_cast<float>(result.decisions[z].regions.region_of_vertex[v]);
+        }
+        const auto k = zoom_suffix(z);
+        atlas.set_scalar(metric + "_max" + k, std::move(max));
+        atlas.set_scalar(metric + "_mean" + k, std::move(mean));
+        atlas.set_scalar("depth" + k, std::move(depth));
+        atlas.set_scalar("missing" + k, std::move(missing));
+        atlas.set_scalar("count" + k, std::move(count));
+        atlas.set_scalar("seen" + k, std::move(seen));
+        atlas.set_scalar("region" + k, std::move(region));
+    }
+    if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
+    if (result.tolerance.size() == n) atlas.set_scalar("distance_tolerance", result.tolerance);
+    if (!result.sweep.zooms.empty() && result.distance.size() == n) {
+        // The pictures' colours (report/pictures.h): signed shape change, blue loss, red gain,
+        // symmetric range; grey where zoom 0 saw nothing.
+        const ShapeScale shape = shape_scale(result);
+        std::vector<float> shown(result.distance);
+        for (std::size_t v = 0; v < n; ++v)
+            if (!result.sweep.zooms[0].coverage.seen[v]) shown[v] = kNaN;
+        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit,
+                                                  .high = shape.limit,
+                                                  .map = "diverging",
+                                                  .no_data_grey = 0.6f});
+    }
+    return atlas;
+}
+
+std::string report_json(const Mesh& reference, const AnalysisResult& result,
+                        const InspectOptions& options, const RunRecord& record) {
+    const auto& s = result.sweep;
+    const MetricDescriptor& m = describe(s.options.metric);
+    json zooms = json::array();
+    for (std::size_t z = 0; z < s.zooms.size(); ++z)
+        zooms.push_back(zoom_json(reference, result, z));
+    json report = {
+        {"glint_version", kVersion},
+        {"command_line", record.command_line},
+        {"inputs", inputs_json(record.inputs)},
+        {"device",
+         {{"backend", to_string(s.renderer.backend)},
+          {"name", s.renderer.device_name},
+          {"type", s.renderer.device_type},
+          {"warnings", s.renderer.warnings},
+          {"compare_on", s.on_gpu ? "gpu" : "cpu"},
+          {"compare_note", s.accumulation_note}}},
+        {"analysis", json::parse(to_json(options.analysis, options.exports))},
+        {"metric",
+         {{"name", std::string(m.name)},
+          {"unit", std::string(m.unit)},
+          {"description", std::string(m.description)}}},
+        {"plan", plan_json(s.plan)},
+        {"size", result.size},
+        {"unit", result.unit.empty() ? json(nullptr) : json(result.unit)},
+        {"units", units_json(result)},
+        {"fit", result.fit.json.empty() ? json(nullptr) : json::parse(result.fit.json)},
+        {"zooms", zooms},
+        {"views", views_json(s)},
+        {"timings_s",
+         {{"fit", result.fit_seconds},
+          {"distance", result.distance_seconds},
+          {"render", s.render_seconds},
+          {"compare_and_atlas", s.compare_seconds},
+          {"sweep_total", s.total_seconds},
+          {"decision", result.decision_seconds},
+          {"total", result.total_seconds}}},
+        {"warnings", result.warnings},
+    };
+    return report.dump(2) + "\n";
+}
+
+std::string regions_csv(const AnalysisResult& result) {
+    const MetricDescriptor& m = describe(result.sweep.options.metric);
+    const std::string nu = std::string(m.name) + "_" + std::string(m.unit);
+    const std::string l = unit_suffix(result.unit), a2 = unit_suffix(result.unit, 2),
+                      v3 = unit_suffix(result.unit, 3);
+    std::ostringstream csv;
+    // max_<metric>: the strongest pixel deviation seen in the region; max_mean_<metric>: the
+    // largest per-vertex mean (the field regions are grown on); mean_<metric>: area-weighted.
+    csv << "zoom,footprint" << l << "_per_px,region,kind,vertices,area" << a2 << ",max_" << nu
+        << ",max_mean_" << nu << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l
+        << ",volume" << v3 << ",missing_fraction,centroid_x" << l << ",centroid_y" << l
+        << ",centroid_z" << l << ",best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
+    const auto& plan = result.sweep.plan;
+    for (std::size_t z = 0; z < result.decisions.size(); ++z) {
+        const std::vector<double> peaks = region_peak_values(result, z);
+        for (const auto& r : result.decisions[z].regions.regions) {
+            double az = std::nan(""), el = std::nan("");
+            if (r.best_view >= 0) {
+                az = plan.views[static_cast<std::size_t>(r.best_view)].view.azimuth_deg;
+                el = plan.views[static_cast<std::size_t>(r.best_view)].view.elevation_deg;
+            }
+            char row[700];
+            std::snprintf(
+                row, sizeof row,
+                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
+                z, plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
+                peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, r.peak_depth,
+                r.mean_depth, r.volume, r.missing_fraction, r.centroid.x(), r.centroid.y(),
+                r.centroid.z(), r.best_view, az, el);
+            csv << row;
+        }
+    }
+    return csv.str();
+}
+
+namespace {
+
+// The atlas mesh (a copy of the reference with every scalar) lives only while its files are
+// written, unless it is kept.
+std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& reference,
+                                      const AnalysisResult& result, const ExportOptions& exports) {
+    Mesh atlas = make_atlas_mesh(reference, result);
+    for (const auto& [name, values] : exports.extra_scalars) {
+        GLINT_ASSERT(values.size() == reference.vertex_count(),
+                     "extra atlas scalar '" + name + "' has the wrong length");
+        atlas.set_scalar(name, values);
+    }
+    WriteOptions viewers;
+    viewers.cloudcompare_names = true;
+    if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
+    const AtlasFiles& files = exports.atlas_files;
+    if (files.ply) write_ply(atlas, folder.file("atlas.ply"), viewers);
+    if (files.vtk) write_vtk(atlas, folder.file("atlas.vtk"), viewers);
+    if (files.vtp) write_vtp(atlas, folder.file("atlas.vtp"), viewers);
+    if (!exports.keep_atlas) return std::nullopt;
+    return atlas;
+}
+
+}  // namespace
+
+std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
+                                  const AnalysisResult& result, const ExportOptions& exports,
+                                  const RunRecord& record, const std::string& json_text,
+                                  const std::function<void(std::string_view stage)>& stage) {
+    // The atlas files and the report page's data are serial work (number formatting and
+    // writing; the decimation of a large mesh for the page): at 2M triangles 0.9 s each, done
+    // side by side. The pictures (on every worker) come after, so the picture renderer's BVH
+    // is not held with the atlas copy and the decimation (2M: peak 737 instead of ~560 MB
+    // resident when all three ran at once). An exception in one job waits for the other. The "pictures"
+    // stage lets the caller hand back what the jobs freed (tools/memory.h): the page's thread
+    // frees its decimation buffers into a heap of its own, which stays resident otherwise (2M:
+    // 614 instead of 453 MB resident under the pictures).
+    auto page_data =
+        std::async(std::launch::async, [&] { return report_page_data(reference, result); });
+    std::optional<Mesh> atlas = write_atlas_files(folder, reference, result, exports);
+    write_file_atomically(folder.file("regions.csv"), regions_csv(result));
+    write_file_atomically(folder.file("report.json"), json_text);
+    ReportPageData page = page_data.get();
+    if (stage) stage("pictures");
+    std::string reference_name;
+    for (const auto& in : record.inputs)
+        if (in.role == "reference" && !in.path.empty())
+            reference_name = in.path.filename().string();
+    const PictureOutput pictures =
+        write_pictures(folder, reference, result, exports, reference_name);
+    write_file_atomically(folder.file("report.html"),
+                          report_html(std::move(page), json_text, pictures));
+    return atlas;
+}
+
+}  // namespace glint

@@ -1,0 +1,57 @@
+// Exports of an analysis into its output folder (DESIGN.md "Outputs a user opens"):
+//   atlas.ply / .vtk / .vtp  reference surface coloured by damage, with per-vertex scalars in
+//                          the forms MeshLab, CloudCompare, ParaView and 3D Slicer read (mesh/write.h)
+//   regions.csv            one row per region and zoom
+//   report.json            inputs with SHA-256, device, backend, options, fit, floors and
+//                          rule, coverage, unseen patches, regions, histograms, views, timings
+//   atlas.png, mosaic_z<k>.png, views/*.png   the pictures (report/pictures.h)
+//   report.html            the page to open in a browser (report/report_html.h)
+// (views/*.exr are written while the sweep runs: report/view_exports.h.)
+#pragma once
+
+#include "analysis/analysis.h"
+#include "mesh/mesh.h"
+#include "report/export_options.h"
+#include "report/inspect.h"
+#include "report/output_folder.h"
+#include "report/run_inputs.h"
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace glint {
+
+/// SHA-256 of a file as lowercase hex. \throw IoError.
+[[nodiscard]] std::string sha256_file(const std::filesystem::path& path);
+
+/// The reference with the atlas scalars: per zoom k "<metric>_max_z<k>", "<metric>_mean_z<k>",
+/// "depth_z<k>", "missing_z<k>", "count_z<k>", "seen_z<k>", "region_z<k>", and "distance";
+/// colours: the signed distance on the pictures' diverging map and range (shape_scale in
+/// report/pictures.h), grey where zoom 0 saw nothing.
+[[nodiscard]] Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result);
+
+/// The atlas scalar MeshLab shows as `quality`: the metric's per-vertex mean at zoom 0 (the
+/// normal evidence the decision uses), e.g. "angle_mean_z0".
+[[nodiscard]] std::string atlas_quality_scalar(const AnalysisResult& result);
+
+/// The report as JSON text (what report.json holds): the inputs of `record` with their
+/// SHA-256 (each file read once more), the options, the results.
+[[nodiscard]] std::string report_json(const Mesh& reference, const AnalysisResult& result,
+                                      const InspectOptions& options, const RunRecord& record);
+
+/// regions.csv as text.
+[[nodiscard]] std::string regions_csv(const AnalysisResult& result);
+
+/// Writes atlas.ply, atlas.vtk, atlas.vtp (those ExportOptions::atlas_files names), regions.csv,
+/// report.json (`report_json`'s text), the pictures and report.html into the folder. `stage`
+/// (when set) is called with "pictures" before the pictures are drawn, after the other files.
+/// Returns the atlas mesh when ExportOptions::keep_atlas.
+std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
+                                  const AnalysisResult& result, const ExportOptions& exports,
+                                  const RunRecord& record, const std::string& report_json,
+                                  const std::function<void(std::string_view stage)>& stage = {});
+
+}  // namespace glint

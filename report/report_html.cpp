@@ -1,0 +1,291 @@
+#include "report/report_html.h"
+
+#include "mesh/decimate.h"
+#include "mesh/error.h"
+#include "report/detail/canvas.h"
+#include "scanner/metric.h"
+
+#include <OpenImageIO/strutil.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <utility>
+
+namespace glint {
+
+// The embedded page sources and libraries (cmake/GlintEmbed.cmake, report/CMakeLists.txt).
+std::string_view report_asset(std::string_view key);
+
+namespace {
+
+using nlohmann::json;
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// note: typed arrays are read in the page with the machine's byte order; every machine glint
+// and browsers run on is little-endian, as the arrays are written here.
+template <typename T>
+std::string base64_of(const std::vector<T>& values) {
+    static_assert(std::endian::native == std::endian::little,
+                  "report.html arrays are little-endian");
+    return OIIO::Strutil::base64_encode(
+        std::string_view(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)));
+}
+
+std::string asset(std::string_view key) {
+    const std::string_view text = report_asset(key);
+    GLINT_ASSERT(!text.empty(), "report.html: asset '" + std::string(key) + "' is not embedded");
+    // A script inlined in <script> must not close it early.
+    GLINT_ASSERT(key == "report.html.in" || text.find("</script") == std::string_view::npos,
+                 "report.html: asset '" + std::string(key) + "' contains \"</script\"");
+    return std::string(text);
+}
+
+// A per-vertex field for the page: its values, how it is coloured and its default range.
+json field_json(const std::string& name, const std::string& label, const std::string& kind,
+                const std::string& unit, int zoom, const std::vector<float>& values, double low,
+                double high) {
+    return {{"name", name},
+            {"label", label},
+            {"kind", kind},
+            {"unit", unit},
+            {"zoom", zoom},
+            {"range", {low, high}},
+            {"values", base64_of(values)}};
+}
+
+// What the page shows of the reference: the mesh itself, or for a large one a decimated copy
+// (mesh/decimate.h) whose vertices are vertices of the reference (`ids`: their ids there).
+struct ShownMesh {
+    const Mesh* mesh = nullptr;
+    std::optional<DecimatedMesh> decimated;
+
+    [[nodiscard]] std::size_t vertex(std::size_t k) const {
+        return decimated ? decimated->original_vertex[k] : k;
+    }
+    [[nodiscard]] std::size_t vertex_count() const { return mesh->vertex_count(); }
+};
+
+// Above `max_triangles`: the triangles that touch a region are kept as they are, so regions
+// keep their exact outline; the rest is collapsed (meshoptimizer) within 1 % of the size, the
+// surface's borders kept.
+ShownMesh shown_mesh(const Mesh& reference, const AnalysisResult& result,
+                     std::size_t max_triangles) {
+    ShownMesh shown{&reference, std::nullopt};
+    if (reference.triangle_count() <= max_triangles) return shown;
+    std::vector<std::uint8_t> keep(reference.triangle_count(), 0);
+    for (std::size_t t = 0; t < reference.triangle_count(); ++t)
+        for (const auto& d : result.decisions)
+            for (const auto v : reference.triangles[t])
+                if (d.regions.region_of_vertex[v] != 0) keep[t] = 1;
+    shown.decimated = decimate(reference, max_triangles, keep, 0.01 * result.size);
+    shown.mesh = &shown.decimated->mesh;
+    return shown;
+}
+
+json fields_json(const ShownMesh& shown, const AnalysisResult& result, const ShapeScale& scale) {
+    const std::size_t n = shown.vertex_count();
+    const MetricDescriptor& m = describe(result.sweep.options.metric);
+    const std::string unit = result.unit.empty() ? "units" : result.unit;
+    const std::string metric(m.name);
+    json fields = json::array();
+    if (!result.distance.empty()) {
+        std::vector<float> distance(n);
+        for (std::size_t k = 0; k < n; ++k) distance[k] = result.distance[shown.vertex(k)];
+        fields.push_back(field_json("distance", "signed distance (shape change)", "signed", unit,
+                                    -1, distance, -scale.limit, scale.limit));
+    }
+    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+        const auto& a = result.sweep.zooms[z].atlas;
+        const auto& seen = result.sweep.zooms[z].coverage.seen;
+        const auto& d = result.decisions[z];
+        const std::string k = "_z" + std::to_string(z);
+        const std::string at = " (zoom " + std::to_string(z) + ")";
+        std::vector<float> mean(n), max(n), region(n), seen_f(n), count(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t v = shown.vertex(i);
+            mean[i] = seen[v] ? a.value_mean[v] : kNaN;
+            max[i] = seen[v] ? a.value_max[v] : kNaN;
+            region[i] = static_cast<float>(d.regions.region_of_vertex[v]);
+            seen_f[i] = seen[v] ? 1.0f : 0.0f;
+            count[i] = static_cast<float>(a.count[v]);
+        }
+        const double top = std::max(2.0 * d.normal.value, 1e-6);
+        fields.push_back(field_json(metric + "_mean" + k, "normal deviation, mean" + at,
+                                    "sequential", std::string(m.symbol), static_cast<int>(z), mean,
+                                    0.0, top));
+        fields.push_back(field_json(metric + "_max" + k, "normal deviation, max" + at, "sequential",
+                                    std::string(m.symbol), static_cast<int>(z), max, 0.0, top));
+        fields.push_back(field_json("region" + k, "damaged: region id" + at, "category", "",
+                                    static_cast<int>(z), region, 0.0,
+                                    static_cast<double>(d.regions.regions.size())));
+        fields.push_back(field_json("seen" + k, "coverage: seen" + at, "binary", "",
+                                    static_cast<int>(z), seen_f, 0.0, 1.0));
+        const auto most = a.count.empty() ? 1u : *std::max_element(a.count.begin(), a.count.end());
+        fields.push_back(field_json("count" + k, "coverage: observations" + at, "sequential",
+                                    "pixels", static_cast<int>(z), count, 0.0,
+                                    std::max(1.0, static_cast<double>(most))));
+    }
+    return fields;
+}
+
+// OIIO's inferno sampled at 17 points: the page's sequential map is the one OIIO draws.
+std::vector<float> inferno_knots() {
+    constexpr int kKnots = 17;
+    OIIO::ImageBuf ramp(OIIO::ImageSpec(kKnots, 1, 1, OIIO::TypeDesc::FLOAT));
+    std::vector<float> t(kKnots), rgb(3 * kKnots);
+    for (int i = 0; i < kKnots; ++i)
+        t[static_cast<std::size_t>(i)] = static_cast<float>(i) / (kKnots - 1);
+    ramp.set_pixels(OIIO::ROI(0, kKnots, 0, 1, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, t.data());
+    const OIIO::ImageBuf c = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
+    c.get_pixels(OIIO::ROI(0, kKnots, 0, 1, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, rgb.data());
+    return rgb;
+}
+
+json mesh_json(const Mesh& reference, const ShownMesh& shown) {
+    const Mesh& m = *shown.mesh;
+    std::vector<float> positions;
+    positions.reserve(3 * m.vertex_count());
+    for (const auto& p : m.positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
+    std::vector<std::uint32_t> indices;
+    indices.reserve(3 * m.triangle_count());
+    for (const auto& t : m.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+    const Bounds b = bounds(reference);
+    const Vec3f c = b.center();
+    json out = {{"vertices", reference.vertex_count()}, {"triangles", reference.triangle_count()},
+                {"positions", base64_of(positions)},    {"indices", base64_of(indices)},
+                {"center", {c.x(), c.y(), c.z()}},      {"radius", 0.5 * b.diagonal()}};
+    if (shown.decimated) {
+        // The page names a vertex by its id in the atlas files.
+        out["vertex_ids"] = base64_of(shown.decimated->original_vertex);
+        out["shown"] = {{"vertices", m.vertex_count()},
+                        {"triangles", m.triangle_count()},
+                        {"error", shown.decimated->error}};
+    }
+    return out;
+}
+
+std::string data_uri(const std::string& png) {
+    return "data:image/png;base64," + OIIO::Strutil::base64_encode(png);
+}
+
+// JSON text safe inside <script type="application/json">: "</" (as in "</script>") and the
+// HTML comment opener are escaped, which JSON allows ("\/") or leaves equal in meaning.
+std::string script_safe(std::string text) {
+    std::string out;
+    out.reserve(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '<' && i + 1 < text.size() && (text[i + 1] == '/' || text[i + 1] == '!')) {
+            out += "\\u003c";
+            continue;
+        }
+        out += text[i];
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string escape_markup(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string fill_template(std::string_view page_template,
+                          const std::vector<std::pair<std::string, std::string>>& values) {
+    std::string out;
+    std::size_t pos = 0;
+    while (pos < page_template.size()) {
+        const std::size_t at = page_template.find('@', pos);
+        if (at == std::string_view::npos) break;
+        std::size_t end = at + 1;
+        while (end < page_template.size() &&
+               (std::isupper(static_cast<unsigned char>(page_template[end])) ||
+                std::isdigit(static_cast<unsigned char>(page_template[end])) ||
+                page_template[end] == '_'))
+            ++end;
+        if (end == at + 1 || end >= page_template.size() || page_template[end] != '@') {
+            out.append(page_template.substr(pos, at + 1 - pos));
+            pos = at + 1;
+            continue;
+        }
+        const std::string_view name = page_template.substr(at + 1, end - at - 1);
+        const auto it = std::find_if(values.begin(), values.end(),
+                                     [&](const auto& kv) { return kv.first == name; });
+        GLINT_ASSERT(it != values.end(),
+                     "report.html template: no value for @" + std::string(name) + "@");
+        out.append(page_template.substr(pos, at - pos));
+        out.append(it->second);
+        pos = end + 1;
+    }
+    out.append(page_template.substr(std::min(pos, page_template.size())));
+    return out;
+}
+
+struct ReportPageData::Parts {
+    json data;  ///< the page's data without "report" and "images"
+};
+
+ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
+                                std::size_t max_triangles) {
+    auto parts = std::make_shared<ReportPageData::Parts>();
+    json& data = parts->data;
+    const ShapeScale scale = shape_scale(result);
+    data["unit"] = result.unit.empty() ? "units" : result.unit;
+    {
+        const ShownMesh shown = shown_mesh(reference, result, max_triangles);
+        data["mesh"] = mesh_json(reference, shown);
+        data["fields"] = fields_json(shown, result, scale);
+    }
+    data["shape_scale"] = {
+        {"limit", scale.limit}, {"source", scale.source}, {"floor", scale.floor}};
+    const auto knots = detail::diverging_knots();
+    data["colormaps"] = {{"diverging", std::vector<float>(knots.begin(), knots.end())},
+                         {"sequential", inferno_knots()}};
+    return {std::move(parts)};
+}
+
+std::string report_html(ReportPageData page, const std::string& report_json,
+                        const PictureOutput& pictures) {
+    GLINT_ASSERT(page.parts != nullptr, "report_html: no page data");
+    json data = std::move(page.parts->data);
+    page.parts.reset();
+    data["report"] = json::parse(report_json);
+    json images = {{"mosaics", json::array()}, {"best_views", json::object()}};
+    for (const auto& m : pictures.mosaics) images["mosaics"].push_back(data_uri(m));
+    for (const auto& [view, png] : pictures.best_views)
+        images["best_views"][std::to_string(view)] = data_uri(png);
+    data["images"] = std::move(images);
+    std::string title = "glint report";
+    for (const auto& in : data["report"]["inputs"])
+        if (in.value("role", "") == "reference" && in.contains("path"))
+            title +=
+                ": " + std::filesystem::path(in["path"].get<std::string>()).filename().string();
+    return fill_template(asset("report.html.in"), {{"TITLE", escape_markup(title)},
+                                                   {"THREE_JS", asset("three.min.js")},
+                                                   {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
+                                                   {"DATA_JSON", script_safe(data.dump())},
+                                                   {"REPORT_JS", asset("report.js")},
+                                                   {"REPORT_CSS", asset("report.css")}});
+}
+
+std::string report_html(const Mesh& reference, const AnalysisResult& result,
+                        const std::string& report_json, const PictureOutput& pictures,
+                        std::size_t max_triangles) {
+    return report_html(report_page_data(reference, result, max_triangles), report_json, pictures);
+}
+
+}  // namespace glint

@@ -1,0 +1,70 @@
+// report.html: one self-contained page per run, opened from disk without a server and
+// without network access.
+//
+//   atlas in 3D   three.js (Debian's libjs-three, r111) and its OrbitControls, inlined: rotate,
+//                 zoom, click a vertex to read every field there; the field and its colour
+//                 range are selectable among the atlas scalars (signed distance, normal
+//                 deviation per zoom, regions, seen / observations);
+//   regions       the table of report.json; a click on a row flies the camera to the region
+//                 and shows its best view (the per-view picture, report/pictures.h);
+//   evidence      thresholds and floors with their rules, coverage, the fit and its evidence,
+//                 units, inputs, warnings; the mosaics.
+//
+// The page's template, script and the libraries are embedded in the binary at build time
+// (cmake/GlintEmbed.cmake; sources in report/html/). The mesh goes in as base64
+// little-endian typed arrays (float32 positions, uint32 indices, float32 per-vertex fields),
+// pictures as base64 PNG data URIs: only the regions' best views and the mosaics, so the size
+// stays bounded (about 0.9 MB of libraries + 48 bytes per vertex + 16 per triangle for one
+// zoom, plus the pictures). A mesh of more than kReportPageTriangles is shown decimated
+// (mesh/decimate.h): the triangles touching a region stay as they are, the rest is collapsed
+// to the budget; the page names vertices by their ids in the atlas files. With `#selftest` appended to its URL the page checks itself and
+// writes a JSON verdict into the element #selftest-verdict (tests/tools/report_html_test.py).
+#pragma once
+
+#include "analysis/analysis.h"
+#include "mesh/mesh.h"
+#include "report/pictures.h"
+
+#include <memory>
+#include <string>
+
+namespace glint {
+
+/// Triangles the page shows at most (about: the triangles touching a region are all kept).
+/// note: 250 000 triangles make a page of ~10 MB that browsers open in a second; a
+/// 2M-triangle atlas shown whole made 81 MB.
+inline constexpr std::size_t kReportPageTriangles = 250000;
+
+/// What the page shows of the analysis itself: the mesh (decimated when large), its fields and
+/// the colour maps. The slow part of the page for a large mesh (the decimation: 0.9 s at 2M
+/// triangles), independent of the pictures, so it is made while they render (report/report.cpp).
+struct ReportPageData {
+    struct Parts;
+    std::shared_ptr<Parts> parts;
+};
+
+/// \pre result from analyse() on `reference`.
+[[nodiscard]] ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
+                                              std::size_t max_triangles = kReportPageTriangles);
+
+/// The page from its data (consumed: its mesh arrays move into the page, not copied),
+/// report.json's text (embedded whole) and the pictures.
+[[nodiscard]] std::string report_html(ReportPageData data, const std::string& report_json,
+                                      const PictureOutput& pictures);
+
+/// The page for a finished analysis, in one call (report_page_data, then report_html).
+/// \pre result from analyse() on `reference`.
+[[nodiscard]] std::string report_html(const Mesh& reference, const AnalysisResult& result,
+                                      const std::string& report_json, const PictureOutput& pictures,
+                                      std::size_t max_triangles = kReportPageTriangles);
+
+/// Replaces every @NAME@ (capitals, digits, _) of `page_template` by values[NAME], in one pass:
+/// inserted text is never scanned again. \throw std::logic_error for a name without a value.
+[[nodiscard]] std::string fill_template(
+    std::string_view page_template, const std::vector<std::pair<std::string, std::string>>& values);
+
+/// `text` with &, <, > and " as character references: safe inside HTML and XML elements and
+/// double-quoted attributes (report.html, the Slicer module's XML).
+[[nodiscard]] std::string escape_markup(const std::string& text);
+
+}  // namespace glint

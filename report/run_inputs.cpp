@@ -1,0 +1,68 @@
+#include "report/run_inputs.h"
+
+#include <exception>
+#include <thread>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+RunInput load_run_input(const std::string& role, const fs::path& path,
+                        const SurfaceOptions& surface) {
+    LoadedSurface loaded = load_surface(path, surface);
+    RunInput in;
+    in.record = {role, path,
+                 loaded.surface ? "surface of a volume: " + describe(*loaded.surface) : "",
+                 loaded.mesh.vertex_count(), loaded.mesh.triangle_count()};
+    for (const auto& w : loaded.report.warnings)
+        in.warnings.push_back(loaded.report.path.string() + ": " + w);
+    in.mesh = std::move(loaded.mesh);
+    return in;
+}
+
+std::pair<RunInput, RunInput> load_run_pair(const fs::path& reference, const fs::path& examined,
+                                            const SurfaceOptions& surface) {
+    if (is_volume_path(reference) || is_volume_path(examined))
+        return {load_run_input("reference", reference, surface),
+                load_run_input("examined", examined, surface)};
+    RunInput exa;
+    std::exception_ptr exa_error;
+    std::thread other([&] {
+        try {
+            exa = load_run_input("examined", examined, surface);
+        } catch (...) {
+            exa_error = std::current_exception();
+        }
+    });
+    RunInput ref;
+    try {
+        ref = load_run_input("reference", reference, surface);
+    } catch (...) {
+        other.join();
+        throw;
+    }
+    other.join();
+    if (exa_error) std::rethrow_exception(exa_error);
+    return {std::move(ref), std::move(exa)};
+}
+
+RunInput mesh_run_input(const std::string& role, Mesh mesh, std::string description, fs::path path,
+                        std::vector<std::string> warnings) {
+    RunInput in;
+    in.record = {role, std::move(path), std::move(description), mesh.vertex_count(),
+                 mesh.triangle_count()};
+    in.mesh = std::move(mesh);
+    in.warnings = std::move(warnings);
+    return in;
+}
+
+void RunRecord::add(const RunInput& input) {
+    inputs.push_back(input.record);
+    warnings.insert(warnings.end(), input.warnings.begin(), input.warnings.end());
+}
+
+void RunRecord::add_file(const std::string& role, const fs::path& path, std::string description) {
+    inputs.push_back({role, path, std::move(description), 0, 0});
+}
+
+}  // namespace glint

@@ -1,0 +1,23 @@
+// The analysis sections of a scenario file ([registration], [sweep], [threshold],
+// [decision]) read into AnalysisOptions, and their check with file and line. Internal to
+// scenario/scenario.cpp.
+#pragma once
+
+#include "analysis/analysis.h"
+#include "scenario/detail/toml_reader.h"
+
+#include <filesystem>
+#include <string>
+
+namespace glint::detail {
+
+/// Reads the sections present (unknown keys and wrong types fail with file, line, key);
+/// relative paths are resolved against `scenario_dir`.
+void read_analysis_sections(TableReader& top, const std::filesystem::path& scenario_dir,
+                            AnalysisOptions& options);
+
+/// options.validate(), with an OptionError turned into "scenario \"F\" line L: [section] key …".
+void validate_analysis_sections(const toml::table& root, const std::string& file,
+                                const AnalysisOptions& options);
+
+}  // namespace glint::detail

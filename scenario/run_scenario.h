@@ -1,0 +1,64 @@
+// Running a scenario end to end (fit, sweep, atlas) and scoring it against its ground truth.
+#pragma once
+
+#include "scanner/sweep.h"
+#include "scenario/evaluate.h"
+#include "scenario/pair_truth.h"
+#include "scenario/scenario.h"
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+struct ScenarioRunOptions {
+    std::filesystem::path
+        output_root;           ///< atlas folder = output_root / scenario name; empty = no export
+    bool write_views = false;  ///< per-view PNG/EXR (mosaics, atlas and report always)
+    std::function<void(std::size_t done, std::size_t total)> progress;
+    std::string command_line;  ///< recorded in report.json
+    bool replace_existing =
+        false;         ///< an existing atlas folder of a scenario is replaced (--force)
+    std::string unit;  ///< when given, wins over the scenario's `unit` (--unit)
+    bool allow_scale_mismatch = false;  ///< --allow-scale-mismatch
+};
+
+struct ScenarioOutcome {
+    std::string name;
+    std::filesystem::path file;
+    bool skipped = false;
+    std::string skip_reason;
+    std::filesystem::path output;  ///< atlas folder (when exported)
+    std::size_t reference_vertices = 0;
+    std::size_t views = 0;
+    std::size_t regions = 0;              ///< zoom 0
+    std::string largest_kind;             ///< "dent"/"bump"/"" (zoom 0)
+    double coverage = 0.0;                ///< zoom 0
+    double threshold_deg = 0.0;           ///< zoom 0
+    std::optional<DetectionScore> score;  ///< when the scenario has ground truth
+    std::optional<PoseError> pose;        ///< when the scenario knows the true pose
+    std::optional<RegionTally>
+        tally;  ///< false regions, damages detected (truth or true distances)
+    /// The same pair decided by a plain distance threshold (|atlas distance| > threshold,
+    /// connected components): what glint's decision is compared with.
+    struct Baseline {
+        double threshold = 0.0;
+        DetectionScore score;
+        RegionTally tally;
+    };
+    std::optional<Baseline> baseline;
+    std::string fit_mode;
+    double seconds = 0.0;
+    std::vector<std::string> failures;  ///< [expect] entries that did not hold
+    [[nodiscard]] bool passed() const { return !skipped && failures.empty(); }
+};
+
+/// Builds, fits, sweeps and scores a scenario. Missing shared data → skipped (reason given).
+/// \throw InputError / IoError / DeviceError for anything else that is wrong.
+[[nodiscard]] ScenarioOutcome run_scenario(const Scenario& scenario,
+                                           const ScenarioRunOptions& options);
+
+}  // namespace glint

@@ -1,0 +1,541 @@
+#include "scenario/scenario.h"
+
+#include "mesh/error.h"
+#include "mesh/io.h"
+#include "mesh/remesh.h"
+#include "scenario/detail/scenario_options.h"
+#include "scenario/detail/toml_reader.h"
+#include "scenario/pair_truth.h"
+#include "volume/load.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+using detail::read_analysis_sections;
+using detail::TableReader;
+using detail::validate_analysis_sections;
+
+namespace {
+
+Vec3d vec3(const std::vector<double>& v) { return {v[0], v[1], v[2]}; }
+
+fs::path resolve_mesh(TableReader& r, const std::string& key, const std::string& text,
+                      const fs::path& scenario_dir, const fs::path& data_root, bool& needs_root) {
+    const fs::path p(text);
+    if (p.is_absolute()) return p;
+    const fs::path local = scenario_dir / p;
+    if (fs::exists(local)) return local;
+    if (!data_root.empty()) {
+        needs_root = true;
+        return data_root / p;
+    }
+    needs_root = true;
+    (void)r;
+    (void)key;
+    return local;
+}
+
+// The surface keys of a [reference] / [examined] volume (volume/surface.h).
+void read_surface_options(TableReader& r, SurfaceOptions& o) {
+    if (auto v = r.optional<double>("iso", "a number (the volume's units)")) o.iso = *v;
+    if (auto v = r.optional<std::string>(
+            "surface_roi", "a string (sphere:x,y,z,r or box:x0,y0,z0,x1,y1,z1, mm)")) {
+        try {
+            o.roi = parse_roi(*v);
+        } catch (const InputError& e) {
+            r.fail(r.get("surface_roi"), "surface_roi", e.what());
+        }
+    }
+    if (auto v = r.optional<bool>("largest", "a boolean")) o.largest = *v;
+    if (auto v = r.numbers("surface_seed", 3, 3)) o.seed = vec3(*v);
+    if (auto v = r.optional<std::int64_t>("smooth", "an integer (iterations)"))
+        o.smooth_iterations = static_cast<int>(*v);
+    if (auto v = r.optional<double>("passband", "a number in (0, 2)")) o.passband = *v;
+    if (auto v = r.optional<double>("edge", "a number (mm)")) o.edge_mm = *v;
+    if (auto v = r.optional<double>("tolerance", "a number (mm)")) o.tolerance_mm = *v;
+    if (!o.iso && !o.any()) return;
+    try {
+        if (o.iso) o.validate();
+    } catch (const OptionError& e) {
+        r.fail(r.get(e.key()), e.key(), e.what());
+    }
+}
+
+SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const fs::path& data_root,
+                           bool required) {
+    SurfaceSource s;
+    const auto phantom =
+        r.optional<std::string>("phantom", "a string (sphere, ellipsoid, torus, condyle)");
+    const auto mesh = r.optional<std::string>("mesh", "a string (a mesh or volume file path)");
+    if (phantom && mesh) r.fail(r.get("mesh"), "mesh", "give either phantom or mesh, not both");
+    if (mesh) {
+        s.mesh_as_written = *mesh;
+        s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
+    }
+    read_surface_options(r, s.surface);
+    if ((s.surface.iso || s.surface.any()) && !mesh)
+        r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
+               "surface keys need a volume file: mesh = \"scan.nii.gz\"");
+    const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
+    const auto resolution = r.optional<std::int64_t>("resolution", "an integer");
+    const auto size = r.numbers("size", 1, 3);
+    if (phantom || scheme || resolution || size) {
+        if (mesh)
+            r.fail(r.get("mesh"), "mesh",
+                   "a mesh file takes no phantom keys (scheme, resolution, size)");
+        PhantomOptions o;
+        try {
+            if (phantom) o.kind = parse_phantom_kind(*phantom);
+            if (scheme) o.scheme = parse_scheme(*scheme);
+        } catch (const InputError& e) {
+            r.fail(r.get(phantom ? "phantom" : "scheme"), phantom ? "phantom" : "scheme", e.what());
+        }
+        if (resolution) o.resolution = static_cast<int>(*resolution);
+        if (size) {
+            if (size->size() == 2)
+                r.fail(r.get("size"), "size", "expected 1 or 3 numbers, found 2");
+            o.radii = size->size() == 1 ? Vec3d::Constant((*size)[0]) : vec3(*size);
+            if ((o.radii.array() <= 0).any())
+                r.fail(r.get("size"), "size", "every size must be > 0");
+        }
+        if (!phantom && required)
+            r.fail(nullptr, "phantom", "missing: give phantom = \"…\" or mesh = \"…\"");
+        s.phantom = o;
+    }
+    if (required && !s.phantom && s.mesh.empty())
+        r.fail(nullptr, "phantom", "missing: give phantom = \"…\" or mesh = \"…\"");
+    return s;
+}
+
+DamageSpec read_damage(TableReader& r) {
+    DamageSpec d;
+    const auto kind = r.optional<std::string>("kind", "a string");
+    if (!kind) r.fail(nullptr, "kind", "missing: dent, bump, pit, groove, flatten, erosion");
+    try {
+        // Reuse the spec parser for the kind name so both spellings stay in one place.
+        d = parse_damage_spec(*kind);
+    } catch (const InputError& e) {
+        r.fail(r.get("kind"), "kind", e.what());
+    }
+    if (auto c = r.numbers("center", 3, 3)) d.center = vec3(*c);
+    if (auto v = r.positive("radius")) d.radius = *v;
+    if (auto v = r.positive("depth")) d.depth = *v;
+    if (auto v = r.positive("sigma")) d.sigma = *v;
+    if (auto v = r.optional<std::int64_t>("seed", "an integer"))
+        d.seed = static_cast<std::uint32_t>(*v);
+    if (auto n = r.numbers("normal", 3, 3)) d.plane_normal = vec3(*n);
+    if (const toml::node* p = r.get("path")) {
+        const auto* arr = p->as_array();
+        if (!arr) r.fail(p, "path", "expected an array of [x, y, z] points");
+        for (const auto& e : *arr) {
+            const auto* pt = e.as_array();
+            if (!pt || pt->size() != 3) r.fail(p, "path", "expected an array of [x, y, z] points");
+            Vec3d q;
+            for (std::size_t i = 0; i < 3; ++i) {
+                auto v = (*pt)[i].value<double>();
+                if (!v) r.fail(p, "path", "expected numbers in each point");
+                q[static_cast<Eigen::Index>(i)] = *v;
+            }
+            d.path.push_back(q);
+        }
+    }
+    r.finish();
+    return d;
+}
+
+// [examined] pivot / erode / erode_to: a longitudinal pair resampled from a volume reference.
+void read_volume_edit(TableReader& r, Scenario& sc) {
+    if (auto v = r.numbers("pivot", 3, 3)) sc.pivot = vec3(*v);
+    const auto erode = r.numbers("erode", 4, 4);
+    const auto erode_to = r.optional<double>("erode_to", "a number (the volume's units)");
+    if (erode) {
+        if (!((*erode)[3] > 0)) r.fail(r.get("erode"), "erode", "radius (4th number) must be > 0");
+        sc.erosions.push_back({Vec3d((*erode)[0], (*erode)[1], (*erode)[2]), (*erode)[3],
+                               static_cast<float>(erode_to.value_or(0.0))});
+    }
+    if (erode_to && !erode) r.fail(r.get("erode_to"), "erode_to", "needs erode = [x, y, z, r]");
+    sc.resample_volume = erode || r.has("pivot");
+    const bool volume_reference = !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh);
+    if ((erode || r.has("pivot")) && !volume_reference)
+        r.fail(r.get(erode ? "erode" : "pivot"), erode ? "erode" : "pivot",
+               "needs a volume reference (mesh = \"scan.nii.gz\")");
+}
+
+Rigid read_pose(TableReader& r) {
+    const toml::node* node = r.get("pose");
+    if (!node) return Rigid::Identity();
+    try {
+        if (auto s = node->value<std::string>()) return parse_pose_spec(*s);
+        if (const auto* arr = node->as_array()) {
+            std::ostringstream text;
+            for (std::size_t i = 0; i < arr->size(); ++i) {
+                auto v = (*arr)[i].value<double>();
+                if (!v) r.fail(node, "pose", "expected 6 numbers [rx, ry, rz, tx, ty, tz]");
+                text << (i ? "," : "") << *v;
+            }
+            return parse_pose_spec(text.str());
+        }
+    } catch (const InputError& e) {
+        r.fail(node, "pose", e.what());
+    }
+    r.fail(node, "pose",
+           "expected [rx, ry, rz, tx, ty, tz] (degrees, mesh units) or a pose string");
+}
+
+void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_root, Scenario& sc) {
+    sc.examined = read_surface(r, dir, data_root, false);
+    sc.examined_derived = sc.examined.mesh.empty();
+    sc.pose = read_pose(r);
+    if (auto v = r.optional<double>("noise", "a number (σ, mesh units)")) {
+        if (*v < 0) r.fail(r.get("noise"), "noise", "must be ≥ 0");
+        sc.noise_sigma = *v;
+    }
+    if (auto v = r.optional<std::int64_t>("noise_seed", "an integer"))
+        sc.noise_seed = static_cast<std::uint32_t>(*v);
+    if (auto m = r.optional<std::string>("truth_mask", "a string (a .npy file)")) {
+        bool needs = false;
+        sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
+    }
+    read_volume_edit(r, sc);
+    if (sc.noise_sigma > 0 && sc.resample_volume)
+        r.fail(r.get("noise"), "noise",
+               "a resampled examined volume (pivot, erode) takes no mesh noise");
+    sc.remesh = r.positive("remesh");
+    if (auto v = r.optional<std::int64_t>("remesh_iterations", "an integer ≥ 1")) {
+        if (*v < 1) r.fail(r.get("remesh_iterations"), "remesh_iterations", "must be ≥ 1");
+        sc.remesh_iterations = static_cast<int>(*v);
+    }
+    if (auto v = r.optional<bool>("shuffle", "true or false")) sc.shuffle = *v;
+    if (auto v = r.optional<std::int64_t>("seed", "an integer"))
+        sc.shuffle_seed = static_cast<std::uint32_t>(*v);
+    if ((sc.remesh || sc.shuffle) && (!sc.examined_derived || sc.reference.phantom))
+        r.fail(r.get(sc.remesh ? "remesh" : "shuffle"), sc.remesh ? "remesh" : "shuffle",
+               "re-meshing and shuffling derive the examined surface from a reference mesh file");
+    if (sc.examined.phantom && sc.reference.phantom) {
+        // Re-tessellation of the reference phantom: same shape, other scheme/resolution.
+        PhantomOptions o = *sc.reference.phantom;
+        const auto& e = *sc.examined.phantom;
+        if (r.has("phantom") && e.kind != o.kind)
+            r.fail(r.get("phantom"), "phantom",
+                   "an examined phantom must be the reference's shape (re-tessellation)");
+        o.scheme = r.has("scheme") ? e.scheme : o.scheme;
+        o.resolution = r.has("resolution") ? e.resolution : o.resolution;
+        o.radii = r.has("size") ? e.radii : o.radii;
+        sc.examined.phantom = o;
+    } else if (sc.examined.phantom && !sc.reference.phantom) {
+        r.fail(nullptr, "scheme", "re-tessellation needs a phantom reference");
+    }
+    r.finish();
+}
+
+void read_expect(TableReader& r, ScenarioExpect& x) {
+    auto e = [&](const char* key, std::optional<double>& out) {
+        out = r.optional<double>(key, "a number");
+    };
+    auto count = [&](const char* key, std::optional<std::size_t>& out) {
+        if (auto v = r.optional<std::int64_t>(key, "an integer ≥ 0")) {
+            if (*v < 0) r.fail(r.get(key), key, "must be ≥ 0");
+            out = static_cast<std::size_t>(*v);
+        }
+    };
+    count("regions", x.regions);
+    count("min_regions", x.min_regions);
+    count("max_regions", x.max_regions);
+    count("max_false_regions", x.max_false_regions);
+    count("max_close_region_vertices", x.max_close_region_vertices);
+    e("min_iou", x.min_iou);
+    e("min_f1", x.min_f1);
+    e("min_precision", x.min_precision);
+    e("min_recall", x.min_recall);
+    e("max_rotation_error_deg", x.max_rotation_error_deg);
+    e("max_translation_error", x.max_translation_error);
+    e("max_centroid_error", x.max_centroid_error);
+    e("min_coverage", x.min_coverage);
+    e("min_region_shape_change", x.min_region_shape_change);
+    if (auto v = r.positive("region_min_true_distance")) x.region_min_true_distance = *v;
+    if (auto v = r.optional<bool>("all_damages_detected", "true or false"))
+        x.all_damages_detected = *v;
+    if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
+        if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
+        x.kind = *v;
+    }
+    r.finish();
+}
+
+}  // namespace
+
+Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
+    std::error_code ec;
+    if (!fs::exists(file, ec)) throw IoError("scenario \"" + file.string() + "\": no such file");
+    if (fs::is_directory(file, ec))
+        throw IoError("scenario \"" + file.string() + "\" is a directory, expected a .toml file");
+    toml::table root;
+    try {
+        root = toml::parse_file(file.string());
+    } catch (const toml::parse_error& e) {
+        std::ostringstream s;
+        s << "scenario \"" << file.string() << "\" line " << e.source().begin.line << ": "
+          << e.description();
+        throw InputError(s.str());
+    }
+    Scenario sc;
+    sc.file = file;
+    const fs::path dir = file.parent_path();
+    const std::string name = file.string();
+    TableReader top(root, name, "");
+
+    sc.name = top.optional<std::string>("name", "a string").value_or(file.stem().string());
+    sc.description = top.optional<std::string>("description", "a string").value_or("");
+    if (const toml::node* tags = top.get("tags")) {
+        const auto* arr = tags->as_array();
+        if (!arr) top.fail(tags, "tags", "expected an array of strings");
+        for (const auto& t : *arr) {
+            auto s = t.value<std::string>();
+            if (!s) top.fail(tags, "tags", "expected an array of strings");
+            sc.tags.push_back(*s);
+        }
+    }
+
+    auto table = [&](const std::string& key, bool required) -> const toml::table* {
+        const toml::node* node = top.get(key);
+        if (!node) {
+            if (required) top.fail(nullptr, key, "missing section [" + key + "]");
+            return nullptr;
+        }
+        const auto* t = node->as_table();
+        if (!t)
+            top.fail(node, key,
+                     "expected a section [" + key + "], found " + TableReader::type_name(*node));
+        return t;
+    };
+
+    {
+        TableReader r(*table("reference", true), name, "reference");
+        sc.reference = read_surface(r, dir, data_root, true);
+        r.finish();
+    }
+    if (const auto* t = table("examined", false)) {
+        TableReader r(*t, name, "examined");
+        read_examined(r, dir, data_root, sc);
+    }
+    if (const toml::node* dmg = top.get("damage")) {
+        const auto* arr = dmg->as_array();
+        if (!arr || !arr->is_array_of_tables())
+            top.fail(dmg, "damage", "expected [[damage]] tables");
+        for (std::size_t i = 0; i < arr->size(); ++i) {
+            TableReader r(*(*arr)[i].as_table(), name, "damage[" + std::to_string(i) + "]");
+            sc.damages.push_back(read_damage(r));
+        }
+        if (!sc.examined_derived)
+            top.fail(dmg, "damage",
+                     "damage applies to a derived examined surface, not to an examined mesh file");
+        if (sc.resample_volume)
+            top.fail(
+                dmg, "damage",
+                "a resampled examined volume takes erode = [x, y, z, r] in [examined], not [[damage]]");
+    }
+    read_analysis_sections(top, dir, sc.analysis);
+    if (const auto* t = table("expect", false)) {
+        TableReader r(*t, name, "expect");
+        read_expect(r, sc.expect);
+    }
+    if (const auto* t = table("baseline", false)) {
+        TableReader r(*t, name, "baseline");
+        sc.baseline_distance = r.positive("distance_threshold");
+        r.finish();
+    }
+    top.finish();
+    validate_analysis_sections(root, name, sc.analysis);
+    return sc;
+}
+
+std::vector<std::uint8_t> read_npy_mask(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw IoError("mask \"" + path.string() + "\": cannot open");
+    char magic[8] = {};
+    in.read(magic, 8);
+    if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
+        throw InputError("mask \"" + path.string() + "\": not a NumPy .npy file (bad magic)");
+    const int major = static_cast<unsigned char>(magic[6]);
+    const std::uintmax_t file_size = fs::file_size(path);
+    std::uint32_t header_len = 0;
+    unsigned char b[4] = {};
+    in.read(reinterpret_cast<char*>(b), major == 1 ? 2 : 4);
+    for (int i = (major == 1 ? 1 : 3); i >= 0; --i) header_len = (header_len << 8) | b[i];
+    // note: a header longer than the file is a lie; refuse it before allocating for it.
+    if (!in || header_len > file_size)
+        throw InputError("mask \"" + path.string() + "\": header length " +
+                         std::to_string(header_len) + " exceeds the file's " +
+                         std::to_string(file_size) + " bytes");
+    std::string header(header_len, '\0');
+    in.read(header.data(), header_len);
+    if (!in) throw InputError("mask \"" + path.string() + "\": truncated header");
+    if (header.find("'|b1'") == std::string::npos && header.find("'|u1'") == std::string::npos)
+        throw InputError("mask \"" + path.string() + "\": dtype is not bool or uint8 (header " +
+                         header + ")");
+    if (header.find("'fortran_order': False") == std::string::npos)
+        throw InputError("mask \"" + path.string() + "\": expected C order");
+    const auto open = header.find("'shape': (");
+    if (open == std::string::npos)
+        throw InputError("mask \"" + path.string() + "\": no shape in header");
+    std::size_t count = 0;
+    const char* first = header.data() + open + 10;
+    const auto parsed = std::from_chars(first, header.data() + header.size(), count);
+    const std::uintmax_t data_bytes =
+        file_size - std::min<std::uintmax_t>(file_size, static_cast<std::uintmax_t>(in.tellg()));
+    if (parsed.ec != std::errc() || count > data_bytes)
+        throw InputError("mask \"" + path.string() + "\": header says " +
+                         std::string(first, parsed.ptr) + " values, the file holds " +
+                         std::to_string(data_bytes));
+    std::vector<std::uint8_t> mask(count);
+    in.read(reinterpret_cast<char*>(mask.data()), static_cast<std::streamsize>(count));
+    if (static_cast<std::size_t>(in.gcount()) != count)
+        throw InputError("mask \"" + path.string() + "\": header says " + std::to_string(count) +
+                         " values, file has " + std::to_string(in.gcount()));
+    for (auto& m : mask) m = m ? 1 : 0;
+    return mask;
+}
+
+namespace {
+
+// The derived examined surface: the reference (or its re-tessellated phantom, or its CGAL
+// remesh), damaged, then noise, then the pose. Truth on the reference, by the distance rule
+// (scenario/pair_truth.h) for mesh files, by the displacement rule for phantoms.
+void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
+    const bool from_file = !sc.reference.phantom;
+    if (sc.examined.phantom) {
+        out.examined = make_phantom(*sc.examined.phantom);
+    } else if (sc.remesh) {
+        const EdgeStats edges = edge_stats(out.reference);
+        out.examined =
+            remesh_isotropic(out.reference, {*sc.remesh * edges.median, sc.remesh_iterations});
+        std::ostringstream note;
+        note << "examined: reference remeshed at " << *sc.remesh << "× its median edge ("
+             << edges.median << " → " << edge_stats(out.examined).median << "), "
+             << out.examined.vertex_count() << " vertices";
+        out.notes.push_back(note.str());
+    } else {
+        out.examined = out.reference;
+    }
+    if (sc.shuffle) shuffle_mesh(out.examined, sc.shuffle_seed);
+    if (!sc.damages.empty()) apply_damage(out.examined, sc.damages);
+    if (from_file) {
+        // The damaged surface before noise and motion is what the truth is measured against.
+        Mesh footprint = out.reference;
+        if (!sc.damages.empty()) apply_damage(footprint, sc.damages);
+        const std::vector<std::int32_t> labels =
+            footprint.labels.empty() ? std::vector<std::int32_t>(out.reference.vertex_count(), 0)
+                                     : footprint.labels;
+        PairTruth truth = distance_truth(out.reference, out.examined, labels, sc.damages);
+        out.truth = std::move(truth.damaged);
+        out.truth_damage = std::move(truth.damage_id);
+        out.true_distance = vertex_distances(out.reference, out.examined);
+    } else if (!sc.damages.empty()) {
+        Mesh truth_mesh = out.reference;
+        apply_damage(truth_mesh, sc.damages);
+        out.truth.resize(truth_mesh.vertex_count());
+        for (std::size_t v = 0; v < out.truth.size(); ++v) out.truth[v] = truth_mesh.labels[v] != 0;
+        out.truth_damage = truth_mesh.labels;
+    } else {
+        out.truth.assign(out.reference.vertex_count(), 0);
+    }
+    if (sc.noise_sigma > 0) {
+        DamageSpec noise;
+        noise.kind = DamageKind::Noise;
+        noise.sigma = sc.noise_sigma;
+        noise.seed = sc.noise_seed;
+        apply_damage(out.examined, {noise});  // labels and gt_displacement of the damages are kept
+    }
+    transform_mesh(out.examined, sc.pose);
+    out.true_reference_from_examined = sc.pose.inverse();
+    out.has_truth_pose = true;
+}
+
+// A longitudinal pair from one volume: the reference's surface, and the surface of the volume
+// resampled under the known motion with the erosions; truth = reference vertices inside a ball.
+ScenarioMeshes build_volume_pair(const Scenario& sc) {
+    ScenarioMeshes out;
+    const Volume volume = read_volume(sc.reference.mesh);
+    if (!sc.reference.surface.iso)
+        throw InputError("scenario \"" + sc.file.string() + "\": reference volume \"" +
+                         sc.reference.mesh_as_written + "\" needs iso = VALUE in [reference]");
+    out.reference = extract_surface(volume, sc.reference.surface).mesh;
+    VolumeEdit edit;
+    edit.moved_from_original = motion_about(sc.pose, sc.pivot);
+    edit.erosions = sc.erosions;
+    out.examined = extract_surface(edit_volume(volume, edit), sc.reference.surface).mesh;
+    out.truth.assign(out.reference.vertex_count(), 0);
+    for (std::size_t v = 0; v < out.truth.size(); ++v)
+        for (const Erosion& e : sc.erosions)
+            if ((out.reference.positions[v].cast<double>() - e.center).norm() <= e.radius)
+                out.truth[v] = 1;
+    out.true_reference_from_examined = edit.moved_from_original.inverse();
+    out.has_truth_pose = true;
+    out.notes.push_back("examined: the reference volume resampled under the known motion with " +
+                        std::to_string(sc.erosions.size()) + " erosion(s)");
+    return out;
+}
+
+}  // namespace
+
+ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
+    if (sc.examined_derived && sc.resample_volume) {
+        std::error_code ec;
+        if (!fs::exists(sc.reference.mesh, ec))
+            throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" +
+                          sc.reference.mesh_as_written + "\" not found (looked at \"" +
+                          sc.reference.mesh.string() + "\"" +
+                          (sc.reference.needs_data_root ? "; give --data-root or GLINT_DATA" : "") +
+                          ")");
+        return build_volume_pair(sc);
+    }
+    ScenarioMeshes out;
+    auto load = [&](const SurfaceSource& s, const std::string& role) {
+        if (s.phantom) return make_phantom(*s.phantom);
+        std::error_code ec;
+        if (!fs::exists(s.mesh, ec))
+            throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" +
+                          s.mesh_as_written + "\" not found (looked at \"" + s.mesh.string() +
+                          "\"" + (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") +
+                          ")");
+        // An examined volume without its own surface keys is cut as the reference was.
+        const bool inherit = &s == &sc.examined && is_volume_path(s.mesh) && !s.surface.iso;
+        return load_surface(s.mesh, inherit ? sc.reference.surface : s.surface).mesh;
+    };
+    out.reference = load(sc.reference, "reference");
+    if (sc.examined_derived) {
+        derive_examined(sc, out);
+        return out;
+    }
+    out.examined = load(sc.examined, "examined");
+    if (!sc.truth_mask.empty()) {
+        out.truth = read_npy_mask(sc.truth_mask);
+        if (out.truth.size() != out.reference.vertex_count())
+            throw InputError("scenario \"" + sc.file.string() + "\": truth mask has " +
+                             std::to_string(out.truth.size()) + " values, the reference has " +
+                             std::to_string(out.reference.vertex_count()) + " vertices");
+    }
+    out.has_truth_pose =
+        sc.pose.matrix() != Rigid::Identity().matrix() || sc.analysis.fit.mode == FitMode::Truth;
+    out.true_reference_from_examined = sc.pose.inverse();
+    if (sc.expect.max_close_region_vertices) {
+        // Two scans given in one frame (or with the stated pose): the true distance is to the
+        // examined surface placed back with that pose.
+        Mesh placed = out.examined;
+        transform_mesh(placed, out.true_reference_from_examined);
+        out.true_distance = vertex_distances(out.reference, placed);
+    }
+    return out;
+}
+
+}  // namespace glint

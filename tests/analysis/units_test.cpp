@@ -1,0 +1,76 @@
+// The analysis unit and the size check (analysis/units.h): a stated unit wins, files in two
+// stated units are converted, sizes 1000× apart are refused before any work.
+#include "analysis/units.h"
+
+#include "mesh/error.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+namespace glint {
+namespace {
+
+Mesh triangle(float size, std::string unit) {
+    Mesh m;
+    m.positions = {{0, 0, 0}, {size, 0, 0}, {0, size, 0}};
+    m.triangles = {{0, 1, 2}};
+    m.unit = std::move(unit);
+    return m;
+}
+
+TEST(ResolveUnits, TakesTheUnitAFileStates) {
+    const UnitResolution r = resolve_units(triangle(10, "mm"), triangle(10, ""), {});
+    EXPECT_EQ(r.unit, "mm");
+    EXPECT_DOUBLE_EQ(r.examined_scale, 1.0);
+    EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(ResolveUnits, ConvertsAnExaminedInAnotherStatedUnit) {
+    const UnitResolution r = resolve_units(triangle(10, "mm"), triangle(0.01f, "m"), {});
+    EXPECT_EQ(r.unit, "mm");
+    EXPECT_DOUBLE_EQ(r.examined_scale, 1000.0);
+    EXPECT_NEAR(r.examined_size, r.reference_size, 1e-4);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("scaled by 1000"), std::string::npos) << r.warnings[0];
+}
+
+TEST(ResolveUnits, AStatedUnitWinsAndSaysWhatItOverrode) {
+    const UnitResolution r =
+        resolve_units(triangle(10, "m"), triangle(10, ""), {.unit = "millimetres"});
+    EXPECT_EQ(r.unit, "mm");
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("states unit m"), std::string::npos) << r.warnings[0];
+}
+
+TEST(ResolveUnits, RefusesSizes1000TimesApartNamingBoth) {
+    try {
+        (void)resolve_units(triangle(10, ""), triangle(0.01f, ""), {});
+        FAIL() << "a 1000x size difference was accepted";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("reference 14.14 units, examined 0.01414 units"), std::string::npos) << m;
+        EXPECT_NE(m.find("1000× smaller"), std::string::npos) << m;
+        EXPECT_NE(m.find("--allow-scale-mismatch"), std::string::npos) << m;
+    }
+}
+
+TEST(ResolveUnits, AllowsAMismatchWhenToldAndWarns) {
+    const UnitResolution r =
+        resolve_units(triangle(10, ""), triangle(0.01f, ""), {.allow_scale_mismatch = true});
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("allowed"), std::string::npos);
+}
+
+TEST(ResolveUnits, AcceptsAPartialScanWithinTheRatio) {
+    // A condyle against its mandible is ~4× smaller: not a unit mistake.
+    EXPECT_NO_THROW((void)resolve_units(triangle(40, "mm"), triangle(10, "mm"), {}));
+}
+
+TEST(ResolveUnits, RefusesAnUnknownUnitName) {
+    EXPECT_THROW((void)resolve_units(triangle(1, ""), triangle(1, ""), {.unit = "furlong"}),
+                 OptionError);
+}
+
+}  // namespace
+}  // namespace glint

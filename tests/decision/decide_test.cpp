@@ -1,0 +1,223 @@
+// decide() and the fused rule (decision/decision.h) on hand-made evidence over a flat grid: a
+// floor from a known spread, the hysteresis reach of a region, the split of a loss from an
+// adjacent gain, hole filling, and each region kind. The evidence is written vertex by vertex,
+// so each expectation follows from the rule's text alone.
+#include "decision/decision.h"
+
+#include "scanner/atlas.h"
+#include "scanner/coverage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+
+namespace glint {
+namespace {
+
+constexpr int kN = 40;  // grid of kN × kN unit squares, (kN + 1)² vertices
+
+Mesh grid() {
+    Mesh m;
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x) m.positions.emplace_back(float(x), float(y), 0.f);
+    auto id = [](int x, int y) { return static_cast<std::uint32_t>(y * (kN + 1) + x); };
+    for (int y = 0; y < kN; ++y)
+        for (int x = 0; x < kN; ++x) {
+            m.triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+            m.triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+        }
+    return m;
+}
+
+std::size_t vid(int x, int y) { return static_cast<std::size_t>(y * (kN + 1) + x); }
+
+/// Evidence of one zoom, every vertex seen, undamaged: a normal deviation cycling through 0.5°,
+/// 1° and 1.5° (median 1, MAD 0.5, and so they stay with a few per cent of damage added) and a
+/// signed distance alternating ±0.001 mm.
+struct Evidence {
+    Mesh mesh = grid();
+    ZoomAtlas atlas;
+    Coverage coverage;
+    std::vector<float> distance;
+    std::vector<float> tolerance;
+    std::vector<std::uint8_t> at_border;
+
+    Evidence() {
+        const std::size_t n = mesh.vertex_count();
+        atlas.value_mean.resize(n);
+        atlas.value_max.resize(n);
+        atlas.missing.assign(n, 0.0f);
+        atlas.depth_mean.assign(n, 0.0f);
+        atlas.max_view.assign(n, 0);
+        coverage.seen.assign(n, 1);
+        coverage.fraction = 1.0;
+        distance.resize(n);
+        tolerance.assign(n, 0.0f);
+        at_border.assign(n, 0);
+        for (std::size_t v = 0; v < n; ++v) {
+            atlas.value_mean[v] = 0.5f + 0.5f * static_cast<float>(v % 3);
+            distance[v] = v % 2 ? 0.001f : -0.001f;
+        }
+    }
+    /// A radial change of shape at (cx, cy): distance = peak·max(0, 1 − r/radius), and a normal
+    /// deviation of `normal_deg` wherever it moved.
+    void change(int cx, int cy, double radius, float peak, float normal_deg) {
+        for (int y = 0; y <= kN; ++y)
+            for (int x = 0; x <= kN; ++x) {
+                const double r = std::hypot(x - cx, y - cy);
+                if (r >= radius) continue;
+                distance[vid(x, y)] = peak * static_cast<float>(1.0 - r / radius);
+                atlas.value_mean[vid(x, y)] = normal_deg;
+            }
+    }
+    [[nodiscard]] DecisionEvidence view() const {
+        return {.atlas = &atlas,
+                .coverage = &coverage,
+                .distance = &distance,
+                .tolerance = &tolerance,
+                .at_border = &at_border,
+                .metric = Metric::AngleDeg,
+                .size = std::hypot(kN, kN)};
+    }
+};
+
+std::set<std::size_t> vertices_of(const ZoomDecision& d, std::int32_t id) {
+    std::set<std::size_t> out;
+    for (std::size_t v = 0; v < d.regions.region_of_vertex.size(); ++v)
+        if (d.regions.region_of_vertex[v] == id) out.insert(v);
+    return out;
+}
+
+TEST(RobustFloor, IsMedianPlusKScaledMadAndCapsWhatIsImplausible) {
+    std::vector<float> values;
+    for (int i = 0; i < 101; ++i) values.push_back(i % 2 ? 1.5f : 0.5f);
+    values[50] = 1.0f;  // the median itself
+    const std::vector<std::uint8_t> all(values.size(), 1);
+    const Floor f = robust_floor(values, all, 6.0, 0.0, 100.0);
+    EXPECT_DOUBLE_EQ(f.median, 1.0);
+    EXPECT_DOUBLE_EQ(f.mad, 0.5);
+    // note: 1.4826 makes the MAD a consistent estimate of σ for Gaussian noise.
+    EXPECT_NEAR(f.value, 1.0 + 6.0 * 1.4826 * 0.5, 1e-6);
+    EXPECT_FALSE(f.implausible);
+    // Never below the minimum; capped (and said so) above the plausible limit.
+    EXPECT_DOUBLE_EQ(robust_floor(values, all, 6.0, 9.0, 100.0).value, 9.0);
+    const Floor capped = robust_floor(values, all, 6.0, 0.0, 2.0);
+    EXPECT_TRUE(capped.implausible);
+    EXPECT_DOUBLE_EQ(capped.value, 2.0);
+    // Values not in use do not count.
+    std::vector<std::uint8_t> some(values.size(), 0);
+    some[0] = some[2] = some[4] = 1;  // 0.5 each
+    EXPECT_DOUBLE_EQ(robust_floor(values, some, 6.0, 0.0, 100.0).value, 0.5);
+}
+
+TEST(Decide, NormalRuleFloorsAtTheMeasuredSpreadAndFillsTheRingsInside) {
+    Evidence e;
+    // A ring of strong deviation (radius 4..6 around (20, 20)) with a quiet inside: the
+    // floor of a dent keeps its normal, so the normal field marks a ring.
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x) {
+            const double r = std::hypot(x - 20, y - 20);
+            if (r >= 4 && r < 6) e.atlas.value_mean[vid(x, y)] = 30.0f;
+        }
+    DecisionOptions o{.rule = DecisionRule::Normal};
+    const ZoomDecision filled = decide(e.mesh, e.view(), o);
+    EXPECT_NEAR(filled.normal.value, 1.0 + 6.0 * 1.4826 * 0.5, 1e-3);  // the ring is a minority
+    ASSERT_EQ(filled.regions.regions.size(), 1u);
+    EXPECT_GT(filled.regions.filled_vertices, 0u);
+    EXPECT_EQ(filled.regions.region_of_vertex[vid(20, 20)], 1) << "the inside is filled";
+    o.fill_holes = false;
+    const ZoomDecision ring = decide(e.mesh, e.view(), o);
+    ASSERT_EQ(ring.regions.regions.size(), 1u);
+    EXPECT_EQ(ring.regions.filled_vertices, 0u);
+    EXPECT_EQ(ring.regions.region_of_vertex[vid(20, 20)], 0) << "the inside stays out";
+    EXPECT_LT(ring.regions.regions[0].vertex_count, filled.regions.regions[0].vertex_count);
+}
+
+TEST(Decide, FusedRuleGrowsARegionToATenthOfItsPeak) {
+    Evidence e;
+    e.change(20, 20, 8.0, -1.0f, 10.0f);  // a cone-shaped dent, 1 mm deep, radius 8
+    const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
+    ASSERT_EQ(d.regions.regions.size(), 1u) << d.rule_text;
+    const Region& r = d.regions.regions[0];
+    EXPECT_EQ(r.kind, RegionKind::Dent);
+    EXPECT_NEAR(r.peak_depth, -1.0, 1e-6);
+    // Hysteresis: the extent holds exactly the connected vertices whose distance reaches
+    // grow_fraction (0.1) of the peak, i.e. r ≤ 7.2 — far beyond the strong core that reaches
+    // the shape floor (a few hundredths of a mm here).
+    const std::set<std::size_t> got = vertices_of(d, 1);
+    std::set<std::size_t> want;
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x)
+            if (std::hypot(x - 20, y - 20) <= 8.0 * 0.9 + 1e-9) want.insert(vid(x, y));
+    EXPECT_EQ(got, want);
+    EXPECT_FALSE(r.evidence.empty());
+}
+
+TEST(Decide, FusedRuleSplitsALossFromAnAdjacentGain) {
+    Evidence e;
+    e.change(14, 20, 6.0, -0.8f, 8.0f);
+    e.change(26, 20, 6.0, +0.6f, 8.0f);  // the two cones touch at x = 20
+    const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
+    ASSERT_EQ(d.regions.regions.size(), 2u);
+    int dents = 0, bumps = 0;
+    for (const Region& r : d.regions.regions) {
+        dents += r.kind == RegionKind::Dent;
+        bumps += r.kind == RegionKind::Bump;
+        if (r.kind == RegionKind::Dent) EXPECT_LT(r.centroid.x(), 20.0);
+        if (r.kind == RegionKind::Bump) EXPECT_GT(r.centroid.x(), 20.0);
+    }
+    EXPECT_EQ(dents, 1);
+    EXPECT_EQ(bumps, 1);
+}
+
+TEST(Decide, FusedRuleNeedsTheNormalFieldToCorroborateAShapeChange) {
+    Evidence e;
+    e.change(20, 20, 8.0, -1.0f, 1.0f);  // moved, but the normals did not turn beyond the noise
+    const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
+    EXPECT_TRUE(d.regions.regions.empty());
+}
+
+TEST(Decide, MissingExaminedSurfaceIsItsOwnKind) {
+    Evidence e;
+    for (int y = 10; y <= 14; ++y)
+        for (int x = 10; x <= 14; ++x) {
+            e.atlas.missing[vid(x, y)] = 1.0f;
+            e.atlas.value_mean[vid(x, y)] = 90.0f;  // the metric's missing value
+        }
+    const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::MissingSurface);
+    EXPECT_EQ(vertices_of(d, 1).size(), 25u);
+}
+
+TEST(Decide, GivenThresholdsAreUsedAsGivenAndUnmeasurableFloorsAreWarnedAbout) {
+    Evidence e;
+    DecisionOptions o{.threshold = 7.5, .shape_threshold = 0.2};
+    const ZoomDecision given = decide(e.mesh, e.view(), o);
+    EXPECT_TRUE(given.normal.given);
+    EXPECT_DOUBLE_EQ(given.normal.value, 7.5);
+    EXPECT_TRUE(given.shape.given);
+    EXPECT_DOUBLE_EQ(given.shape.low, 0.1);
+    // Half the surface turned by 40°: the estimated floor is implausible, capped and reported.
+    for (std::size_t v = 0; v < e.atlas.value_mean.size(); v += 2) e.atlas.value_mean[v] = 40.0f;
+    const ZoomDecision capped = decide(e.mesh, e.view(), DecisionOptions{});
+    EXPECT_TRUE(capped.normal.implausible);
+    EXPECT_DOUBLE_EQ(capped.normal.value, 20.0);
+    ASSERT_FALSE(capped.warnings.empty());
+    EXPECT_NE(capped.warnings[0].find("normal evidence floor"), std::string::npos);
+}
+
+TEST(Decide, WithoutShapeEvidenceTheFusedRuleFallsBackToTheNormalRuleAndSaysSo) {
+    Evidence e;
+    DecisionEvidence view = e.view();
+    view.distance = nullptr;
+    const ZoomDecision d = decide(e.mesh, view, DecisionOptions{});
+    EXPECT_EQ(d.rule, DecisionRule::Normal);
+    ASSERT_FALSE(d.warnings.empty());
+    EXPECT_NE(d.warnings[0].find("normal rule decided alone"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint

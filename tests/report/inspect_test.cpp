@@ -1,0 +1,72 @@
+// inspect(): a run with outputs around analyse().
+#include "report/inspect.h"
+
+#include "mesh/damage.h"
+#include "mesh/phantom.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+
+namespace glint {
+namespace {
+
+/// The reference condyle and a re-tessellated examined one with a 0.4 mm dent.
+struct Pair {
+    Mesh reference = make_phantom(
+        {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 4});
+    Mesh examined = [] {
+        Mesh m = make_phantom(
+            {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 40});
+        apply_damage(
+            m, {DamageSpec{
+                   .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+        return m;
+    }();
+};
+
+const Pair& pair() {
+    static const Pair p;
+    return p;
+}
+
+SweepOptions vulkan_options(Accumulation accumulate) {
+    SweepOptions o;
+    o.plan.azimuth_step_deg = 60;
+    o.plan.elevations_deg = {-30, 30};
+    o.plan.size = 96;
+    o.render.backend = Backend::Vulkan;
+    // lavapipe, or the device GLINT_DEVICE names.
+    if (std::getenv("GLINT_DEVICE") == nullptr) o.render.device = "llvmpipe";
+    o.render.supersample = 2;
+    o.accumulate = accumulate;
+    return o;
+}
+
+TEST(Inspect, ReadsFramesBackFromTheGpuOnlyWhenPerViewExrsAreWritten) {
+    const Pair& p = pair();
+    const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "gpu_sweep";
+    std::filesystem::create_directories(dir);
+    InspectOptions o;
+    o.analysis.fit.mode = FitMode::Identity;
+    o.analysis.sweep = vulkan_options(Accumulation::Auto);
+    o.analysis.sweep.plan.size = 48;
+    o.exports.write_views = false;
+    o.exports.replace_existing = true;
+    o.exports.write_exr = true;
+    o.exports.output = dir / "with_exr";
+    const AnalysisResult with_exr = inspect(p.reference, p.examined, o, {}).analysis;
+    EXPECT_FALSE(with_exr.sweep.on_gpu);
+    EXPECT_NE(with_exr.sweep.accumulation_note.find("EXR"), std::string::npos);
+    EXPECT_TRUE(std::filesystem::exists(dir / "with_exr" / "views" / "z0_az000.0_el-30.0.exr"));
+    o.exports.write_exr = false;
+    o.exports.output = dir / "without_exr";
+    const AnalysisResult without = inspect(p.reference, p.examined, o, {}).analysis;
+    EXPECT_TRUE(without.sweep.on_gpu) << without.sweep.accumulation_note;
+    EXPECT_EQ(without.decisions[0].regions.region_of_vertex,
+              with_exr.decisions[0].regions.region_of_vertex);
+}
+
+}  // namespace
+}  // namespace glint

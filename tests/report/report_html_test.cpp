@@ -1,0 +1,196 @@
+// report.html (report/report_html.h): one self-contained page; its data holds the mesh and
+// the atlas fields exactly, the regions' best views and the mosaic; nothing points outside
+// the file. (The page itself runs in headless Chromium: tests/tools/report_html_test.sh.)
+#include "report/report_html.h"
+#include "report/inspect.h"
+
+#include "mesh/damage.h"
+#include "mesh/phantom.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(FillTemplate, ReplacesEveryNameOnceAndNeverScansWhatItInserted) {
+    EXPECT_EQ(fill_template("a @X@ b @Y_2@ c @x@ d@", {{"X", "@Y_2@"}, {"Y_2", "2"}}),
+              "a @Y_2@ b 2 c @x@ d@");
+    EXPECT_EQ(fill_template("e-mail a@b.c and @@", {}), "e-mail a@b.c and @@");
+    EXPECT_THROW((void)fill_template("@MISSING@", {{"X", "1"}}), std::logic_error);
+}
+
+std::string read_text(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// The JSON data block of the page.
+nlohmann::json page_data(const std::string& html) {
+    const std::string open = "<script id=\"glint-data\" type=\"application/json\">";
+    const auto a = html.find(open);
+    const auto b = html.find("</script>", a);
+    EXPECT_NE(a, std::string::npos);
+    return nlohmann::json::parse(html.substr(a + open.size(), b - a - open.size()));
+}
+
+// Standard base64 (RFC 4648), as the page's atob() reads it.
+std::string base64_decode(const std::string& text) {
+    static const std::string alphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    unsigned bits = 0;
+    int count = 0;
+    for (char c : text) {
+        if (c == '=') break;
+        const auto k = alphabet.find(c);
+        if (k == std::string::npos) ADD_FAILURE() << "not base64: " << c;
+        bits = (bits << 6) | static_cast<unsigned>(k);
+        count += 6;
+        if (count >= 8) {
+            count -= 8;
+            out += static_cast<char>((bits >> count) & 0xFF);
+        }
+    }
+    return out;
+}
+
+template <typename T>
+std::vector<T> decode(const std::string& b64) {
+    const std::string bytes = base64_decode(b64);
+    std::vector<T> out(bytes.size() / sizeof(T));
+    std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
+    EXPECT_EQ(bytes.size() % sizeof(T), 0u);
+    return out;
+}
+
+TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report_html";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    Mesh exa = ref;
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5},
+         DamageSpec{.kind = DamageKind::Bump, .center = {0, 0, 10}, .radius = 3.0, .depth = 0.4}});
+    InspectOptions inspect_options;
+    AnalysisOptions& options = inspect_options.analysis;
+    options.fit.mode = FitMode::Identity;
+    options.sweep.plan.azimuth_step_deg = 90;
+    options.sweep.plan.elevations_deg = {-30, 30};
+    options.sweep.plan.size = 64;
+    options.sweep.render.backend = Backend::Embree;
+    options.units.unit = "mm";
+    inspect_options.exports.output = dir / "atlas";
+    inspect_options.exports.write_views = false;  // the page still gets the best views
+    const AnalysisResult result = inspect(ref, exa, inspect_options, {}).analysis;
+    const std::string html = read_text(dir / "atlas" / "report.html");
+
+    // Self-contained: no element loads anything; the libraries are inline.
+    // (the markup without the scripts' text; std::regex would recurse through 1 MB of script)
+    std::string markup;
+    for (std::size_t pos = 0; pos < html.size();) {
+        const auto open = html.find("<script", pos);
+        const auto body = open == std::string::npos ? open : html.find('>', open);
+        markup += html.substr(pos, body == std::string::npos ? std::string::npos : body + 1 - pos);
+        if (body == std::string::npos) break;
+        pos = html.find("</script>", body);
+        ASSERT_NE(pos, std::string::npos) << "unclosed <script>";
+    }
+    EXPECT_FALSE(std::regex_search(
+        markup, std::regex("<(script|link|img|iframe)\\b[^>]*\\s(src|href)\\s*=")));
+    EXPECT_NE(html.find("REVISION=\"111\""), std::string::npos) << "three.js inlined";
+    EXPECT_NE(html.find("THREE.OrbitControls"), std::string::npos) << "OrbitControls inlined";
+    EXPECT_NE(html.find("window.glintSelftest"), std::string::npos) << "report.js inlined";
+
+    const nlohmann::json data = page_data(html);
+    EXPECT_EQ(data["unit"], "mm");
+    EXPECT_EQ(data["report"]["zooms"].size(), 1u);
+    const auto positions = decode<float>(data["mesh"]["positions"]);
+    const auto indices = decode<std::uint32_t>(data["mesh"]["indices"]);
+    ASSERT_EQ(positions.size(), 3 * ref.vertex_count());
+    ASSERT_EQ(indices.size(), 3 * ref.triangle_count());
+    EXPECT_EQ(positions[3 * 17 + 2], ref.positions[17].z());
+    EXPECT_EQ(indices[3 * 5 + 1], ref.triangles[5][1]);
+    std::map<std::string, nlohmann::json> fields;
+    for (const auto& f : data["fields"]) fields[f["name"]] = f;
+    for (const char* name :
+         {"distance", "angle_mean_z0", "angle_max_z0", "region_z0", "seen_z0", "count_z0"})
+        ASSERT_TRUE(fields.count(name)) << name;
+    const auto distance = decode<float>(fields["distance"]["values"]);
+    ASSERT_EQ(distance.size(), ref.vertex_count());
+    for (std::size_t v = 0; v < distance.size(); v += 97)
+        EXPECT_EQ(distance[v], result.distance[v]);
+    const auto region = decode<float>(fields["region_z0"]["values"]);
+    for (std::size_t v = 0; v < region.size(); ++v)
+        ASSERT_EQ(region[v], static_cast<float>(result.decisions[0].regions.region_of_vertex[v]));
+    EXPECT_EQ(fields["distance"]["range"][0].get<double>(),
+              -fields["distance"]["range"][1].get<double>());
+    EXPECT_EQ(data["colormaps"]["diverging"].size(), 27u);
+
+    // The pictures: the mosaic and every region's best view, as PNG data URIs.
+    ASSERT_EQ(data["images"]["mosaics"].size(), 1u);
+    EXPECT_EQ(data["images"]["mosaics"][0].get<std::string>().rfind(
+                  "data:image/png;base64,iVBORw0KGgo", 0),
+              0u);
+    ASSERT_EQ(result.decisions[0].regions.regions.size(), 2u);
+    for (const auto& r : result.decisions[0].regions.regions)
+        EXPECT_TRUE(data["images"]["best_views"].contains(std::to_string(r.best_view)))
+            << "region " << r.id;
+    EXPECT_FALSE(fs::exists(dir / "atlas" / "views" / "z0_az000.0_el-30.0.png"))
+        << "--no-views writes no view";
+    // Bounded: the libraries (~0.9 MB) plus the data, nothing per view beyond the best ones.
+    EXPECT_LT(html.size(), 4'000'000u);
+
+    // A mesh above the page's budget is shown decimated: every triangle touching a region kept,
+    // the rest collapsed; every vertex shown is an atlas vertex at its place, with its values.
+    const std::size_t budget = ref.triangle_count() / 8;
+    const nlohmann::json small =
+        page_data(report_html(ref, result, read_text(dir / "atlas" / "report.json"), {}, budget));
+    EXPECT_EQ(small["mesh"]["triangles"].get<std::size_t>(), ref.triangle_count());
+    const auto ids = decode<std::uint32_t>(small["mesh"]["vertex_ids"]);
+    const auto shown_positions = decode<float>(small["mesh"]["positions"]);
+    const auto shown_indices = decode<std::uint32_t>(small["mesh"]["indices"]);
+    ASSERT_EQ(shown_positions.size(), 3 * ids.size());
+    std::size_t region_triangles = 0;
+    for (const auto& t : ref.triangles)
+        region_triangles += result.decisions[0].regions.region_of_vertex[t[0]] != 0 ||
+                            result.decisions[0].regions.region_of_vertex[t[1]] != 0 ||
+                            result.decisions[0].regions.region_of_vertex[t[2]] != 0;
+    EXPECT_LT(shown_indices.size() / 3, budget + region_triangles + budget / 2);
+    EXPECT_EQ(small["mesh"]["shown"]["triangles"].get<std::size_t>(), shown_indices.size() / 3);
+    std::map<std::string, nlohmann::json> small_fields;
+    for (const auto& f : small["fields"]) small_fields[f["name"]] = f;
+    const auto shown_distance = decode<float>(small_fields["distance"]["values"]);
+    const auto shown_region = decode<float>(small_fields["region_z0"]["values"]);
+    ASSERT_EQ(shown_distance.size(), ids.size());
+    std::vector<std::uint8_t> is_shown(ref.vertex_count(), 0);
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+        ASSERT_LT(ids[k], ref.vertex_count());
+        is_shown[ids[k]] = 1;
+        EXPECT_EQ(shown_positions[3 * k], ref.positions[ids[k]].x());
+        EXPECT_EQ(shown_distance[k], result.distance[ids[k]]);
+        EXPECT_EQ(shown_region[k],
+                  static_cast<float>(result.decisions[0].regions.region_of_vertex[ids[k]]));
+    }
+    for (std::size_t v = 0; v < ref.vertex_count(); ++v)
+        if (result.decisions[0].regions.region_of_vertex[v] != 0) {
+            EXPECT_TRUE(is_shown[v]) << "region vertex " << v;
+        }
+}
+
+}  // namespace
+}  // namespace glint

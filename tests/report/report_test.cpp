@@ -1,0 +1,126 @@
+// What a sweep writes into its output folder (report/report.h): every file a user opens is
+// there, and report.json holds what the README promises — inputs with checksums, device and
+// backend, the plan and analysis options (enough to repeat the run), thresholds, coverage,
+// unseen patches, regions, histogram and timings.
+#include "report/report.h"
+
+#include "mesh/damage.h"
+#include "mesh/error.h"
+#include "mesh/io.h"
+#include "mesh/phantom.h"
+#include "mesh/write.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <string>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    Mesh exa = ref;
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
+    write_ply(ref, dir / "ref.ply");
+
+    InspectOptions options;
+    AnalysisOptions& a = options.analysis;
+    a.fit.mode = FitMode::Identity;
+    a.sweep.plan.azimuth_step_deg = 45;
+    a.sweep.plan.elevations_deg = {-30, 30};
+    a.sweep.plan.size = 48;
+    a.sweep.render.backend = Backend::Embree;
+    a.sweep.render.supersample = 2;
+    a.sweep.max_incidence_deg = 70.0;
+    options.exports.output = dir / "atlas";
+    options.exports.write_exr = true;
+    RunRecord record{.command_line = "glint sweep ref.ply exa.ply -o atlas --exr"};
+    record.add(mesh_run_input("reference", ref, "", dir / "ref.ply"));
+    // A scenario's ground truth rides along into the atlas files, beside glint's own fields.
+    std::vector<float> truth(ref.vertex_count());
+    for (std::size_t v = 0; v < truth.size(); ++v) truth[v] = static_cast<float>(exa.labels[v]);
+    options.exports.extra_scalars.emplace_back("truth_damage", truth);
+    const Inspection result = inspect(ref, exa, options, record);
+    EXPECT_EQ(result.output, dir / "atlas");
+    for (const char* f :
+         {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "report.html", "atlas.png",
+          "mosaic_z0.png", "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
+        EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
+
+    const Mesh atlas = load_mesh(dir / "atlas" / "atlas.ply").mesh;
+    const auto* truth_read = atlas.find_scalar("truth_damage");
+    ASSERT_NE(truth_read, nullptr);
+    EXPECT_EQ(truth_read->values, truth);
+
+    std::ifstream in(dir / "atlas" / "report.json");
+    const nlohmann::json r = nlohmann::json::parse(in);
+    EXPECT_EQ(r["command_line"], record.command_line);
+    // --json prints the text inspect() made once; the file holds the same.
+    EXPECT_EQ(r, nlohmann::json::parse(result.report_json));
+    ASSERT_EQ(r["inputs"].size(), 1u);
+    EXPECT_EQ(r["inputs"][0]["sha256"], sha256_file(dir / "ref.ply"));
+    EXPECT_EQ(r["inputs"][0]["sha256"].get<std::string>().size(), 64u);
+    EXPECT_EQ(r["device"]["backend"], "embree");
+    EXPECT_FALSE(r["device"]["name"].get<std::string>().empty());
+    const auto& sweep = r["analysis"]["sweep"];
+    EXPECT_EQ(sweep["plan"], "rotary");
+    EXPECT_EQ(r["plan"]["views"], 16);
+    EXPECT_EQ(sweep["elevations"], nlohmann::json({-30.0, 30.0}));
+    EXPECT_EQ(sweep["supersample"], 2);
+    EXPECT_EQ(sweep["backend"], "embree");
+    EXPECT_DOUBLE_EQ(sweep["max_incidence"].get<double>(), 70.0);
+    EXPECT_TRUE(r["analysis"]["threshold"]["deg"].is_null());  // the noise floor decided
+    EXPECT_EQ(r["analysis"]["registration"]["mode"], "identity");
+    EXPECT_EQ(r["metric"]["name"], "angle");
+    ASSERT_EQ(r["zooms"].size(), 1u);
+    const auto& z = r["zooms"][0];
+    EXPECT_GT(z["threshold_deg"].get<double>(), 0.0);
+    EXPECT_EQ(z["normal_floor"]["value"], z["threshold_deg"]);
+    EXPECT_FALSE(z["normal_floor"]["rule"].get<std::string>().empty());
+    EXPECT_FALSE(z["rule_text"].get<std::string>().empty());
+    EXPECT_GT(z["coverage"].get<double>(), 0.5);
+    ASSERT_EQ(z["regions"].size(), 1u) << z["regions"].dump();
+    EXPECT_EQ(z["regions"][0]["kind"], "dent");
+    // The histogram counts every seen vertex once.
+    const auto counts = z["histogram"]["counts"].get<std::vector<std::size_t>>();
+    EXPECT_GT(std::accumulate(counts.begin(), counts.end(), std::size_t{0}),
+              ref.vertex_count() / 2);
+    EXPECT_EQ(r["views"].size(), 16u);
+    EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);
+}
+
+// --atlas-formats / ExportOptions::atlas_files: a list of the three names, each at most once.
+TEST(AtlasFiles, ParsesAListAndRefusesUnknownRepeatedAndEmpty) {
+    const AtlasFiles two = parse_atlas_files("vtp,ply", "--atlas-formats");
+    EXPECT_TRUE(two.ply);
+    EXPECT_FALSE(two.vtk);
+    EXPECT_TRUE(two.vtp);
+    EXPECT_EQ(to_string(two), "ply,vtp");
+    EXPECT_EQ(to_string(AtlasFiles{}), "ply,vtk,vtp");
+    for (const char* bad : {"ply,stl", "vtk,vtk", "", "ply,", " ply"}) {
+        try {
+            (void)parse_atlas_files(bad, "--atlas-formats");
+            ADD_FAILURE() << "accepted \"" << bad << "\"";
+        } catch (const OptionError& e) {
+            EXPECT_NE(std::string(e.what()).find("--atlas-formats"), std::string::npos) << e.what();
+        }
+    }
+    ExportOptions none;
+    none.atlas_files = AtlasFiles{.ply = false, .vtk = false, .vtp = false};
+    EXPECT_THROW(none.validate(), OptionError);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,179 @@
+#include "scenario/scenario.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each test writes into a folder of its own: CTest runs the tests of this file as parallel
+// processes, and a shared bad.toml was rewritten by one while another read it (a CI failure).
+fs::path write_scenario(const std::string& name, const std::string& text) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "scenarios" /
+                         ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    fs::create_directories(dir);
+    const fs::path p = dir / (name + ".toml");
+    std::ofstream(p) << text;
+    return p;
+}
+
+constexpr const char* kValid = R"(
+name = "dent"
+tags = ["ci"]
+[reference]
+phantom = "sphere"
+scheme = "ico"
+resolution = 4
+size = 10.0
+[examined]
+scheme = "uv"
+resolution = 40
+pose = [2.0, 0.0, 1.0, 0.1, 0.0, 0.0]
+[[damage]]
+kind = "dent"
+center = [10.0, 0.0, 0.0]
+radius = 3.0
+depth = 0.5
+[sweep]
+azimuth_step = 45
+elevations = [-30, 30]
+zoom = [0.2]
+[threshold]
+deg = 4
+[expect]
+regions = 1
+min_iou = 0.8
+)";
+
+// Expects an InputError whose message holds every fragment.
+void expect_error(const std::string& text, std::initializer_list<const char*> fragments) {
+    const fs::path p = write_scenario("bad", text);
+    try {
+        (void)load_scenario(p, {});
+        FAIL() << "expected InputError for:\n" << text;
+    } catch (const InputError& e) {
+        const std::string msg = e.what();
+        for (const char* f : fragments) EXPECT_NE(msg.find(f), std::string::npos) << msg;
+    }
+}
+
+TEST(LoadScenario, ReadsEverySection) {
+    const Scenario sc = load_scenario(write_scenario("valid", kValid), {});
+    EXPECT_EQ(sc.name, "dent");
+    ASSERT_TRUE(sc.reference.phantom);
+    EXPECT_EQ(sc.reference.phantom->kind, PhantomKind::Sphere);
+    ASSERT_TRUE(sc.examined.phantom);
+    EXPECT_EQ(sc.examined.phantom->scheme, TessellationScheme::Uv);
+    EXPECT_EQ(sc.examined.phantom->resolution, 40);
+    EXPECT_DOUBLE_EQ(sc.examined.phantom->radii.x(), 10.0);  // inherited from the reference
+    ASSERT_EQ(sc.damages.size(), 1u);
+    EXPECT_EQ(sc.damages[0].kind, DamageKind::Dent);
+    EXPECT_DOUBLE_EQ(sc.damages[0].depth, 0.5);
+    EXPECT_NEAR(rotation_angle_deg(sc.pose), std::hypot(2.0, 1.0), 0.05);
+    EXPECT_EQ(sc.analysis.sweep.plan.elevations_deg.size(), 2u);
+    ASSERT_TRUE(sc.analysis.decision.threshold);
+    EXPECT_DOUBLE_EQ(*sc.analysis.decision.threshold, 4.0);
+    EXPECT_EQ(sc.analysis.fit.mode, FitMode::Register);  // a scenario registers by default
+    EXPECT_EQ(sc.expect.regions, 1u);
+}
+
+TEST(LoadScenario, RejectsATypoedKeyNamingItsLine) {
+    std::string text = kValid;
+    text.replace(text.find("radius = 3.0"), 12, "raduis = 3.0");
+    expect_error(text, {"bad.toml", "line 16", "damage[0].raduis", "unknown key"});
+}
+
+TEST(LoadScenario, RejectsAWrongType) {
+    std::string text = kValid;
+    text.replace(text.find("azimuth_step = 45"), 17, "azimuth_step = \"45\"");
+    expect_error(text, {"sweep.azimuth_step", "expected a number", "found a string"});
+}
+
+TEST(LoadScenario, AnInvalidOptionNamesTheFileLineAndKey) {
+    // Checked by AnalysisOptions::validate (the one check the command line runs too), and
+    // placed by its key: before any mesh is built.
+    std::string text = kValid;
+    text.replace(text.find("azimuth_step = 45"), 17, "azimuth_step = 400");
+    expect_error(text, {"bad.toml", "line ", "sweep.azimuth_step = 400", "(0, 360]"});
+    std::string loss = kValid;
+    loss.replace(loss.find("[sweep]"), 7, "[registration]\nloss = \"bisquare\"\n\n[sweep]");
+    expect_error(loss, {"bad.toml", "registration.loss", "bisquare"});
+}
+
+TEST(LoadScenario, RejectsANegativeSize) {
+    std::string text = kValid;
+    text.replace(text.find("depth = 0.5"), 11, "depth = -0.5");
+    expect_error(text, {"damage[0].depth", "must be > 0"});
+}
+
+TEST(LoadScenario, RejectsAMissingReference) {
+    expect_error("name = \"x\"\n", {"reference", "missing"});
+}
+
+TEST(LoadScenario, ReportsTomlSyntaxErrorsWithTheLine) {
+    expect_error("name = \"x\"\n[reference\nphantom = 1\n", {"bad.toml", "line 2"});
+}
+
+TEST(LoadScenario, MissingFileIsAnIoError) {
+    EXPECT_THROW((void)load_scenario("/nonexistent/scenario.toml", {}), IoError);
+}
+
+TEST(ReadNpyMask, ReadsBooleanVectorAndRejectsOtherFiles) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
+    fs::create_directories(dir);
+    // A v1.0 header padded so that the data starts at byte 128, as NumPy aligns it.
+    std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (5,), }";
+    header.append(128 - 10 - header.size() - 1, ' ');
+    header += '\n';
+    std::string file = std::string("\x93NUMPY\x01\x00", 8);
+    file += static_cast<char>(header.size() & 0xFF);
+    file += static_cast<char>(header.size() >> 8);
+    file += header;
+    file += std::string("\x01\x00\x00\x01\x01", 5);
+    write_file_atomically(dir / "mask.npy", file);
+    EXPECT_EQ(read_npy_mask(dir / "mask.npy"), (std::vector<std::uint8_t>{1, 0, 0, 1, 1}));
+    write_file_atomically(dir / "short.npy", file.substr(0, file.size() - 2));
+    EXPECT_THROW((void)read_npy_mask(dir / "short.npy"), InputError);
+    write_file_atomically(dir / "text.npy", "hello world, not numpy");
+    EXPECT_THROW((void)read_npy_mask(dir / "text.npy"), InputError);
+}
+
+TEST(ReadNpyMask, RefusesLyingLengthsBeforeAllocating) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "npy";
+    fs::create_directories(dir);
+    auto expect_refused = [&](const std::string& name, const std::string& bytes,
+                              const std::string& says) {
+        write_file_atomically(dir / name, bytes);
+        try {
+            (void)read_npy_mask(dir / name);
+            ADD_FAILURE() << name << " was read";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+        }
+    };
+    // A v2.0 header claiming 4 GiB, in a file of 20 bytes.
+    expect_refused("huge_header.npy",
+                   std::string("\x93NUMPY\x02\x00\xff\xff\xff\xff", 12) + "{'descr'",
+                   "exceeds the file");
+    // A shape of 10^18 values (and one that does not parse) in a file of 128 bytes.
+    for (const std::string shape : {"1000000000000000000", "x"}) {
+        std::string header =
+            "{'descr': '|b1', 'fortran_order': False, 'shape': (" + shape + ",), }";
+        header.append(128 - 10 - header.size() - 1, ' ');
+        header += '\n';
+        std::string file = std::string("\x93NUMPY\x01\x00", 8);
+        file += static_cast<char>(header.size() & 0xFF);
+        file += static_cast<char>(header.size() >> 8);
+        expect_refused("huge_shape.npy", file + header + "\x01", "the file holds 1");
+    }
+}
+
+}  // namespace
+}  // namespace glint
