@@ -5,6 +5,7 @@
 #include "mesh/units.h"
 #include "mesh/version.h"
 #include "mesh/write.h"
+#include "report/detail/options_json.h"
 #include "report/images.h"
 #include "report/pictures.h"
 #include "report/report_html.h"
@@ -290,7 +291,7 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
           {"warnings", s.renderer.warnings},
           {"compare_on", s.on_gpu ? "gpu" : "cpu"},
           {"compare_note", s.accumulation_note}}},
-        {"analysis", json::parse(to_json(options.analysis, options.exports))},
+        {"analysis", detail::options_object(options.analysis, options.exports)},
         {"metric",
          {{"name", std::string(m.name)},
           {"unit", std::string(m.unit)},
