@@ -57,7 +57,8 @@ RenderContextStats render_context_stats() {
     return RenderContextStats{.contexts = c.contexts.load(),
                               .vulkan_instances = c.vulkan_instances.load(),
                               .vulkan_devices = c.vulkan_devices.load(),
-                              .embree_devices = c.embree_devices.load()};
+                              .embree_devices = c.embree_devices.load(),
+                              .embree_scenes = c.embree_scenes.load()};
 }
 
 namespace {

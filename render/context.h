@@ -11,6 +11,7 @@
 // serialised inside the context); one renderer is still used by one thread at a time.
 #pragma once
 
+#include "mesh/surface_index.h"
 #include "render/frame.h"
 
 #include <cstddef>
@@ -65,6 +66,11 @@ struct FrameOptions {
     /// in its triangle (Frame::barycentric), for pictures that interpolate per-vertex values.
     /// Ignored by the GPU and at s > 1 (the frame's barycentric stays empty).
     bool barycentrics = false;
+    /// CPU ray casting (Embree) casts its rays into this BVH of the mesh, built already and
+    /// shared with the run's other users of the surface (mesh/surface_index.h), instead of
+    /// building its own. Ignored by the GPU and with cull_back_faces (which filters hits).
+    /// \pre it indexes the renderer's mesh.
+    std::shared_ptr<const SurfaceIndex> surface_index;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -80,6 +86,7 @@ struct RenderContextStats {
     std::size_t vulkan_instances = 0;  ///< including list_devices()'s
     std::size_t vulkan_devices = 0;
     std::size_t embree_devices = 0;
+    std::size_t embree_scenes = 0;  ///< BVHs the Embree renderers built of their own
 };
 [[nodiscard]] RenderContextStats render_context_stats();
 

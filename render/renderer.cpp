@@ -185,6 +185,9 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
     FrameOptions frame = options_.frame_options();
     frame.share_mesh = options.share_mesh && source == &mesh;  // never a copy made here
     frame.barycentrics = options.barycentrics;
+    // The surface's shared BVH indexes the mesh as given, not a copy with computed normals
+    // (the same positions and triangles either way).
+    frame.surface_index = options.surface_index;
     backend_ = context_->impl().make_backend(*source, frame);
 }
 

@@ -85,6 +85,9 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     } else if (options.exports.keep_atlas) {
         out.atlas = make_atlas_mesh(reference, out.analysis);
     }
+    // The reference's BVH served the pictures; a caller that keeps the result (Python) does
+    // not keep it too.
+    out.analysis.reference_index.reset();
     out.export_seconds = seconds_since(t);
     out.total_seconds = seconds_since(t_start);
     return out;

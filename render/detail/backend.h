@@ -81,6 +81,7 @@ struct CreationCounters {
     std::atomic<std::size_t> vulkan_instances{0};
     std::atomic<std::size_t> vulkan_devices{0};
     std::atomic<std::size_t> embree_devices{0};
+    std::atomic<std::size_t> embree_scenes{0};
 };
 CreationCounters& creation_counters();
 
