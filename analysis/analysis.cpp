@@ -144,12 +144,15 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     announce(observer, "sweep");
     device.wait();
     sweep_step(reference, fitted, options, observer, result);
-    fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
 
     announce(observer, "decide");
     t = Clock::now();
     decide_step(reference, options, result);
     result.decision_seconds = seconds_since(t);
+    // note: the fitted copy lives through the decision (its regions say which part of it a
+    // decimated copy keeps whole); it is released before the exports, which need the memory.
+    if (observer.fitted) observer.fitted(fitted, result);
+    fitted = Mesh{};
     result.swap_hint = swap_hint(reference, examined_area, result);
     if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 
