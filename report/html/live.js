@@ -199,6 +199,7 @@ void main() {
       message.textContent = text;
       message.hidden = false;
       $("live-viewer").classList.add("unavailable");
+      $("live-stage").classList.add("unavailable");
       return api;
     }
 
@@ -236,6 +237,11 @@ void main() {
     referenceScene.add(new THREE.Mesh(referenceGeometry, frameMaterial));
     examinedScene.add(new THREE.Mesh(examinedGeometry, frameMaterial));
     const shownTriangles = [page.indices.length / 3, LIVE.examined.shown_triangles];
+    // What the page's copies are of a large pair (report/report_html.h: each surface above the
+    // budget is decimated, exact around the regions).
+    const decimated = [[DATA.mesh.triangles, shownTriangles[0], DATA.mesh.shown && DATA.mesh.shown.error, "reference"],
+                       [LIVE.examined.triangles, shownTriangles[1], LIVE.examined.error, "examined"]]
+      .filter((x) => x[1] < x[0]).map((x) => ": " + x[3] + " of " + x[0] + ", within " + fmt(x[2], 2) + " " + UNIT).join(";");
     // A sphere holding both surfaces (for the interactive camera's depth range).
     const bounds = (() => {
       referenceGeometry.computeBoundingSphere();
@@ -411,12 +417,17 @@ void main() {
       let floor = null, floorText = "";
       if (state.metric === "depth") {
         const sf = z.shape_floor ? z.shape_floor.value : DATA.shape_scale.floor;
-        if (sf > 0) { floor = sf; floorText = "shape floor " + fmt(sf) + " " + UNIT; }
+        if (sf > 0) { floor = sf; floorText = "floor " + fmt(sf) + " " + UNIT; }
       } else if (REPORT.metric.name === state.metric && z.normal_floor) {
         floor = z.normal_floor.value;
-        floorText = "normal floor " + fmt(floor) + m.unit;
+        floorText = "floor " + fmt(floor) + m.unit;
       }
-      const high = state.high !== null ? state.high : state.metric === "depth" ? DATA.shape_scale.limit : m.colourMax;
+      // the run's metric: five times its floor, so the floor (the default threshold) sits a fifth
+      // up the scale, in colour against the grey below it; at most the per-view heat maps'
+      // range (scanner/metric.h), which a metric the run did not use gets; the depth: the
+      // pictures' range (report/pictures.h)
+      const high = state.high !== null ? state.high : state.metric === "depth" ? DATA.shape_scale.limit
+        : floor !== null ? Math.min(Math.max(5 * floor, 1e-6), m.colourMax) : m.colourMax;
       return { low: state.metric === "depth" ? -high : 0, high: high, floor: floor, floorText: floorText,
                zoom: zooms.indexOf(z) };
     }
@@ -534,6 +545,7 @@ void main() {
         (state.lastFrameMs ? fmt(state.lastFrameMs, 3) + " ms" : "—") + " to the GPU's end · " + state.paneW + "×" + state.paneH +
         " px per pane · frames " +
         t.s * state.paneW + "×" + t.s * state.paneH + " · " + shownTriangles[0] + " + " + shownTriangles[1] + " triangles" +
+        (decimated ? " (decimated" + decimated + ")" : "") +
         (state.measured ? " · measured " + state.measured : "");
     }
     let statsTimer = null;
@@ -583,7 +595,7 @@ void main() {
         const x = r.high - ((r.high - r.low) * k) / 4;
         put((k * (h - 1)) / 4, (signed && x > 0 ? "+" : "") + fmt(x) + (k === 0 ? " " + unit : ""));
       }
-      if (r.floor !== null) put(((r.high - r.floor) / (r.high - r.low)) * (h - 1), "◀ " + r.floorText + " (zoom " + r.zoom + ")", "floor");
+      if (r.floor !== null) put(((r.high - r.floor) / (r.high - r.low)) * (h - 1), "◀ " + r.floorText + ", zoom " + r.zoom, "floor");
       if (signed) { put(-14, "gain (bump)"); put(h + 12, "loss (dent)"); }
       $("live-legend-title").textContent = m.label;
     }
@@ -659,9 +671,10 @@ void main() {
     }
     function syncThreshold() {
       const r = metricRange(), slider = $("live-threshold");
+      const top = state.metric === "depth" ? r.high : Math.max(r.high, METRICS[state.metric].colourMax);
       slider.min = 0;
-      slider.max = r.high;
-      slider.step = r.high / 400;
+      slider.max = top;
+      slider.step = top / 400;
       slider.value = state.threshold !== null ? state.threshold : r.floor || 0;
       $("live-high").value = Number(fmt(r.high, 4).replace("\u2212", "-"));
     }
