@@ -388,8 +388,8 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     // stage lets the caller hand back what the jobs freed (tools/memory.h): the page's thread
     // frees its decimation buffers into a heap of its own, which stays resident otherwise (2M:
     // 614 instead of 453 MB resident under the pictures).
-    auto page_data =
-        std::async(std::launch::async, [&] { return report_page_data(reference, result, examined); });
+    auto page_data = std::async(std::launch::async,
+                                [&] { return report_page_data(reference, result, examined); });
     std::optional<Mesh> atlas = write_atlas_files(folder, reference, result, exports);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     write_file_atomically(folder.file("report.json"), json_text);

@@ -279,8 +279,8 @@ std::string fill_template(std::string_view page_template,
     return out;
 }
 
-LiveSurface live_examined(const Mesh& fitted, const Mesh& reference,
-                          const AnalysisResult& result, std::size_t max_triangles) {
+LiveSurface live_examined(const Mesh& fitted, const Mesh& reference, const AnalysisResult& result,
+                          std::size_t max_triangles) {
     GLINT_ASSERT(fitted.has_normals(), "live_examined: the fitted mesh has no normals");
     LiveSurface live;
     live.triangles = fitted.triangle_count();

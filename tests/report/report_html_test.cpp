@@ -144,7 +144,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     const auto normals = decode<std::int16_t>(data["mesh"]["normals"]);
     ASSERT_EQ(normals.size(), 3 * ref.vertex_count());
     for (std::size_t v = 0; v < ref.vertex_count(); v += 53)
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(normals[3 * v + c] / 32767.0, ref.normals[v][c], 1.0 / 32767);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(normals[3 * v + c] / 32767.0, ref.normals[v][c], 1.0 / 32767);
 
     // The live view's examined surface: the fitted one (here the identity fit), whole, with its
     // normals, and how the sweep averaged and compared.
@@ -184,8 +185,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     // A mesh above the page's budget is shown decimated: every triangle touching a region kept,
     // the rest collapsed; every vertex shown is an atlas vertex at its place, with its values.
     const std::size_t budget = ref.triangle_count() / 8;
-    const nlohmann::json small =
-        page_data(report_html(ref, result, nullptr, read_text(dir / "atlas" / "report.json"), {}, budget));
+    const nlohmann::json small = page_data(
+        report_html(ref, result, nullptr, read_text(dir / "atlas" / "report.json"), {}, budget));
     EXPECT_EQ(small["mesh"]["triangles"].get<std::size_t>(), ref.triangle_count());
     const auto ids = decode<std::uint32_t>(small["mesh"]["vertex_ids"]);
     const auto shown_positions = decode<float>(small["mesh"]["positions"]);
@@ -226,7 +227,8 @@ TEST(ReportHtml, LiveExaminedSurfaceIsDecimatedAboveTheBudgetKeepingTheDamage) {
         {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
     Mesh exa = make_phantom(
         {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Uv, .resolution = 80});
-    const DamageSpec dent{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.6};
+    const DamageSpec dent{
+        .kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.6};
     apply_damage(exa, {dent});
     InspectOptions inspect_options;
     AnalysisOptions& options = inspect_options.analysis;
