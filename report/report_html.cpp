@@ -2,6 +2,7 @@
 
 #include "mesh/decimate.h"
 #include "mesh/error.h"
+#include "mesh/normals.h"
 #include "report/detail/canvas.h"
 #include "scanner/metric.h"
 
@@ -281,9 +282,16 @@ std::string fill_template(std::string_view page_template,
 
 LiveSurface live_examined(const Mesh& fitted, const Mesh& reference, const AnalysisResult& result,
                           std::size_t max_triangles) {
-    GLINT_ASSERT(fitted.has_normals(), "live_examined: the fitted mesh has no normals");
     LiveSurface live;
     live.triangles = fitted.triangle_count();
+    if (!fitted.has_normals()) {
+        // The normals the renderer made for it (render/renderer.cpp), then as below.
+        Mesh with_normals;
+        with_normals.positions = fitted.positions;
+        with_normals.triangles = fitted.triangles;
+        compute_vertex_normals(with_normals);
+        return live_examined(with_normals, reference, result, max_triangles);
+    }
     if (fitted.triangle_count() <= max_triangles) {
         live.mesh.positions = fitted.positions;
         live.mesh.triangles = fitted.triangles;
@@ -328,8 +336,16 @@ struct ReportPageData::Parts {
     json data;  ///< the page's data without "report" and "images"
 };
 
-ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
+ReportPageData report_page_data(const Mesh& reference_in, const AnalysisResult& result,
                                 const LiveSurface* examined, std::size_t max_triangles) {
+    // The live view renders the reference with the normals the sweep did: analyse() makes
+    // them for a reference without any (analysis/analysis.cpp), and so does the page.
+    std::optional<Mesh> with_normals;
+    if (!reference_in.has_normals()) {
+        with_normals = reference_in;
+        compute_vertex_normals(*with_normals);
+    }
+    const Mesh& reference = with_normals ? *with_normals : reference_in;
     auto parts = std::make_shared<ReportPageData::Parts>();
     json& data = parts->data;
     const ShapeScale scale = shape_scale(result);

@@ -54,9 +54,10 @@ struct LiveSurface {
 };
 
 /// The live view's examined surface from the fitted mesh analyse() hands its observer
-/// (AnalysisObserver::fitted). A triangle is kept whole when one of its vertices lies within
-/// two cells of 1 % of the size from a region vertex of the reference.
-/// \pre fitted has normals; result decided (its decisions set) on `reference`.
+/// (AnalysisObserver::fitted); without normals, with those the renderer makes. A triangle is
+/// kept whole when one of its vertices lies within two cells of 1 % of the size from a region
+/// vertex of the reference.
+/// \pre result decided (its decisions set) on `reference`.
 [[nodiscard]] LiveSurface live_examined(const Mesh& fitted, const Mesh& reference,
                                         const AnalysisResult& result,
                                         std::size_t max_triangles = kReportPageTriangles);

@@ -221,7 +221,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
 
 // Above the budget the live view's examined surface is decimated: at most about the budget
 // beyond the triangles kept near the regions, every vertex one of the fitted mesh's with its
-// normal, and the dent (the region's surface on the examined side) kept whole.
+// normal, and the dent (the region's surface on the examined side) kept whole. Surfaces given
+// without normals get the ones the sweep rendered with.
 TEST(ReportHtml, LiveExaminedSurfaceIsDecimatedAboveTheBudgetKeepingTheDamage) {
     const Mesh ref = make_phantom(
         {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
@@ -270,6 +271,20 @@ TEST(ReportHtml, LiveExaminedSurfaceIsDecimatedAboveTheBudgetKeepingTheDamage) {
             EXPECT_TRUE(shown[v]) << "dent vertex " << v << " was collapsed";
         }
     EXPECT_GT(in_dent, 50u);
+
+    // Meshes without normals get those the renderer and analyse() make (angle-weighted).
+    Mesh bare_exa{.positions = exa.positions, .triangles = exa.triangles};
+    const LiveSurface made = live_examined(bare_exa, ref, result);
+    ASSERT_TRUE(made.mesh.has_normals());
+    for (std::size_t v = 0; v < exa.vertex_count(); v += 97)
+        EXPECT_LT((made.mesh.normals[v] - exa.normals[v]).norm(), 1e-5f) << "vertex " << v;
+    const Mesh bare_ref{.positions = ref.positions, .triangles = ref.triangles};
+    const nlohmann::json page = page_data(report_html(bare_ref, result, nullptr, "{}", {}));
+    const auto ref_normals = decode<std::int16_t>(page["mesh"]["normals"]);
+    ASSERT_EQ(ref_normals.size(), 3 * ref.vertex_count());
+    for (std::size_t v = 0; v < ref.vertex_count(); v += 97)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ref_normals[3 * v + c] / 32767.0, ref.normals[v][c], 2.0 / 32767);
     EXPECT_LT(live.mesh.triangle_count(), budget + 6 * in_dent + budget / 2);
     EXPECT_LT(live.mesh.triangle_count(), exa.triangle_count() / 2);
 }
