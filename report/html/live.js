@@ -330,7 +330,9 @@ void main() {
     }
 
     // ---- the interactive view ---------------------------------------------------------------------
-    const state = { layout: "side", shading: "normal", metric: "angle", supersample: LIVE.supersample || 2,
+    // the difference shown first: the run's metric, whose floors the run measured
+    const state = { layout: "side", shading: "normal", metric: METRICS[REPORT.metric.name] ? REPORT.metric.name : "angle",
+                    supersample: LIVE.supersample || 2,
                     threshold: null, high: null, spin: false, dirty: true, targets: null, panes: [], frames: [],
                     lastFrameMs: 0, stats: null };
     const camera = new THREE.OrthographicCamera(-1, 1, 1, -1, 0.01 * radius, 10 * radius);
@@ -373,7 +375,8 @@ void main() {
       state.dirty = true;
       requestFrame();
     }
-    function resetView() { lookFrom(-60, 25, 2.0 * radius * 1.05 / Math.max(1, state.paneH)); }
+    // The atlas view's direction, the framed sphere filling the pane's narrower side.
+    function resetView() { lookFrom(-60, 25, (2.0 * radius * 1.05) / Math.max(1, Math.min(state.paneW, state.paneH))); }
 
     // Pane rectangles (device pixels, GL's lower-left origin) for the layout; every pane one size.
     function layout() {
@@ -428,8 +431,11 @@ void main() {
       // pictures' range (report/pictures.h)
       const high = state.high !== null ? state.high : state.metric === "depth" ? DATA.shape_scale.limit
         : floor !== null ? Math.min(Math.max(5 * floor, 1e-6), m.colourMax) : m.colourMax;
+      // no floor for this metric (the run measured another): the threshold starts at a tenth
+      // of the range, and the legend says so
+      const threshold = floor !== null ? floor : 0.1 * high;
       return { low: state.metric === "depth" ? -high : 0, high: high, floor: floor, floorText: floorText,
-               zoom: zooms.indexOf(z) };
+               threshold: threshold, zoom: zooms.indexOf(z) };
     }
 
     function display() {
@@ -442,7 +448,7 @@ void main() {
       u.metric.value = METRICS[state.metric].index;
       u.low.value = r.low;
       u.high.value = r.high;
-      u.threshold.value = state.threshold !== null ? state.threshold : r.floor || 0;
+      u.threshold.value = state.threshold !== null ? state.threshold : r.threshold;
       // a light from the viewer's upper left, as the pictures' (report/pictures.h)
       const right = new THREE.Vector3(), up = new THREE.Vector3(), back = new THREE.Vector3();
       camera.matrixWorld.extractBasis(right, up, back);
@@ -557,7 +563,7 @@ void main() {
     // the largest value (read back once the view rests, not every frame).
     function computeStats() {
       const d = readTopFirst(state.targets.difference), m = METRICS[state.metric].index;
-      const r = metricRange(), thr = state.threshold !== null ? state.threshold : r.floor || 0;
+      const r = metricRange(), thr = state.threshold !== null ? state.threshold : r.threshold;
       let compared = 0, over = 0, max = 0, missing = 0;
       for (let i = 0; i < d.length; i += 4) {
         if (d[i + 3] === 2) ++missing;
@@ -581,7 +587,7 @@ void main() {
       const bar = $("live-legend-bar"), ctx = bar.getContext("2d"), ticks = $("live-legend-ticks"), h = bar.height;
       const m = METRICS[state.metric], signed = state.metric === "depth";
       const knots = signed ? DATA.colormaps.diverging : DATA.colormaps.sequential;
-      const thr = state.threshold !== null ? state.threshold : r.floor || 0;
+      const thr = state.threshold !== null ? state.threshold : r.threshold;
       for (let y = 0; y < h; ++y) {
         const x = r.high - ((r.high - r.low) * y) / (h - 1);
         const c = Math.abs(x) < thr ? [0.5, 0.5, 0.5] : page.knotColour(knots, (x - r.low) / (r.high - r.low));
@@ -596,6 +602,7 @@ void main() {
         put((k * (h - 1)) / 4, (signed && x > 0 ? "+" : "") + fmt(x) + (k === 0 ? " " + unit : ""));
       }
       if (r.floor !== null) put(((r.high - r.floor) / (r.high - r.low)) * (h - 1), "◀ " + r.floorText + ", zoom " + r.zoom, "floor");
+      else if (state.threshold === null) put(((r.high - r.threshold) / (r.high - r.low)) * (h - 1), "◀ no floor: the run measured " + REPORT.metric.name, "floor");
       if (signed) { put(-14, "gain (bump)"); put(h + 12, "loss (dent)"); }
       $("live-legend-title").textContent = m.label;
     }
@@ -605,6 +612,7 @@ void main() {
     function buildControls() {
       [1, 2, 3, 4, 6, 8].forEach((s) => option($("live-supersample"), s, s + "×" + s + (s === LIVE.supersample ? " (the run's)" : "")));
       $("live-supersample").value = String(state.supersample);
+      $("live-metric").value = state.metric;
       const go = $("live-goto");
       option(go, "", "— a view of the run —");
       zooms.forEach((z, k) => (z.regions || []).forEach((r) => {
@@ -675,7 +683,7 @@ void main() {
       slider.min = 0;
       slider.max = top;
       slider.step = top / 400;
-      slider.value = state.threshold !== null ? state.threshold : r.floor || 0;
+      slider.value = state.threshold !== null ? state.threshold : r.threshold;
       $("live-high").value = Number(fmt(r.high, 4).replace("\u2212", "-"));
     }
     function jumpToView(index) {

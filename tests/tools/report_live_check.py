@@ -11,7 +11,9 @@ loaded from disk (file://…/report.html#selftest) and fails (exit 1, reasons li
   - the angle the page computes for a sweep view, rendered again in the browser at the
     view's azimuth, elevation, footprint, size and averaging (glintLive.measure), differs from
     the view's EXR (angle_deg, read with oiiotool) by 1° or more at the dent's strongest pixel
-    or at more than 2 % of the dent's pixels (those where glint measured ≥ 1°);
+    or at more than 2 % of the dent's pixels (those where glint measured ≥ 1°); the paper's
+    |RGB| difference (the sweep's metric there) by more than 8-bit rounding, or the signed
+    depth by more than 1e-4 mm;
   - zooming out past the dent does not make it fade: the largest angle of the view facing the
     dent must fall from zoom to zoom, and at the coarsest be below a third of the finest's, in
     glint's EXRs and in the page alike;
@@ -123,8 +125,28 @@ def stem(view):
     return "z%d_az%05.1f_el%+05.1f" % (view["zoom"], view["azimuth_deg"], view["elevation_deg"])
 
 
+def compare_other_metrics(name, live, exr_path, both, problems):
+    """The page's |RGB| difference and signed depth against the EXR's, where both compared."""
+    _, _, rgb = exr_channel(exr_path, "rgb_rgb")
+    _, _, depth = exr_channel(exr_path, "signed_depth")
+    # note: 8-bit rounding of 0.5·n + 0.5 from float normals resolved in two orders: a channel
+    # on a rounding edge may move by 1 of 255 on one side, the mean of three by 1/3.
+    rgb_off = [i for i in both if abs(live["rgb"][i] - rgb[i]) > 0.34]
+    # note: 1e-4 mm: float depths of a 20 mm scene differ by a few 1e-6 mm.
+    depth_diffs = [abs(live["depth"][i] - depth[i]) for i in both]
+    print(f"{name}: |RGB| difference: {len(rgb_off)} of {len(both)} pixels off by more than 1/3 "
+          f"(largest glint {max(rgb[i] for i in both):.2f}, page {max(live['rgb'][i] for i in both):.2f}); "
+          f"signed depth: largest |page − glint| {max(depth_diffs):.2e} mm "
+          f"(deepest glint {min(depth[i] for i in both):.4f} mm, page {min(live['depth'][i] for i in both):.4f} mm)")
+    if len(rgb_off) > 0.001 * len(both):
+        problems.append(f"{name}: |RGB| difference off by more than 1/3 at {len(rgb_off)} of {len(both)} pixels")
+    if max(depth_diffs) > 1e-4:
+        problems.append(f"{name}: signed depth differs from glint's by up to {max(depth_diffs):.2e} mm")
+
+
 def compare_with_exr(name, live, exr_path, problems):
-    """The page's angles against the view's EXR, pixel by pixel. Returns both maxima."""
+    """The page's angles (and the other metrics) against the view's EXR, pixel by pixel.
+    Returns both largest angles."""
     w, h, glint = exr_channel(exr_path, "angle_deg")
     if (w, h) != (live["width"], live["height"]):
         problems.append(f"{name}: EXR {w}x{h}, page {live['width']}x{live['height']}")
@@ -152,6 +174,7 @@ def compare_with_exr(name, live, exr_path, problems):
         problems.append(f"{name}: {len(off)} of {len(dent)} dent pixels differ from glint by ≥ 1°")
     if only > 0.01 * max(1, len(both)):
         problems.append(f"{name}: {only} pixels compared by one side only ({len(both)} by both)")
+    compare_other_metrics(name, live, exr_path, both, problems)
     return glint_max, page_max
 
 

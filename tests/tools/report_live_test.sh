@@ -4,7 +4,8 @@
 # computes with glint's own per-view numbers:
 #   - a sphere (radius 10 mm) and the same sphere with a 0.3 mm dent of 1.5 mm radius, three
 #     zooms (0.1, 1 and 4 mm/px: the last wider than the dent), s = 8, per-view EXRs: the
-#     page's angle per pixel against the EXR's, and the dent fading as the zoom coarsens, in both;
+#     page's angle, |RGB| difference (the paper's metric, the sweep's here) and signed depth per
+#     pixel against the EXR's, and the dent fading as the zoom coarsens, in both;
 #   - an undamaged sphere against the same sphere tessellated otherwise (icosphere against a
 #     latitude/longitude grid): the page's angles ~0 and their mean glint's;
 #   - the first page again with WebGL2 switched off: the live view says so, the atlas works.
@@ -36,7 +37,7 @@ mkdir -p "$work"
     --damage "dent:center=10,0,0 radius=1.5 depth=0.3" -o "$work/dent.ply"
 "$glint" --quiet phantom sphere --size 10 --scheme uv --resolution 96 -o "$work/uv.ply"
 "$glint" --quiet sweep "$work/ico.ply" "$work/dent.ply" --unit mm --zoom 0.1,1,4 --supersample 8 \
-    --azimuth-step 90 --elevations 0 --exr --no-views -o "$work/dent"
+    --metric rgb --azimuth-step 90 --elevations 0 --exr --no-views -o "$work/dent"
 "$glint" --quiet sweep "$work/ico.ply" "$work/uv.ply" --unit mm --size 128 --azimuth-step 90 \
     --elevations -30,30 --no-views -o "$work/retessellated"
 "$python" "$here/report_live_check.py" "$chromium" "$work" "$work/dent" "$work/retessellated"
