@@ -169,10 +169,10 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
         surfaces = {reference_index, examined_index};
     }
     sweep_step(reference, fitted, options, observer, surfaces, result);
-    // The fitted copy and its BVH are not needed after the sweep (memory for the exports).
+    // The examined BVH is not needed after the sweep (memory for the exports); the fitted copy
+    // itself lives through the decision (below).
     surfaces = {};
     examined_index.reset();
-    fitted = Mesh{};
     if (reference.triangle_count() <= kKeptIndexTriangles)
         result.reference_index = std::move(reference_index);
 
@@ -180,6 +180,10 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     t = Clock::now();
     decide_step(reference, options, result);
     result.decision_seconds = seconds_since(t);
+    // note: the fitted copy lives through the decision (its regions say which part of it a
+    // decimated copy keeps whole); it is released before the exports, which need the memory.
+    if (observer.fitted) observer.fitted(fitted, result);
+    fitted = Mesh{};
     result.swap_hint = swap_hint(reference, examined_area, result);
     if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 

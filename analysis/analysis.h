@@ -82,6 +82,11 @@ struct AnalysisObserver {
     /// Each view's deviation map while it is valid (per-view exports); on the GPU path the map
     /// is empty (scanner/sweep.h ViewObserver).
     ViewObserver view;
+    /// The fitted examined mesh (reference coordinates, with the vertex normals the sweep
+    /// rendered) and the result with its decisions, once decided and just before analyse()
+    /// releases the mesh: report.html keeps a decimated copy for its live view
+    /// (report/report_html.h live_examined).
+    std::function<void(const Mesh& fitted, const AnalysisResult& result)> fitted;
 };
 
 /// Runs the pipeline. The reference must have vertex normals (loaded meshes do). The examined
