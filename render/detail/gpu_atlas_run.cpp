@@ -161,15 +161,36 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
     };
     if (slot.timestamps != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 4);
     stamp(0);
-    // The frames: the render pass's dependencies order the colour writes before the passes'
-    // imageLoad, and the previous view's reads of these targets before the clear.
-    const VkPipelineLayout graphics_layout = device_->layout();
-    record_normal_pass(cmd, pipelines_->render_pass, slot.reference.framebuffer, slot.width,
-                       slot.height, pipelines_->graphics[reference_.cull_back_faces ? 1 : 0],
-                       graphics_layout, reference_.buffers, view);
-    record_normal_pass(cmd, pipelines_->render_pass, slot.examined.framebuffer, slot.width,
-                       slot.height, pipelines_->graphics[examined_.cull_back_faces ? 1 : 0],
-                       graphics_layout, examined_.buffers, view);
+    if (raster_ != nullptr) {
+        // The frames in compute: the previous view's passes read these targets (earlier), this
+        // view's read them next (later).
+        const std::array<RasterJob, 2> jobs{{
+            {.target = &slot.reference.raster,
+             .mesh = &reference_.buffers,
+             .normal_depth = slot.reference.normal_depth.image,
+             .primitive = slot.reference.primitive.image,
+             .cull_back_faces = reference_.cull_back_faces},
+            {.target = &slot.examined.raster,
+             .mesh = &examined_.buffers,
+             .normal_depth = slot.examined.normal_depth.image,
+             .primitive = slot.examined.primitive.image,
+             .cull_back_faces = examined_.cull_back_faces},
+        }};
+        record_compute_normal_passes(cmd, *raster_, jobs, slot.width, slot.height, view,
+                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                     VK_ACCESS_SHADER_READ_BIT);
+    } else {
+        // The frames: the render pass's dependencies order the colour writes before the
+        // passes' imageLoad, and the previous view's reads of these targets before the clear.
+        const VkPipelineLayout graphics_layout = device_->layout();
+        record_normal_pass(cmd, pipelines_->render_pass, slot.reference.framebuffer, slot.width,
+                           slot.height, pipelines_->graphics[reference_.cull_back_faces ? 1 : 0],
+                           graphics_layout, reference_.buffers, view);
+        record_normal_pass(cmd, pipelines_->render_pass, slot.examined.framebuffer, slot.width,
+                           slot.height, pipelines_->graphics[examined_.cull_back_faces ? 1 : 0],
+                           graphics_layout, examined_.buffers, view);
+    }
     stamp(1);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout, 0, 1,
                             &slot.set, 0, nullptr);
