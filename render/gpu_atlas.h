@@ -67,6 +67,10 @@ struct GpuAtlasOptions {
     double framed_radius = 1.0;
     /// Atlases kept: View::zoom_index selects one, 0 … zoom_count − 1.
     int zoom_count = 1;
+    /// Views submitted ahead of the one whose summary is awaited (1..8), each with its own
+    /// targets: more hide the host's latency between views at the cost of target memory
+    /// ((8 + 20) bytes per sub-sample and mesh per view with the compute rasteriser).
+    int in_flight = 2;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -81,6 +85,14 @@ struct GpuAtlasTimings {
     double render_s = 0.0;    ///< both normal passes
     double pixels_s = 0.0;    ///< atlas_pixels.comp: resolve, compare, scatter
     double vertices_s = 0.0;  ///< atlas_vertices.comp: gather, fold
+    /// Wall time of the last read_totals(): the copy to host memory (submit to fence) and the
+    /// conversion into AtlasTotals (host clock, measured whether or not timestamps are).
+    double totals_copy_s = 0.0;
+    double totals_convert_s = 0.0;
+    /// Host wall time of the last run() waiting for views' fences, and the rest of it (view
+    /// parameters, recording, submission, timestamps, the consumer).
+    double host_wait_s = 0.0;
+    double host_work_s = 0.0;
 };
 
 /// Called in view order after the device finished a view: its index in the span given to
@@ -113,7 +125,7 @@ class GpuAtlas {
     GpuAtlas(const GpuAtlas&) = delete;
     GpuAtlas& operator=(const GpuAtlas&) = delete;
 
-    /// Clears the accumulators, then renders and folds every view (two in flight), handing
+    /// Clears the accumulators, then renders and folds every view (in_flight at a time), handing
     /// each view's summary to `consumer` in order. View::index is the view id recorded in
     /// max_view / best_view; View::zoom_index selects the atlas.
     /// \throw InputError a view's size or zoom; DeviceError; whatever the consumer throws.

@@ -276,10 +276,10 @@ class VulkanBackend final : public RenderBackend {
         barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT |
                                 VK_ACCESS_SHADER_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_VERTEX_INPUT_BIT |
-                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                             0, 1, &barrier, 0, nullptr, 0, nullptr);
+        vkCmdPipelineBarrier(
+            cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+            &barrier, 0, nullptr, 0, nullptr);
         GLINT_VK_CHECK(vkEndCommandBuffer(cmd));
         device_->submit(cmd, slots_[0].fence);
         GLINT_VK_CHECK(vkWaitForFences(dev, 1, &slots_[0].fence, VK_TRUE, UINT64_MAX));
@@ -309,9 +309,9 @@ class VulkanBackend final : public RenderBackend {
             make_raster_target(dev, phys, slot.raster, slot.raster_set, mesh_, w, h,
                                slot.normal.view, slot.id.view);
         } else {
-            slot.depth = make_image(dev, phys, w, h, kDepthFormat,
-                                    VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                                    VK_IMAGE_ASPECT_DEPTH_BIT);
+            slot.depth =
+                make_image(dev, phys, w, h, kDepthFormat,
+                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
             std::array<VkImageView, 3> views{slot.normal.view, slot.id.view, slot.depth.view};
             VkFramebufferCreateInfo fb{};
             fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
@@ -352,7 +352,7 @@ class VulkanBackend final : public RenderBackend {
                                 .primitive = slot.id.image,
                                 .cull_back_faces = options_.cull_back_faces};
             record_compute_normal_passes(cmd, *raster_, {&job, 1}, slot.width, slot.height, view,
-                                         VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                         VK_PIPELINE_STAGE_TRANSFER_BIT, {},
                                          VK_PIPELINE_STAGE_TRANSFER_BIT,
                                          VK_ACCESS_TRANSFER_READ_BIT);
             layout = VK_IMAGE_LAYOUT_GENERAL;
@@ -388,7 +388,7 @@ class VulkanBackend final : public RenderBackend {
     bool compute_ = false;                  // Raster::Compute: the compute rasteriser's passes
     const RasterPipelines* raster_ = nullptr;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;  // the slots' raster sets
-    VulkanMesh vulkan_mesh_;                // what the GPU atlas draws and reads
+    VulkanMesh vulkan_mesh_;                             // what the GPU atlas draws and reads
     std::array<Slot, kSlots> slots_{};
     std::deque<std::size_t> pending_;  // slots in submission order
     std::size_t next_slot_ = 0;

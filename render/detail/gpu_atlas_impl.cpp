@@ -32,6 +32,7 @@ GpuAtlasImpl::GpuAtlasImpl(const VulkanMesh& reference, const VulkanMesh& examin
       options_(options) {
     // render/renderer.cpp finish_frame: pixels below the frame's min_coverage are uncovered.
     if (frame.min_coverage > 0.0f) mask_threshold_ = frame.min_coverage - 1e-6f;
+    slots_.resize(static_cast<std::size_t>(options.in_flight));
     try {
         pipelines_ = &device_->atlas_pipelines();
         if (device_->raster() == Raster::Compute) raster_ = &device_->raster_pipelines();
@@ -143,7 +144,8 @@ void GpuAtlasImpl::make_target(Target& t, const MeshBuffers& mesh, int width, in
     // rasteriser writes; the atlas's passes read them as storage images either way.
     const VkImageUsageFlags color =
         VK_IMAGE_USAGE_STORAGE_BIT |
-        (raster_ != nullptr ? VkImageUsageFlags{0} : VkImageUsageFlags{VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT});
+        (raster_ != nullptr ? VkImageUsageFlags{0}
+                            : VkImageUsageFlags{VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT});
     t.normal_depth =
         make_image(dev, phys, width, height, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
     t.primitive = make_image(dev, phys, width, height, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
@@ -182,7 +184,7 @@ void GpuAtlasImpl::release() noexcept {
         slot.fence = VK_NULL_HANDLE;
         slot.timestamps = VK_NULL_HANDLE;
     }
-    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_})
+    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_, &staging_})
         destroy_buffer(dev, *b);
     // Destroying the pools frees their command buffers and descriptor sets.
     if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);

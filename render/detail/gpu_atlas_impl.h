@@ -120,7 +120,10 @@ class GpuAtlasImpl {
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     Buffer sums_, words_, scratch_key_, scratch_cos_, pixels_;
-    std::array<Slot, 2> slots_{};
+    // read_totals()'s host-visible copy, made at its first call and kept: a fresh 28 MB
+    // allocation (1M triangles) per sweep is pinned and mapped anew each time.
+    Buffer staging_;
+    std::vector<Slot> slots_;  // GpuAtlasOptions::in_flight
 };
 
 }  // namespace glint::detail

@@ -29,8 +29,7 @@ Raster resolve_raster(Raster asked, const DeviceInfo& info) {
         throw DeviceError("raster = compute: device \"" + info.name + "\" " +
                           info.gpu_atlas_reason + " (the compute rasteriser needs them)");
     if (asked != Raster::Auto) return asked;
-    return info.supports_gpu_atlas && few_graphics_units(info) ? Raster::Compute
-                                                               : Raster::Graphics;
+    return info.supports_gpu_atlas && few_graphics_units(info) ? Raster::Compute : Raster::Graphics;
 }
 
 }  // namespace
@@ -174,8 +173,8 @@ class VulkanContext final : public ContextImpl {
 }  // namespace
 
 std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options,
-                                                 std::string& device_name,
-                                                 std::string& device_type, Raster& raster) {
+                                                 std::string& device_name, std::string& device_type,
+                                                 Raster& raster) {
     auto context = std::make_unique<VulkanContext>(options);
     device_name = context->info().name;
     device_type = context->info().type;

@@ -77,7 +77,7 @@ class VulkanDevice {
     std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
     VkPhysicalDeviceLimits limits_{};
     std::uint32_t timestamp_bits_ = 0;
-    AtlasPipelines atlas_{};    // created by atlas_pipelines() (pipeline_mutex_)
+    AtlasPipelines atlas_{};              // created by atlas_pipelines() (pipeline_mutex_)
     RasterPipelines raster_pipelines_{};  // created by raster_pipelines() (pipeline_mutex_)
     Raster raster_ = Raster::Graphics;
 };

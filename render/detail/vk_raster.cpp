@@ -81,24 +81,23 @@ void make_raster_target(VkDevice device, VkPhysicalDevice physical, RasterTarget
     try {
         const VkDeviceSize samples =
             static_cast<VkDeviceSize>(width) * static_cast<VkDeviceSize>(height);
-        target.visibility = make_buffer(
-            device, physical, samples * 8,
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        target.visibility =
+            make_buffer(device, physical, samples * 8,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
         const VkDeviceSize triangles = mesh.index_count / 3;
-        target.large = make_buffer(device, physical, 16 + 4 * triangles,
-                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                       VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                       VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                                   VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+        target.large =
+            make_buffer(device, physical, 16 + 4 * triangles,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                            VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
     } catch (...) {
         destroy_raster_target(device, target);
         throw;
     }
     target.set = set;
     const std::array<VkBuffer, kRasterStorageBuffers> buffers{
-        mesh.positions, mesh.normals, mesh.indices, target.visibility.buffer,
-        target.large.buffer};
+        mesh.positions, mesh.normals, mesh.indices, target.visibility.buffer, target.large.buffer};
     static_assert(GLINT_RASTER_BINDING_POSITIONS == 0 && GLINT_RASTER_BINDING_NORMALS == 1 &&
                       GLINT_RASTER_BINDING_INDICES == 2 && GLINT_RASTER_BINDING_VISIBILITY == 3 &&
                       GLINT_RASTER_BINDING_LARGE == 4,
@@ -137,7 +136,8 @@ void destroy_raster_target(VkDevice device, RasterTarget& target) noexcept {
 void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pipelines,
                                   std::span<const RasterJob> jobs, int width, int height,
                                   const View& view, VkPipelineStageFlags earlier,
-                                  VkPipelineStageFlags later_stages, VkAccessFlags later_access) {
+                                  std::span<const VkBuffer> zero, VkPipelineStageFlags later_stages,
+                                  VkAccessFlags later_access) {
     const PushConstants normal = normal_push_constants(view);
     RasterPushConstants pc{};
     std::memcpy(pc.clip_from_world, normal.clip_from_world, sizeof(pc.clip_from_world));
@@ -153,8 +153,9 @@ void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pi
     };
 
     // Barrier: the previous frame's passes wrote and read the buffers, and `earlier` read the
-    // images, before the fills and the attribute pass overwrite them; the images' contents are
-    // discarded (UNDEFINED → GENERAL) since the attribute pass writes every sub-sample.
+    // images, before the fills and the attribute pass overwrite them, and what `earlier` wrote
+    // is visible to this frame's passes; the images' contents are discarded (UNDEFINED →
+    // GENERAL) since the attribute pass writes every sub-sample.
     std::vector<VkImageMemoryBarrier> images;
     for (const RasterJob& job : jobs) {
         for (VkImage image : {job.normal_depth, job.primitive}) {
@@ -173,8 +174,9 @@ void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pi
     }
     VkMemoryBarrier before{};
     before.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    before.dstAccessMask =
+        VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     vkCmdPipelineBarrier(cmd, earlier | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0,
                          1, &before, 0, nullptr, static_cast<std::uint32_t>(images.size()),
@@ -188,7 +190,9 @@ void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pi
         vkCmdFillBuffer(cmd, t.large.buffer, 8, 4, 1u);
         vkCmdFillBuffer(cmd, t.large.buffer, 12, 4, 0u);
     }
-    // Barrier: the fills before the small pass's atomics on both buffers.
+    for (VkBuffer b : zero) vkCmdFillBuffer(cmd, b, 0, VK_WHOLE_SIZE, 0u);
+    // Barrier: the fills before the small pass's atomics on both buffers (and before the
+    // caller's shaders that use the buffers in `zero`).
     barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);

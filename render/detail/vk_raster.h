@@ -55,8 +55,8 @@ constexpr std::uint32_t kRasterStorageImages = 2;
 
 /// One target of the compute rasteriser for one mesh.
 struct RasterTarget {
-    Buffer visibility;  ///< uint64 per sub-sample
-    Buffer large;       ///< dispatch (3 × uint), count, triangles
+    Buffer visibility;                     ///< uint64 per sub-sample
+    Buffer large;                          ///< dispatch (3 × uint), count, triangles
     VkDescriptorSet set = VK_NULL_HANDLE;  ///< from the owner's pool (freed with it)
 };
 
@@ -79,12 +79,16 @@ struct RasterJob {
 };
 
 /// Records the normal pass of every job seen from `view` into its width × height target.
-/// `earlier` are the stages that read the targets' images and buffers before (the previous
-/// frame's read-back copy, or the GPU atlas's passes): the clears wait for them. The images end
-/// in VK_IMAGE_LAYOUT_GENERAL with their writes visible to `later_stages` / `later_access`.
+/// `earlier` are the stages that read or wrote the targets' images and buffers before (the
+/// previous frame's read-back copy, or the GPU atlas's passes and copies): the clears wait for
+/// them, and their writes are made visible to the passes after. `zero` are the caller's buffers
+/// to clear to 0 along with the targets' (the GPU atlas's view summary), ready for the compute
+/// shaders after the passes: one barrier serves both. The images end in
+/// VK_IMAGE_LAYOUT_GENERAL with their writes visible to `later_stages` / `later_access`.
 void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pipelines,
                                   std::span<const RasterJob> jobs, int width, int height,
                                   const View& view, VkPipelineStageFlags earlier,
-                                  VkPipelineStageFlags later_stages, VkAccessFlags later_access);
+                                  std::span<const VkBuffer> zero, VkPipelineStageFlags later_stages,
+                                  VkAccessFlags later_access);
 
 }  // namespace glint::detail
