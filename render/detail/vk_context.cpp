@@ -132,7 +132,7 @@ const RasterPipelines& VulkanDevice::raster_pipelines() {
     GLINT_ASSERT(raster_ == Raster::Compute, "compute raster passes on a graphics-raster device");
     std::lock_guard<std::mutex> lock(pipeline_mutex_);
     if (raster_pipelines_.triangles == VK_NULL_HANDLE)
-        raster_pipelines_ = make_raster_pipelines(device_);
+        raster_pipelines_ = make_raster_pipelines(device_, limits_);
     return raster_pipelines_;
 }
 

@@ -6,6 +6,7 @@
 #include "spirv/bindings.h"
 #include "spirv/shader_ids.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <vector>
@@ -27,8 +28,9 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 
 }  // namespace
 
-RasterPipelines make_raster_pipelines(VkDevice device) {
+RasterPipelines make_raster_pipelines(VkDevice device, const VkPhysicalDeviceLimits& limits) {
     RasterPipelines p;
+    p.max_groups_x = limits.maxComputeWorkGroupCount[0];
     try {
         std::vector<VkDescriptorSetLayoutBinding> bindings;
         for (std::uint32_t b = 0; b < GLINT_RASTER_BINDING_COUNT; ++b) {
@@ -199,7 +201,10 @@ void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pi
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.triangles);
     for (const RasterJob& job : jobs) {
         push(job);
-        vkCmdDispatch(cmd, groups(job.mesh->index_count / 3, GLINT_RASTER_GROUP), 1, 1);
+        vkCmdDispatch(
+            cmd,
+            std::min(groups(job.mesh->index_count / 3, GLINT_RASTER_GROUP), pipelines.max_groups_x),
+            1, 1);
     }
     // Barrier: the small pass's list (read as the indirect dispatch and by the large pass) and
     // its visibility writes (the large pass's atomics follow them).

@@ -42,10 +42,11 @@ struct RasterPipelines {
     VkPipeline triangles = VK_NULL_HANDLE;              ///< raster_triangles.comp
     VkPipeline large = VK_NULL_HANDLE;                  ///< raster_large.comp
     VkPipeline attributes = VK_NULL_HANDLE;             ///< raster_attributes.comp
+    std::uint32_t max_groups_x = 65535;  ///< the device's maxComputeWorkGroupCount[0]
 };
 
 /// \throw DeviceError (what was created is destroyed first).
-RasterPipelines make_raster_pipelines(VkDevice device);
+RasterPipelines make_raster_pipelines(VkDevice device, const VkPhysicalDeviceLimits& limits);
 /// Destroys and resets; null handles are skipped.
 void destroy_raster_pipelines(VkDevice device, RasterPipelines& pipelines) noexcept;
 
