@@ -35,7 +35,7 @@ enum class Backend { Auto, Vulkan, Embree };
 ///             rounding (tests/render/compute_raster_test.cpp states by how much). It exists
 ///             for data-centre GPUs, whose few graphics units make the pipeline the bound of the
 ///             GPU sweep: on an H100 the two normal passes of a 1M-triangle view at 1024² took
-///             3.4 ms in the pipeline (render/gpu_atlas.h has the figures in compute);
+///             3.39 ms in the pipeline and 0.11 ms in compute (render/gpu_atlas.h);
 ///   Auto      Compute on NVIDIA data-centre GPUs (A100, H100, H200, B200 and kin) that have the
 ///             GPU atlas's features, Graphics elsewhere (GPUs with full graphics units, lavapipe:
 ///             not measured faster in compute).

@@ -19,6 +19,14 @@
 // Only the per-view summary (32 bytes) crosses the bus per view, and the per-vertex totals
 // once per sweep (read_totals).
 //
+// Measured on an NVIDIA H100 (driver 580, bench/render_gpu_atlas_bench.cpp: bumpy sphere pair,
+// 60-view sweeps, s = 1, medians of 7), views/s of run() + read_totals(), graphics pipeline →
+// compute rasteriser (render/context.h Raster): 100k triangles 512² 1668 → 10054, 1024² 612 →
+// 5441; 1M 512² 382 → 5798, 1024² 282 → 4082 (4803 for run() alone). Device time per view at
+// 1M, 1024², compute: normal passes 0.108 ms, pixel pass 0.063, vertex pass 0.015; the rest of
+// a view's 0.208 ms (0.022: submission, the summary's copy, barriers) lies between the stages'
+// timestamps. read_totals() at 1M triangles: 2.3 ms per sweep (copy 0.66, conversion 1.58).
+//
 // Precision (what differs from the CPU path, and by how much):
 // - sums (weight, weight·value, missing weight, weight·signed depth) are 64-bit fixed point
 //   accumulated with integer atomics, so they do not depend on the order the device runs in;
