@@ -288,6 +288,8 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
          {{"backend", to_string(s.renderer.backend)},
           {"name", s.renderer.device_name},
           {"type", s.renderer.device_type},
+          // How Vulkan drew the frames (render/context.h Raster); "auto" for Embree.
+          {"raster", to_string(s.renderer.raster)},
           {"warnings", s.renderer.warnings},
           {"compare_on", s.on_gpu ? "gpu" : "cpu"},
           {"compare_note", s.accumulation_note}}},
