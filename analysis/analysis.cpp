@@ -99,6 +99,7 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
                                         .distance = &result.distance,
                                         .tolerance = &result.tolerance,
                                         .at_border = &result.at_border,
+                                        .facing_away = &result.facing_away,
                                         .metric = options.sweep.metric,
                                         .size = result.size};
         result.decisions.push_back(decide(reference, evidence, options.decision));
@@ -159,6 +160,7 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.distance = std::move(shape.distance);
     result.tolerance = std::move(shape.tolerance);
     result.at_border = std::move(shape.at_border);
+    result.facing_away = std::move(shape.facing_away);
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");

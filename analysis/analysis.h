@@ -49,6 +49,8 @@ struct AnalysisResult {
         tolerance;  ///< per reference vertex, tessellation tolerance (analysis/fit.h)
     std::vector<std::uint8_t>
         at_border;  ///< per reference vertex, closest examined point on a border
+    std::vector<std::uint8_t>
+        facing_away;  ///< per reference vertex, closest examined triangle faces away
     SweepResult sweep;
     /// The reference's BVH the fit and the sweep shared (mesh/surface_index.h), kept for the
     /// pictures (report/) when the reference has at most kKeptIndexTriangles; null otherwise.

@@ -215,6 +215,7 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined,
     e.distance.resize(n);
     e.tolerance.resize(n);
     e.at_border.assign(n, 0);
+    e.facing_away.assign(n, 0);
     // note: each vertex's closest point is used where it is found, not gathered first: a
     // ClosestPoint is 112 bytes, 112 MB at 1M vertices on top of the index at this stage's
     // peak (issue 13: peak memory at 2M triangles). Chunks of 512 neighbouring vertices keep
@@ -244,6 +245,10 @@ ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined,
                     if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && !border[t[k]])
                         on_border = false;
                 e.at_border[v] = on_border ? 1 : 0;
+                const Vec3d ea = exa.positions[t[0]].cast<double>();
+                const Vec3d face = (exa.positions[t[1]].cast<double>() - ea)
+                                       .cross(exa.positions[t[2]].cast<double>() - ea);
+                e.facing_away[v] = face.dot(reference.normals[v].cast<double>()) < 0.0 ? 1 : 0;
             }
         });
     return e;

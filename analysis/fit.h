@@ -83,6 +83,10 @@ struct ShapeEvidence {
     std::vector<float> tolerance;  ///< tessellation tolerance, mesh units (see above)
     std::vector<std::uint8_t>
         at_border;  ///< 1: the closest examined point lies on its border (a hole, a cut)
+    /// 1: the examined triangle of the closest point faces away from the reference's normal
+    /// (more than 90° apart): another sheet of the surface (the scanned side of a thin ear
+    /// whose far side the scan never saw), not the examined counterpart of the vertex.
+    std::vector<std::uint8_t> facing_away;
 };
 
 /// \pre both meshes have vertex normals (loaded meshes do).

@@ -157,6 +157,25 @@ std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floo
     return damaged;
 }
 
+// The depth of the surface gone in holes, where it reaches `floor` (a scan's dropout over a
+// smooth part gives no depth: its region stays "missing surface"); NaN elsewhere.
+std::vector<float> gone_depth(const Comparison& c, double floor) {
+    std::vector<float> gone(c.hole_depth.size(), std::numeric_limits<float>::quiet_NaN());
+    for (std::size_t v = 0; v < gone.size(); ++v)
+        if (c.in_hole[v] && c.hole_depth[v] <= -floor) gone[v] = c.hole_depth[v];
+    return gone;
+}
+
+// The shape change the regions report: the signed distance, and in a hole the depth of the
+// surface gone (NaN where it is unknown: the distance to the hole's rim says nothing).
+std::vector<float> region_shape(const std::vector<float>& distance, const Comparison& c,
+                                const std::vector<float>& gone) {
+    std::vector<float> shape = distance;
+    for (std::size_t v = 0; v < shape.size() && v < c.in_hole.size(); ++v)
+        if (c.in_hole[v]) shape[v] = gone[v];
+    return shape;
+}
+
 }  // namespace
 
 DecisionRule parse_decision_rule(const std::string& text) {
@@ -218,20 +237,28 @@ Floor robust_floor(const std::vector<float>& values, const std::vector<std::uint
     return f;
 }
 
-ZoomDecision decide(const Mesh& reference, const DecisionEvidence& e, const DecisionOptions& o) {
+ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
+                    const DecisionOptions& o) {
     o.validate();
-    GLINT_ASSERT(e.atlas && e.coverage, "decision without an atlas or coverage");
-    const MetricDescriptor& m = describe(e.metric);
+    GLINT_ASSERT(evidence.atlas && evidence.coverage, "decision without an atlas or coverage");
     ZoomDecision d;
+    d.comparison = classify_comparison(reference, {.seen = &evidence.coverage->seen,
+                                                   .missing = &evidence.atlas->missing,
+                                                   .distance = evidence.distance,
+                                                   .at_border = evidence.at_border,
+                                                   .facing_away = evidence.facing_away});
+    // Everything below decides the compared vertices only: they are the "seen" ones.
+    Coverage compared = *evidence.coverage;
+    for (std::size_t v = 0; v < compared.seen.size(); ++v)
+        compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
+    DecisionEvidence e = evidence;
+    e.coverage = &compared;
+    const MetricDescriptor& m = describe(e.metric);
     d.rule = o.rule;
     d.normal = normal_floor(e, o, m);
     if (d.normal.implausible) d.warnings.push_back("normal evidence floor: " + d.normal.note);
     d.histogram = histogram_of(e.atlas->value_mean, e.coverage->seen, m);
     const bool have_distance = e.distance && e.distance->size() == reference.vertex_count();
-    RegionFields fields{.value = &e.atlas->value_mean,
-                        .shape = have_distance ? e.distance : &e.atlas->depth_mean,
-                        .missing = &e.atlas->missing,
-                        .view = &e.atlas->max_view};
     const RegionOptions region_options{.min_vertices = o.min_region_vertices,
                                        .fill_holes = o.fill_holes};
     if (o.rule == DecisionRule::Fused && !have_distance) {
@@ -239,10 +266,21 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& e, const Deci
         d.warnings.push_back(
             "no shape evidence (signed distance) was measured: the normal rule decided alone");
     }
+    std::vector<float> excess;
     if (d.rule == DecisionRule::Fused) {
-        const std::vector<float> excess = shape_excess(e);
+        excess = shape_excess(e);
         d.shape = shape_floor(e, excess, o);
         if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
+    }
+    const std::vector<float> gone = gone_depth(d.comparison, d.shape.value);
+    const std::vector<float> shape =
+        region_shape(have_distance ? *e.distance : e.atlas->depth_mean, d.comparison, gone);
+    const RegionFields fields{.value = &e.atlas->value_mean,
+                              .shape = &shape,
+                              .missing = &e.atlas->missing,
+                              .view = &e.atlas->max_view,
+                              .gone = &gone};
+    if (d.rule == DecisionRule::Fused) {
         d.rule_text = fused_rule_text(d, m);
         d.regions =
             find_regions(reference, detail::fused_mask(reference, e, excess, d.normal, d.shape, o),

@@ -31,9 +31,16 @@
 //              count; a smooth dent turns the normals most on its flanks, not at its core);
 //           5. where the examined surface is missing (views found no surface behind the
 //              reference, or the closest examined point lies on a border with a large
-//              distance) the region is "missing surface", not a dent or a bump.
+//              distance) inside the compared surface (a hole, decision/comparison.h) the
+//              region is "missing surface", or a dent (loss) where the reference stood
+//              above the hole's rim: worn-away or resected material.
+//
+// Before either rule, the reference is classified (decision/comparison.h): only vertices that
+// both surfaces can compare are decided; the rest (open borders of either surface, parts the
+// examined scan did not reach) are reported as not compared.
 #pragma once
 
+#include "decision/comparison.h"
 #include "decision/regions.h"
 #include "mesh/mesh.h"
 #include "scanner/atlas.h"
@@ -108,6 +115,8 @@ struct DecisionEvidence {
         nullptr;  ///< tessellation tolerance of the distance (may be null)
     const std::vector<std::uint8_t>* at_border =
         nullptr;  ///< closest examined point on a border (may be null)
+    const std::vector<std::uint8_t>* facing_away =
+        nullptr;  ///< closest examined triangle faces away (may be null)
     Metric metric = Metric::AngleDeg;
     double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
 };
@@ -117,6 +126,9 @@ struct ZoomDecision {
     std::string rule_text;  ///< one line stating the rule applied
     Floor normal;
     Floor shape;  ///< unset (rule empty) for the normal rule
+    /// What both surfaces can compare (decision/comparison.h); floors, regions and the
+    /// histogram read the compared vertices only.
+    Comparison comparison;
     RegionResult regions;
     std::vector<std::size_t> histogram;  ///< normal evidence of seen vertices (metric's bins)
     std::vector<std::string> warnings;   ///< implausible floors, fallbacks

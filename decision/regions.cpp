@@ -71,6 +71,7 @@ struct Accumulated {
     double shape_area = 0.0;  // area with a known shape change
     double missing_area = 0.0;
     double best_value = -1.0;
+    double gone_peak = 0.0;  // most negative depth of surface gone in a hole
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
 };
@@ -90,6 +91,8 @@ void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
         g.shape_area += area;
     }
     if (f.missing) g.missing_area += area * (*f.missing)[v];
+    if (f.gone && std::isfinite((*f.gone)[v]))
+        g.gone_peak = std::min(g.gone_peak, static_cast<double>((*f.gone)[v]));
     if (f.view && value > g.best_value) {
         g.best_value = value;
         g.r.best_view = (*f.view)[v];
@@ -102,7 +105,12 @@ void finish(Accumulated& g, const RegionOptions& options) {
     g.r.mean_depth = g.shape_area > 0 ? g.r.volume / g.shape_area : 0.0;
     g.r.missing_fraction = g.r.area > 0 ? g.missing_area / g.r.area : 0.0;
     g.r.centroid = g.r.area > 0 ? Vec3d(g.centroid_sum / g.r.area) : Vec3d::Zero();
-    if (g.r.missing_fraction > options.missing_majority) g.r.kind = RegionKind::MissingSurface;
+    // note: a region mostly without examined surface is a hole (decision/comparison.h); its
+    // shape is the depth of the surface gone, negative where material was worn away or
+    // removed: a loss. A hole of unknown direction stays "missing surface".
+    if (g.r.missing_fraction > options.missing_majority)
+        g.r.kind = g.gone_peak < 0 ? RegionKind::Dent : RegionKind::MissingSurface;
+    else if (g.r.peak_depth == 0 && g.missing_area > 0) g.r.kind = RegionKind::MissingSurface;
     else g.r.kind = g.r.peak_depth < 0 ? RegionKind::Dent : RegionKind::Bump;
 }
 

@@ -39,6 +39,10 @@ struct RegionFields {
     const std::vector<float>* missing =
         nullptr;  ///< share of observations without examined surface
     const std::vector<std::int32_t>* view = nullptr;  ///< view of the vertex's maximum
+    /// Depth of the surface gone in a hole (decision/comparison.h; negative = loss, NaN =
+    /// unknown or no hole): a region mostly without examined surface is a dent when its
+    /// hole lost surface, else "missing surface".
+    const std::vector<float>* gone = nullptr;
 };
 
 struct RegionOptions {

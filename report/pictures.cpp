@@ -68,9 +68,10 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
     std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value,
                   std::string(m.unit).c_str(), to_string(d.rule).c_str());
     c.lines.emplace_back(b);
-    std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%", z,
+    std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%, compared %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
-                  100.0 * result.sweep.zooms[z].coverage.fraction);
+                  100.0 * result.sweep.zooms[z].coverage.fraction,
+                  100.0 * d.comparison.fraction);
     c.lines.emplace_back(b);
     for (const auto& r : d.regions.regions) {
         std::snprintf(b, sizeof b, "%d  %s  %s %s, %s %s^2", r.id,
@@ -111,10 +112,16 @@ class PictureWriter {
                                  .surface_index = result.reference_index}) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
+        masks_.resize(result.sweep.zooms.size());
         for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
             const auto& seen = result.sweep.zooms[z].coverage.seen;
+            const auto& comparison = result.decisions[z].comparison;
+            auto& shown = masks_[z];
+            shown.resize(n);
+            for (std::size_t v = 0; v < n; ++v)
+                shown[v] = !seen[v] ? 0 : comparison.compared(v) ? 1 : 2;
             const auto& region = result.decisions[z].regions.region_of_vertex;
-            zooms_.push_back({{distance_, region, seen}, legend_for(result, z, scale_)});
+            zooms_.push_back({{distance_, region, shown}, legend_for(result, z, scale_)});
         }
         // The regions' best views, largest regions first (regions are sorted by area).
         for (std::size_t k = 0; best_.size() < kMaxBestViews; ++k) {
@@ -160,6 +167,8 @@ class PictureWriter {
     Renderer renderer_;
     std::vector<float> distance_;
     std::vector<ZoomContent> zooms_;
+    // Per zoom: 0 unseen, 1 compared, 2 seen but not compared (the pictures' fields point here).
+    std::vector<std::vector<std::uint8_t>> masks_ = {};
     std::set<int> best_;
 };
 
@@ -302,8 +311,11 @@ ShapeScale shape_scale(const AnalysisResult& result) {
         std::vector<float> mag;
         const auto* seen =
             result.sweep.zooms.empty() ? nullptr : &result.sweep.zooms[0].coverage.seen;
+        const Comparison* compared =
+            result.decisions.empty() ? nullptr : &result.decisions[0].comparison;
         for (std::size_t v = 0; v < result.distance.size(); ++v)
-            if (std::isfinite(result.distance[v]) && (!seen || (*seen)[v]))
+            if (std::isfinite(result.distance[v]) && (!seen || (*seen)[v]) &&
+                (!compared || compared->compared(v)))
                 mag.push_back(std::abs(result.distance[v]));
         if (!mag.empty()) {
             const auto k = static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(mag.size() - 1));

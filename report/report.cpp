@@ -109,6 +109,23 @@ json floor_json(const Floor& f) {
             {"rule", f.rule},     {"note", f.note}};
 }
 
+// How each part of the reference was classified (decision/comparison.h): areas per class.
+json comparison_json(const Comparison& c) {
+    const auto share = [&](double a) { return c.reference_area > 0 ? a / c.reference_area : 0.0; };
+    const auto entry = [&](double a) { return json{{"area", a}, {"share", share(a)}}; };
+    return {{"rule", c.rule},
+            {"band", c.band},
+            {"median_edge", c.edge},
+            {"reference_area", c.reference_area},
+            {"compared_area", c.compared_area},
+            {"compared_fraction", c.fraction},
+            {"not_compared",
+             {{"reference_border", entry(c.reference_border_area)},
+              {"examined_border", entry(c.examined_border_area)},
+              {"not_reached", entry(c.not_reached_area)}}},
+            {"holes", {{"count", c.holes}, {"area", c.hole_area}}}};
+}
+
 json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
     const auto& plan = result.sweep.plan;
     const auto& sz = result.sweep.zooms[z];
@@ -124,6 +141,7 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
               {"image_size", plan.sizes[z]},
               {"coverage", sz.coverage.fraction},
               {"unseen", unseen_json(reference, sz, plan)},
+              {"comparison", comparison_json(d.comparison)},
               {"rule", to_string(d.rule)},
               {"rule_text", d.rule_text},
               {"threshold" + u, d.normal.value},
@@ -236,7 +254,9 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         const auto& sz = result.sweep.zooms[z];
         const auto& a = sz.atlas;
-        std::vector<float> max(n), mean(n), depth(n), missing(n), count(n), seen(n), region(n);
+        std::vector<float> max(n), mean(n), depth(n), missing(n), count(n), seen(n), region(n),
+            compared(n);
+        const auto& classes = result.decisions[z].comparison.vertex_class;
         for (std::size_t v = 0; v < n; ++v) {
             const bool s = sz.coverage.seen[v] != 0;
             max[v] = s ? a.value_max[v] : kNaN;
@@ -246,6 +266,8 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
             count[v] = static_cast<float>(a.count[v]);
             seen[v] = s ? 1.0f : 0.0f;
             region[v] = static_cast<float>(result.decisions[z].regions.region_of_vertex[v]);
+            // 0 compared, 1 reference border, 2 examined border, 3 not reached
+            compared[v] = classes.size() == n ? static_cast<float>(classes[v]) : 0.0f;
         }
         const auto k = zoom_suffix(z);
         atlas.set_scalar(metric + "_max" + k, std::move(max));
@@ -255,6 +277,7 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
         atlas.set_scalar("count" + k, std::move(count));
         atlas.set_scalar("seen" + k, std::move(seen));
         atlas.set_scalar("region" + k, std::move(region));
+        atlas.set_scalar("not_compared" + k, std::move(compared));
     }
     if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
     if (result.tolerance.size() == n) atlas.set_scalar("distance_tolerance", result.tolerance);

@@ -77,6 +77,15 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions,
                  double(*e.max_regions)));
     if (e.kind && out.largest_kind != *e.kind)
         fail("largest region is '" + out.largest_kind + "', expected " + *e.kind);
+    if (e.every_kind)
+        for (const auto& r : regions)
+            if (to_string(r.kind) != *e.every_kind)
+                fail("region " + std::to_string(r.id) + " is '" + to_string(r.kind) +
+                     "', expected " + *e.every_kind);
+    if (e.min_compared && out.compared < *e.min_compared)
+        fail(fmt("compared = %.3f, expected at least %.3f", out.compared, *e.min_compared));
+    if (e.max_compared && out.compared > *e.max_compared)
+        fail(fmt("compared = %.3f, expected at most %.3f", out.compared, *e.max_compared));
     if (e.min_coverage && out.coverage < *e.min_coverage)
         fail(fmt("coverage = %.3f, expected at least %.3f", out.coverage, *e.min_coverage));
     auto need_score = [&](const char* key) {
@@ -224,6 +233,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     out.regions = z0.regions.regions.size();
     out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
     out.coverage = result.sweep.zooms.front().coverage.fraction;
+    out.compared = z0.comparison.fraction;
     out.threshold_deg = z0.normal.value;
     score_outcome(sc, meshes, result, out);
     check_expect(sc.expect, z0.regions.regions, out);

@@ -265,10 +265,13 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
     if (auto v = r.positive("region_min_true_distance")) x.region_min_true_distance = *v;
     if (auto v = r.optional<bool>("all_damages_detected", "true or false"))
         x.all_damages_detected = *v;
-    if (auto v = r.optional<std::string>("kind", "a string (dent or bump)")) {
-        if (*v != "dent" && *v != "bump") r.fail(r.get("kind"), "kind", "expected dent or bump");
-        x.kind = *v;
-    }
+    for (const char* key : {"kind", "every_kind"})
+        if (auto v = r.optional<std::string>(key, "a string (dent or bump)")) {
+            if (*v != "dent" && *v != "bump") r.fail(r.get(key), key, "expected dent or bump");
+            (std::string(key) == "kind" ? x.kind : x.every_kind) = *v;
+        }
+    e("min_compared", x.min_compared);
+    e("max_compared", x.max_compared);
     r.finish();
 }
 

@@ -45,6 +45,12 @@ struct ScenarioExpect {
     std::optional<double> max_centroid_error;
     std::optional<double> min_coverage;
     std::optional<std::string> kind;  ///< "dent" or "bump" for the largest region
+    /// "dent" or "bump" for every region (zoom 0): worn-away surface is a loss everywhere.
+    std::optional<std::string> every_kind;
+    /// At least this share of the reference's area compared (decision/comparison.h).
+    std::optional<double> min_compared;
+    /// At most this share compared: a partial scan must say that it covers only a part.
+    std::optional<double> max_compared;
     /// Every region (zoom 0) must be explained by a real change of shape: somewhere in it the
     /// reference lies at least this far (mesh units) from the examined surface. For pairs that
     /// differ where a decimation or a re-meshing really moved the surface.

@@ -89,6 +89,7 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
                         {"regions", o.regions},
                         {"largest_kind", o.largest_kind},
                         {"coverage", o.coverage},
+                        {"compared", o.compared},
                         {"threshold_deg", o.threshold_deg},
                         {"fit", o.fit_mode},
                         {"seconds", o.seconds},
@@ -221,13 +222,13 @@ void eval_command(const RunArgs& a) {
     std::ostringstream csv;
     csv << "scenario,status,regions,kind,coverage,threshold_deg,precision,recall,f1,iou,centroid_error,"
            "rotation_error_deg,translation_error,seconds,false_regions,damages,damages_detected,close_region_vertices,"
-           "baseline_threshold,baseline_f1,baseline_regions,baseline_false_regions\n";
+           "baseline_threshold,baseline_f1,baseline_regions,baseline_false_regions,compared\n";
     std::ostringstream table;
     char line[512];
     std::snprintf(
         line, sizeof line,
-        "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s %5s %5s %5s %6s %5s\n",
-        "scenario", "status", "reg", "kind", "cover", "thr°", "prec", "recall", "F1", "IoU",
+        "%-34s %-6s %4s %-4s %6s %6s %6s %6s %6s %6s %6s %8s %9s %9s %6s %5s %5s %5s %6s %5s\n",
+        "scenario", "status", "reg", "kind", "cover", "cmp", "thr°", "prec", "recall", "F1", "IoU",
         "centroid", "rot°", "transl", "s", "false", "found", "close", "b.F1", "b.reg");
     table << line;
     for (const auto& o : outcomes) {
@@ -263,9 +264,9 @@ void eval_command(const RunArgs& a) {
                        : std::nullopt;
         std::snprintf(
             line, sizeof line,
-            "%-34s %-6s %4zu %-4s %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
+            "%-34s %-6s %4zu %-4s %6.3f %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
             o.name.substr(0, 34).c_str(), status.c_str(), o.regions,
-            o.largest_kind.substr(0, 4).c_str(), o.coverage, o.threshold_deg, opt(prec).c_str(),
+            o.largest_kind.substr(0, 4).c_str(), o.coverage, o.compared, o.threshold_deg, opt(prec).c_str(),
             opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(), opt(cen, "%.3g").c_str(),
             opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
             opt(false_regions, "%.0f").c_str(), found.c_str(), opt(close, "%.0f").c_str(),
@@ -283,7 +284,8 @@ void eval_command(const RunArgs& a) {
             << opt(close, "%.0f") << ','
             << (o.baseline ? std::to_string(o.baseline->threshold) : "-") << ',' << opt(bf1, "%.6f")
             << ',' << opt(breg, "%.0f") << ','
-            << (o.baseline ? std::to_string(o.baseline->tally.false_regions) : "-") << '\n';
+            << (o.baseline ? std::to_string(o.baseline->tally.false_regions) : "-") << ','
+            << o.compared << '\n';
     }
     write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
     write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());

@@ -53,6 +53,17 @@ void print_summary(const Inspection& inspection) {
             z, with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
             100.0 * r.sweep.zooms[z].coverage.fraction, d.normal.value, sym.c_str(),
             d.normal.given ? "given" : "noise floor", d.regions.regions.size());
+        const Comparison& c = d.comparison;
+        const auto pct = [&](double a) {
+            return c.reference_area > 0 ? 100.0 * a / c.reference_area : 0.0;
+        };
+        if (c.fraction < 1.0)
+            std::printf(
+                "  compared %.1f%% of the reference's area; not compared: %.1f%% not reached by "
+                "the examined surface, %.1f%% along the reference's borders, %.1f%% along the "
+                "examined surface's borders\n",
+                100.0 * c.fraction, pct(c.not_reached_area), pct(c.reference_border_area),
+                pct(c.examined_border_area));
         for (const auto& g : d.regions.regions)
             std::printf(
                 "  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "

@@ -295,7 +295,15 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
     const MetricDescriptor& m = describe(e.metric);
     for (auto& r : regions.regions) {
         char text[256];
-        if (r.kind == RegionKind::MissingSurface)
+        if (r.kind == RegionKind::Dent && r.missing_fraction > 0.5)
+            std::snprintf(text, sizeof text,
+                          "surface gone: no examined surface on %.0f%% of it, a hole the examined "
+                          "scan covers around; the reference stood up to %.3g above the hole's "
+                          "rim (a loss); %s %.2f%s ≥ floor %.2f%s",
+                          100.0 * r.missing_fraction, -r.peak_depth, std::string(m.name).c_str(),
+                          r.max_value, std::string(m.symbol).c_str(), normal.value,
+                          std::string(m.symbol).c_str());
+        else if (r.kind == RegionKind::MissingSurface)
             std::snprintf(
                 text, sizeof text, "no examined surface on %.0f%% of it; %s %.2f%s ≥ floor %.2f%s",
                 100.0 * r.missing_fraction, std::string(m.name).c_str(), r.max_value,

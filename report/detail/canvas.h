@@ -27,6 +27,9 @@ inline constexpr Rgb kDimText{0.68f, 0.70f, 0.74f};
 inline constexpr Rgb kOutline{0.02f, 0.02f, 0.02f};
 inline constexpr Rgb kUnseen{0.60f, 0.60f, 0.60f};
 inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
+/// Seen but not compared (decision/comparison.h): hatched the other way, warmer.
+inline constexpr Rgb kNotCompared{0.80f, 0.78f, 0.70f};
+inline constexpr Rgb kNotComparedStripe{0.48f, 0.45f, 0.38f};
 
 /// The diverging map of signed shape change, low (loss, blue) → 0 (near white) → high
 /// (gain, red): ColorBrewer's RdBu with 9 classes, reversed so blue is negative. 9 knots × 3

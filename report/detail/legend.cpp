@@ -16,7 +16,7 @@ constexpr int kLine = 18;  // px per text line
 constexpr int kBarWidth = 20;
 constexpr int kMinBar = 120;
 constexpr int kMaxBar = 260;
-constexpr int kSwatches = 2 * kLine + 8;
+constexpr int kSwatches = 3 * kLine + 14;
 
 // The bar, high values at the top: pixel row of value v.
 int bar_row(double v, double limit, int top, int height) {
@@ -60,7 +60,17 @@ void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
         }
     draw_text(dst, x + s + 8, y + s - 2,
               roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
-    const int y2 = y + kLine + 6;
+    // Not compared: hatched the other way.
+    const int y1 = y + kLine + 6;
+    for (int j = 0; j < s; ++j)
+        for (int i = 0; i < s; ++i) {
+            const float* g =
+                ((i + 7 * s - j) % 7 < 2) ? kNotComparedStripe.data() : kNotCompared.data();
+            if (x + i < dst.spec().width && y1 + j < dst.spec().height)
+                dst.setpixel(x + i, y1 + j, g, 3);
+        }
+    draw_text(dst, x + s + 8, y1 + s - 2, "not compared (open border, not scanned)", kFont);
+    const int y2 = y1 + kLine + 6;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
     draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);

@@ -186,10 +186,13 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
             continue;
         }
         Rgb base = colours(px.distance[p], style.limit);
+        const auto period = static_cast<std::size_t>(std::max(2, style.hatch_period));
         if (!px.seen[p]) {
-            const bool stripe =
-                (p % w + p / w) % static_cast<std::size_t>(std::max(2, style.hatch_period)) < 2;
+            const bool stripe = (p % w + p / w) % period < 2;
             base = stripe ? kUnseenStripe : kUnseen;
+        } else if (px.seen[p] == 2) {
+            const bool stripe = (p % w + period * w - p / w % (period * w)) % period < 2;
+            base = stripe ? kNotComparedStripe : kNotCompared;
         }
         if (edge[p]) base = kOutline;
         // Lambert with an ambient part: the form stays visible where the light grazes.

@@ -30,7 +30,9 @@ namespace glint::detail {
 struct SurfaceFields {
     std::span<const float> distance;       ///< signed shape change, mesh units (NaN = unknown)
     std::span<const std::int32_t> region;  ///< region id, 0 = none
-    std::span<const std::uint8_t> seen;    ///< 0 = unseen (hatched)
+    /// 0 = unseen (hatched), 1 = seen and compared, 2 = seen but not compared (hatched the
+    /// other way: an open border of either surface, or the examined scan did not reach it)
+    std::span<const std::uint8_t> seen;
 };
 
 /// Where a region's number goes in one picture.

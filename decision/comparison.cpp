@@ -1,0 +1,209 @@
+#include "decision/comparison.h"
+
+#include "mesh/components.h"
+#include "mesh/error.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+namespace glint {
+
+std::string to_string(CompareClass c) {
+    switch (c) {
+        case CompareClass::Compared: return "compared";
+        case CompareClass::ReferenceBorder: return "reference border";
+        case CompareClass::ExaminedBorder: return "examined border";
+        case CompareClass::NotReached: return "not reached";
+    }
+    return "?";
+}
+
+namespace {
+
+// Vertex neighbours in compressed rows (duplicates allowed).
+struct Rows {
+    std::vector<std::uint32_t> offset;
+    std::vector<std::uint32_t> index;
+};
+
+Rows neighbours(const Mesh& mesh) {
+    const std::size_t n = mesh.vertex_count();
+    Rows a;
+    a.offset.assign(n + 1, 0);
+    for (const auto& t : mesh.triangles)
+        for (const auto v : t) a.offset[v + 1] += 2;
+    for (std::size_t v = 0; v < n; ++v) a.offset[v + 1] += a.offset[v];
+    a.index.resize(a.offset[n]);
+    std::vector<std::uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            a.index[fill[t[k]]++] = t[(k + 1) % 3];
+            a.index[fill[t[k]]++] = t[(k + 2) % 3];
+        }
+    return a;
+}
+
+double median_edge(const Mesh& mesh) {
+    std::vector<double> e;
+    e.reserve(3 * mesh.triangles.size());
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k)
+            e.push_back((mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).cast<double>().norm());
+    if (e.empty()) return 0.0;
+    const auto mid = e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2);
+    std::nth_element(e.begin(), mid, e.end());
+    return *mid;
+}
+
+// Vertices within `width` of a seed, along mesh edges (multi-source Dijkstra).
+std::vector<std::uint8_t> band_of(const Mesh& mesh, const Rows& adj,
+                                  const std::vector<std::uint8_t>& seed, double width) {
+    const std::size_t n = seed.size();
+    std::vector<double> dist(n, std::numeric_limits<double>::infinity());
+    using Item = std::pair<double, std::uint32_t>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    for (std::size_t v = 0; v < n; ++v)
+        if (seed[v]) {
+            dist[v] = 0.0;
+            queue.emplace(0.0, static_cast<std::uint32_t>(v));
+        }
+    while (!queue.empty()) {
+        const auto [d, u] = queue.top();
+        queue.pop();
+        if (d > dist[u]) continue;
+        for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
+            const std::uint32_t w = adj.index[i];
+            const double dw =
+                d + (mesh.positions[u] - mesh.positions[w]).cast<double>().norm();
+            if (dw < dist[w] && dw <= width) {
+                dist[w] = dw;
+                queue.emplace(dw, w);
+            }
+        }
+    }
+    std::vector<std::uint8_t> band(n);
+    for (std::size_t v = 0; v < n; ++v) band[v] = std::isfinite(dist[v]) ? 1 : 0;
+    return band;
+}
+
+// The signed depth of the surface gone in one hole (see comparison.h): minus the height above
+// the plane through its rim where the reference stood above it, else NaN.
+void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_t>& group,
+                std::int32_t id, const std::vector<std::uint32_t>& members,
+                const std::vector<double>& area, std::vector<float>& depth) {
+    Vec3d sum{0, 0, 0};
+    std::vector<Vec3d> rim;
+    for (const auto u : members)
+        for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
+            const auto w = adj.index[i];
+            if (group[w] != id) rim.push_back(mesh.positions[w].cast<double>());
+        }
+    if (rim.size() < 3) return;
+    for (const auto& p : rim) sum += p;
+    const Vec3d c = sum / static_cast<double>(rim.size());
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : rim) cov += (p - c) * (p - c).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
+    Vec3d normal = solver.eigenvectors().col(0);
+    Vec3d facing{0, 0, 0};
+    if (mesh.has_normals())
+        for (const auto u : members) facing += area[u] * mesh.normals[u].cast<double>();
+    if (normal.dot(facing) < 0) normal = -normal;
+    double height = 0.0, weight = 0.0;
+    for (const auto u : members) {
+        height += area[u] * normal.dot(mesh.positions[u].cast<double>() - c);
+        weight += area[u];
+    }
+    if (!(weight > 0 && height > 0)) return;  // below the rim: direction unknown
+    for (const auto u : members)
+        depth[u] = static_cast<float>(
+            -std::max(0.0, normal.dot(mesh.positions[u].cast<double>() - c)));
+}
+
+std::string rule_text(const Comparison& c) {
+    std::ostringstream s;
+    s.precision(3);
+    s << "not compared: within " << kBandEdges << " median edges (" << c.band
+      << ") of a border of the reference, or of a part the examined surface did not reach (no "
+         "examined surface behind most views, or its closest point on an examined border "
+         "beyond half an edge); a part without examined surface that stays off the reference's "
+         "borders and under "
+      << 100.0 * kMaxHoleShare
+      << " % of its area is a hole the examined scan covered around: compared (missing surface; "
+         "a loss where the reference stood above the hole's rim)";
+    return s.str();
+}
+
+}  // namespace
+
+Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
+    const std::size_t n = mesh.vertex_count();
+    GLINT_ASSERT(in.seen && in.seen->size() == n && in.missing && in.missing->size() == n,
+                 "comparison inputs do not match the mesh");
+    Comparison c;
+    c.edge = median_edge(mesh);
+    c.band = kBandEdges * c.edge;
+    c.rule = rule_text(c);
+    const Rows adj = neighbours(mesh);
+    const auto area = vertex_areas(mesh);
+    for (const double a : area) c.reference_area += a;
+    const bool have_distance = in.distance && in.distance->size() == n;
+    const auto flagged = [&](const std::vector<std::uint8_t>* f, std::size_t v) {
+        return have_distance && f && f->size() == n && (*f)[v] &&
+               std::abs((*in.distance)[v]) > 0.5 * c.edge;
+    };
+    std::vector<std::uint8_t> gone(n, 0);
+    for (std::size_t v = 0; v < n; ++v)
+        gone[v] = ((*in.seen)[v] && (*in.missing)[v] > 0.5f) || flagged(in.at_border, v) ||
+                  flagged(in.facing_away, v);
+    const auto reference_band = band_of(mesh, adj, border_vertices(mesh), c.band);
+    std::vector<std::int32_t> group;
+    const std::size_t groups = masked_components(mesh, gone, group);
+    std::vector<double> group_area(groups, 0.0);
+    std::vector<std::uint8_t> touches(groups, 0);
+    std::vector<std::vector<std::uint32_t>> members(groups);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (group[v] < 0) continue;
+        const auto g = static_cast<std::size_t>(group[v]);
+        group_area[g] += area[v];
+        touches[g] |= reference_band[v];
+        members[g].push_back(static_cast<std::uint32_t>(v));
+    }
+    c.hole_depth.assign(n, std::numeric_limits<float>::quiet_NaN());
+    c.in_hole.assign(n, 0);
+    std::vector<std::uint8_t> not_reached(n, 0);
+    for (std::size_t g = 0; g < groups; ++g) {
+        if (!touches[g] && group_area[g] <= kMaxHoleShare * c.reference_area) {
+            ++c.holes;
+            c.hole_area += group_area[g];
+            hole_shape(mesh, adj, group, static_cast<std::int32_t>(g), members[g], area,
+                       c.hole_depth);
+            for (const auto u : members[g]) c.in_hole[u] = 1;
+            continue;
+        }
+        for (const auto u : members[g]) not_reached[u] = 1;
+    }
+    const auto examined_band = band_of(mesh, adj, not_reached, c.band);
+    c.vertex_class.assign(n, static_cast<std::uint8_t>(CompareClass::Compared));
+    for (std::size_t v = 0; v < n; ++v) {
+        CompareClass k = CompareClass::Compared;
+        if (not_reached[v]) k = CompareClass::NotReached;
+        else if (reference_band[v]) k = CompareClass::ReferenceBorder;
+        else if (examined_band[v]) k = CompareClass::ExaminedBorder;
+        c.vertex_class[v] = static_cast<std::uint8_t>(k);
+        double& sum = k == CompareClass::Compared         ? c.compared_area
+                      : k == CompareClass::NotReached      ? c.not_reached_area
+                      : k == CompareClass::ReferenceBorder ? c.reference_border_area
+                                                           : c.examined_border_area;
+        sum += area[v];
+    }
+    c.fraction = c.reference_area > 0 ? c.compared_area / c.reference_area : 0.0;
+    return c;
+}
+
+}  // namespace glint

@@ -1,0 +1,92 @@
+// What both surfaces can compare (issue 24). A reference vertex is compared only where both
+// surfaces hold surface around it; elsewhere it is *not compared*, reported as coverage and
+// never part of a dent, a bump or a missing-surface region.
+//
+// The rule, per reference vertex (ℓ = the reference's median edge length):
+//   gone         the examined surface is absent there: most views found no examined surface
+//                behind the seen vertex (the sweep's per-view hits, ZoomAtlas::missing), or its
+//                closest examined point lies more than ℓ/2 away on a border of the examined
+//                mesh (a partial scan, a cut, a hole) or on a triangle facing away from the
+//                vertex's normal (another sheet: the scanned side of a thin part whose far side
+//                the scan never saw). Gone vertices are grouped through edges.
+//   hole         a gone group that lies away from the reference's own borders (outside their
+//                band) and covers at most kMaxHoleShare of the reference's area: the examined
+//                scan covered the surface around it, so the surface is really gone there (a
+//                resection, worn-away material). It stays compared: a missing-surface region,
+//                whose kind follows the shape (below).
+//   not reached  every other gone group: the examined scan did not cover it.
+//   reference border  within kBandEdges·ℓ (along the reference's edges) of a border edge of
+//                the reference: a field-of-view cut, a scan's edge, a crop.
+//   examined border   within kBandEdges·ℓ of a not-reached vertex: the examined surface's
+//                open border mapped onto the reference through the fit.
+// Classes are exclusive, in this order: not reached, reference border, examined border,
+// compared.
+//
+// A hole's shape: a plane is fitted to its rim (the compared vertices next to it), oriented by
+// the reference's normals over the hole; where the reference stood above that plane (on
+// average) the material is gone: a loss, each vertex's depth minus its height above the rim.
+// Where it lies below (a hole over a pit), the direction is unknown (NaN).
+#pragma once
+
+#include "mesh/mesh.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint {
+
+enum class CompareClass : std::uint8_t {
+    Compared = 0,
+    ReferenceBorder = 1,  ///< near an open border of the reference
+    ExaminedBorder = 2,   ///< near an open border of the examined surface
+    NotReached = 3,       ///< the examined surface never covered it
+};
+
+/// "compared", "reference border", "examined border", "not reached".
+[[nodiscard]] std::string to_string(CompareClass c);
+
+/// note: 4 edges — a marching-cubes cut or a range scan's ragged edge curls over 1–3 rows of
+/// triangles; the band keeps those rows out while costing a few % of a whole surface.
+inline constexpr double kBandEdges = 4.0;
+/// note: 0.1 of the reference's area — the largest worn area of the EDJ wear variants is 7 %
+/// of the crown; a partial scan (the bunny's range scans, a one-sided jaw) leaves ≥ 30 %.
+inline constexpr double kMaxHoleShare = 0.1;
+
+/// What the classification reads, one value per reference vertex (optional ones may be null).
+struct ComparisonInputs {
+    const std::vector<std::uint8_t>* seen = nullptr;     ///< required
+    const std::vector<float>* missing = nullptr;         ///< required: share without examined
+    const std::vector<float>* distance = nullptr;        ///< signed distance (may be null)
+    const std::vector<std::uint8_t>* at_border = nullptr;  ///< (may be null)
+    /// The closest examined triangle faces away from the vertex's normal (may be null).
+    const std::vector<std::uint8_t>* facing_away = nullptr;
+};
+
+struct Comparison {
+    std::vector<std::uint8_t> vertex_class;  ///< CompareClass per reference vertex
+    /// Signed depth of the surface gone in a hole (mesh units, negative = loss; NaN where
+    /// unknown or outside holes).
+    std::vector<float> hole_depth;
+    std::vector<std::uint8_t> in_hole;  ///< 1: the vertex lies in a hole (compared, gone)
+    double edge = 0.0;  ///< the reference's median edge length ℓ (mesh units)
+    double band = 0.0;  ///< kBandEdges·ℓ
+    double reference_area = 0.0;
+    double compared_area = 0.0;
+    double reference_border_area = 0.0;
+    double examined_border_area = 0.0;
+    double not_reached_area = 0.0;
+    std::size_t holes = 0;  ///< gone groups kept as holes (compared)
+    double hole_area = 0.0;
+    double fraction = 1.0;  ///< compared / reference area
+    std::string rule;       ///< one line: the rule applied
+
+    [[nodiscard]] bool compared(std::size_t v) const {
+        return vertex_class.empty() || vertex_class[v] == 0;
+    }
+};
+
+/// Classifies every reference vertex (see the file comment). \pre the inputs sized as the mesh.
+[[nodiscard]] Comparison classify_comparison(const Mesh& reference, const ComparisonInputs& in);
+
+}  // namespace glint

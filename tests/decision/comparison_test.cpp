@@ -1,0 +1,181 @@
+// What both surfaces can compare (decision/comparison.h) on a flat grid with unit edges: the
+// reference's own border band, a part the examined surface did not reach and the band along
+// its border, a hole inside covered surface and the direction of the surface gone there; and
+// decide() on them: no region where nothing was compared, a loss where worn-away surface left
+// a hole.
+#include "decision/comparison.h"
+#include "decision/decision.h"
+
+#include "scanner/atlas.h"
+#include "scanner/coverage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace glint {
+namespace {
+
+constexpr int kN = 40;
+
+std::size_t vid(int x, int y) { return static_cast<std::size_t>(y * (kN + 1) + x); }
+
+// A kN × kN grid of unit squares; z(x, y) lifts it.
+template <class Height>
+Mesh grid(Height z) {
+    Mesh m;
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x)
+            m.positions.emplace_back(float(x), float(y), static_cast<float>(z(x, y)));
+    for (int y = 0; y < kN; ++y)
+        for (int x = 0; x < kN; ++x) {
+            const auto a = static_cast<std::uint32_t>(vid(x, y)),
+                       b = static_cast<std::uint32_t>(vid(x + 1, y)),
+                       c = static_cast<std::uint32_t>(vid(x + 1, y + 1)),
+                       d = static_cast<std::uint32_t>(vid(x, y + 1));
+            m.triangles.push_back({a, b, c});
+            m.triangles.push_back({a, c, d});
+        }
+    m.normals.assign(m.positions.size(), Vec3f(0, 0, 1));
+    return m;
+}
+
+Mesh flat() {
+    return grid([](int, int) { return 0.0; });
+}
+
+struct Inputs {
+    std::size_t n = (kN + 1) * (kN + 1);
+    std::vector<std::uint8_t> seen = std::vector<std::uint8_t>(n, 1);
+    std::vector<float> missing = std::vector<float>(n, 0.0f);
+    std::vector<float> distance = std::vector<float>(n, 0.0f);
+    std::vector<std::uint8_t> at_border = std::vector<std::uint8_t>(n, 0);
+    [[nodiscard]] ComparisonInputs view() const {
+        return {.seen = &seen, .missing = &missing, .distance = &distance, .at_border = &at_border};
+    }
+    // No examined surface on the disc of `radius` around (cx, cy).
+    void gone(int cx, int cy, double radius) {
+        for (int y = 0; y <= kN; ++y)
+            for (int x = 0; x <= kN; ++x)
+                if (std::hypot(x - cx, y - cy) <= radius) missing[vid(x, y)] = 1.0f;
+    }
+};
+
+CompareClass class_at(const Comparison& c, int x, int y) {
+    return static_cast<CompareClass>(c.vertex_class[vid(x, y)]);
+}
+
+TEST(Comparison, KeepsABandAlongTheReferencesBorderOutOfTheComparison) {
+    const Inputs in;
+    const Comparison c = classify_comparison(flat(), in.view());
+    EXPECT_DOUBLE_EQ(c.edge, 1.0);
+    EXPECT_DOUBLE_EQ(c.band, kBandEdges);
+    EXPECT_EQ(class_at(c, 0, 20), CompareClass::ReferenceBorder);
+    EXPECT_EQ(class_at(c, 4, 20), CompareClass::ReferenceBorder);
+    EXPECT_EQ(class_at(c, 5, 20), CompareClass::Compared);
+    EXPECT_EQ(class_at(c, 20, 20), CompareClass::Compared);
+    // 31 × 31 vertices (5 … 35) with a unit dual area each, of 40 × 40.
+    EXPECT_NEAR(c.fraction, 31.0 * 31.0 / (40.0 * 40.0), 1e-6);
+    EXPECT_NEAR(c.compared_area + c.reference_border_area, c.reference_area, 1e-9);
+    EXPECT_EQ(c.holes, 0u);
+}
+
+TEST(Comparison, APartialScanIsNotReachedAndItsBorderIsBanded) {
+    Inputs in;
+    // The examined scan stops at x = 20: beyond it the closest examined point is on its border.
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 21; x <= kN; ++x) {
+            in.at_border[vid(x, y)] = 1;
+            in.distance[vid(x, y)] = static_cast<float>(x - 20);
+        }
+    const Comparison c = classify_comparison(flat(), in.view());
+    EXPECT_EQ(class_at(c, 30, 20), CompareClass::NotReached);
+    EXPECT_EQ(class_at(c, 17, 20), CompareClass::ExaminedBorder);
+    EXPECT_EQ(class_at(c, 15, 20), CompareClass::Compared);
+    EXPECT_EQ(c.holes, 0u);
+    EXPECT_NEAR(c.not_reached_area / c.reference_area, 0.5, 0.05);
+    EXPECT_LT(c.fraction, 0.4);
+}
+
+TEST(Comparison, AHoleInsideCoveredSurfaceStaysComparedAndAWornCapIsALoss) {
+    // A cap of height 2 on the flat grid, its top (r ≤ 3) gone from the examined surface.
+    const auto cap = [](int x, int y) {
+        return std::max(0.0, 2.0 - 0.25 * std::hypot(x - 20, y - 20));
+    };
+    Inputs in;
+    in.gone(20, 20, 3.0);
+    const Comparison c = classify_comparison(grid(cap), in.view());
+    EXPECT_EQ(c.holes, 1u);
+    EXPECT_EQ(class_at(c, 20, 20), CompareClass::Compared);
+    EXPECT_TRUE(c.in_hole[vid(20, 20)]);
+    EXPECT_LT(c.hole_depth[vid(20, 20)], -0.5f);  // the top stood above the hole's rim
+    // A hole over a pit: the direction of what is gone is unknown.
+    const auto pit = [&](int x, int y) { return -cap(x, y); };
+    const Comparison p = classify_comparison(grid(pit), in.view());
+    EXPECT_EQ(p.holes, 1u);
+    EXPECT_TRUE(std::isnan(p.hole_depth[vid(20, 20)]));
+}
+
+TEST(Comparison, ALargePartWithoutExaminedSurfaceIsNotReachedEvenAwayFromBorders) {
+    Inputs in;
+    in.gone(20, 20, 11.0);  // about 24 % of the area: more than a hole
+    const Comparison c = classify_comparison(flat(), in.view());
+    EXPECT_EQ(c.holes, 0u);
+    EXPECT_EQ(class_at(c, 20, 20), CompareClass::NotReached);
+    EXPECT_EQ(class_at(c, 20, 33), CompareClass::ExaminedBorder);
+}
+
+// decide() over the same evidence: seen everywhere, undamaged noise elsewhere.
+struct Zoom {
+    ZoomAtlas atlas;
+    Coverage coverage;
+    std::vector<float> tolerance;
+    explicit Zoom(const Inputs& in) {
+        atlas.value_mean.resize(in.n);
+        for (std::size_t v = 0; v < in.n; ++v)
+            atlas.value_mean[v] = in.missing[v] > 0.5f ? 90.0f : 0.5f + 0.5f * float(v % 3);
+        atlas.value_max = atlas.value_mean;
+        atlas.missing = in.missing;
+        atlas.depth_mean.assign(in.n, 0.0f);
+        atlas.max_view.assign(in.n, 0);
+        coverage.seen = in.seen;
+        coverage.fraction = 1.0;
+        tolerance.assign(in.n, 0.0f);
+    }
+    [[nodiscard]] DecisionEvidence evidence(const Inputs& in) const {
+        return {.atlas = &atlas,
+                .coverage = &coverage,
+                .distance = &in.distance,
+                .tolerance = &tolerance,
+                .at_border = &in.at_border,
+                .size = 40.0 * std::sqrt(2.0)};
+    }
+};
+
+TEST(Comparison, DecideCallsWornAwaySurfaceALossAndAnUnscannedPartNothing) {
+    const auto cap = [](int x, int y) {
+        return std::max(0.0, 2.0 - 0.25 * std::hypot(x - 20, y - 20));
+    };
+    Inputs worn;
+    for (std::size_t v = 0; v < worn.n; ++v) worn.distance[v] = v % 2 ? 0.001f : -0.001f;
+    worn.gone(20, 20, 3.0);
+    const Zoom zw(worn);
+    const Mesh capped = grid(cap);
+    const ZoomDecision d = decide(capped, zw.evidence(worn), DecisionOptions{});
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Dent);
+    EXPECT_LT(d.regions.regions[0].peak_depth, -0.5);
+    EXPECT_GT(d.regions.regions[0].missing_fraction, 0.5);
+
+    Inputs partial;
+    for (std::size_t v = 0; v < partial.n; ++v) partial.distance[v] = v % 2 ? 0.001f : -0.001f;
+    partial.gone(40, 20, 25.0);  // the examined scan never reached the right half
+    const Zoom zp(partial);
+    const ZoomDecision e = decide(flat(), zp.evidence(partial), DecisionOptions{});
+    EXPECT_TRUE(e.regions.regions.empty());
+    EXPECT_LT(e.comparison.fraction, 0.5);
+    EXPECT_GT(e.comparison.not_reached_area, 0.0);
+}
+
+}  // namespace
+}  // namespace glint
