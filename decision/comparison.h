@@ -9,13 +9,13 @@
 //                mesh (a partial scan, a cut, a hole) or on a triangle facing away from the
 //                vertex's normal (another sheet: the scanned side of a thin part whose far side
 //                the scan never saw). Gone vertices are grouped through edges.
-//   hole         a gone group that lies away from the reference's own borders (outside their
-//                band) and covers at most kMaxHoleShare of the reference's area: the examined
+//   hole         a gone group that lies away from the reference's own borders (at most a
+//                quarter of its area inside their band) and covers at most kMaxHoleShare of the reference's area: the examined
 //                scan covered the surface around it, so the surface is really gone there (a
 //                resection, worn-away material). It stays compared: a missing-surface region,
 //                whose kind follows the shape (below).
 //   not reached  every other gone group: the examined scan did not cover it.
-//   reference border  within kBandEdges·ℓ (along the reference's edges) of a border edge of
+//   reference border  within one edge ℓ (along the reference's edges) of a border edge of
 //                the reference: a field-of-view cut, a scan's edge, a crop.
 //   examined border   within kBandEdges·ℓ of a not-reached vertex: the examined surface's
 //                open border mapped onto the reference through the fit.

@@ -71,11 +71,11 @@ TEST(Comparison, KeepsABandAlongTheReferencesBorderOutOfTheComparison) {
     EXPECT_DOUBLE_EQ(c.edge, 1.0);
     EXPECT_DOUBLE_EQ(c.band, kBandEdges);
     EXPECT_EQ(class_at(c, 0, 20), CompareClass::ReferenceBorder);
-    EXPECT_EQ(class_at(c, 4, 20), CompareClass::ReferenceBorder);
-    EXPECT_EQ(class_at(c, 5, 20), CompareClass::Compared);
+    EXPECT_EQ(class_at(c, 1, 20), CompareClass::ReferenceBorder);
+    EXPECT_EQ(class_at(c, 2, 20), CompareClass::Compared);
     EXPECT_EQ(class_at(c, 20, 20), CompareClass::Compared);
-    // 31 × 31 vertices (5 … 35) with a unit dual area each, of 40 × 40.
-    EXPECT_NEAR(c.fraction, 31.0 * 31.0 / (40.0 * 40.0), 1e-6);
+    // 37 × 37 vertices (2 … 38) with a unit dual area each, of 40 × 40.
+    EXPECT_NEAR(c.fraction, 37.0 * 37.0 / (40.0 * 40.0), 1e-6);
     EXPECT_NEAR(c.compared_area + c.reference_border_area, c.reference_area, 1e-9);
     EXPECT_EQ(c.holes, 0u);
 }
