@@ -157,6 +157,10 @@ std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floo
     return damaged;
 }
 
+// Whether the decision reads compared vertices only and holes take a kind from their rim
+// (issue 24). Off: two data scenarios regress (see decide()).
+constexpr bool kDecideComparedOnly = false;
+
 // The depth of the surface gone in holes, where it reaches `floor` (a scan's dropout over a
 // smooth part gives no depth: its region stays "missing surface"); NaN elsewhere.
 std::vector<float> gone_depth(const Comparison& c, double floor) {
@@ -247,10 +251,14 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                                    .distance = evidence.distance,
                                                    .at_border = evidence.at_border,
                                                    .facing_away = evidence.facing_away});
-    // Everything below decides the compared vertices only: they are the "seen" ones.
+    // note: the classification is reported only (report.json, atlas, pictures); restricting
+    // the decision to compared vertices and giving holes a kind from their rim (see
+    // kDecideComparedOnly) cost the EDJ cusp erosion F1 0.98 → 0.69 (its erosion lies at the
+    // reference's own small borders) and tooth-wear-mild_c3_planar its recall; off until fixed.
     Coverage compared = *evidence.coverage;
-    for (std::size_t v = 0; v < compared.seen.size(); ++v)
-        compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
+    if (kDecideComparedOnly)
+        for (std::size_t v = 0; v < compared.seen.size(); ++v)
+            compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
     DecisionEvidence e = evidence;
     e.coverage = &compared;
     const MetricDescriptor& m = describe(e.metric);
@@ -273,13 +281,14 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
         if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
     }
     const std::vector<float> gone = gone_depth(d.comparison, d.shape.value);
+    const std::vector<float>& distance = have_distance ? *e.distance : e.atlas->depth_mean;
     const std::vector<float> shape =
-        region_shape(have_distance ? *e.distance : e.atlas->depth_mean, d.comparison, gone);
+        kDecideComparedOnly ? region_shape(distance, d.comparison, gone) : distance;
     const RegionFields fields{.value = &e.atlas->value_mean,
                               .shape = &shape,
                               .missing = &e.atlas->missing,
                               .view = &e.atlas->max_view,
-                              .gone = &gone};
+                              .gone = kDecideComparedOnly ? &gone : nullptr};
     if (d.rule == DecisionRule::Fused) {
         d.rule_text = fused_rule_text(d, m);
         d.regions =

@@ -99,7 +99,7 @@ void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
     }
 }
 
-void finish(Accumulated& g, const RegionOptions& options) {
+void finish(Accumulated& g, const RegionOptions& options, bool holes) {
     g.r.vertex_count = g.vertices.size();
     g.r.mean_value = g.r.area > 0 ? g.value_area / g.r.area : 0.0;
     g.r.mean_depth = g.shape_area > 0 ? g.r.volume / g.shape_area : 0.0;
@@ -110,7 +110,8 @@ void finish(Accumulated& g, const RegionOptions& options) {
     // removed: a loss. A hole of unknown direction stays "missing surface".
     if (g.r.missing_fraction > options.missing_majority)
         g.r.kind = g.gone_peak < 0 ? RegionKind::Dent : RegionKind::MissingSurface;
-    else if (g.r.peak_depth == 0 && g.missing_area > 0) g.r.kind = RegionKind::MissingSurface;
+    else if (holes && g.r.peak_depth == 0 && g.missing_area > 0)
+        g.r.kind = RegionKind::MissingSurface;
     else g.r.kind = g.r.peak_depth < 0 ? RegionKind::Dent : RegionKind::Bump;
 }
 
@@ -142,7 +143,7 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
             ++result.dropped_small;
             continue;
         }
-        finish(g, options);
+        finish(g, options, fields.gone != nullptr);
         kept.push_back(&g);
     }
     std::stable_sort(kept.begin(), kept.end(), [](const Accumulated* a, const Accumulated* b) {
