@@ -165,8 +165,12 @@ TEST(Decide, FusedRuleSplitsALossFromAnAdjacentGain) {
     for (const Region& r : d.regions.regions) {
         dents += r.kind == RegionKind::Dent;
         bumps += r.kind == RegionKind::Bump;
-        if (r.kind == RegionKind::Dent) EXPECT_LT(r.centroid.x(), 20.0);
-        if (r.kind == RegionKind::Bump) EXPECT_GT(r.centroid.x(), 20.0);
+        if (r.kind == RegionKind::Dent) {
+            EXPECT_LT(r.centroid.x(), 20.0);
+        }
+        if (r.kind == RegionKind::Bump) {
+            EXPECT_GT(r.centroid.x(), 20.0);
+        }
     }
     EXPECT_EQ(dents, 1);
     EXPECT_EQ(bumps, 1);
