@@ -25,7 +25,6 @@
 #include <system_error>
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -47,6 +46,9 @@ std::string lower_extension(const fs::path& path) {
 
 // The bytes of a file, memory-mapped (read-only, private) so large binary files are not
 // copied before parsing.
+// A mesh file's bytes, read (not mapped: a file that shrinks while it is read is an error
+// naming it, where a mapping would die of SIGBUS). Only regular files are read, opened without
+// blocking (a FIFO or a device never hangs the run).
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
@@ -55,38 +57,54 @@ class FileBytes {
         if (ec || !fs::exists(status)) throw InputError(quoted(source) + ": file not found");
         if (fs::is_directory(status))
             throw InputError(quoted(source) + ": is a folder, expected a mesh file");
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
-        struct stat st {};
-        if (::fstat(fd, &st) != 0) {
-            const int err = errno;
+        try {
+            read_all(fd, source);
+        } catch (...) {
             ::close(fd);
-            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(err));
+            throw;
         }
-        size_ = static_cast<std::size_t>(st.st_size);
-        if (size_ == 0) {
-            ::close(fd);
-            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
-        }
-        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-        const int err = errno;
         ::close(fd);
-        if (map == MAP_FAILED)
-            throw IoError(quoted(source) + ": cannot map: " + std::strerror(err));
-        data_ = static_cast<const char*>(map);
     }
-    ~FileBytes() { release(); }
-    FileBytes(const FileBytes&) = delete;
-    FileBytes& operator=(const FileBytes&) = delete;
 
     void release() {
-        if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
-        data_ = nullptr;
+        data_.reset();
+        size_ = 0;
     }
-    [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
+    [[nodiscard]] std::span<const char> bytes() const { return {data_.get(), size_}; }
 
   private:
-    const char* data_ = nullptr;
+    void read_all(int fd, const std::string& source) {
+        struct stat st {};
+        if (::fstat(fd, &st) != 0)
+            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(errno));
+        if (!S_ISREG(st.st_mode))
+            throw InputError(quoted(source) + ": is " +
+                             (S_ISFIFO(st.st_mode)   ? "a FIFO"
+                              : S_ISCHR(st.st_mode)  ? "a character device"
+                              : S_ISBLK(st.st_mode)  ? "a block device"
+                              : S_ISSOCK(st.st_mode) ? "a socket"
+                                                     : "not a regular file") +
+                             ", expected a regular mesh file");
+        size_ = static_cast<std::size_t>(st.st_size);
+        if (size_ == 0)
+            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
+        data_ = std::make_unique_for_overwrite<char[]>(size_);
+        std::size_t done = 0;
+        while (done < size_) {
+            const ssize_t n = ::read(fd, data_.get() + done, size_ - done);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) throw IoError(quoted(source) + ": read failed: " + std::strerror(errno));
+            if (n == 0)
+                throw IoError(quoted(source) + ": the file shrank from " + std::to_string(size_) +
+                              " to " + std::to_string(done) +
+                              " bytes while it was read; expected a file nobody writes meanwhile");
+            done += static_cast<std::size_t>(n);
+        }
+    }
+
+    std::unique_ptr<char[]> data_;
     std::size_t size_ = 0;
 };
 
