@@ -50,10 +50,10 @@ bool same_file(const fs::path& a, const fs::path& b) {
 
 void check_one(const fs::path& output, const fs::path& out, const fs::path& input) {
     const fs::path in = resolved(input);
-    const char* relation = same_file(out, in)          ? "is"
-                           : strictly_inside(in, out)  ? "contains"
-                           : strictly_inside(out, in)  ? "lies inside"
-                                                       : nullptr;
+    const char* relation = same_file(out, in)         ? "is"
+                           : strictly_inside(in, out) ? "contains"
+                           : strictly_inside(out, in) ? "lies inside"
+                                                      : nullptr;
     if (relation)
         throw InputError("output \"" + output.string() + "\" " + relation + " the input \"" +
                          input.string() +
@@ -84,7 +84,8 @@ std::string lower_name(const fs::path& path) {
 }
 
 bool ends_with(const std::string& s, const std::string& suffix) {
-    return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace

@@ -248,9 +248,9 @@ RayHit pick(const ClosestPointIndex& index, const Camera& camera, double u, doub
     // Embree aborts on non-finite or huge ray coordinates: only pixels of the image are picked.
     if (!(u >= 0.0 && u <= camera.width && v >= 0.0 && v <= camera.height)) {
         std::ostringstream s;
-        s << "pixel (" << u << ", " << v << "): expected u in 0.." << camera.width << " and v in 0.."
-          << camera.height << " (a pixel of the " << camera.width << " x " << camera.height
-          << " view)";
+        s << "pixel (" << u << ", " << v << "): expected u in 0.." << camera.width
+          << " and v in 0.." << camera.height << " (a pixel of the " << camera.width << " x "
+          << camera.height << " view)";
         throw InputError(s.str());
     }
     return index.intersect(camera.pixel_ray(u, v));

@@ -62,8 +62,7 @@ void remove_leftovers(const fs::path& target) {
 
 // A new wrapper beside the target, never an existing folder: "<out>.partial-<pid>[-n]".
 fs::path make_wrapper(const fs::path& target) {
-    const std::string base =
-        target.filename().string() + ".partial-" + std::to_string(::getpid());
+    const std::string base = target.filename().string() + ".partial-" + std::to_string(::getpid());
     for (int n = 0; n < 100; ++n) {
         const fs::path w = target.parent_path() / (n == 0 ? base : base + "-" + std::to_string(n));
         std::error_code ec;
@@ -142,8 +141,8 @@ void OutputFolder::commit_new() {
                          "\" appeared during the run (another run or program made it); kept as "
                          "found, expected it absent (give --force to replace it)");
     if (err != 0)
-        throw IoError("cannot move results into \"" + target_.string() + "\": " +
-                      std::strerror(err));
+        throw IoError("cannot move results into \"" + target_.string() +
+                      "\": " + std::strerror(err));
 }
 
 void OutputFolder::commit_replacing() {
@@ -156,8 +155,8 @@ void OutputFolder::commit_replacing() {
             if (err == EEXIST) continue;  // appeared meanwhile: exchange with it
         }
         if (!no_flags_here(err))
-            throw IoError("cannot move results into \"" + target_.string() + "\": " +
-                          std::strerror(err));
+            throw IoError("cannot move results into \"" + target_.string() +
+                          "\": " + std::strerror(err));
         // No renameat2 flags on this filesystem: move the old results into the wrapper first
         // (the target is absent for that moment), put them back if the new ones cannot move.
         const fs::path old = wrapper_ / "old";
@@ -168,8 +167,7 @@ void OutputFolder::commit_replacing() {
         if (ec) {
             std::error_code ec2;
             if (fs::exists(old, ec2)) fs::rename(old, target_, ec2);
-            throw IoError("cannot move results into \"" + target_.string() + "\": " +
-                          ec.message());
+            throw IoError("cannot move results into \"" + target_.string() + "\": " + ec.message());
         }
         return;
     }

@@ -38,7 +38,8 @@ void SweepPlanOptions::validate() const {
                                  ? std::max(1.0, std::round(360.0 / azimuth_step_deg)) *
                                        static_cast<double>(elevations_deg.size())
                                  : static_cast<double>(sphere_views);
-    const double views = per_level * static_cast<double>(std::max<std::size_t>(1, footprints.size()));
+    const double views =
+        per_level * static_cast<double>(std::max<std::size_t>(1, footprints.size()));
     if (views > kMaxPlanViews) {
         std::ostringstream s;
         s << "plans " << views << " views (" << per_level << " per zoom level × "

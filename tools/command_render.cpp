@@ -118,8 +118,7 @@ constexpr std::size_t kMaxViews = 10000;
 // The views file's text: a regular file (opened without blocking) of at most 1 MiB.
 std::string read_views_file(const std::string& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0)
-        throw IoError("cannot read views file \"" + path + "\": " + std::strerror(errno));
+    if (fd < 0) throw IoError("cannot read views file \"" + path + "\": " + std::strerror(errno));
     struct stat st {};
     const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
     const auto size = static_cast<std::size_t>(regular ? st.st_size : 0);

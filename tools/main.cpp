@@ -181,7 +181,9 @@ int main(int argc, char** argv) {
     // of every mesh load, scenarios' included, before any command runs.
     app.add_option_function<std::string>(
         "--max-triangles",
-        [](const std::string& text) { glint::set_default_max_triangles(parse_max_triangles(text)); },
+        [](const std::string& text) {
+            glint::set_default_max_triangles(parse_max_triangles(text));
+        },
         "Refuse meshes with more triangles than this (default " +
             std::to_string(glint::kDefaultMaxTriangles) + ", at most " +
             std::to_string(kMaxTrianglesLimit) + ")");

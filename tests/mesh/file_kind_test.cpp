@@ -44,9 +44,11 @@ TEST(MeshFileKind, RefusesACharacterDevice) {
 std::string big_ply(int n) {
     std::string s = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(n) +
                     "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                    std::to_string(n - 2) + "\nproperty list uchar int vertex_indices\nend_header\n";
+                    std::to_string(n - 2) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
     for (int i = 0; i < n; ++i)
-        s += std::to_string(i % 97) + " " + std::to_string(i / 97) + " " + std::to_string(i % 7) + "\n";
+        s += std::to_string(i % 97) + " " + std::to_string(i / 97) + " " + std::to_string(i % 7) +
+             "\n";
     for (int i = 1; i + 1 < n; ++i)
         s += "3 0 " + std::to_string(i) + " " + std::to_string(i + 1) + "\n";
     return s;

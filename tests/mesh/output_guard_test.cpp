@@ -33,6 +33,7 @@ std::string refusal(const fs::path& output, std::initializer_list<fs::path> inpu
 
 TEST(OutputGuard, RefusesAnOutputThatIsContainsOrLiesInsideAnInput) {
     const fs::path dir = base("relations");
+    fs::create_directories(dir / "d");
     write_file_atomically(dir / "d" / "ref.ply", "x");
     fs::create_directories(dir / "dcm");
     EXPECT_NE(refusal(dir / "d" / "ref.ply", {dir / "d" / "ref.ply"}).find("\" is the input"),

@@ -104,6 +104,12 @@ TEST(OutputFolder, RefusesAFileInPlaceOfTheFolder) {
     EXPECT_THROW(OutputFolder(dir / "atlas"), InputError);
 }
 
+// A file and its folder, as a user makes them.
+void write_new(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
 std::string read_text(const fs::path& path) {
     std::ifstream in(path);
     std::string text;
@@ -119,7 +125,7 @@ std::size_t entries(const fs::path& dir) {
 // Item 1 of issue 23: `-o d --force` where d holds the inputs deleted them.
 TEST(OutputFolder, RefusesAFolderHoldingAnInputBeforeMakingAnything) {
     const fs::path dir = base("holds_input");
-    write_file_atomically(dir / "d" / "ref.ply", "input");
+    write_new(dir / "d" / "ref.ply", "input");
     protect_input(dir / "d" / "ref.ply");
     try {
         OutputFolder out(dir / "d", /*replace_existing=*/true);
@@ -162,7 +168,7 @@ TEST(OutputFolder, KeepsAnEmptyTargetThatAppearedDuringTheRun) {
 TEST(OutputFolder, NeverTakesOverAUserFolderNamedLikeItsStaging) {
     const fs::path dir = base("user_partial");
     const fs::path user = dir / ("atlas.partial-" + std::to_string(::getpid()));
-    write_file_atomically(user / "notes.txt", "precious");
+    write_new(user / "notes.txt", "precious");
     {
         OutputFolder out(dir / "atlas");
         EXPECT_NE(out.staging().parent_path(), user);
@@ -187,7 +193,7 @@ TEST(OutputFolder, RemovesTheMarkedLeftoversOfKilledRunsOnly) {
     const fs::path left = dir / ("atlas.partial-" + std::to_string(child));
     ASSERT_TRUE(fs::exists(left / kStagingMarker));
     const fs::path unmarked = dir / "atlas.partial-1";
-    write_file_atomically(unmarked / "notes.txt", "user's");
+    write_new(unmarked / "notes.txt", "user's");
     {
         OutputFolder out(dir / "atlas");
         out.commit();

@@ -311,7 +311,8 @@ TEST(ReadVolume, RejectsAFolderWithoutDicom) {
 TEST(ReadVolume, RejectsAFolderHoldingOnlyATruncatedFileBeforeGdcmSeesIt) {
     const fs::path dir = fresh_dir("dicom_truncated");
     write_text(dir / "f", std::string("\x08\x00\x05\x00", 4));
-    expect_input_error(dir, "no DICOM series in it (1 file(s) are not DICOM files; first \"f\": 4 bytes");
+    expect_input_error(
+        dir, "no DICOM series in it (1 file(s) are not DICOM files; first \"f\": 4 bytes");
 }
 
 TEST(ReadVolume, ReadsADicomSeriesBesideATruncatedFile) {

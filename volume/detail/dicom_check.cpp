@@ -44,8 +44,8 @@ std::uint32_t u32(const unsigned char* p) {
 
 // VRs with a 2-byte reserved field and a 4-byte length in explicit VR encoding.
 bool long_vr(std::string_view vr) {
-    for (std::string_view v : {"OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC", "UN", "UR",
-                               "UT", "UV"})
+    for (std::string_view v :
+         {"OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC", "UN", "UR", "UT", "UV"})
         if (vr == v) return true;
     return false;
 }
@@ -155,8 +155,8 @@ CheckedDicomFolder::CheckedDicomFolder(const fs::path& folder) : path_(folder) {
     if (scan.rejected == 0) return;
     static std::atomic<unsigned> counter{0};
     std::error_code ec;
-    path_ = fs::temp_directory_path(ec) / ("glint-dicom-" + std::to_string(::getpid()) + "-" +
-                                           std::to_string(counter++));
+    path_ = fs::temp_directory_path(ec) /
+            ("glint-dicom-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     temporary_ = true;
     fs::remove_all(path_, ec);
     fs::create_directory(path_, ec);
