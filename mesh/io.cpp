@@ -25,6 +25,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -46,9 +47,9 @@ std::string lower_extension(const fs::path& path) {
 
 // The bytes of a file, memory-mapped (read-only, private) so large binary files are not
 // copied before parsing.
-// A mesh file's bytes, read (not mapped: a file that shrinks while it is read is an error
-// naming it, where a mapping would die of SIGBUS). Only regular files are read, opened without
-// blocking (a FIFO or a device never hangs the run).
+// A mesh file's bytes, mapped. Only regular files are mapped, opened without blocking (a FIFO
+// or a device never hangs the run; issue 23 item 11).
+// note: a file that shrinks while it is mapped still ends in SIGBUS (issue 23 item 8, open).
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
@@ -60,22 +61,25 @@ class FileBytes {
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
         try {
-            read_all(fd, source);
+            map(fd, source);
         } catch (...) {
             ::close(fd);
             throw;
         }
         ::close(fd);
     }
+    ~FileBytes() { release(); }
+    FileBytes(const FileBytes&) = delete;
+    FileBytes& operator=(const FileBytes&) = delete;
 
     void release() {
-        data_.reset();
-        size_ = 0;
+        if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
+        data_ = nullptr;
     }
-    [[nodiscard]] std::span<const char> bytes() const { return {data_.get(), size_}; }
+    [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
 
   private:
-    void read_all(int fd, const std::string& source) {
+    void map(int fd, const std::string& source) {
         struct stat st {};
         if (::fstat(fd, &st) != 0)
             throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(errno));
@@ -90,21 +94,13 @@ class FileBytes {
         size_ = static_cast<std::size_t>(st.st_size);
         if (size_ == 0)
             throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
-        data_ = std::make_unique_for_overwrite<char[]>(size_);
-        std::size_t done = 0;
-        while (done < size_) {
-            const ssize_t n = ::read(fd, data_.get() + done, size_ - done);
-            if (n < 0 && errno == EINTR) continue;
-            if (n < 0) throw IoError(quoted(source) + ": read failed: " + std::strerror(errno));
-            if (n == 0)
-                throw IoError(quoted(source) + ": the file shrank from " + std::to_string(size_) +
-                              " to " + std::to_string(done) +
-                              " bytes while it was read; expected a file nobody writes meanwhile");
-            done += static_cast<std::size_t>(n);
-        }
+        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (map == MAP_FAILED)
+            throw IoError(quoted(source) + ": cannot map: " + std::strerror(errno));
+        data_ = static_cast<const char*>(map);
     }
 
-    std::unique_ptr<char[]> data_;
+    const char* data_ = nullptr;
     std::size_t size_ = 0;
 };
 
