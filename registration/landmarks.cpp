@@ -1,6 +1,7 @@
 #include "registration/landmarks.h"
 
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 
 #include <nlohmann/json.hpp>
 
@@ -39,6 +40,7 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
 std::vector<LandmarkPair> read_landmarks(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("landmarks \"" + path + "\": cannot open");
+    protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
         in >> j;

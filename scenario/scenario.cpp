@@ -295,6 +295,14 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     TableReader top(root, name, "");
 
     sc.name = top.optional<std::string>("name", "a string").value_or(file.stem().string());
+    // The name is a folder under -o: a plain name, so a scenario never writes elsewhere.
+    if (sc.name.empty() || sc.name == "." || sc.name == ".." ||
+        sc.name.find_first_of(std::string("/\\\0", 3)) != std::string::npos)
+        top.fail(
+            top.get("name"), "name",
+            "\"" + sc.name +
+                "\": expected a plain folder name (not empty, no \"/\" or \"\\\", not \".\" or "
+                "\"..\")");
     sc.description = top.optional<std::string>("description", "a string").value_or("");
     if (const toml::node* tags = top.get("tags")) {
         const auto* arr = tags->as_array();

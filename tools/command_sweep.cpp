@@ -3,6 +3,7 @@
 #include "analysis/analysis.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
 #include "report/inspect.h"
@@ -87,6 +88,9 @@ void run(SweepArgs& a) {
         print_options(options.analysis, options.exports);
         return;
     }
+    const FitOptions& fit = options.analysis.fit;
+    guard_outputs({a.output}, {a.reference, a.examined, fit.fit_file, fit.landmarks_file,
+                               fit.init_file, a.calibration});
     auto [ref, exa] = load_run_pair(a.reference, a.examined, a.surface);
     RunRecord record{.command_line = global_flags().command_line};
     record.add(ref);

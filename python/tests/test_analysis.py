@@ -122,6 +122,20 @@ def test_existing_output_is_refused_then_replaced_with_force(dent_pair, tmp_path
     assert (tmp_path / "atlas" / "report.json").is_file()
 
 
+def test_output_holding_the_inputs_is_refused_before_any_work(dent_pair, tmp_path):
+    """Issue 23 item 1: output=<the inputs' folder>, force=True deleted the inputs."""
+    d = tmp_path / "d"
+    d.mkdir()
+    (d / "ref.ply").write_bytes(dent_pair[0].read_bytes())
+    (d / "notes.txt").write_text("precious")
+    with pytest.raises(glint.InputError, match="contains the input"):
+        glint.analyse(d / "ref.ply", d / "ref.ply", register=False, output=d, force=True,
+                      **SMALL_SWEEP)
+    assert (d / "ref.ply").read_bytes() == dent_pair[0].read_bytes()
+    assert (d / "notes.txt").read_text() == "precious"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d"]
+
+
 def test_invalid_option_names_its_key(dent_pair):
     ref = dent_pair[0]
     with pytest.raises(glint.InputError, match="size = 0"):

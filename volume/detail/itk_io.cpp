@@ -3,6 +3,7 @@
 #include "volume/detail/itk_io.h"
 
 #include "mesh/error.h"
+#include "volume/detail/dicom_check.h"
 
 #include <gdcmTrace.h>
 #include <itkGDCMImageIO.h>
@@ -526,9 +527,10 @@ RawVolume read_file(const fs::path& path, std::size_t max_voxels) {
 }
 
 RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
+    const CheckedDicomFolder checked(folder);  // GDCM asserts on some malformed files
     auto names = itk::GDCMSeriesFileNames::New();
     names->SetUseSeriesDetails(true);
-    names->SetDirectory(folder.string());
+    names->SetDirectory(checked.path().string());
     const auto& uids = names->GetSeriesUIDs();
     if (uids.empty()) throw InputError(quoted(folder) + ": a folder with no DICOM series in it");
     // note: the series with the most slices; a folder often also holds a scout or a dose report.
@@ -597,6 +599,9 @@ RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
     try {
         std::error_code ec;
         if (fs::is_directory(path, ec)) return read_dicom_folder(path, max_voxels);
+        if (volume_format(path) == "dicom")
+            if (const std::string problem = dicom_file_problem(path); !problem.empty())
+                throw InputError(quoted(path) + ": " + problem);
         return read_file(path, max_voxels);
     } catch (const itk::ExceptionObject& e) {
         throw InputError(quoted(path) + ": " + one_line(e));
