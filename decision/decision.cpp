@@ -56,12 +56,15 @@ std::string stated_estimate(const Floor& f, const MetricDescriptor& m) {
     const std::string sym(m.symbol);
     if (&m == &describe(Metric::AngleDeg) && f.estimate > 180.0)
         return "(median " + fixed(f.median, 2) + sym + " + " + general(f.k) + "·1.4826·MAD " +
-               fixed(f.mad, 2) + sym + ") lies beyond 180" + sym;
+               fixed(f.mad, 2) + sym + ", beyond 180" + sym + ")";
     return fixed(f.estimate, 2) + sym;
 }
 
 // The normal-evidence floor: given, or the run's noise floor.
-Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m) {
+// `compared_only`: over the seen vertices with an examined surface (at a chosen scale: the
+// missing surface is no part of the majority whose quiet the scale is chosen for).
+Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m,
+                   bool compared_only = false) {
     const double plausible =
         o.max_plausible_threshold_deg * m.color_max / describe(Metric::AngleDeg).color_max;
     Floor f;
@@ -73,7 +76,10 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
         f.rule = "given";
         return f;
     }
-    f = robust_floor(e.atlas->value_mean, e.coverage->seen, o.noise_k, o.min_threshold, plausible);
+    std::vector<std::uint8_t> use = e.coverage->seen;
+    if (compared_only)
+        for (std::size_t v = 0; v < use.size(); ++v) use[v] = use[v] && e.atlas->missing[v] <= 0.5f;
+    f = robust_floor(e.atlas->value_mean, use, o.noise_k, o.min_threshold, plausible);
     // The fused rule asks the normal field for corroboration of a shape change, not for proof
     // on its own: the lower floor (k = shape_low_k, as for the shape) is what a group must reach.
     f.low = std::min(f.value, std::max(f.median + o.shape_low_k * 1.4826 * f.mad, o.min_threshold));
@@ -181,10 +187,11 @@ struct FusedAtScale {
     std::vector<float> excess;
 };
 
-FusedAtScale fused_floors(const DecisionEvidence& e, const DecisionOptions& o) {
+FusedAtScale fused_floors(const DecisionEvidence& e, const DecisionOptions& o,
+                          bool compared_only = false) {
     FusedAtScale f;
     f.excess = shape_excess(e);
-    f.normal = normal_floor(e, o, describe(e.metric));
+    f.normal = normal_floor(e, o, describe(e.metric), compared_only);
     f.shape = shape_floor(e, f.excess, o);
     return f;
 }
@@ -251,7 +258,7 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     for (const double r : detail::scale_ladder(reference, e.size)) {
         s.tried.push_back(r);
         read_at_scale(reference, e, r, at);
-        f = fused_floors(at.evidence, o);
+        f = fused_floors(at.evidence, o, true);
         if (f.normal.implausible || f.shape.implausible) continue;
         s.quiet = true;
         s.radius = r;
@@ -273,7 +280,9 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     d.normal.rule = "median + " + general(o.noise_k) +
                     "·1.4826·MAD of the tilt of the examined surface against the reference over "
                     "a radius of " +
-                    with_unit(s.radius, e.unit) + ", at least " + general(o.min_threshold) + "°";
+                    with_unit(s.radius, e.unit) +
+                    ", over seen vertices with an examined surface, at least " +
+                    general(o.min_threshold) + "°";
     state_detectable(reference, at.evidence, o, d.shape, s);
     d.rule_text = fused_rule_text(d, describe(Metric::AngleDeg)) +
                   "; evidence read over a radius of " + with_unit(s.radius, e.unit);

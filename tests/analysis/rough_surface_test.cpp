@@ -59,16 +59,21 @@ TEST(RoughSurface, WithoutDamageTheMajorityIsQuietAtAChosenScaleAndNothingIsRepo
 TEST(RoughSurface, ADentWiderThanTheScaleIsFoundAndNothingElse) {
     const Mesh ref = rough_sphere(TessellationScheme::Ico, 5, 1);
     Mesh exa = rough_sphere(TessellationScheme::Uv, 80, 2);
+    // note: on the equator: at the UV sphere's poles the noisy fan of thin triangles makes the
+    // tessellation tolerance (½·h·θ) larger than the dent.
     apply_damage(
         exa,
-        {DamageSpec{.kind = DamageKind::Dent, .center = {0, 0, 10}, .radius = 3.5, .depth = 1.0}});
+        {DamageSpec{.kind = DamageKind::Dent, .center = {0, 10, 0}, .radius = 3.5, .depth = 1.0}});
     const AnalysisResult r = analyse(ref, exa, rough_options());
     const ZoomDecision& d = r.decisions[0];
     EXPECT_TRUE(d.scale.quiet);
-    ASSERT_EQ(d.regions.regions.size(), 1u);
+    ASSERT_EQ(d.regions.regions.size(), 1u)
+        << d.rule_text << "; " << d.scale.text << "; normal " << d.normal.value << " low "
+        << d.normal.low << "; shape " << d.shape.value << " low " << d.shape.low << "; damaged "
+        << d.regions.damaged_vertices << ", dropped " << d.regions.dropped_small;
     const Region& g = d.regions.regions[0];
     EXPECT_EQ(g.kind, RegionKind::Dent);
-    EXPECT_LT((g.centroid - Vec3d(0, 0, 10)).norm(), 1.5);
+    EXPECT_LT((g.centroid - Vec3d(0, 10, 0)).norm(), 1.5);
     EXPECT_LT(g.peak_depth, -0.5);
 }
 
