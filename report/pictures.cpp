@@ -65,8 +65,9 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .unit = u,
                             .roi = result.sweep.plan.options.roi.has_value()};
     char b[160];
-    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value,
-                  std::string(m.unit).c_str(), to_string(d.rule).c_str());
+    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s, %s rule)", d.normal.value,
+                  d.scale.radius > 0 ? "deg" : std::string(m.unit).c_str(),
+                  to_string(d.normal.source).c_str(), to_string(d.rule).c_str());
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),

@@ -102,11 +102,33 @@ json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& pla
 }
 
 json floor_json(const Floor& f) {
-    return {{"value", f.value},   {"low", f.low},
-            {"median", f.median}, {"mad", f.mad},
-            {"k", f.k},           {"minimum", f.minimum},
-            {"given", f.given},   {"implausible", f.implausible},
-            {"rule", f.rule},     {"note", f.note}};
+    return {{"value", f.value},
+            {"low", f.low},
+            {"median", f.median},
+            {"mad", f.mad},
+            {"k", f.k},
+            {"minimum", f.minimum},
+            {"given", f.given},
+            {"implausible", f.implausible},
+            {"source", to_string(f.source)},
+            {"rule", f.rule},
+            {"note", f.note}};
+}
+
+// The scale the fused rule read its evidence at (decision/decision.h EvidenceScale).
+json scale_json(const EvidenceScale& s) {
+    json j = {{"radius", s.radius},
+              {"searched", s.searched},
+              {"quiet", s.quiet},
+              {"min_detectable_depth", s.min_depth},
+              {"min_detectable_area", s.min_area},
+              {"radii_tried", s.tried},
+              {"text", s.text}};
+    if (s.searched) {
+        j["own_scale_normal_floor"] = floor_json(s.own_normal);
+        j["own_scale_shape_floor"] = floor_json(s.own_shape);
+    }
+    return j;
 }
 
 json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
@@ -119,27 +141,29 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
     const std::vector<double> peaks = region_peak_values(result, z);
     for (const auto& r : d.regions.regions)
         regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)]));
-    json j = {{"zoom", z},
-              {"footprint", plan.footprints[z]},
-              {"image_size", plan.sizes[z]},
-              {"coverage", sz.coverage.fraction},
-              {"unseen", unseen_json(reference, sz, plan)},
-              {"rule", to_string(d.rule)},
-              {"rule_text", d.rule_text},
-              {"threshold" + u, d.normal.value},
-              {"normal_floor", floor_json(d.normal)},
-              {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
-              {"damaged_vertices", d.regions.damaged_vertices},
-              {"filled_vertices", d.regions.filled_vertices},
-              {"dropped_small_groups", d.regions.dropped_small},
-              {"regions", regions},
-              {"histogram",
-               {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
-                {"bin_width", m.histogram_bin},
-                {"unit", std::string(m.unit)},
-                {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
-                {"counts", d.histogram}}},
-              {"warnings", d.warnings}};
+    json j = {
+        {"zoom", z},
+        {"footprint", plan.footprints[z]},
+        {"image_size", plan.sizes[z]},
+        {"coverage", sz.coverage.fraction},
+        {"unseen", unseen_json(reference, sz, plan)},
+        {"rule", to_string(d.rule)},
+        {"rule_text", d.rule_text},
+        {"threshold" + u, d.normal.value},
+        {"normal_floor", floor_json(d.normal)},
+        {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
+        {"evidence_scale", d.rule == DecisionRule::Fused ? scale_json(d.scale) : json(nullptr)},
+        {"damaged_vertices", d.regions.damaged_vertices},
+        {"filled_vertices", d.regions.filled_vertices},
+        {"dropped_small_groups", d.regions.dropped_small},
+        {"regions", regions},
+        {"histogram",
+         {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
+          {"bin_width", m.histogram_bin},
+          {"unit", std::string(m.unit)},
+          {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
+          {"counts", d.histogram}}},
+        {"warnings", d.warnings}};
     return j;
 }
 

@@ -225,6 +225,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
     out.coverage = result.sweep.zooms.front().coverage.fraction;
     out.threshold_deg = z0.normal.value;
+    out.warnings = result.warnings;
     score_outcome(sc, meshes, result, out);
     check_expect(sc.expect, z0.regions.regions, out);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

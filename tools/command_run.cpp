@@ -182,6 +182,7 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
             }
         }
         bar.finish();
+        print_warnings(o.warnings, o.name);
         if (!global_flags().quiet && !global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
             else
