@@ -36,7 +36,15 @@ namespace {
 // never return. A single SIGTERM from `timeout` or a batch system must still end glint.
 constexpr unsigned kCancelGraceSeconds = 3;
 
-extern "C" void on_watchdog(int) { _exit(130); }
+// One line, as every other end of glint gives, written with write(2) (a signal handler may not
+// use iostreams): the step under way did not come back within the grace period.
+extern "C" void on_watchdog(int) {
+    static constexpr char kLine[] =
+        "glint: interrupted: the step under way did not stop within 3 s; ended without cleaning "
+        "up (a staging folder left behind is removed by the next run into the same output)\n";
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
+    _exit(130);
+}
 
 extern "C" void on_signal(int signal) {
     glint::request_cancel(signal);
