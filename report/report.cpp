@@ -309,10 +309,10 @@ std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& re
         GLINT_ASSERT(values.size() == reference.vertex_count(),
                      "extra atlas scalar '" + given + "' has the wrong length");
         constexpr std::string_view kUnit = "{unit}";
-        const std::string name = given.ends_with(kUnit)
-                                     ? given.substr(0, given.size() - kUnit.size()) +
-                                           unit_suffix(result.unit)
-                                     : given;
+        const std::string name =
+            given.ends_with(kUnit)
+                ? given.substr(0, given.size() - kUnit.size()) + unit_suffix(result.unit)
+                : given;
         std::vector<float> finite(values);  // no NaN in a viewer's file (atlas_fields.h)
         for (float& x : finite)
             if (!std::isfinite(x)) x = 0.0f;

@@ -11,8 +11,8 @@
 #pragma once
 
 #include "analysis/analysis.h"
-#include "report/atlas_fields.h"
 #include "mesh/mesh.h"
+#include "report/atlas_fields.h"
 #include "report/export_options.h"
 #include "report/inspect.h"
 #include "report/output_folder.h"

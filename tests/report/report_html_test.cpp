@@ -128,9 +128,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_EQ(indices[3 * 5 + 1], ref.triangles[5][1]);
     std::map<std::string, nlohmann::json> fields;
     for (const auto& f : data["fields"]) fields[f["name"]] = f;
-    for (const char* name :
-         {"shape_change_mm", "angle_mean_deg_z0", "angle_max_deg_z0", "region_id_z0", "seen_z0",
-          "pixels_z0"})
+    for (const char* name : {"shape_change_mm", "angle_mean_deg_z0", "angle_max_deg_z0",
+                             "region_id_z0", "seen_z0", "pixels_z0"})
         ASSERT_TRUE(fields.count(name)) << name;
     const auto distance = decode<float>(fields["shape_change_mm"]["values"]);
     ASSERT_EQ(distance.size(), ref.vertex_count());
