@@ -68,6 +68,17 @@ struct Element {
     std::size_t stride = 0;     ///< bytes per item when is_fixed_size
 };
 
+// CloudCompare's name for a scalar field, `scalar_<name>` (glint's atlas writes it: mesh/write.h),
+// read back as <name>, unless the element also has a property <name>.
+std::string scalar_name(const Element& e, const std::string& s) {
+    constexpr std::string_view kPrefix = "scalar_";
+    if (s.size() <= kPrefix.size() || !s.starts_with(kPrefix)) return s;
+    const std::string bare = s.substr(kPrefix.size());
+    for (const auto& p : e.properties)
+        if (p.name == bare) return s;
+    return bare;
+}
+
 enum class Encoding { Ascii, BinaryLe, BinaryBe };
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
@@ -324,7 +335,7 @@ class PlyParser {
             } else {
                 p.target = Target::Scalar;
                 p.scalar_index = b_.mesh.scalars.size();
-                b_.mesh.scalars.push_back({s, std::vector<float>(n, 0.0f)});
+                b_.mesh.scalars.push_back({scalar_name(v, s), std::vector<float>(n, 0.0f)});
             }
         }
         if (xyz != 3) fail("PLY element \"vertex\" lacks one of the properties x, y, z");

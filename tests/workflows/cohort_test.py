@@ -16,6 +16,7 @@ GLINT = os.environ.get("GLINT_EXE", "")
 WORKFLOW = SOURCE / "workflows" / "cohort"
 sys.path.insert(0, str(WORKFLOW))
 import cohort  # noqa: E402
+import summary  # noqa: E402
 
 DENT = "dent:center=2,-1,8.8 radius=3 depth=0.6"    # on the condyle's top
 BUMP = "bump:center=-5,0,7 radius=2.5 depth=0.5"    # on its side, 7 mm from the dent
@@ -110,6 +111,15 @@ def test_summary_files(cohort_run):
     for row in table(work):
         assert f'href="{pathlib.PurePosixPath(row["report"])}"' in page
     assert json.loads((work / "cohort.json").read_text())[0]["subject"] == "A"
+
+
+def test_cohort_colours_are_the_atlas_colours():
+    """cohort.png draws loss and gain in the colours every atlas picture gives them: the ends of
+    the diverging map (blue = loss, red = gain), read from the C++ table the pictures use."""
+    canvas = (SOURCE / "report" / "detail" / "canvas.cpp").read_text()
+    table = canvas[canvas.index("kRdBu = {"):]
+    knots = [line.split("//")[1].strip() for line in table[:table.index("};")].splitlines() if "//" in line]
+    assert (summary.LOSS_COLOUR, summary.GAIN_COLOUR) == (knots[0], knots[-1])
 
 
 def test_a_second_run_has_nothing_to_do(cohort_run):

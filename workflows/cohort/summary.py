@@ -3,6 +3,11 @@
 import html
 import pathlib
 
+# One colour convention with every glint picture, atlas file and report.html: loss blue, gain
+# red, the two ends of the diverging map (ColorBrewer RdBu, report/detail/canvas.cpp kRdBu).
+LOSS_COLOUR = "#2166ac"
+GAIN_COLOUR = "#b2182b"
+
 
 def write_png(rows, png_path):
     """Two panels per pair, grouped by subject: volume lost / gained, and regions found."""
@@ -14,8 +19,8 @@ def write_png(rows, png_path):
     x = range(len(rows))
     unit = next((r["unit"] for r in rows if r["unit"]), "")
     fig, (vol, reg) = plt.subplots(2, 1, figsize=(max(6.0, 1.1 * len(rows) + 2), 6.5), sharex=True)
-    vol.bar([i - 0.2 for i in x], [r["volume_lost"] for r in rows], width=0.4, label="lost", color="#b2182b")
-    vol.bar([i + 0.2 for i in x], [r["volume_gained"] for r in rows], width=0.4, label="gained", color="#2166ac")
+    vol.bar([i - 0.2 for i in x], [r["volume_lost"] for r in rows], width=0.4, label="lost", color=LOSS_COLOUR)
+    vol.bar([i + 0.2 for i in x], [r["volume_gained"] for r in rows], width=0.4, label="gained", color=GAIN_COLOUR)
     vol.set_ylabel(f"volume ({unit}³)" if unit else "volume (units³)")
     vol.legend(loc="upper right")
     vol.set_title("glint cohort: change between consecutive time points")
