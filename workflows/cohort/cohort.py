@@ -13,7 +13,10 @@ Manifest (CSV, header required, one row per scan):
   landmarks  landmark pairs (JSON, glint register --landmarks) starting the fit of the pair that
              ends at this row
 Each subject's consecutive time points make one pair; `glint sweep --register` runs once per
-pair (one process per pair), the earlier scan as the reference.
+pair (one process per pair), the earlier scan as the reference. A pair whose input glint refuses
+(exit code 2: a file it cannot read, a mesh without triangles, an option it rejects) gets a
+folder holding only error.txt, glint's one-line reason, and a table row with that reason in
+`error` and no numbers.
 """
 import csv
 import json
@@ -134,7 +137,9 @@ def sweep_arguments(pair, config):
 
 TABLE_COLUMNS = ("subject", "before", "after", "regions", "dents", "bumps", "missing_surface", "area",
                  "volume_lost", "volume_gained", "max_depth", "max_height", "coverage", "fit_converged", "fit_rms",
-                 "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report")
+                 "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report",
+                 "error")
+ERROR_FILE = "error.txt"  # in a pair's folder when glint refused its input (the Snakefile writes it)
 
 
 def pair_row(pair_id, pair, report):
@@ -160,7 +165,16 @@ def pair_row(pair_id, pair, report):
         "fit_rotation_deg": fit.get("rotation_deg"), "fit_termination": fit.get("termination"),
         "unit": report.get("unit") or "",
         "report": f"pairs/{pair_id}/report.json",
+        "error": "",
     }
+
+
+def error_row(pair, message):
+    """The table row of a pair glint refused: who and when, the reason, no numbers."""
+    row = dict.fromkeys(TABLE_COLUMNS)
+    row.update(subject=pair["subject"], before=pair["before"]["timepoint"], after=pair["after"]["timepoint"],
+               report="", error=message)
+    return row
 
 
 def write_table(rows, csv_path, json_path):
@@ -178,10 +192,19 @@ def write_table(rows, csv_path, json_path):
 
 
 def cohort_table(pair_ids, all_pairs, out_dir, csv_path, json_path):
-    """Reads every pair's report.json and writes the cohort table."""
+    """Reads every pair's report.json (or its error.txt) and writes the cohort table."""
     rows = []
     for pair_id in pair_ids:
-        report_path = pathlib.Path(out_dir) / "pairs" / pair_id / "report.json"
-        rows.append(pair_row(pair_id, all_pairs[pair_id], json.loads(report_path.read_text())))
+        folder = pathlib.Path(out_dir) / "pairs" / pair_id
+        if (folder / ERROR_FILE).is_file():
+            rows.append(error_row(all_pairs[pair_id], (folder / ERROR_FILE).read_text().strip()))
+        else:
+            rows.append(pair_row(pair_id, all_pairs[pair_id], json.loads((folder / "report.json").read_text())))
     write_table(rows, csv_path, json_path)
     return rows
+
+
+def refused(json_path):
+    """The rows of cohort.json whose pair glint refused (empty when there is no table yet)."""
+    path = pathlib.Path(json_path)
+    return [r for r in json.loads(path.read_text()) if r.get("error")] if path.is_file() else []
