@@ -20,6 +20,7 @@ folder holding only error.txt, glint's one-line reason, and a table row with tha
 """
 import csv
 import json
+import os
 import pathlib
 import re
 
@@ -30,6 +31,30 @@ _IDENT = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
 
 class ManifestError(ValueError):
     """A manifest problem, one line naming the file, the row and the column."""
+
+
+class ProfileError(ValueError):
+    """A Snakemake profile given in a way this workflow cannot use, and how to give it."""
+
+
+def lost_profile(argv, environ):
+    """The profile folder given to snakemake as a relative path (--profile or SNAKEMAKE_PROFILE)
+    that this process no longer sees from the results folder it changed into (-d), or None.
+
+    note: Snakemake 7 resolves the profile's status script against the folder it was started in
+    and then changes into -d; from there the script's relative path names nothing, and the first
+    status check, after the jobs are submitted, fails. The Snakefile stops before that."""
+    profile = environ.get("SNAKEMAKE_PROFILE", "")
+    for i, arg in enumerate(argv):
+        if arg == "--profile" and i + 1 < len(argv):
+            profile = argv[i + 1]
+        elif arg.startswith("--profile="):
+            profile = arg.split("=", 1)[1]
+    start = environ.get("PWD", "")  # the shell's folder: os.chdir leaves PWD as it was
+    if not profile or os.path.isabs(profile) or not start:
+        return None
+    was_path = os.path.isdir(os.path.join(start, profile))  # else a name, found in ~/.config/snakemake
+    return profile if was_path and not os.path.isdir(profile) else None
 
 
 def _number(text):
