@@ -180,7 +180,7 @@ def test_a_relative_profile_path_is_refused_before_any_job(tmp_path, cohort_run)
 def test_a_pair_glint_refuses_gets_its_reason_in_the_table(tmp_path, cohort_run):
     # The header promises three vertices and none follow: glint exits 2 with one line. That pair's
     # row carries the line; the other pair completes; the run succeeds and names the refused pair.
-    work, manifest, command = cohort_run[0], cohort_run[1], cohort_run[2]
+    manifest, command = cohort_run[1], cohort_run[2]
     (tmp_path / "cut.ply").write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                       "property float z\nend_header\n")
     bad = tmp_path / "m.csv"

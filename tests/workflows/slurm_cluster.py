@@ -53,12 +53,18 @@ def missing_programs():
     return [name for name in DAEMONS + CLIENTS if _program(name) is None]
 
 
-def _free_port():
-    # note: the port is free when asked; another program could take it before the daemon binds
-    # it. The daemon then fails to start and says so in its log, which the error names.
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
+def _free_ports(count):
+    # note: the ports are free when asked (and distinct: all are held until each is known);
+    # another program could take one before the daemon binds it. The daemon then fails to
+    # start and says so in its log, which the error names.
+    sockets = [socket.socket(socket.AF_INET, socket.SOCK_STREAM) for _ in range(count)]
+    try:
+        for s in sockets:
+            s.bind(("127.0.0.1", 0))
+        return [s.getsockname()[1] for s in sockets]
+    finally:
+        for s in sockets:
+            s.close()
 
 
 def _die_with_parent():
@@ -74,14 +80,16 @@ class ClusterError(RuntimeError):
 class Cluster:
     """A running single-node cluster. Use as a context manager (stops on exit, also on an
     exception); `env` is the environment for Slurm commands (SLURM_CONF set); `folder` holds
-    the configuration and logs/<daemon>.log."""
+    the configuration and logs/<daemon>.log. A folder it made itself is removed on a clean exit
+    and kept (its path printed) after an exception."""
 
     def __init__(self, partition="cohort", account="cohort", folder=None):
         self.partition = partition
         self.account = account
         self.user = pwd.getpwuid(os.getuid()).pw_name
+        self.owns_folder = folder is None
         self.folder = pathlib.Path(folder or tempfile.mkdtemp(prefix="glint-slurm-"))
-        self.folder.chmod(0o700)  # munged refuses a key or socket others could reach
+        self.folder.chmod(0o700)  # the munge key and the database are the user's alone
         self.logs = self.folder / "logs"
         self.conf = self.folder / "slurm.conf"
         self.node = socket.gethostname().split(".")[0]
@@ -98,8 +106,12 @@ class Cluster:
             raise
         return self
 
-    def __exit__(self, *exc):
+    def __exit__(self, exc_type, *_):
         self.stop()
+        if self.owns_folder and exc_type is None:
+            shutil.rmtree(self.folder, ignore_errors=True)
+        elif self.owns_folder:
+            print(f"glint test cluster: configuration and logs kept in {self.folder}", file=sys.stderr)
         return False
 
     def start(self):
@@ -109,7 +121,7 @@ class Cluster:
         for sub in ("logs", "state", "spool", "run", "db"):
             (self.folder / sub).mkdir(exist_ok=True)
         self.munge_socket = self.folder / "run" / "munge.socket"
-        self.ports = {name: _free_port() for name in ("mariadb", "slurmdbd", "slurmctld", "slurmd")}
+        self.ports = dict(zip(("mariadb", "slurmdbd", "slurmctld", "slurmd"), _free_ports(4)))
         self._start_munged()
         self._start_mariadb()
         self._start_slurmdbd()
@@ -150,8 +162,9 @@ class Cluster:
         key = self.folder / "munge.key"
         key.write_bytes(secrets.token_bytes(1024))
         key.chmod(0o400)
-        # --force: munged otherwise refuses to run with its socket in a folder under /tmp, whose
-        # sticky, world-writable parent it cannot trust (the folder itself is 0700 and ours).
+        # --force: munged wants its socket's folder open to every user, whose programs would ask
+        # it for credentials; this folder is 0700 (it holds the key), and only this cluster's
+        # daemons and the user who started it talk to this munged.
         self._spawn("munged", [_program("munged"), "--foreground", "--force", f"--socket={self.munge_socket}",
                                f"--key-file={key}", f"--pid-file={self.folder}/run/munged.pid",
                                f"--log-file={self.logs}/munged.log", f"--seed-file={self.folder}/run/munged.seed"])
@@ -316,9 +329,10 @@ PartitionName={self.partition} Nodes={self.node} Default=YES MaxTime=INFINITE St
         """Processes of this cluster still alive: its daemons, and any process (a job's
         slurmstepd, snakemake or glint) whose environment names this cluster's SLURM_CONF."""
         alive = [f"{name} (pid {p.pid})" for name, p in self.processes.items() if p.poll() is None]
+        seen = {p.pid for p in self.processes.values()} | {os.getpid()}
         marker = f"SLURM_CONF={self.conf}".encode()
         for proc in pathlib.Path("/proc").iterdir():
-            if not proc.name.isdigit() or int(proc.name) == os.getpid():
+            if not proc.name.isdigit() or int(proc.name) in seen:
                 continue
             try:
                 if marker in (proc / "environ").read_bytes().split(b"\0"):
@@ -346,7 +360,6 @@ def main(argv):
         env = dict(cluster.env, SBATCH_PARTITION=cluster.partition, SBATCH_ACCOUNT=cluster.account)
         code = subprocess.call(command, env=env)
         print("glint test cluster: stopping", file=sys.stderr)
-    shutil.rmtree(cluster.folder, ignore_errors=True)
     return code
 
 

@@ -16,6 +16,7 @@ import pathlib
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 
 import pytest
@@ -68,25 +69,51 @@ def pair_files(work):
     return {p.parent: (p.stat().st_ino, p.stat().st_mtime_ns) for p in (work / "pairs").glob("*/*/report.json")}
 
 
+class Head:
+    """snakemake running in the background (the submitting host's process), its output in a
+    file (a pipe nobody reads could fill and stop it)."""
+
+    def __init__(self, command, env):
+        self.output = tempfile.TemporaryFile("w+")
+        self.process = subprocess.Popen(command, env=env, stdout=self.output, stderr=subprocess.STDOUT, text=True)
+
+    def text(self):
+        self.output.seek(0)
+        return self.output.read()
+
+    def finish(self, seconds):
+        """Waits for snakemake to end (interrupting it, then killing it, if it does not);
+        its exit code."""
+        try:
+            return self.process.wait(timeout=seconds)
+        except subprocess.TimeoutExpired:
+            self.process.send_signal(signal.SIGINT)
+            try:
+                self.process.wait(timeout=60)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+            pytest.fail(f"snakemake still running after {seconds} s:\n{self.text()[-5000:]}")
+
+
 def wait_for(what, ready, seconds, head=None):
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
         value = ready()
         if value:
             return value
-        if head is not None and head.poll() is not None:
-            out, err = head.communicate()
-            pytest.fail(f"snakemake ended ({head.returncode}) before {what}:\n{out}\n{err}")
+        if head is not None and head.process.poll() is not None:
+            pytest.fail(f"snakemake ended ({head.process.returncode}) before {what}:\n{head.text()[-5000:]}")
         time.sleep(0.3)
     pytest.fail(f"timed out after {seconds} s waiting for {what}")
 
 
 @pytest.fixture(scope="module")
-def cluster():
+def cluster(tmp_path_factory):
     assert GLINT, "GLINT_EXE must be set (ctest sets it)"
     # A CTest timeout or Ctrl-C ends pytest through SIGTERM / SIGINT: the cluster still stops.
     signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))
-    with slurm_cluster.Cluster() as c:
+    # In pytest's temporary folder: kept for a look after a failure, pruned by pytest later.
+    with slurm_cluster.Cluster(folder=tmp_path_factory.mktemp("cluster")) as c:
         yield c
     assert c.leftovers() == [], "processes of the test cluster still running"
 
@@ -166,7 +193,7 @@ def test_the_cluster_stops_and_leaves_no_process(cohort, cluster):
 
 # --- faults (workflow.slurm_faults) ----------------------------------------------------------
 
-# Larger sweeps than SMALL (about 5 s of glint per pair), so a job can be caught running.
+# Larger sweeps than SMALL (seconds of glint per pair), so a job is caught while glint writes.
 FAULT_SETTINGS = ["size=128", "azimuth_step=30", "elevations=[-60,-30,0,30,60]"]
 FAULT_SUBJECTS = 6
 
@@ -182,14 +209,17 @@ def fault_cohort(tmp_path_factory, cluster):
     return manifest, local
 
 
-def running_sweep(cluster, since=0, pair=None):
-    """A sweep job after job id `since` (of `pair`, if given) that has been running for two
-    seconds, so glint is under way: (job id, pair), or None."""
-    for job in cluster.jobs(fields=("JobID", "JobName", "State", "Elapsed")):
-        name = job["JobName"][len("glint-sweep-"):].replace("-", "/", 1)
-        if (int(job["JobID"]) > since and job["State"] == "RUNNING" and job["Elapsed"] >= "00:00:02"
-                and pair in (None, name)):
-            return job["JobID"], name
+def glint_under_way(cluster, work, since=0, pair=None):
+    """A running sweep job after job id `since` (of `pair`, if given) whose glint is writing its
+    staging folder (pairs/<subject>/<pair>.partial-<pid>): (job id, pair), or None."""
+    for staging in (work / "pairs").glob("*/*.partial-*"):
+        name = f"{staging.parent.name}/{staging.name.split('.partial-')[0]}"
+        if pair not in (None, name):
+            continue
+        jobs = cluster.run("squeue", "-h", "-t", "R", "-o", "%i", "-n", "glint-sweep-" + name.replace("/", "-"),
+                           check=False).split()
+        if jobs and int(jobs[0]) > since:
+            return jobs[0], name
     return None
 
 
@@ -197,21 +227,15 @@ def test_fault_cancelled_job_is_retried_then_finished_by_a_rerun(fault_cohort, c
     manifest, local = fault_cohort
     start = last_job_id(cluster)
     command, env = snakemake(tmp_path, manifest, slurm=cluster, settings=FAULT_SETTINGS)
-    head = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        # scancel a running job: the profile's restart-times runs it once more, with twice the
-        # memory and time; cancel that attempt too, and the pair is left to a rerun.
-        first, pair = wait_for("a running sweep", lambda: running_sweep(cluster, start), 120, head)
-        cluster.run("scancel", first)
-        second, _ = wait_for(f"the retry of {pair} running", lambda: running_sweep(cluster, int(first), pair),
-                             120, head)
-        cluster.run("scancel", second)
-        out, err = head.communicate(timeout=300)
-    finally:
-        if head.poll() is None:
-            head.send_signal(signal.SIGINT)
-            head.wait(timeout=60)
-    assert head.returncode != 0, "a pair was cancelled twice: the run must fail"
+    head = Head(command, env)
+    # scancel a job while its glint writes: the profile's restart-times runs it once more, with
+    # twice the memory and time; cancel that attempt too, and the pair is left to a rerun.
+    first, pair = wait_for("glint under way", lambda: glint_under_way(cluster, tmp_path, start), 120, head)
+    cluster.run("scancel", first)
+    second, _ = wait_for(f"the retry of {pair}", lambda: glint_under_way(cluster, tmp_path, int(first), pair),
+                         120, head)
+    cluster.run("scancel", second)
+    assert head.finish(300) != 0, "a pair was cancelled twice: the run must fail"
     # keep-going: every other pair finished; the cancelled one left nothing a table could count.
     attempts = jobs_by_pair(cluster, start)[pair]
     assert [j["State"].split()[0] for j in attempts] == ["CANCELLED", "CANCELLED"], attempts
@@ -220,7 +244,7 @@ def test_fault_cancelled_job_is_retried_then_finished_by_a_rerun(fault_cohort, c
     assert not list((tmp_path / "pairs").glob("*/*.partial-*"))
     assert not (tmp_path / "cohort.csv").exists()
     swept = pair_files(tmp_path)
-    assert len(swept) == FAULT_SUBJECTS - 1, (out, err)
+    assert len(swept) == FAULT_SUBJECTS - 1, head.text()
     # The rerun sweeps the cancelled pair only, and the table is the local run's.
     rerun_from = last_job_id(cluster)
     again = run(command, env)
@@ -234,26 +258,23 @@ def test_fault_drained_node_then_resumed_is_finished_by_a_rerun(fault_cohort, cl
     manifest, local = fault_cohort
     start = last_job_id(cluster)
     command, env = snakemake(tmp_path, manifest, slurm=cluster, settings=FAULT_SETTINGS)
-    head = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        wait_for("a running sweep", lambda: running_sweep(cluster, start), 120, head)
-        cluster.run("scontrol", "update", f"nodename={cluster.node}", "state=drain", "reason=glint test")
-        # Running jobs finish on a draining node; the others wait, and snakemake waits with them.
-        wait_for("the node drained", lambda: cluster.node_state() == "drained", 120, head)
-        pending = [j for j in cluster.jobs() if int(j["JobID"]) > start and j["State"] == "PENDING"]
-        assert pending, "no job left waiting on the drained node"
-        time.sleep(3)
-        assert head.poll() is None, "snakemake gave up on jobs waiting for a drained node"
-        # The user stops waiting (Ctrl-C): snakemake cancels what it submitted (cluster-cancel).
-        head.send_signal(signal.SIGINT)
-        out, err = head.communicate(timeout=120)
-    finally:
-        if head.poll() is None:
-            head.kill()
-            head.wait()
+    head = Head(command, env)
+    wait_for("glint under way", lambda: glint_under_way(cluster, tmp_path, start), 120, head)
+    cluster.run("scontrol", "update", f"nodename={cluster.node}", "state=drain", "reason=glint test")
+    # Running jobs finish on a draining node; the others wait, and snakemake waits with them.
+    wait_for("the node drained", lambda: cluster.node_state() == "drained", 120, head)
+    pending = [j for j in cluster.jobs() if int(j["JobID"]) > start and j["State"] == "PENDING"]
+    assert pending, "no job left waiting on the drained node"
+    time.sleep(3)
+    assert head.process.poll() is None, "snakemake gave up on jobs waiting for a drained node"
+    # The user stops waiting (Ctrl-C): snakemake cancels what it submitted (cluster-cancel).
+    head.process.send_signal(signal.SIGINT)
+    head.finish(120)
     assert wait_for("the queue emptied", lambda: not cluster.queued() or None, 60)
+    assert {j["State"].split()[0] for j in cluster.jobs() if j["JobID"] in {p["JobID"] for p in pending}} == \
+        {"CANCELLED"}
     swept = pair_files(tmp_path)
-    assert 0 < len(swept) < FAULT_SUBJECTS, (out, err)
+    assert 0 < len(swept) < FAULT_SUBJECTS, head.text()
     cluster.run("scontrol", "update", f"nodename={cluster.node}", "state=resume")
     wait_for("the node back", lambda: cluster.node_state() == "idle", 60)
     rerun_from = last_job_id(cluster)
