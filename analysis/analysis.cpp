@@ -27,14 +27,25 @@ void announce(const AnalysisObserver& observer, std::string_view stage) {
 
 // The fit, refused when a registration did not converge: a sweep from a wrong pose would
 // report the misfit as damage.
-FitOutcome fit_or_refuse(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
-    FitOutcome fit = fit_examined(reference, examined, options);
+FitOutcome fit_or_refuse(const Mesh& reference, const Mesh& examined, const FitOptions& options,
+                         const std::shared_ptr<const SurfaceIndex>& reference_index) {
+    FitOutcome fit = fit_examined(reference, examined, options, reference_index);
     if (!fit.converged)
         throw InputError(
             "registration of the examined mesh onto the reference did not converge (" +
             (fit.warnings.empty() ? std::string("no reason given") : fit.warnings.back()) +
             "); the meshes may not overlap: give a fit file or start from landmarks (glint register)");
     return fit;
+}
+
+// Whether the sweep renders on the CPU (Embree), where it casts into the run's BVHs; a device
+// that failed to open is left for the sweep to report.
+bool sweeps_on_cpu(const RenderOptions& render) {
+    try {
+        return shared_render_context(render.context_options())->backend() == Backend::Embree;
+    } catch (const std::exception&) {
+        return false;
+    }
 }
 
 // The plan's ROI with its mask read (a sweep ROI may be a vertex mask file).
@@ -66,15 +77,18 @@ std::string swap_hint(const Mesh& reference, double exa_area, const AnalysisResu
 
 // The sweep of the fitted pair, each view handed to the observer on the way.
 void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options,
-                const AnalysisObserver& observer, AnalysisResult& result) {
+                const AnalysisObserver& observer, const SweepSurfaces& surfaces,
+                AnalysisResult& result) {
     const SweepPlan plan =
         make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
     std::size_t done = 0;
-    result.sweep = run_sweep(reference, fitted, plan, options.sweep,
-                             [&](const PlannedView& v, const DeviationMap& d) {
-                                 if (observer.view) observer.view(v, d);
-                                 if (observer.views) observer.views(++done, plan.views.size());
-                             });
+    result.sweep = run_sweep(
+        reference, fitted, plan, options.sweep,
+        [&](const PlannedView& v, const DeviationMap& d) {
+            if (observer.view) observer.view(v, d);
+            if (observer.views) observer.views(++done, plan.views.size());
+        },
+        surfaces);
 }
 
 // One decision per zoom from the atlas and the shape evidence; their warnings named by zoom.
@@ -123,9 +137,14 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
         } catch (const std::exception&) {
         }
     });
+    // One BVH per surface for the run (mesh/surface_index.h), shared by the fit, the distance,
+    // the sweep's CPU renderer and (small enough) the pictures: the reference's is built for a
+    // registration, or below for an Embree sweep; the fitted examined mesh's for the distance.
+    std::shared_ptr<const SurfaceIndex> reference_index;
     announce(observer, "fit");
     auto t = Clock::now();
-    result.fit = fit_or_refuse(reference, examined, options.fit);
+    if (options.fit.mode == FitMode::Register) reference_index = index_surface(reference);
+    result.fit = fit_or_refuse(reference, examined, options.fit, reference_index);
     for (const auto& w : result.fit.warnings) result.warnings.push_back(w);
     const double examined_area = surface_area(examined);
     // The examined mesh becomes the fitted one in place (it is this call's own copy).
@@ -135,7 +154,8 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
 
     announce(observer, "distance");
     t = Clock::now();
-    ShapeEvidence shape = measure_shape(reference, fitted);
+    std::shared_ptr<const SurfaceIndex> examined_index = index_surface(fitted);
+    ShapeEvidence shape = measure_shape(reference, fitted, examined_index);
     result.distance = std::move(shape.distance);
     result.tolerance = std::move(shape.tolerance);
     result.at_border = std::move(shape.at_border);
@@ -143,13 +163,27 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
 
     announce(observer, "sweep");
     device.wait();
-    sweep_step(reference, fitted, options, observer, result);
-    fitted = Mesh{};  // the fitted copy is not needed after the sweep (memory for the exports)
+    SweepSurfaces surfaces;
+    if (sweeps_on_cpu(options.sweep.render)) {
+        if (!reference_index) reference_index = index_surface(reference);
+        surfaces = {reference_index, examined_index};
+    }
+    sweep_step(reference, fitted, options, observer, surfaces, result);
+    // The examined BVH is not needed after the sweep (memory for the exports); the fitted copy
+    // itself lives through the decision (below).
+    surfaces = {};
+    examined_index.reset();
+    if (reference.triangle_count() <= kKeptIndexTriangles)
+        result.reference_index = std::move(reference_index);
 
     announce(observer, "decide");
     t = Clock::now();
     decide_step(reference, options, result);
     result.decision_seconds = seconds_since(t);
+    // note: the fitted copy lives through the decision (its regions say which part of it a
+    // decimated copy keeps whole); it is released before the exports, which need the memory.
+    if (observer.fitted) observer.fitted(fitted, result);
+    fitted = Mesh{};
     result.swap_hint = swap_hint(reference, examined_area, result);
     if (!result.swap_hint.empty()) result.warnings.push_back(result.swap_hint);
 

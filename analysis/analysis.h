@@ -19,10 +19,12 @@
 #include "analysis/units.h"
 #include "decision/decision.h"
 #include "mesh/mesh.h"
+#include "mesh/surface_index.h"
 #include "scanner/sweep.h"
 
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -48,6 +50,9 @@ struct AnalysisResult {
     std::vector<std::uint8_t>
         at_border;  ///< per reference vertex, closest examined point on a border
     SweepResult sweep;
+    /// The reference's BVH the fit and the sweep shared (mesh/surface_index.h), kept for the
+    /// pictures (report/) when the reference has at most kKeptIndexTriangles; null otherwise.
+    std::shared_ptr<const SurfaceIndex> reference_index;
     std::vector<ZoomDecision> decisions;  ///< one per zoom level
     double size = 0.0;                    ///< bounding diagonal of the reference (mesh units)
     std::string unit;      ///< of every length reported ("" = unknown; analysis/units.h)
@@ -62,6 +67,12 @@ struct AnalysisResult {
     double total_seconds = 0.0;
 };
 
+/// A reference of at most this many triangles keeps its BVH for the pictures after the analysis
+/// (AnalysisResult::reference_index). note: above it the BVH (113 MB compact at 2M triangles,
+/// with its copy of the geometry 160 MB) would be held through the atlas files and the report
+/// page, past the 600 MiB peak a 2M-triangle run keeps to; the pictures then build their own.
+inline constexpr std::size_t kKeptIndexTriangles = 1'000'000;
+
 /// Progress of a long analysis, and the sweep's views as they are compared; every member may
 /// be empty.
 struct AnalysisObserver {
@@ -71,6 +82,11 @@ struct AnalysisObserver {
     /// Each view's deviation map while it is valid (per-view exports); on the GPU path the map
     /// is empty (scanner/sweep.h ViewObserver).
     ViewObserver view;
+    /// The fitted examined mesh (reference coordinates, with the vertex normals the sweep
+    /// rendered) and the result with its decisions, once decided and just before analyse()
+    /// releases the mesh: report.html keeps a decimated copy for its live view
+    /// (report/report_html.h live_examined).
+    std::function<void(const Mesh& fitted, const AnalysisResult& result)> fitted;
 };
 
 /// Runs the pipeline. The reference must have vertex normals (loaded meshes do). The examined

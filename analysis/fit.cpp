@@ -18,8 +18,8 @@ namespace glint {
 namespace {
 
 // The starting pose from landmark pairs (points kept, picked pixels resolved).
-Rigid landmark_start(const Mesh& reference, const Mesh& examined,
-                     const std::filesystem::path& file) {
+Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::filesystem::path& file,
+                     const std::shared_ptr<const SurfaceIndex>& reference_index) {
     const std::vector<LandmarkPair> pairs = read_landmarks(file.string());
     const std::string source = "landmarks \"" + file.string() + "\"";
     // Indexes only when some side is a picked pixel (building one costs a BVH).
@@ -28,8 +28,10 @@ Rigid landmark_start(const Mesh& reference, const Mesh& examined,
     });
     ResolvedLandmarks points;
     if (has_pixels) {
-        points = resolve_landmarks(pairs, ClosestPointIndex(reference), ClosestPointIndex(examined),
-                                   source);
+        const ClosestPointIndex ref = reference_index
+                                          ? ClosestPointIndex(reference, reference_index)
+                                          : ClosestPointIndex(reference);
+        points = resolve_landmarks(pairs, ref, ClosestPointIndex(examined), source);
     } else {
         for (const auto& p : pairs) {
             points.examined.push_back(*p.examined.point);
@@ -43,8 +45,8 @@ Rigid landmark_start(const Mesh& reference, const Mesh& examined,
     }
 }
 
-FitOutcome register_examined(const Mesh& reference, const Mesh& examined,
-                             const FitOptions& options) {
+FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options,
+                             const std::shared_ptr<const SurfaceIndex>& reference_index) {
     RegistrationOptions o = options.registration;
     RegistrationSources sources;
     if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
@@ -53,12 +55,12 @@ FitOutcome register_examined(const Mesh& reference, const Mesh& examined,
         sources.init_file = options.init_file.string();
     }
     if (!options.landmarks_file.empty()) {
-        o.initial = landmark_start(reference, examined, options.landmarks_file);
+        o.initial = landmark_start(reference, examined, options.landmarks_file, reference_index);
         sources.landmarks_file = options.landmarks_file.string();
     }
     FitOutcome out;
     out.mode = FitMode::Register;
-    const RegistrationResult r = register_meshes(reference, examined, o);
+    const RegistrationResult r = register_meshes(reference, examined, o, reference_index);
     out.reference_from_examined = r.reference_from_examined;
     out.converged = r.converged;
     out.json = to_json(r, o, sources);
@@ -111,7 +113,8 @@ void FitOptions::validate() const {
             "landmarks and an initial pose start a registration (mode register, --register)");
 }
 
-FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options) {
+FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options,
+                        const std::shared_ptr<const SurfaceIndex>& reference_index) {
     options.validate();
     FitOutcome out;
     out.mode = options.mode;
@@ -137,7 +140,8 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             out.reference_from_examined = read_fit(options.fit_file.string());
             out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
             return out;
-        case FitMode::Register: return register_examined(reference, examined, options);
+        case FitMode::Register:
+            return register_examined(reference, examined, options, reference_index);
     }
     return out;
 }
@@ -196,9 +200,12 @@ double curved_offset(const Mesh& exa, const Triangle& t, const ClosestPoint& c) 
 
 }  // namespace
 
-ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined) {
+ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined,
+                            const std::shared_ptr<const SurfaceIndex>& examined_index) {
     GLINT_ASSERT(reference.has_normals(), "shape evidence needs the reference's vertex normals");
-    const ClosestPointIndex index = ClosestPointIndex::borrowing(fitted_examined);
+    const ClosestPointIndex index = examined_index
+                                        ? ClosestPointIndex(fitted_examined, examined_index)
+                                        : ClosestPointIndex::borrowing(fitted_examined);
     const Mesh& exa = index.mesh();  // with normals (the index computes them when absent)
     const std::size_t n = reference.vertex_count();
     const auto border = border_vertices(exa);

@@ -5,9 +5,11 @@
 
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
+#include "mesh/surface_index.h"
 #include "registration/icp.h"
 
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,8 +53,10 @@ struct FitOutcome {
 /// Fits `examined` onto `reference`: reads the fit file, the landmarks (resolving picked
 /// pixels) or the initial pose, and a mask ROI, then registers.
 /// \throw InputError bad options or files (naming them); the registration's own errors.
-[[nodiscard]] FitOutcome fit_examined(const Mesh& reference, const Mesh& examined,
-                                      const FitOptions& options);
+/// `reference_index`: the reference's BVH when the run built it already (mesh/surface_index.h).
+[[nodiscard]] FitOutcome fit_examined(
+    const Mesh& reference, const Mesh& examined, const FitOptions& options,
+    const std::shared_ptr<const SurfaceIndex>& reference_index = nullptr);
 
 /// The shape evidence the decision reads, per reference vertex.
 ///
@@ -82,6 +86,9 @@ struct ShapeEvidence {
 };
 
 /// \pre both meshes have vertex normals (loaded meshes do).
-[[nodiscard]] ShapeEvidence measure_shape(const Mesh& reference, const Mesh& fitted_examined);
+/// `examined_index`: the fitted examined mesh's BVH when the run built it already.
+[[nodiscard]] ShapeEvidence measure_shape(
+    const Mesh& reference, const Mesh& fitted_examined,
+    const std::shared_ptr<const SurfaceIndex>& examined_index = nullptr);
 
 }  // namespace glint

@@ -6,7 +6,9 @@
 
 #include "analysis/option_registry.h"
 
+#include <charconv>
 #include <cstdint>
+#include <cstdlib>
 #include <functional>
 #include <optional>
 #include <string>
@@ -23,7 +25,8 @@ struct OptionFields {
     template <class Member>
     static Field number(OptionInfo info, Member member) {
         info.kind = OptionKind::Number;
-        return {std::move(info), [member](const Options& o) -> OptionValue { return member(o); },
+        return {std::move(info),
+                [member](const Options& o) -> OptionValue { return as_double(member(o)); },
                 [member](Options& o, const OptionValue& v) { member(o) = std::get<double>(v); }};
     }
 
@@ -86,6 +89,16 @@ struct OptionFields {
                 else if (unset) unset(o);
             }};
     }
+
+    /// A float field as the double it was given as (0.37f reads 0.37, not 0.3700000048): the
+    /// shortest decimal that round-trips the float.
+    static double as_double(float f) {
+        char text[32];
+        const auto end = std::to_chars(text, text + sizeof text - 1, f).ptr;
+        *end = '\0';
+        return std::strtod(text, nullptr);
+    }
+    static double as_double(double d) { return d; }
 
     /// "" as unset.
     static OptionValue text_or_unset(const std::string& s) {

@@ -289,13 +289,17 @@ void bind_analysis(py::module_& m) {
               .c_str());
     m.def(
         "options",
-        [](const py::kwargs& kwargs) {
+        [](bool do_register, const std::optional<std::filesystem::path>& fit_file,
+           const py::kwargs& kwargs) {
             Keywords k;
             apply_keywords(k, kwargs, kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword, "options");
+            k.analysis.fit.mode = fit_mode(do_register, fit_file);
+            if (fit_file) k.analysis.fit.fit_file = *fit_file;
             k.analysis.validate();
             k.exports.validate();
             return json_loads(options_json(k));
         },
+        py::kw_only(), py::arg("register") = true, py::arg("fit") = py::none(),
         ("The options analyse() would run with, resolved from these keywords, as a dict laid out "
          "as a scenario file's sections (glint sweep --print-options prints the same).\n\n"
          "Keywords:\n" +

@@ -3,6 +3,7 @@
 #include "mesh/components.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/surface_index.h"
 
 #include <embree3/rtcore.h>
 #include <tbb/blocked_range.h>
@@ -55,26 +56,14 @@ struct QueryState {
 }  // namespace
 
 struct ClosestPointIndex::Impl {
-    RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
+    std::shared_ptr<const SurfaceIndex> index;  // the BVH (mesh/surface_index.h)
+    RTCScene scene = nullptr;                   // index's
     ClosestPointIndexData data;
     Mesh own_mesh;  // the copy the queries read (empty when the index reads the caller's mesh)
-    std::vector<Vec3f> positions;  // what Embree reads: with room for its 16-byte reads
-    double diagonal = 0.0;         // of the mesh's bounding box
-
-    ~Impl() {
-        if (scene) rtcReleaseScene(scene);
-        if (device) rtcReleaseDevice(device);
-    }
+    double diagonal = 0.0;  // of the mesh's bounding box
 };
 
 namespace {
-
-void embree_error(void* user, RTCError code, const char* message) {
-    auto* text = static_cast<std::string*>(user);
-    *text =
-        "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
-}
 
 // The smallest float at or above d: Embree culls with a float radius, and a radius rounded
 // down could cull a triangle closer (in double) than the best found so far, so the point
@@ -131,64 +120,47 @@ void finish_query(const ClosestPointIndexData& d, QueryState& s) {
 
 }  // namespace
 
-ClosestPointIndex::ClosestPointIndex(const Mesh& mesh) : ClosestPointIndex(mesh, false) {}
+ClosestPointIndex::ClosestPointIndex(const Mesh& mesh) : ClosestPointIndex(mesh, false, nullptr) {}
+
+ClosestPointIndex::ClosestPointIndex(const Mesh& mesh, std::shared_ptr<const SurfaceIndex> index)
+    : ClosestPointIndex(mesh, true, std::move(index)) {}
 
 ClosestPointIndex ClosestPointIndex::borrowing(const Mesh& mesh) {
-    return ClosestPointIndex(mesh, true);
+    return ClosestPointIndex(mesh, true, nullptr);
 }
 
-ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow)
+ClosestPointIndex::ClosestPointIndex(const Mesh& mesh_in, bool borrow,
+                                     std::shared_ptr<const SurfaceIndex> index)
     : impl_(std::make_unique<Impl>()) {
     if (mesh_in.triangles.empty())
         throw InputError("closest-point index: the mesh has no triangles");
     // note: unless borrowing, the index keeps its own copy of the geometry, so it cannot
     // dangle when the caller's mesh goes away (a temporary, a moved-from vector).
     const bool copy = !borrow || !mesh_in.has_normals();
-    Mesh& own = impl_->own_mesh;
-    // Embree reads 16 bytes per vertex: one spare position of capacity keeps the last read
-    // inside the allocation. An index that owns its mesh reads these positions too.
-    std::vector<Vec3f>& padded = copy ? own.positions : impl_->positions;
-    padded.reserve(mesh_in.positions.size() + 1);
-    padded = mesh_in.positions;
     const Mesh* mesh = &mesh_in;
     if (copy) {
+        Mesh& own = impl_->own_mesh;
+        own.positions = mesh_in.positions;
         own.triangles = mesh_in.triangles;
         own.normals = mesh_in.normals;
         if (!own.has_normals()) compute_vertex_normals(own);
         mesh = &own;
     }
-    GLINT_ASSERT(padded.capacity() > padded.size(), "no spare position for Embree's 16-byte reads");
     auto& d = impl_->data;
     d.mesh = mesh;
     impl_->diagonal = bounds(*mesh).diagonal();
     d.around = vertex_triangles(*mesh);
-
-    std::string error;
-    impl_->device = rtcNewDevice(nullptr);
-    if (!impl_->device) throw DeviceError("Embree: cannot create a device");
-    rtcSetDeviceErrorFunction(impl_->device, embree_error, &error);
-    impl_->scene = rtcNewScene(impl_->device);
-    // note: the compact BVH: on 2M triangles 58 MB less (134 instead of 192 MB for the index)
-    // and point queries no slower (0.31–0.35 s for 1M queries either way). Robust: picking
-    // rays are watertight, so a ray through a vertex or an edge (a landmark picked exactly at a
-    // vertex) cannot fall through between its triangles; without it, on AVX2 machines, such a
-    // ray hit the far side of the blob in ResolveLandmarks' test (AVX-512 happened to close it).
-    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_COMPACT | RTC_SCENE_FLAG_ROBUST);
-    // note: medium, not high: on 2M triangles the high-quality build (spatial splits) took 1.2 s
-    // more per index and saved a quarter of the query time, ~0.1 s over a whole registration.
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_MEDIUM);
-    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, padded.data(), 0,
-                               3 * sizeof(float), padded.size());
-    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               mesh->triangles.data(), 0, 3 * sizeof(std::uint32_t),
-                               mesh->triangle_count());
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(impl_->scene);
-    if (!error.empty()) throw DeviceError("closest-point index: " + error);
-    rtcSetDeviceErrorFunction(impl_->device, nullptr, nullptr);
+    // The BVH: the one given (shared with the run's other users of this surface), else one of
+    // its own.
+    if (index) {
+        GLINT_ASSERT(index->triangles().size() == mesh->triangle_count() &&
+                         index->positions().size() == mesh->vertex_count(),
+                     "closest-point index: the surface index is of another mesh");
+        impl_->index = std::move(index);
+    } else {
+        impl_->index = index_surface(*mesh);
+    }
+    impl_->scene = static_cast<RTCScene>(impl_->index->embree_scene());
 }
 
 ClosestPointIndex::~ClosestPointIndex() = default;

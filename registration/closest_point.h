@@ -10,6 +10,7 @@
 
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
+#include "mesh/surface_index.h"
 
 #include <cstdint>
 #include <limits>
@@ -49,10 +50,14 @@ class ClosestPointIndex {
   public:
     /// \throw InputError an empty mesh; DeviceError Embree could not build (its message).
     explicit ClosestPointIndex(const Mesh& mesh);
-    /// An index that reads `mesh` in place instead of copying it (its positions excepted):
-    /// `mesh` must outlive the index, unchanged. A mesh without normals is copied as above.
-    /// \throw as the constructor.
+    /// An index that reads `mesh` in place instead of copying it (its BVH has its own copy of
+    /// the positions): `mesh` must outlive the index, unchanged. A mesh without normals is
+    /// copied as above. \throw as the constructor.
     [[nodiscard]] static ClosestPointIndex borrowing(const Mesh& mesh);
+    /// An index over `mesh` (borrowed, as borrowing()) that queries a BVH built already and
+    /// shared with the run's other users of the surface (mesh/surface_index.h).
+    /// \pre `index` indexes `mesh`. \throw as the constructor.
+    ClosestPointIndex(const Mesh& mesh, std::shared_ptr<const SurfaceIndex> index);
     ~ClosestPointIndex();
     ClosestPointIndex(ClosestPointIndex&&) noexcept;
     ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;
@@ -72,7 +77,7 @@ class ClosestPointIndex {
     [[nodiscard]] const Mesh& mesh() const;
 
   private:
-    ClosestPointIndex(const Mesh& mesh, bool borrow);
+    ClosestPointIndex(const Mesh& mesh, bool borrow, std::shared_ptr<const SurfaceIndex> index);
     [[nodiscard]] ClosestPoint query(const Vec3d& q, double max_distance) const;
 
     struct Impl;

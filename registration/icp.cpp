@@ -46,7 +46,8 @@ void RegistrationOptions::validate() const {
 }
 
 RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
-                                   const RegistrationOptions& o) {
+                                   const RegistrationOptions& o,
+                                   const std::shared_ptr<const SurfaceIndex>& reference_index) {
     o.validate();
     if (reference.triangles.empty() || examined.triangles.empty())
         throw InputError("registration: both meshes need triangles");
@@ -64,7 +65,9 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
             throw InputError("registration: the ROI " + to_string(*o.roi) +
                              " contains no vertex of the reference mesh");
     }
-    const ClosestPointIndex ref_index = ClosestPointIndex::borrowing(reference);
+    const ClosestPointIndex ref_index = reference_index
+                                            ? ClosestPointIndex(reference, reference_index)
+                                            : ClosestPointIndex::borrowing(reference);
     // The examined samples carry vertex normals (angle-weighted ones computed when the mesh has
     // none). Its closest-point index only for a symmetric fit, the one that queries it: the
     // BVH of a 2M-triangle mesh takes about half a second to build.

@@ -17,7 +17,9 @@
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
 #include "mesh/roi.h"
+#include "mesh/surface_index.h"
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -101,8 +103,11 @@ struct RegistrationResult {
 };
 
 /// Registers `examined` onto `reference`. An honest "did not converge" is a result, not an
-/// error. \throw InputError invalid options, an ROI with no reference surface inside.
-[[nodiscard]] RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
-                                                 const RegistrationOptions& options = {});
+/// error. `reference_index`: the reference's BVH when the run built it already (shared with
+/// the sweep and the pictures, mesh/surface_index.h); null: one is built.
+/// \throw InputError invalid options, an ROI with no reference surface inside.
+[[nodiscard]] RegistrationResult register_meshes(
+    const Mesh& reference, const Mesh& examined, const RegistrationOptions& options = {},
+    const std::shared_ptr<const SurfaceIndex>& reference_index = nullptr);
 
 }  // namespace glint

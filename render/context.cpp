@@ -26,12 +26,31 @@ std::string to_string(Backend backend) {
     return "?";
 }
 
+Raster parse_raster(const std::string& text) {
+    if (text == "auto") return Raster::Auto;
+    if (text == "graphics") return Raster::Graphics;
+    if (text == "compute") return Raster::Compute;
+    throw InputError("raster \"" + text + "\": expected auto, graphics or compute");
+}
+
+std::string to_string(Raster raster) {
+    switch (raster) {
+        case Raster::Auto: return "auto";
+        case Raster::Graphics: return "graphics";
+        case Raster::Compute: return "compute";
+    }
+    return "?";
+}
+
 void ContextOptions::validate() const {
     if (!device.empty() && backend == Backend::Embree)
         throw OptionError(
             "device", "\"" + device + "\"",
             "names a Vulkan device, but backend = embree (expected backend vulkan or auto)");
     if (threads < 0) throw OptionError("threads", threads, "expected ≥ 0 (0 = all cores)");
+    if (raster != Raster::Auto && backend == Backend::Embree)
+        throw OptionError("raster", to_string(raster),
+                          "chooses the Vulkan rasteriser, but backend = embree (expected auto)");
 }
 
 void FrameOptions::validate() const {
@@ -57,7 +76,8 @@ RenderContextStats render_context_stats() {
     return RenderContextStats{.contexts = c.contexts.load(),
                               .vulkan_instances = c.vulkan_instances.load(),
                               .vulkan_devices = c.vulkan_devices.load(),
-                              .embree_devices = c.embree_devices.load()};
+                              .embree_devices = c.embree_devices.load(),
+                              .embree_scenes = c.embree_scenes.load()};
 }
 
 namespace {
@@ -73,6 +93,10 @@ ContextOptions effective(ContextOptions options) {
     if (options.device.empty() && options.backend != Backend::Embree) {
         if (const char* env = std::getenv("GLINT_DEVICE")) options.device = env;
     }
+    if (options.raster == Raster::Auto && options.backend != Backend::Embree) {
+        const char* env = std::getenv("GLINT_RASTER");
+        if (env != nullptr && *env != '\0') options.raster = parse_raster(env);
+    }
     return options;
 }
 
@@ -86,7 +110,7 @@ RenderContext::RenderContext(const ContextOptions& options) : options_(effective
     if (options_.backend == Backend::Auto) warnings_.push_back(reason);
     options_.backend = chosen;
     impl_ = chosen == Backend::Vulkan
-                ? detail::make_vulkan_context(options_, device_name_, device_type_)
+                ? detail::make_vulkan_context(options_, device_name_, device_type_, options_.raster)
                 : detail::make_embree_context(options_, device_name_, device_type_);
     ++detail::creation_counters().contexts;
 }
@@ -109,6 +133,7 @@ std::shared_ptr<RenderContext> shared_render_context(const ContextOptions& optio
         // A context remembers its resolved backend; Auto matches whatever it resolved to.
         ContextOptions asked = key;
         if (asked.backend == Backend::Auto) asked.backend = c->backend();
+        if (asked.raster == Raster::Auto) asked.raster = c->options().raster;
         if (c->options() == asked && c->warnings().empty() == (key.backend != Backend::Auto))
             return c;
     }

@@ -11,6 +11,7 @@
 // serialised inside the context); one renderer is still used by one thread at a time.
 #pragma once
 
+#include "mesh/surface_index.h"
 #include "render/frame.h"
 
 #include <cstddef>
@@ -26,6 +27,25 @@ enum class Backend { Auto, Vulkan, Embree };
 [[nodiscard]] Backend parse_backend(const std::string& text);
 [[nodiscard]] std::string to_string(Backend backend);
 
+/// How the Vulkan backend rasterises the normal pass.
+///   Graphics  the fixed-function graphics pipeline (render pass, normal.vert / normal.frag);
+///   Compute   compute passes (shaders/raster_*.comp: a 64-bit depth·triangle visibility buffer
+///             written with atomics, then the attributes per sub-sample). Same rules (pixel
+///             centres, top-left fill, 8 sub-pixel bits, depth test LESS, culling, near / far
+///             clipping), so the frames agree with the pipeline's up to ties at edges and float
+///             rounding (tests/render/compute_raster_test.cpp states by how much). It exists
+///             for data-centre GPUs, whose few graphics units make the pipeline the bound of the
+///             GPU sweep: on an H100 the two normal passes of a 1M-triangle view at 1024² took
+///             3.39 ms in the pipeline and 0.11 ms in compute (render/gpu_atlas.h);
+///   Auto      Compute on NVIDIA data-centre GPUs (A100, H100, H200, B200 and kin) that have the
+///             GPU atlas's features, Graphics elsewhere (GPUs with full graphics units, lavapipe:
+///             not measured faster in compute).
+enum class Raster { Auto, Graphics, Compute };
+
+/// "auto" / "graphics" / "compute". \throw InputError.
+[[nodiscard]] Raster parse_raster(const std::string& text);
+[[nodiscard]] std::string to_string(Raster raster);
+
 /// What selects and configures the device (RenderOptions' device half).
 struct ContextOptions {
     Backend backend = Backend::Auto;
@@ -38,6 +58,9 @@ struct ContextOptions {
     bool validation = false;
     /// CPU threads for the Embree backend and the Vulkan resolve; 0 = hardware concurrency.
     int threads = 0;
+    /// Vulkan: how the normal pass is rasterised (see Raster). Auto: the GLINT_RASTER
+    /// environment variable ("graphics", "compute") when set, else as Raster::Auto says.
+    Raster raster = Raster::Auto;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -65,6 +88,11 @@ struct FrameOptions {
     /// in its triangle (Frame::barycentric), for pictures that interpolate per-vertex values.
     /// Ignored by the GPU and at s > 1 (the frame's barycentric stays empty).
     bool barycentrics = false;
+    /// CPU ray casting (Embree) casts its rays into this BVH of the mesh, built already and
+    /// shared with the run's other users of the surface (mesh/surface_index.h), instead of
+    /// building its own. Ignored by the GPU and with cull_back_faces (which filters hits).
+    /// \pre it indexes the renderer's mesh.
+    std::shared_ptr<const SurfaceIndex> surface_index;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -80,6 +108,7 @@ struct RenderContextStats {
     std::size_t vulkan_instances = 0;  ///< including list_devices()'s
     std::size_t vulkan_devices = 0;
     std::size_t embree_devices = 0;
+    std::size_t embree_scenes = 0;  ///< BVHs the Embree renderers built of their own
 };
 [[nodiscard]] RenderContextStats render_context_stats();
 
@@ -95,7 +124,7 @@ class RenderContext {
     RenderContext& operator=(const RenderContext&) = delete;
 
     /// As created: the device named by GLINT_DEVICE and validation from
-    /// GLINT_VK_VALIDATION folded in; backend never Auto.
+    /// GLINT_VK_VALIDATION folded in; backend never Auto, raster resolved for Vulkan.
     [[nodiscard]] const ContextOptions& options() const { return options_; }
     [[nodiscard]] Backend backend() const { return options_.backend; }
     [[nodiscard]] const std::string& device_name() const { return device_name_; }

@@ -21,6 +21,7 @@ void GpuAtlasOptions::validate() const {
         throw OptionError("framed_radius", framed_radius, "expected a finite length > 0");
     if (zoom_count < 1 || zoom_count > 256)
         throw OptionError("zoom_count", zoom_count, "expected 1..256");
+    if (in_flight < 1 || in_flight > 8) throw OptionError("in_flight", in_flight, "expected 1..8");
 }
 
 const detail::VulkanMesh* GpuAtlas::vulkan_mesh(const Renderer& renderer) {

@@ -27,8 +27,11 @@ void RenderOptions::validate() const {
 }
 
 ContextOptions RenderOptions::context_options() const {
-    return ContextOptions{
-        .backend = backend, .device = device, .validation = validation, .threads = threads};
+    return ContextOptions{.backend = backend,
+                          .device = device,
+                          .validation = validation,
+                          .threads = threads,
+                          .raster = raster};
 }
 
 FrameOptions RenderOptions::frame_options() const {
@@ -138,7 +141,8 @@ RenderOptions combined(const ContextOptions& c, const FrameOptions& f) {
                          .min_coverage = f.min_coverage,
                          .cull_back_faces = f.cull_back_faces,
                          .validation = c.validation,
-                         .threads = c.threads};
+                         .threads = c.threads,
+                         .raster = c.raster};
 }
 
 }  // namespace
@@ -158,6 +162,7 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
     info_.backend = context_->backend();
     info_.device_name = context_->device_name();
     info_.device_type = context_->device_type();
+    info_.raster = context_->options().raster;
     info_.warnings = context_->warnings();
     if (options_.cull_back_faces) {
         // Culling is only correct for a closed surface: an open one would lose its back side
@@ -185,6 +190,9 @@ Renderer::Renderer(std::shared_ptr<RenderContext> context, const Mesh& mesh,
     FrameOptions frame = options_.frame_options();
     frame.share_mesh = options.share_mesh && source == &mesh;  // never a copy made here
     frame.barycentrics = options.barycentrics;
+    // The surface's shared BVH indexes the mesh as given, not a copy with computed normals
+    // (the same positions and triangles either way).
+    frame.surface_index = options.surface_index;
     backend_ = context_->impl().make_backend(*source, frame);
 }
 

@@ -64,6 +64,8 @@ struct RenderOptions {
     bool validation = false;
     /// CPU threads for the Embree backend and the Vulkan resolve; 0 = hardware concurrency.
     int threads = 0;
+    /// Vulkan: how the normal pass is rasterised (render/context.h Raster).
+    Raster raster = Raster::Auto;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -77,6 +79,8 @@ struct RendererInfo {
     Backend backend = Backend::Vulkan;  ///< resolved (never Auto)
     std::string device_name;  ///< "llvmpipe (LLVM 15.0.6, 256 bits)", "embree 3.13.5 (CPU)"
     std::string device_type;  ///< "discrete", "integrated", "virtual", "cpu"
+    /// Vulkan: the rasteriser of the normal pass (resolved, never Auto); Embree: Auto.
+    Raster raster = Raster::Auto;
     std::size_t triangle_count = 0;
     std::size_t vertex_count = 0;
     bool computed_normals = false;  ///< the mesh had no normals: angle-weighted ones were computed

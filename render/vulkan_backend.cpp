@@ -21,6 +21,10 @@
 //       ──vkCmdCopyImageToBuffer──▶ host-visible buffer ──(barrier: transfer → host)──▶ CPU
 //   depth D32: UNDEFINED ──▶ DEPTH_STENCIL_ATTACHMENT (contents discarded)
 //
+// With Raster::Compute (render/context.h) the render pass is replaced by the compute
+// rasteriser's passes (detail/vk_raster.h), which leave the colour images in GENERAL with the
+// same contents; the copies read them from there.
+//
 // Sub-samples: the target is (w·s) × (h·s); the CPU resolve (detail/resolve.cpp) averages
 // s×s blocks. lavapipe offers MSAA 1×/4× only and integer attachments 1× only, so true
 #include "mesh/error.h"
@@ -29,6 +33,7 @@
 #include "render/detail/vk_context.h"
 #include "render/detail/vk_memory.h"
 #include "render/detail/vk_pipeline.h"
+#include "render/detail/vk_raster.h"
 #include "spirv/bindings.h"
 
 #include <vulkan/vulkan.h>
@@ -49,9 +54,15 @@ class VulkanBackend final : public RenderBackend {
                   const FrameOptions& options)
         : options_(options), device_(std::move(device)) {
         try {
+            compute_ = device_->raster() == Raster::Compute;
             create_slots();
             upload(mesh);
-            pipeline_ = device_->pipeline(options_.cull_back_faces);
+            if (compute_) {
+                raster_ = &device_->raster_pipelines();
+                create_raster_sets();
+            } else {
+                pipeline_ = device_->pipeline(options_.cull_back_faces);
+            }
             vulkan_mesh_ = VulkanMesh{
                 .device = device_, .buffers = mesh_, .cull_back_faces = options_.cull_back_faces};
         } catch (...) {
@@ -117,6 +128,8 @@ class VulkanBackend final : public RenderBackend {
         Image normal, id, depth;
         VkFramebuffer framebuffer = VK_NULL_HANDLE;
         Buffer normal_readback, id_readback;
+        RasterTarget raster;  // Raster::Compute: visibility buffer, large list, set
+        VkDescriptorSet raster_set = VK_NULL_HANDLE;
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         VkFence fence = VK_NULL_HANDLE;
         bool busy = false;
@@ -146,6 +159,33 @@ class VulkanBackend final : public RenderBackend {
         for (auto& b : mesh_buffers_) destroy_buffer(dev, b);
         if (pool_ != VK_NULL_HANDLE) vkDestroyCommandPool(dev, pool_, nullptr);
         pool_ = VK_NULL_HANDLE;
+        // Destroying the pool frees the slots' raster sets.
+        if (descriptor_pool_ != VK_NULL_HANDLE)
+            vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
+        descriptor_pool_ = VK_NULL_HANDLE;
+    }
+
+    /// Raster::Compute: one descriptor set per slot (bound to its targets in ensure_targets).
+    void create_raster_sets() {
+        const VkDevice dev = device_->device();
+        const std::array<VkDescriptorPoolSize, 2> sizes{{
+            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kRasterStorageBuffers * kSlots},
+            {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, kRasterStorageImages * kSlots},
+        }};
+        VkDescriptorPoolCreateInfo dp{};
+        dp.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
+        dp.maxSets = kSlots;
+        dp.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+        dp.pPoolSizes = sizes.data();
+        GLINT_VK_CHECK(vkCreateDescriptorPool(dev, &dp, nullptr, &descriptor_pool_));
+        for (auto& slot : slots_) {
+            VkDescriptorSetAllocateInfo set{};
+            set.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
+            set.descriptorPool = descriptor_pool_;
+            set.descriptorSetCount = 1;
+            set.pSetLayouts = &raster_->set_layout;
+            GLINT_VK_CHECK(vkAllocateDescriptorSets(dev, &set, &slot.raster_set));
+        }
     }
 
     void create_slots() {
@@ -178,6 +218,7 @@ class VulkanBackend final : public RenderBackend {
         destroy_image(dev, slot.depth);
         destroy_buffer(dev, slot.normal_readback);
         destroy_buffer(dev, slot.id_readback);
+        destroy_raster_target(dev, slot.raster);
         slot.width = slot.height = 0;
     }
 
@@ -228,14 +269,17 @@ class VulkanBackend final : public RenderBackend {
         copy = {pos_bytes + nrm_bytes, 0, idx_bytes};
         vkCmdCopyBuffer(cmd, staging.buffer, mesh_buffers_[2].buffer, 1, &copy);
         // Barrier: the copies' writes must be visible to vertex input (attribute and index
-        // reads) of every later draw.
+        // reads) of every later draw, and to the compute passes that read the mesh (the
+        // compute rasteriser, the GPU atlas).
         VkMemoryBarrier barrier{};
         barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
         barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                             VK_PIPELINE_STAGE_VERTEX_INPUT_BIT, 0, 1, &barrier, 0, nullptr, 0,
-                             nullptr);
+        barrier.dstAccessMask = VK_ACCESS_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_INDEX_READ_BIT |
+                                VK_ACCESS_SHADER_READ_BIT;
+        vkCmdPipelineBarrier(
+            cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_PIPELINE_STAGE_VERTEX_INPUT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1,
+            &barrier, 0, nullptr, 0, nullptr);
         GLINT_VK_CHECK(vkEndCommandBuffer(cmd));
         device_->submit(cmd, slots_[0].fence);
         GLINT_VK_CHECK(vkWaitForFences(dev, 1, &slots_[0].fence, VK_TRUE, UINT64_MAX));
@@ -254,23 +298,31 @@ class VulkanBackend final : public RenderBackend {
                              std::to_string(device_->max_dimension()) + " pixels per side");
         }
         destroy_targets(slot);
+        // Colour targets: attachments of the render pass, or storage images the compute
+        // rasteriser writes.
         const VkImageUsageFlags color =
-            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+            VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+            (compute_ ? VK_IMAGE_USAGE_STORAGE_BIT : VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT);
         slot.normal = make_image(dev, phys, w, h, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
         slot.id = make_image(dev, phys, w, h, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        slot.depth =
-            make_image(dev, phys, w, h, kDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                       VK_IMAGE_ASPECT_DEPTH_BIT);
-        std::array<VkImageView, 3> views{slot.normal.view, slot.id.view, slot.depth.view};
-        VkFramebufferCreateInfo fb{};
-        fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-        fb.renderPass = device_->render_pass();
-        fb.attachmentCount = 3;
-        fb.pAttachments = views.data();
-        fb.width = static_cast<std::uint32_t>(w);
-        fb.height = static_cast<std::uint32_t>(h);
-        fb.layers = 1;
-        GLINT_VK_CHECK(vkCreateFramebuffer(dev, &fb, nullptr, &slot.framebuffer));
+        if (compute_) {
+            make_raster_target(dev, phys, slot.raster, slot.raster_set, mesh_, w, h,
+                               slot.normal.view, slot.id.view);
+        } else {
+            slot.depth =
+                make_image(dev, phys, w, h, kDepthFormat,
+                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+            std::array<VkImageView, 3> views{slot.normal.view, slot.id.view, slot.depth.view};
+            VkFramebufferCreateInfo fb{};
+            fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+            fb.renderPass = device_->render_pass();
+            fb.attachmentCount = 3;
+            fb.pAttachments = views.data();
+            fb.width = static_cast<std::uint32_t>(w);
+            fb.height = static_cast<std::uint32_t>(h);
+            fb.layers = 1;
+            GLINT_VK_CHECK(vkCreateFramebuffer(dev, &fb, nullptr, &slot.framebuffer));
+        }
         const VkDeviceSize pixels = static_cast<VkDeviceSize>(w) * static_cast<VkDeviceSize>(h);
         // Read-back: host-visible and coherent (no flush/invalidate needed), cached when the
         // device offers it (CPU reads of uncached memory are slow on discrete GPUs).
@@ -291,17 +343,31 @@ class VulkanBackend final : public RenderBackend {
         begin.sType = VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO;
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         GLINT_VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
-        record_normal_pass(cmd, device_->render_pass(), slot.framebuffer, slot.width, slot.height,
-                           pipeline_, device_->layout(), mesh_, view);
+        VkImageLayout layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        if (compute_) {
+            // The previous frame in this slot was read by its copies (earlier: transfer).
+            const RasterJob job{.target = &slot.raster,
+                                .mesh = &mesh_,
+                                .normal_depth = slot.normal.image,
+                                .primitive = slot.id.image,
+                                .cull_back_faces = options_.cull_back_faces};
+            record_compute_normal_passes(cmd, *raster_, {&job, 1}, slot.width, slot.height, view,
+                                         VK_PIPELINE_STAGE_TRANSFER_BIT, {},
+                                         VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                         VK_ACCESS_TRANSFER_READ_BIT);
+            layout = VK_IMAGE_LAYOUT_GENERAL;
+        } else {
+            record_normal_pass(cmd, device_->render_pass(), slot.framebuffer, slot.width,
+                               slot.height, pipeline_, device_->layout(), mesh_, view);
+        }
 
         VkBufferImageCopy region{};
         region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
         region.imageExtent = {static_cast<std::uint32_t>(slot.width),
                               static_cast<std::uint32_t>(slot.height), 1};
-        vkCmdCopyImageToBuffer(cmd, slot.normal.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               slot.normal_readback.buffer, 1, &region);
-        vkCmdCopyImageToBuffer(cmd, slot.id.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                               slot.id_readback.buffer, 1, &region);
+        vkCmdCopyImageToBuffer(cmd, slot.normal.image, layout, slot.normal_readback.buffer, 1,
+                               &region);
+        vkCmdCopyImageToBuffer(cmd, slot.id.image, layout, slot.id_readback.buffer, 1, &region);
         // Barrier: the copies' writes must be visible to the host reads after the fence.
         VkMemoryBarrier barrier{};
         barrier.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
@@ -318,8 +384,11 @@ class VulkanBackend final : public RenderBackend {
     VkCommandPool pool_ = VK_NULL_HANDLE;
     std::array<Buffer, 3> mesh_buffers_{};  // positions, normals, indices
     MeshBuffers mesh_{};                    // their handles and counts
-    VkPipeline pipeline_ = VK_NULL_HANDLE;  // the device's, for this cull mode
-    VulkanMesh vulkan_mesh_;                // what the GPU atlas draws and reads
+    VkPipeline pipeline_ = VK_NULL_HANDLE;  // the device's, for this cull mode (Graphics)
+    bool compute_ = false;                  // Raster::Compute: the compute rasteriser's passes
+    const RasterPipelines* raster_ = nullptr;
+    VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;  // the slots' raster sets
+    VulkanMesh vulkan_mesh_;                             // what the GPU atlas draws and reads
     std::array<Slot, kSlots> slots_{};
     std::deque<std::size_t> pending_;  // slots in submission order
     std::size_t next_slot_ = 0;

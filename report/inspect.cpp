@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "report/output_folder.h"
 #include "report/report.h"
+#include "report/report_html.h"
 #include "report/view_exports.h"
 
 #include <chrono>
@@ -66,6 +67,13 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
         if (exporter && d.width > 0) exporter->add(v, d);
         if (observer.view) observer.view(v, d);
     };
+    // The page's live view keeps the fitted examined surface, decimated (report/report_html.h),
+    // made before analyse() releases the whole one.
+    std::optional<LiveSurface> live;
+    observed.fitted = [&](const Mesh& fitted, const AnalysisResult& result) {
+        if (folder) live = live_examined(fitted, reference, result);
+        if (observer.fitted) observer.fitted(fitted, result);
+    };
     Inspection out;
     out.analysis = analyse(reference, std::move(examined), used, observed);
     note_accumulation(options, used, writes_exr, out.analysis);
@@ -78,13 +86,16 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     out.analysis.total_seconds = seconds_since(t_start);
     out.report_json = report_json(reference, out.analysis, options, record);
     if (folder) {
-        out.atlas = write_outputs(*folder, reference, out.analysis, options.exports, record,
-                                  out.report_json, observer.stage);
+        out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
+                                  options.exports, record, out.report_json, observer.stage);
         folder->commit();
         out.output = folder->target();
     } else if (options.exports.keep_atlas) {
         out.atlas = make_atlas_mesh(reference, out.analysis);
     }
+    // The reference's BVH served the pictures; a caller that keeps the result (Python) does
+    // not keep it too.
+    out.analysis.reference_index.reset();
     out.export_seconds = seconds_since(t);
     out.total_seconds = seconds_since(t_start);
     return out;

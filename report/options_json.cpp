@@ -4,6 +4,7 @@
 #include "report/export_options.h"
 
 #include "analysis/option_registry.h"
+#include "report/detail/options_json.h"
 
 #include <nlohmann/json.hpp>
 
@@ -42,7 +43,12 @@ json matrix_json(const Rigid& t) {
 
 }  // namespace
 
-std::string to_json(const AnalysisOptions& o, const ExportOptions& e) {
+}  // namespace glint
+
+namespace glint::detail {
+
+nlohmann::json options_object(const AnalysisOptions& o, const ExportOptions& e) {
+    using nlohmann::json;
     json j = json::object();
     // How the examined mesh was brought into the reference's frame (not a registry option).
     j["registration"]["mode"] = to_string(o.fit.mode);
@@ -50,7 +56,15 @@ std::string to_json(const AnalysisOptions& o, const ExportOptions& e) {
     if (o.fit.mode == FitMode::Truth) j["registration"]["truth"] = matrix_json(o.fit.truth);
     for (const auto& f : analysis_option_table()) slot(j, f.info) = value_json(f.get(o));
     for (const auto& f : export_option_table()) slot(j, f.info) = value_json(f.get(e));
-    return j.dump(2);
+    return j;
+}
+
+}  // namespace glint::detail
+
+namespace glint {
+
+std::string to_json(const AnalysisOptions& o, const ExportOptions& e) {
+    return detail::options_object(o, e).dump(2);
 }
 
 }  // namespace glint

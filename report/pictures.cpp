@@ -102,12 +102,13 @@ class PictureWriter {
           options_(options),
           scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),
-          renderer_(
-              shared_render_context(
-                  ContextOptions{.backend = Backend::Embree, .threads = threads_}),
-              reference,
-              FrameOptions{
-                  .supersample = kPictureSupersample, .share_mesh = true, .barycentrics = true}) {
+          renderer_(shared_render_context(
+                        ContextOptions{.backend = Backend::Embree, .threads = threads_}),
+                    reference,
+                    FrameOptions{.supersample = kPictureSupersample,
+                                 .share_mesh = true,
+                                 .barycentrics = true,
+                                 .surface_index = result.reference_index}) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
         for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {

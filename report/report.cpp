@@ -5,6 +5,7 @@
 #include "mesh/units.h"
 #include "mesh/version.h"
 #include "mesh/write.h"
+#include "report/detail/options_json.h"
 #include "report/images.h"
 #include "report/pictures.h"
 #include "report/report_html.h"
@@ -287,10 +288,12 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
          {{"backend", to_string(s.renderer.backend)},
           {"name", s.renderer.device_name},
           {"type", s.renderer.device_type},
+          // How Vulkan drew the frames (render/context.h Raster); "auto" for Embree.
+          {"raster", to_string(s.renderer.raster)},
           {"warnings", s.renderer.warnings},
           {"compare_on", s.on_gpu ? "gpu" : "cpu"},
           {"compare_note", s.accumulation_note}}},
-        {"analysis", json::parse(to_json(options.analysis, options.exports))},
+        {"analysis", detail::options_object(options.analysis, options.exports)},
         {"metric",
          {{"name", std::string(m.name)},
           {"unit", std::string(m.unit)},
@@ -376,8 +379,9 @@ std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& re
 }  // namespace
 
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
-                                  const AnalysisResult& result, const ExportOptions& exports,
-                                  const RunRecord& record, const std::string& json_text,
+                                  const AnalysisResult& result, const LiveSurface* examined,
+                                  const ExportOptions& exports, const RunRecord& record,
+                                  const std::string& json_text,
                                   const std::function<void(std::string_view stage)>& stage) {
     // The atlas files and the report page's data are serial work (number formatting and
     // writing; the decimation of a large mesh for the page): at 2M triangles 0.9 s each, done
@@ -387,8 +391,8 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     // stage lets the caller hand back what the jobs freed (tools/memory.h): the page's thread
     // frees its decimation buffers into a heap of its own, which stays resident otherwise (2M:
     // 614 instead of 453 MB resident under the pictures).
-    auto page_data =
-        std::async(std::launch::async, [&] { return report_page_data(reference, result); });
+    auto page_data = std::async(std::launch::async,
+                                [&] { return report_page_data(reference, result, examined); });
     std::optional<Mesh> atlas = write_atlas_files(folder, reference, result, exports);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
     write_file_atomically(folder.file("report.json"), json_text);

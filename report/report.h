@@ -14,6 +14,7 @@
 #include "report/export_options.h"
 #include "report/inspect.h"
 #include "report/output_folder.h"
+#include "report/report_html.h"
 #include "report/run_inputs.h"
 
 #include <filesystem>
@@ -46,12 +47,14 @@ namespace glint {
 [[nodiscard]] std::string regions_csv(const AnalysisResult& result);
 
 /// Writes atlas.ply, atlas.vtk, atlas.vtp (those ExportOptions::atlas_files names), regions.csv,
-/// report.json (`report_json`'s text), the pictures and report.html into the folder. `stage`
-/// (when set) is called with "pictures" before the pictures are drawn, after the other files.
+/// report.json (`report_json`'s text), the pictures and report.html into the folder; the page's
+/// live view gets `examined` (null: the page says it has none). `stage` (when set) is called
+/// with "pictures" before the pictures are drawn, after the other files.
 /// Returns the atlas mesh when ExportOptions::keep_atlas.
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
-                                  const AnalysisResult& result, const ExportOptions& exports,
-                                  const RunRecord& record, const std::string& report_json,
+                                  const AnalysisResult& result, const LiveSurface* examined,
+                                  const ExportOptions& exports, const RunRecord& record,
+                                  const std::string& report_json,
                                   const std::function<void(std::string_view stage)>& stage = {});
 
 }  // namespace glint

@@ -2,6 +2,7 @@
 
 #include "mesh/decimate.h"
 #include "mesh/error.h"
+#include "mesh/normals.h"
 #include "report/detail/canvas.h"
 #include "scanner/metric.h"
 
@@ -11,9 +12,12 @@
 #include <algorithm>
 #include <bit>
 #include <cctype>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <unordered_set>
 #include <utility>
 
 namespace glint {
@@ -146,19 +150,38 @@ std::vector<float> inferno_knots() {
     return rgb;
 }
 
-json mesh_json(const Mesh& reference, const ShownMesh& shown) {
-    const Mesh& m = *shown.mesh;
+// A mesh's arrays for the page: float32 positions, uint32 indices and, when it has them,
+// its vertex normals as int16 scaled by 32767 (half the bytes of float32; the rounding tilts
+// a unit normal by at most 0.003°, far below any floor).
+json mesh_arrays_json(const Mesh& m) {
     std::vector<float> positions;
     positions.reserve(3 * m.vertex_count());
     for (const auto& p : m.positions) positions.insert(positions.end(), {p.x(), p.y(), p.z()});
     std::vector<std::uint32_t> indices;
     indices.reserve(3 * m.triangle_count());
     for (const auto& t : m.triangles) indices.insert(indices.end(), {t[0], t[1], t[2]});
+    json out = {{"positions", base64_of(positions)}, {"indices", base64_of(indices)}};
+    if (m.has_normals()) {
+        std::vector<std::int16_t> normals;
+        normals.reserve(3 * m.vertex_count());
+        for (const auto& n : m.normals)
+            for (int c = 0; c < 3; ++c)
+                normals.push_back(static_cast<std::int16_t>(
+                    std::lround(32767.0f * std::clamp(n[c], -1.0f, 1.0f))));
+        out["normals"] = base64_of(normals);
+    }
+    return out;
+}
+
+json mesh_json(const Mesh& reference, const ShownMesh& shown) {
+    const Mesh& m = *shown.mesh;
     const Bounds b = bounds(reference);
     const Vec3f c = b.center();
-    json out = {{"vertices", reference.vertex_count()}, {"triangles", reference.triangle_count()},
-                {"positions", base64_of(positions)},    {"indices", base64_of(indices)},
-                {"center", {c.x(), c.y(), c.z()}},      {"radius", 0.5 * b.diagonal()}};
+    json out = mesh_arrays_json(m);
+    out.update({{"vertices", reference.vertex_count()},
+                {"triangles", reference.triangle_count()},
+                {"center", {c.x(), c.y(), c.z()}},
+                {"radius", 0.5 * b.diagonal()}});
     if (shown.decimated) {
         // The page names a vertex by its id in the atlas files.
         out["vertex_ids"] = base64_of(shown.decimated->original_vertex);
@@ -167,6 +190,28 @@ json mesh_json(const Mesh& reference, const ShownMesh& shown) {
                         {"error", shown.decimated->error}};
     }
     return out;
+}
+
+// The live view's data: the examined surface, and how the sweep rendered and compared (its
+// plan, footprints and floors are report.json's, which the page holds whole).
+json live_json(const LiveSurface& examined, const AnalysisResult& result) {
+    json surface = mesh_arrays_json(examined.mesh);
+    surface.update({{"vertices", examined.mesh.vertex_count()},
+                    {"triangles", examined.triangles},
+                    {"shown_triangles", examined.mesh.triangle_count()},
+                    {"error", examined.error}});
+    return {{"examined", std::move(surface)},
+            {"supersample", result.sweep.options.render.supersample},
+            {"min_coverage", result.sweep.options.compare.min_coverage}};
+}
+
+// Cells of the grid that marks where regions are: the vertex's cell and its 26 neighbours.
+std::uint64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
+    // note: 21 bits per axis hold ±10^6 cells, 10^4 times the 1 % cells across a mesh.
+    constexpr std::int64_t kBias = 1 << 20, kMask = (1 << 21) - 1;
+    return (static_cast<std::uint64_t>((x + kBias) & kMask) << 42) |
+           (static_cast<std::uint64_t>((y + kBias) & kMask) << 21) |
+           static_cast<std::uint64_t>((z + kBias) & kMask);
 }
 
 std::string data_uri(const std::string& png) {
@@ -235,12 +280,72 @@ std::string fill_template(std::string_view page_template,
     return out;
 }
 
+LiveSurface live_examined(const Mesh& fitted, const Mesh& reference, const AnalysisResult& result,
+                          std::size_t max_triangles) {
+    LiveSurface live;
+    live.triangles = fitted.triangle_count();
+    if (!fitted.has_normals()) {
+        // The normals the renderer made for it (render/renderer.cpp), then as below.
+        Mesh with_normals;
+        with_normals.positions = fitted.positions;
+        with_normals.triangles = fitted.triangles;
+        compute_vertex_normals(with_normals);
+        return live_examined(with_normals, reference, result, max_triangles);
+    }
+    if (fitted.triangle_count() <= max_triangles) {
+        live.mesh.positions = fitted.positions;
+        live.mesh.triangles = fitted.triangles;
+        live.mesh.normals = fitted.normals;
+        return live;
+    }
+    // note: cells of 1 % of the size, the decimation's error bound: the examined surface near
+    // a region (its dent or bump, a fraction of a cell away from the reference's) falls in a
+    // marked cell or a neighbour of one.
+    const double cell = std::max(0.01 * result.size, 1e-12);
+    const auto index = [&](const Vec3f& p, int axis) {
+        return static_cast<std::int64_t>(std::floor(p[axis] / cell));
+    };
+    std::unordered_set<std::uint64_t> marked;
+    for (std::size_t v = 0; v < reference.vertex_count(); ++v) {
+        bool in_region = false;
+        for (const auto& d : result.decisions) in_region |= d.regions.region_of_vertex[v] != 0;
+        if (!in_region) continue;
+        const Vec3f& p = reference.positions[v];
+        const std::int64_t x = index(p, 0), y = index(p, 1), z = index(p, 2);
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz)
+                    marked.insert(cell_key(x + dx, y + dy, z + dz));
+    }
+    std::vector<std::uint8_t> keep(fitted.triangle_count(), 0);
+    if (!marked.empty())
+        for (std::size_t t = 0; t < fitted.triangle_count(); ++t)
+            for (const auto v : fitted.triangles[t]) {
+                const Vec3f& p = fitted.positions[v];
+                if (marked.count(cell_key(index(p, 0), index(p, 1), index(p, 2)))) keep[t] = 1;
+            }
+    DecimatedMesh d = decimate(fitted, max_triangles, keep, 0.01 * result.size);
+    live.mesh.positions = std::move(d.mesh.positions);
+    live.mesh.triangles = std::move(d.mesh.triangles);
+    live.mesh.normals = std::move(d.mesh.normals);
+    live.error = d.error;
+    return live;
+}
+
 struct ReportPageData::Parts {
     json data;  ///< the page's data without "report" and "images"
 };
 
-ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& result,
-                                std::size_t max_triangles) {
+ReportPageData report_page_data(const Mesh& reference_in, const AnalysisResult& result,
+                                const LiveSurface* examined, std::size_t max_triangles) {
+    // The live view renders the reference with the normals the sweep did: analyse() makes
+    // them for a reference without any (analysis/analysis.cpp), and so does the page.
+    std::optional<Mesh> with_normals;
+    if (!reference_in.has_normals()) {
+        with_normals = reference_in;
+        compute_vertex_normals(*with_normals);
+    }
+    const Mesh& reference = with_normals ? *with_normals : reference_in;
     auto parts = std::make_shared<ReportPageData::Parts>();
     json& data = parts->data;
     const ShapeScale scale = shape_scale(result);
@@ -250,6 +355,7 @@ ReportPageData report_page_data(const Mesh& reference, const AnalysisResult& res
         data["mesh"] = mesh_json(reference, shown);
         data["fields"] = fields_json(shown, result, scale);
     }
+    if (examined) data["live"] = live_json(*examined, result);
     data["shape_scale"] = {
         {"limit", scale.limit}, {"source", scale.source}, {"floor", scale.floor}};
     const auto knots = detail::diverging_knots();
@@ -278,14 +384,16 @@ std::string report_html(ReportPageData page, const std::string& report_json,
                                                    {"THREE_JS", asset("three.min.js")},
                                                    {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
                                                    {"DATA_JSON", script_safe(data.dump())},
+                                                   {"LIVE_JS", asset("live.js")},
                                                    {"REPORT_JS", asset("report.js")},
                                                    {"REPORT_CSS", asset("report.css")}});
 }
 
 std::string report_html(const Mesh& reference, const AnalysisResult& result,
-                        const std::string& report_json, const PictureOutput& pictures,
-                        std::size_t max_triangles) {
-    return report_html(report_page_data(reference, result, max_triangles), report_json, pictures);
+                        const LiveSurface* examined, const std::string& report_json,
+                        const PictureOutput& pictures, std::size_t max_triangles) {
+    return report_html(report_page_data(reference, result, examined, max_triangles), report_json,
+                       pictures);
 }
 
 }  // namespace glint

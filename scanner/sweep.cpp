@@ -155,7 +155,8 @@ void require_overlap(const std::vector<ViewSummary>& views) {
 }
 
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,
-                      const SweepOptions& options, const ViewObserver& observer) {
+                      const SweepOptions& options, const ViewObserver& observer,
+                      const SweepSurfaces& surfaces) {
     const auto t_start = Clock::now();
     options.validate();
     if (plan.views.empty()) throw InputError("sweep plan has no views");
@@ -170,8 +171,12 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
     const auto context = shared_render_context(options.render.context_options());
     FrameOptions frames = options.render.frame_options();
     frames.share_mesh = true;
-    std::optional<Renderer> ref_renderer(std::in_place, context, reference, frames);
-    std::optional<Renderer> exa_renderer(std::in_place, context, examined, frames);
+    // Each CPU renderer casts into the surface's BVH when the run built one already.
+    FrameOptions ref_frames = frames, exa_frames = frames;
+    ref_frames.surface_index = surfaces.reference;
+    exa_frames.surface_index = surfaces.examined;
+    std::optional<Renderer> ref_renderer(std::in_place, context, reference, ref_frames);
+    std::optional<Renderer> exa_renderer(std::in_place, context, examined, exa_frames);
     result.renderer = ref_renderer->info();
     // Compare and back-project on the GPU when the options and the device allow it
     // (scanner/gpu_sweep.h); the streamed path below is the reference it is tested against.

@@ -17,6 +17,7 @@
 #pragma once
 
 #include "mesh/mesh.h"
+#include "mesh/surface_index.h"
 #include "render/frame.h"
 #include "render/renderer.h"
 #include "scanner/atlas.h"
@@ -26,6 +27,7 @@
 #include "scanner/plan.h"
 
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -100,12 +102,20 @@ using ViewObserver = std::function<void(const PlannedView& view, const Deviation
 /// wrong fit); both paths of run_sweep check it after the last view.
 void require_overlap(const std::vector<ViewSummary>& views);
 
+/// BVHs of the two surfaces the run built already (mesh/surface_index.h), for the CPU renderer;
+/// a null one: the renderer builds its own.
+struct SweepSurfaces {
+    std::shared_ptr<const SurfaceIndex> reference;
+    std::shared_ptr<const SurfaceIndex> examined;
+};
+
 /// Runs the sweep over `plan` (from make_sweep_plan(reference, options.plan)). `examined`
 /// must already be in reference coordinates (fitted).
 /// \throw InputError invalid options, an empty plan, a reference without normals, surfaces
 /// that overlap in no view; DeviceError renderer trouble; Cancelled.
 [[nodiscard]] SweepResult run_sweep(const Mesh& reference, const Mesh& examined,
                                     const SweepPlan& plan, const SweepOptions& options,
-                                    const ViewObserver& observer = {});
+                                    const ViewObserver& observer = {},
+                                    const SweepSurfaces& surfaces = {});
 
 }  // namespace glint

@@ -18,6 +18,40 @@
 // Clear value of the primitive attachment: no triangle (render/frame.h kNoPrimitive).
 #define GLINT_NO_PRIMITIVE 0xFFFFFFFFu
 
+// ---- The compute rasteriser (render/context.h Raster::Compute; render/detail/vk_raster.h). ----
+// Descriptor set 0 of raster_triangles.comp, raster_large.comp and raster_attributes.comp.
+#define GLINT_RASTER_BINDING_POSITIONS 0     // float[3·V]: the mesh's vertex buffer
+#define GLINT_RASTER_BINDING_NORMALS 1       // float[3·V]
+#define GLINT_RASTER_BINDING_INDICES 2       // uint[3·T]: its index buffer
+#define GLINT_RASTER_BINDING_VISIBILITY 3    // uint64 per sub-sample: depth bits << 32 | triangle
+#define GLINT_RASTER_BINDING_LARGE 4         // uint: indirect dispatch (3), then large triangles
+#define GLINT_RASTER_BINDING_NORMAL_DEPTH 5  // storage image rgba32f: the pass's colour target
+#define GLINT_RASTER_BINDING_PRIMITIVE 6     // storage image r32ui
+#define GLINT_RASTER_BINDING_COUNT 7
+
+// Push constants of the three passes: mat4 clip_from_world (64 bytes), vec4 depth row (16),
+// uvec4 (width, height, triangle count, GLINT_RASTER_CULL) (16).
+#define GLINT_RASTER_PUSH_CONSTANT_BYTES 96
+#define GLINT_RASTER_CULL 1u
+
+// Workgroups: raster_triangles.comp one triangle per invocation; a triangle whose pixel
+// bounding box holds more than GLINT_RASTER_SMALL_PIXELS pixel centres goes to the large list,
+// which raster_large.comp covers with GLINT_RASTER_LARGE_SPLIT workgroups of
+// GLINT_RASTER_LARGE_GROUP invocations per triangle; raster_attributes.comp
+// GLINT_RASTER_TILE² sub-samples per workgroup. note: with 32 pixel centres, the test
+// phantoms' triangles of 30-200 sub-samples went to the large pass, whose 1024 invocations per
+// triangle made a sweep on lavapipe 5× slower (25 s against 4.6 s at 256).
+#define GLINT_RASTER_GROUP 64
+#define GLINT_RASTER_SMALL_PIXELS 256
+#define GLINT_RASTER_LARGE_GROUP 256
+#define GLINT_RASTER_LARGE_SPLIT 4
+#define GLINT_RASTER_TILE 16
+// Fixed-point sub-pixel bits of the vertex positions (Vulkan's subPixelPrecisionBits: 8 on
+// lavapipe and NVIDIA) and the guard band: vertices beyond ±GLINT_RASTER_GUARD·w in x or y are
+// clipped, which keeps fixed-point coordinates under 2^26 and edge functions in int64.
+#define GLINT_RASTER_SUBPIXEL_BITS 8
+#define GLINT_RASTER_GUARD 16.0
+
 // ---- The GPU atlas (render/gpu_atlas.h): compare and back-project on the device. ----------
 // Descriptor set 0 of both compute passes (atlas_pixels.comp, atlas_vertices.comp).
 #define GLINT_ATLAS_BINDING_PARAMS 0             // uniform: the view (AtlasParams)

@@ -15,6 +15,7 @@
 #include "scanner/metric.h"
 #include "tools/command.h"
 #include "tools/memory.h"
+#include "tools/option_flags.h"
 #include "tools/slicer_module.h"
 #include "tools/slicer_parameters.h"
 #include "volume/load.h"
@@ -48,6 +49,7 @@ struct SlicerCall {
     std::string return_file;
     std::string process_address;  ///< accepted, unused (see slicer_module.h)
     bool xml = false;
+    bool print_options = false;  ///< glint's own: the resolved options as JSON, nothing run
 };
 
 // The parser, from the table: every flag takes its value as text; the table's typed
@@ -62,6 +64,8 @@ SlicerCall parse(int argc, char** argv) {
                    "Slicer's shared-library modules only; ignored");
     bool echo = false;
     app.add_flag("--echo", echo, "Accepted for Slicer's conventions; ignored");
+    app.add_flag("--print-options", call.print_options,
+                 "Print the options the call resolves to as JSON and stop (scripts, tests)");
     int positional_count = 0;
     for (const SlicerGroup& g : slicer_groups())
         for (const SlicerParameter& p : g.parameters) {
@@ -229,6 +233,11 @@ void run_slicer_module(int argc, char** argv) {
         return;
     }
     InspectOptions options = options_from(call);
+    if (call.print_options) {
+        options.validate();
+        print_options(options.analysis, options.exports);
+        return;
+    }
     const fs::path atlas = call.positional[2];
     ScratchFolder scratch{atlas.parent_path() / (".glint-slicer-" + std::to_string(::getpid()) +
                                                  "-" + atlas.filename().string())};

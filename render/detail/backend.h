@@ -66,10 +66,11 @@ class ContextImpl {
     [[nodiscard]] virtual std::vector<std::string> validation_messages() const { return {}; }
 };
 
-/// Creates the Vulkan device of a context; fills device_name / device_type.
+/// Creates the Vulkan device of a context; fills device_name / device_type and the raster
+/// (options.raster resolved).
 std::unique_ptr<ContextImpl> make_vulkan_context(const ContextOptions& options,
-                                                 std::string& device_name,
-                                                 std::string& device_type);
+                                                 std::string& device_name, std::string& device_type,
+                                                 Raster& raster);
 /// Creates the Embree device of a context; fills device_name / device_type.
 std::unique_ptr<ContextImpl> make_embree_context(const ContextOptions& options,
                                                  std::string& device_name,
@@ -81,6 +82,7 @@ struct CreationCounters {
     std::atomic<std::size_t> vulkan_instances{0};
     std::atomic<std::size_t> vulkan_devices{0};
     std::atomic<std::size_t> embree_devices{0};
+    std::atomic<std::size_t> embree_scenes{0};
 };
 CreationCounters& creation_counters();
 

@@ -32,8 +32,10 @@ GpuAtlasImpl::GpuAtlasImpl(const VulkanMesh& reference, const VulkanMesh& examin
       options_(options) {
     // render/renderer.cpp finish_frame: pixels below the frame's min_coverage are uncovered.
     if (frame.min_coverage > 0.0f) mask_threshold_ = frame.min_coverage - 1e-6f;
+    slots_.resize(static_cast<std::size_t>(options.in_flight));
     try {
         pipelines_ = &device_->atlas_pipelines();
+        if (device_->raster() == Raster::Compute) raster_ = &device_->raster_pipelines();
         create_shared();
         for (auto& slot : slots_) create_slot(slot);
     } catch (...) {
@@ -53,14 +55,17 @@ void GpuAtlasImpl::create_shared() {
     pool.queueFamilyIndex = device_->queue_family();
     GLINT_VK_CHECK(vkCreateCommandPool(dev, &pool, nullptr, &pool_));
     const auto slots = static_cast<std::uint32_t>(slots_.size());
+    // Per slot the passes' set and, with the compute rasteriser, one set per target.
+    const std::uint32_t raster_sets = raster_ != nullptr ? 2 * slots : 0;
     const std::array<VkDescriptorPoolSize, 3> sizes{{
         {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
-        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4 * slots},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, (GLINT_ATLAS_BINDING_COUNT - 5) * slots},
+        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 4 * slots + kRasterStorageImages * raster_sets},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+         (GLINT_ATLAS_BINDING_COUNT - 5) * slots + kRasterStorageBuffers * raster_sets},
     }};
     VkDescriptorPoolCreateInfo dp{};
     dp.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
-    dp.maxSets = slots;
+    dp.maxSets = slots + raster_sets;
     dp.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
     dp.pPoolSizes = sizes.data();
     GLINT_VK_CHECK(vkCreateDescriptorPool(dev, &dp, nullptr, &descriptor_pool_));
@@ -104,6 +109,11 @@ void GpuAtlasImpl::create_slot(Slot& slot) {
     set.descriptorSetCount = 1;
     set.pSetLayouts = &pipelines_->set_layout;
     GLINT_VK_CHECK(vkAllocateDescriptorSets(dev, &set, &slot.set));
+    if (raster_ != nullptr) {
+        set.pSetLayouts = &raster_->set_layout;
+        GLINT_VK_CHECK(vkAllocateDescriptorSets(dev, &set, &slot.reference.raster_set));
+        GLINT_VK_CHECK(vkAllocateDescriptorSets(dev, &set, &slot.examined.raster_set));
+    }
 }
 
 void GpuAtlasImpl::wait_all() noexcept {
@@ -123,6 +133,40 @@ void GpuAtlasImpl::destroy_target(Target& t) noexcept {
     destroy_image(dev, t.normal_depth);
     destroy_image(dev, t.primitive);
     destroy_image(dev, t.depth);
+    destroy_raster_target(dev, t.raster);
+}
+
+/// A target's images (and framebuffer, or compute rasteriser buffers) for `mesh`.
+void GpuAtlasImpl::make_target(Target& t, const MeshBuffers& mesh, int width, int height) {
+    const VkDevice dev = device_->device();
+    const VkPhysicalDevice phys = device_->physical();
+    // Colour targets: attachments of the render pass, or storage images the compute
+    // rasteriser writes; the atlas's passes read them as storage images either way.
+    const VkImageUsageFlags color =
+        VK_IMAGE_USAGE_STORAGE_BIT |
+        (raster_ != nullptr ? VkImageUsageFlags{0}
+                            : VkImageUsageFlags{VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT});
+    t.normal_depth =
+        make_image(dev, phys, width, height, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
+    t.primitive = make_image(dev, phys, width, height, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
+    if (raster_ != nullptr) {
+        const VkDescriptorSet set = t.raster_set;  // kept: make_raster_target resets it first
+        make_raster_target(dev, phys, t.raster, set, mesh, width, height, t.normal_depth.view,
+                           t.primitive.view);
+        return;
+    }
+    t.depth = make_image(dev, phys, width, height, kDepthFormat,
+                         VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
+    const std::array<VkImageView, 3> views{t.normal_depth.view, t.primitive.view, t.depth.view};
+    VkFramebufferCreateInfo fb{};
+    fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
+    fb.renderPass = pipelines_->render_pass;
+    fb.attachmentCount = static_cast<std::uint32_t>(views.size());
+    fb.pAttachments = views.data();
+    fb.width = static_cast<std::uint32_t>(width);
+    fb.height = static_cast<std::uint32_t>(height);
+    fb.layers = 1;
+    GLINT_VK_CHECK(vkCreateFramebuffer(dev, &fb, nullptr, &t.framebuffer));
 }
 
 void GpuAtlasImpl::release() noexcept {
@@ -140,7 +184,7 @@ void GpuAtlasImpl::release() noexcept {
         slot.fence = VK_NULL_HANDLE;
         slot.timestamps = VK_NULL_HANDLE;
     }
-    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_})
+    for (Buffer* b : {&sums_, &words_, &scratch_key_, &scratch_cos_, &pixels_, &staging_})
         destroy_buffer(dev, *b);
     // Destroying the pools frees their command buffers and descriptor sets.
     if (descriptor_pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(dev, descriptor_pool_, nullptr);
@@ -152,33 +196,11 @@ void GpuAtlasImpl::release() noexcept {
 /// (Re)creates a slot's two targets for a sub-sample size; the slot is idle here.
 void GpuAtlasImpl::ensure_targets(Slot& slot, int width, int height) {
     if (slot.width == width && slot.height == height) return;
-    const VkDevice dev = device_->device();
-    const VkPhysicalDevice phys = device_->physical();
     destroy_target(slot.reference);
     destroy_target(slot.examined);
     slot.width = slot.height = 0;
-    const VkImageUsageFlags color =
-        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
-    for (Target* t : {&slot.reference, &slot.examined}) {
-        t->normal_depth =
-            make_image(dev, phys, width, height, kNormalFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        t->primitive =
-            make_image(dev, phys, width, height, kIdFormat, color, VK_IMAGE_ASPECT_COLOR_BIT);
-        t->depth =
-            make_image(dev, phys, width, height, kDepthFormat,
-                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT);
-        const std::array<VkImageView, 3> views{t->normal_depth.view, t->primitive.view,
-                                               t->depth.view};
-        VkFramebufferCreateInfo fb{};
-        fb.sType = VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO;
-        fb.renderPass = pipelines_->render_pass;
-        fb.attachmentCount = static_cast<std::uint32_t>(views.size());
-        fb.pAttachments = views.data();
-        fb.width = static_cast<std::uint32_t>(width);
-        fb.height = static_cast<std::uint32_t>(height);
-        fb.layers = 1;
-        GLINT_VK_CHECK(vkCreateFramebuffer(dev, &fb, nullptr, &t->framebuffer));
-    }
+    make_target(slot.reference, reference_.buffers, width, height);
+    make_target(slot.examined, examined_.buffers, width, height);
     slot.width = width;
     slot.height = height;
     slot.set_current = false;

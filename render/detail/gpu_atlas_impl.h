@@ -11,7 +11,8 @@
 //   fill      the slot's summary ← 0; barrier → the pixel pass
 //   draw      reference, examined (render pass TargetUse::Compute: its dependencies order the
 //             colour writes before the passes' imageLoad, and the previous reads of these
-//             targets before the clear)
+//             targets before the clear); with Raster::Compute the compute rasteriser's passes
+//             of both meshes instead (detail/vk_raster.h), with the same ordering
 //   dispatch  atlas_pixels.comp; barrier → atlas_vertices.comp
 //   dispatch  atlas_vertices.comp; barrier → transfer
 //   copy      summary → host-visible summary; barrier → host
@@ -59,7 +60,9 @@ class GpuAtlasImpl {
   private:
     struct Target {
         Image normal_depth, primitive, depth;
-        VkFramebuffer framebuffer = VK_NULL_HANDLE;
+        VkFramebuffer framebuffer = VK_NULL_HANDLE;  // Raster::Graphics
+        RasterTarget raster;                         // Raster::Compute
+        VkDescriptorSet raster_set = VK_NULL_HANDLE;
     };
     struct Slot {
         int width = 0;  // target size in sub-samples
@@ -88,6 +91,7 @@ class GpuAtlasImpl {
     void create_slot(Slot& slot);
     void release() noexcept;
     void destroy_target(Target& target) noexcept;
+    void make_target(Target& target, const MeshBuffers& mesh, int width, int height);
     void ensure_targets(Slot& slot, int width, int height);
     void ensure_pixels(std::size_t pixel_count);
     void write_set(Slot& slot);
@@ -106,6 +110,7 @@ class GpuAtlasImpl {
     VulkanMesh examined_;
     std::shared_ptr<VulkanDevice> device_;
     const AtlasPipelines* pipelines_ = nullptr;
+    const RasterPipelines* raster_ = nullptr;  // Raster::Compute: the normal passes in compute
     int supersample_ = 1;
     GpuAtlasOptions options_;
     float mask_threshold_ = 0.0f;  // the frame options' coverage mask (render/renderer.cpp)
@@ -115,7 +120,10 @@ class GpuAtlasImpl {
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkDescriptorPool descriptor_pool_ = VK_NULL_HANDLE;
     Buffer sums_, words_, scratch_key_, scratch_cos_, pixels_;
-    std::array<Slot, 2> slots_{};
+    // read_totals()'s host-visible copy, made at its first call and kept: a fresh 28 MB
+    // allocation (1M triangles) per sweep is pinned and mapped anew each time.
+    Buffer staging_;
+    std::vector<Slot> slots_;  // GpuAtlasOptions::in_flight
 };
 
 }  // namespace glint::detail

@@ -46,6 +46,8 @@ VkPipelineLayout make_compute_layout(VkDevice device, VkDescriptorSetLayout set_
     return layout;
 }
 
+}  // namespace
+
 VkPipeline make_compute_pipeline(VkDevice device, VkPipelineLayout layout, ShaderId shader) {
     VkShaderModule module = make_shader_module(device, shader);
     VkComputePipelineCreateInfo info{};
@@ -62,8 +64,6 @@ VkPipeline make_compute_pipeline(VkDevice device, VkPipelineLayout layout, Shade
     if (r != VK_SUCCESS) vk_check_failed(r, "vkCreateComputePipelines", __FILE__, __LINE__);
     return pipeline;
 }
-
-}  // namespace
 
 AtlasPipelines make_atlas_pipelines(VkDevice device, VkPipelineLayout graphics_layout) {
     AtlasPipelines p;

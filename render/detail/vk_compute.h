@@ -4,6 +4,8 @@
 // per cull mode). See render/gpu_atlas.cpp for the per-view command buffer they form.
 #pragma once
 
+#include "spirv/shader_ids.h"
+
 #include <vulkan/vulkan.h>
 
 #include <array>
@@ -25,5 +27,8 @@ AtlasPipelines make_atlas_pipelines(VkDevice device, VkPipelineLayout graphics_l
 
 /// Destroys and resets; null handles are skipped.
 void destroy_atlas_pipelines(VkDevice device, AtlasPipelines& pipelines) noexcept;
+
+/// A compute pipeline of one embedded shader (entry point main). \throw DeviceError.
+VkPipeline make_compute_pipeline(VkDevice device, VkPipelineLayout layout, ShaderId shader);
 
 }  // namespace glint::detail

@@ -9,6 +9,7 @@
 #include "render/detail/vk_compute.h"
 #include "render/detail/vk_device.h"
 #include "render/detail/vk_pipeline.h"
+#include "render/detail/vk_raster.h"
 
 #include <vulkan/vulkan.h>
 
@@ -47,6 +48,10 @@ class VulkanDevice {
     [[nodiscard]] const AtlasPipelines& atlas_pipelines();
     /// The graphics pipeline for a cull mode, created at its first use.
     [[nodiscard]] VkPipeline pipeline(bool cull_back_faces);
+    /// How the normal pass is rasterised on this device (ContextOptions::raster resolved).
+    [[nodiscard]] Raster raster() const { return raster_; }
+    /// The compute rasteriser's passes, created at their first use. \pre raster() is Compute.
+    [[nodiscard]] const RasterPipelines& raster_pipelines();
     /// vkQueueSubmit of one command buffer signalling `fence`; the queue is shared by every
     /// renderer on the device, so submissions are serialised here.
     void submit(VkCommandBuffer cmd, VkFence fence);
@@ -72,7 +77,9 @@ class VulkanDevice {
     std::array<VkPipeline, 2> pipelines_{};  // [cull_back_faces]
     VkPhysicalDeviceLimits limits_{};
     std::uint32_t timestamp_bits_ = 0;
-    AtlasPipelines atlas_{};  // created by atlas_pipelines() (pipeline_mutex_)
+    AtlasPipelines atlas_{};              // created by atlas_pipelines() (pipeline_mutex_)
+    RasterPipelines raster_pipelines_{};  // created by raster_pipelines() (pipeline_mutex_)
+    Raster raster_ = Raster::Graphics;
 };
 
 /// A renderer's mesh as the GPU atlas uses it: its device, buffers and cull mode.

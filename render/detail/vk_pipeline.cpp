@@ -222,9 +222,7 @@ VkPipeline make_pipeline(VkDevice device, VkPipelineLayout layout, VkRenderPass 
     return pipeline;
 }
 
-void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer,
-                        int width, int height, VkPipeline pipeline, VkPipelineLayout layout,
-                        const MeshBuffers& mesh, const View& view) {
+PushConstants normal_push_constants(const View& view) {
     const Camera& cam = view.camera;
     PushConstants pc{};
     const Eigen::Matrix4f clip = cam.clip_from_world().cast<float>();
@@ -232,6 +230,13 @@ void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebu
     // depth = −z_camera = −(row 2 of camera_from_world) · (p, 1)
     const Eigen::Matrix4d camera_from_world = cam.world_from_camera.inverse().matrix();
     for (int k = 0; k < 4; ++k) pc.depth_row[k] = static_cast<float>(-camera_from_world(2, k));
+    return pc;
+}
+
+void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer,
+                        int width, int height, VkPipeline pipeline, VkPipelineLayout layout,
+                        const MeshBuffers& mesh, const View& view) {
+    const PushConstants pc = normal_push_constants(view);
 
     std::array<VkClearValue, 3> clears{};
     clears[0].color.float32[0] = clears[0].color.float32[1] = clears[0].color.float32[2] = 0.0f;

@@ -48,6 +48,9 @@ struct MeshBuffers {
     std::uint32_t index_count = 0;  ///< 3 per triangle
 };
 
+/// normal.vert's push constants for a view: clip_from_world and the linear-depth row.
+PushConstants normal_push_constants(const View& view);
+
 /// Records the normal pass of one mesh seen from `view` into `framebuffer` (w × h sub-samples):
 /// clear, one indexed draw of every triangle (gl_PrimitiveID = triangle index).
 void record_normal_pass(VkCommandBuffer cmd, VkRenderPass render_pass, VkFramebuffer framebuffer,

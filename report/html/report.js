@@ -1,8 +1,9 @@
 // glint report page: the atlas in 3D, the regions, the evidence (report/report_html.h).
 // Data: the JSON in #glint-data (report.json whole, the mesh and per-vertex fields as base64
-// little-endian typed arrays, colour maps, pictures as data URIs). three.js r111 and its
-// OrbitControls are inlined before this script. With "#selftest" in the URL the page checks
-// itself and writes a JSON verdict into #selftest-verdict.
+// little-endian typed arrays, colour maps, pictures as data URIs, the live view's examined
+// surface). three.js r111, its OrbitControls and the live view (live.js) are inlined before
+// this script. With "#selftest" in the URL the page checks itself and writes a JSON verdict
+// into #selftest-verdict.
 (function () {
   "use strict";
   const DATA = JSON.parse(document.getElementById("glint-data").textContent);
@@ -83,7 +84,14 @@
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
   geometry.setIndex(new THREE.BufferAttribute(indices, 1));
-  geometry.computeVertexNormals();
+  // The vertex normals the sweep rendered (int16 scaled by 32767), else made here.
+  if (DATA.mesh.normals) {
+    const n16 = new Int16Array(bytes(DATA.mesh.normals).buffer), normals = new Float32Array(n16.length);
+    for (let i = 0; i < n16.length; ++i) normals[i] = n16[i] / 32767;
+    geometry.setAttribute("normal", new THREE.BufferAttribute(normals, 3));
+  } else {
+    geometry.computeVertexNormals();
+  }
   const colours = new Float32Array(positions.length);
   geometry.setAttribute("color", new THREE.BufferAttribute(colours, 3));
   const litMaterial = new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide });
@@ -299,7 +307,9 @@
       row.addEventListener("click", () => {
         document.querySelectorAll("#regions tbody tr").forEach((x) => x.classList.remove("selected"));
         row.classList.add("selected");
-        state.lastFlight = flyToRegion(r);
+        // in the live view: the region's best view, as the sweep took it
+        if (live && live.shown && r.best_view >= 0) live.jumpToView(r.best_view);
+        else state.lastFlight = flyToRegion(r);
       });
       body.appendChild(row);
     });
@@ -369,6 +379,28 @@
     });
   }
 
+  // ---- modes: the atlas, or the live view (live.js) ----------------------------------------------
+  let live = null;
+  function showMode(mode) {
+    const isLive = mode === "live";
+    $("atlas-mode").hidden = isLive;
+    $("live-mode").hidden = !isLive;
+    document.querySelector("main").classList.toggle("live", isLive);
+    $("mode-atlas").classList.toggle("selected", !isLive);
+    $("mode-live").classList.toggle("selected", isLive);
+    if (isLive && live.available) live.show();
+    if (!isLive) {
+      if (live.available) live.hide();
+      resize();
+    }
+  }
+  function initLive() {
+    $("mode-atlas").addEventListener("click", () => showMode("atlas"));
+    $("mode-live").addEventListener("click", () => showMode("live"));
+    live = window.glintLiveView({ DATA: DATA, $: $, el: el, fmt: fmt, knotColour: knotColour, positions: positions,
+                                  indices: indices, BACKGROUND: BACKGROUND });
+  }
+
   // ---- page ----------------------------------------------------------------------------------
   function init() {
     fields.forEach((f) => $("field").appendChild(el("option", { value: f.name }, f.label)));
@@ -390,6 +422,13 @@
     selectField(byName.distance ? "distance" : fields[0].name);
     buildRegions();
     buildEvidence();
+    try {
+      initLive();
+    } catch (e) {
+      // the atlas stays usable whatever the live view met
+      window.glintErrors.push("live view: " + (e && e.stack ? e.stack : e));
+      live = { available: false, reason: "The live view failed to start: " + e };
+    }
     resize();
     resetView();
     if (location.hash === "#selftest") window.glintSelftest().then(() => {});
@@ -502,7 +541,9 @@
   }
   // The self-test: the canvas is drawn; a click on region row 1 flies there and shows its best
   // view; there (triangles large, colours strong) a pixel shows the colour its surface point
-  // must have, and picking it gives its vertex; no error happened on the page.
+  // must have, and picking it gives its vertex; the live view draws its panes and its numbers
+  // are the frames' (live.js selftest), or without WebGL2 it says why; no error happened on
+  // the page.
   window.glintSelftest = async function () {
     const verdict = { ok: false, checks: {}, errors: [] };
     try {
@@ -511,11 +552,20 @@
       verdict.checks.canvas = checkCanvas(readCanvas());
       verdict.checks.region_click = await checkRegionClick();
       checkColourAndPick(readCanvas(), verdict);
+      if (live.available) {
+        showMode("live");
+        verdict.checks.live = await live.selftest();
+        showMode("atlas");
+        await nextFrame();
+      } else {
+        verdict.checks.live = { available: false, message: live.reason, shown: !$("live-message").hidden, ok: !$("live-message").hidden };
+      }
+      verdict.checks.live.available = live.available;
     } catch (e) {
       window.glintErrors.push("selftest: " + (e && e.stack ? e.stack : e));
     }
     verdict.errors = window.glintErrors.slice();
-    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 4 &&
+    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 5 &&
                  Object.values(verdict.checks).every((c) => c.ok);
     $("selftest-verdict").textContent = JSON.stringify(verdict);
     return verdict;

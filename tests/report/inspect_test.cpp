@@ -3,6 +3,8 @@
 
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
+#include "mesh/surface_index.h"
+#include "render/context.h"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +68,28 @@ TEST(Inspect, ReadsFramesBackFromTheGpuOnlyWhenPerViewExrsAreWritten) {
     EXPECT_TRUE(without.sweep.on_gpu) << without.sweep.accumulation_note;
     EXPECT_EQ(without.decisions[0].regions.region_of_vertex,
               with_exr.decisions[0].regions.region_of_vertex);
+}
+
+// One BVH per surface per run (mesh/surface_index.h): the fit, the distance, the Embree sweep
+// and the pictures share them; a run used to build five, three over the reference.
+TEST(Inspect, BuildsOneBvhPerSurface) {
+    const Pair& p = pair();
+    const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "inspect_bvh";
+    InspectOptions o;
+    o.analysis.fit.mode = FitMode::Register;
+    o.analysis.sweep.plan.azimuth_step_deg = 90;
+    o.analysis.sweep.plan.elevations_deg = {0};
+    o.analysis.sweep.plan.size = 48;
+    o.analysis.sweep.render.backend = Backend::Embree;
+    o.exports.output = dir;
+    o.exports.replace_existing = true;
+    o.exports.write_views = false;
+    auto bvhs = [] { return SurfaceIndex::builds() + render_context_stats().embree_scenes; };
+    const std::size_t before = bvhs();
+    const Inspection run = inspect(p.reference, p.examined, o, {});
+    EXPECT_EQ(bvhs() - before, 2u) << "reference and examined, once each";
+    EXPECT_TRUE(std::filesystem::exists(dir / "atlas.png"));  // the pictures ran on the shared one
+    EXPECT_EQ(run.analysis.reference_index, nullptr) << "released once the outputs are written";
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -139,6 +140,32 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
         ASSERT_EQ(region[v], static_cast<float>(result.decisions[0].regions.region_of_vertex[v]));
     EXPECT_EQ(fields["distance"]["range"][0].get<double>(),
               -fields["distance"]["range"][1].get<double>());
+    // The sweep's vertex normals, int16 scaled by 32767 (the live view renders with them).
+    const auto normals = decode<std::int16_t>(data["mesh"]["normals"]);
+    ASSERT_EQ(normals.size(), 3 * ref.vertex_count());
+    for (std::size_t v = 0; v < ref.vertex_count(); v += 53)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(normals[3 * v + c] / 32767.0, ref.normals[v][c], 1.0 / 32767);
+
+    // The live view's examined surface: the fitted one (here the identity fit), whole, with its
+    // normals, and how the sweep averaged and compared.
+    ASSERT_TRUE(data.contains("live"));
+    const auto& live = data["live"];
+    EXPECT_EQ(live["supersample"].get<int>(), result.sweep.options.render.supersample);
+    EXPECT_FLOAT_EQ(live["min_coverage"].get<float>(), result.sweep.options.compare.min_coverage);
+    EXPECT_EQ(live["examined"]["triangles"].get<std::size_t>(), exa.triangle_count());
+    EXPECT_EQ(live["examined"]["shown_triangles"].get<std::size_t>(), exa.triangle_count());
+    const auto exa_positions = decode<float>(live["examined"]["positions"]);
+    const auto exa_indices = decode<std::uint32_t>(live["examined"]["indices"]);
+    const auto exa_normals = decode<std::int16_t>(live["examined"]["normals"]);
+    ASSERT_EQ(exa_positions.size(), 3 * exa.vertex_count());
+    ASSERT_EQ(exa_normals.size(), 3 * exa.vertex_count());
+    ASSERT_EQ(exa_indices.size(), 3 * exa.triangle_count());
+    for (std::size_t v = 0; v < exa.vertex_count(); v += 41)
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(exa_positions[3 * v + c], exa.positions[v][c]);
+            EXPECT_NEAR(exa_normals[3 * v + c] / 32767.0, exa.normals[v][c], 1.0 / 32767);
+        }
     EXPECT_EQ(data["colormaps"]["diverging"].size(), 27u);
 
     // The pictures: the mosaic and every region's best view, as PNG data URIs.
@@ -158,8 +185,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     // A mesh above the page's budget is shown decimated: every triangle touching a region kept,
     // the rest collapsed; every vertex shown is an atlas vertex at its place, with its values.
     const std::size_t budget = ref.triangle_count() / 8;
-    const nlohmann::json small =
-        page_data(report_html(ref, result, read_text(dir / "atlas" / "report.json"), {}, budget));
+    const nlohmann::json small = page_data(
+        report_html(ref, result, nullptr, read_text(dir / "atlas" / "report.json"), {}, budget));
     EXPECT_EQ(small["mesh"]["triangles"].get<std::size_t>(), ref.triangle_count());
     const auto ids = decode<std::uint32_t>(small["mesh"]["vertex_ids"]);
     const auto shown_positions = decode<float>(small["mesh"]["positions"]);
@@ -190,6 +217,76 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
         if (result.decisions[0].regions.region_of_vertex[v] != 0) {
             EXPECT_TRUE(is_shown[v]) << "region vertex " << v;
         }
+}
+
+// Above the budget the live view's examined surface is decimated: at most about the budget
+// beyond the triangles kept near the regions, every vertex one of the fitted mesh's with its
+// normal, and the dent (the region's surface on the examined side) kept whole. Surfaces given
+// without normals get the ones the sweep rendered with.
+TEST(ReportHtml, LiveExaminedSurfaceIsDecimatedAboveTheBudgetKeepingTheDamage) {
+    const Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 5});
+    Mesh exa = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Uv, .resolution = 80});
+    const DamageSpec dent{
+        .kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.6};
+    apply_damage(exa, {dent});
+    InspectOptions inspect_options;
+    AnalysisOptions& options = inspect_options.analysis;
+    options.fit.mode = FitMode::Identity;
+    options.sweep.plan.azimuth_step_deg = 90;
+    options.sweep.plan.elevations_deg = {0};
+    options.sweep.plan.size = 96;
+    options.sweep.render.backend = Backend::Embree;
+    const AnalysisResult result = inspect(ref, exa, inspect_options, {}).analysis;
+    ASSERT_FALSE(result.decisions.empty());
+    ASSERT_FALSE(result.decisions[0].regions.regions.empty()) << "the dent is a region";
+
+    const LiveSurface whole = live_examined(exa, ref, result);
+    EXPECT_FALSE(whole.is_decimated());
+    EXPECT_EQ(whole.mesh.positions, exa.positions);
+    EXPECT_EQ(whole.mesh.normals, exa.normals);
+
+    const std::size_t budget = exa.triangle_count() / 8;
+    const LiveSurface live = live_examined(exa, ref, result, budget);
+    ASSERT_TRUE(live.is_decimated());
+    EXPECT_EQ(live.triangles, exa.triangle_count());
+    EXPECT_GT(live.error, 0.0);
+    ASSERT_TRUE(live.mesh.has_normals());
+    std::map<std::array<float, 3>, std::size_t> vertex_at;
+    for (std::size_t v = 0; v < exa.vertex_count(); ++v)
+        vertex_at[{exa.positions[v].x(), exa.positions[v].y(), exa.positions[v].z()}] = v;
+    std::vector<std::uint8_t> shown(exa.vertex_count(), 0);
+    for (std::size_t k = 0; k < live.mesh.vertex_count(); ++k) {
+        const Vec3f& p = live.mesh.positions[k];
+        const auto it = vertex_at.find({p.x(), p.y(), p.z()});
+        ASSERT_NE(it, vertex_at.end()) << "vertex " << k << " is not one of the fitted mesh's";
+        EXPECT_EQ(live.mesh.normals[k], exa.normals[it->second]) << "the sweep's normal";
+        shown[it->second] = 1;
+    }
+    std::size_t in_dent = 0;
+    for (std::size_t v = 0; v < exa.vertex_count(); ++v)
+        if ((exa.positions[v].cast<double>() - dent.center).norm() < 0.9 * dent.radius) {
+            ++in_dent;
+            EXPECT_TRUE(shown[v]) << "dent vertex " << v << " was collapsed";
+        }
+    EXPECT_GT(in_dent, 50u);
+
+    // Meshes without normals get those the renderer and analyse() make (angle-weighted).
+    Mesh bare_exa{.positions = exa.positions, .triangles = exa.triangles};
+    const LiveSurface made = live_examined(bare_exa, ref, result);
+    ASSERT_TRUE(made.mesh.has_normals());
+    for (std::size_t v = 0; v < exa.vertex_count(); v += 97)
+        EXPECT_LT((made.mesh.normals[v] - exa.normals[v]).norm(), 1e-5f) << "vertex " << v;
+    const Mesh bare_ref{.positions = ref.positions, .triangles = ref.triangles};
+    const nlohmann::json page = page_data(report_html(bare_ref, result, nullptr, "{}", {}));
+    const auto ref_normals = decode<std::int16_t>(page["mesh"]["normals"]);
+    ASSERT_EQ(ref_normals.size(), 3 * ref.vertex_count());
+    for (std::size_t v = 0; v < ref.vertex_count(); v += 97)
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(ref_normals[3 * v + c] / 32767.0, ref.normals[v][c], 2.0 / 32767);
+    EXPECT_LT(live.mesh.triangle_count(), budget + 6 * in_dent + budget / 2);
+    EXPECT_LT(live.mesh.triangle_count(), exa.triangle_count() / 2);
 }
 
 }  // namespace

@@ -12,6 +12,9 @@
 //   rounded to 2^-k, k ≥ 37 here) where the CPU rounds double sums; measured on lavapipe:
 //   ≤ 1.2e-13 for the means of the metric, ≤ 5e-10 for the signed depth, 0 for the weights.
 // - a view's mean angle: its fixed-point sum has a step of 2^-(54 − log2 pixels) degrees.
+// Each comparison runs with the graphics pipeline's frames and again with the compute
+// rasteriser's (render/context.h Raster): both paths then see the same frames, so the same
+// tolerances hold.
 #include "scanner/gpu_sweep.h"
 
 #include "scanner/sweep.h"
@@ -59,8 +62,9 @@ const Pair& pair() {
     return p;
 }
 
-SweepOptions vulkan_options(Accumulation accumulate) {
+SweepOptions vulkan_options(Accumulation accumulate, Raster raster = Raster::Auto) {
     SweepOptions o;
+    o.render.raster = raster;
     o.plan.azimuth_step_deg = 60;
     o.plan.elevations_deg = {-30, 30};
     o.plan.size = 96;
@@ -156,19 +160,23 @@ void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double m
     }
 }
 
-TEST(GpuSweep, GivesTheReadBackAtlasOnADentedPhantom) {
+void expect_same_on_a_dented_phantom(Raster raster) {
     const Pair& p = pair();
-    SweepOptions host = vulkan_options(Accumulation::Host);
+    SweepOptions host = vulkan_options(Accumulation::Host, raster);
     const SweepPlan plan = make_sweep_plan(p.reference, host.plan);
     const SweepResult h = run_sweep(p.reference, p.examined, plan, host);
     const SweepResult g =
-        run_sweep(p.reference, p.examined, plan, vulkan_options(Accumulation::Gpu));
+        run_sweep(p.reference, p.examined, plan, vulkan_options(Accumulation::Gpu, raster));
     expect_same_sweep(h, g, 180.0, "angle, ortho, s=2, 96²");
     // Not trivially equal: the dent deviates, and most of the surface was observed.
     EXPECT_GT(
         *std::max_element(g.zooms[0].atlas.value_max.begin(), g.zooms[0].atlas.value_max.end()),
         5.0f);
     EXPECT_GT(g.zooms[0].coverage.fraction, 0.8);
+}
+
+TEST(GpuSweep, GivesTheReadBackAtlasOnADentedPhantom) {
+    expect_same_on_a_dented_phantom(Raster::Auto);
 }
 
 /// The plan's views as perspective cameras at two zooms (footprint halved at the second).
@@ -199,9 +207,9 @@ SweepPlan perspective_plan(const Mesh& mesh, int size) {
     return plan;
 }
 
-TEST(GpuSweep, GivesTheReadBackAtlasForPerspectiveViewsTheRgbMetricAndACoverageMask) {
+void expect_same_for_perspective_views_rgb_and_a_mask(Raster raster) {
     const Pair& p = pair();
-    SweepOptions host = vulkan_options(Accumulation::Host);
+    SweepOptions host = vulkan_options(Accumulation::Host, raster);
     host.metric = Metric::RgbAbs;
     host.render.supersample = 1;
     host.render.min_coverage = 0.5f;  // the frame mask (render/renderer.cpp finish_frame)
@@ -217,6 +225,10 @@ TEST(GpuSweep, GivesTheReadBackAtlasForPerspectiveViewsTheRgbMetricAndACoverageM
         10.0f);
 }
 
+TEST(GpuSweep, GivesTheReadBackAtlasForPerspectiveViewsTheRgbMetricAndACoverageMask) {
+    expect_same_for_perspective_views_rgb_and_a_mask(Raster::Auto);
+}
+
 /// The examined surface without its end beyond x = `cut` (an open mesh): from the side, the
 /// reference shows surface there and the examined none (missing surface).
 Mesh cut_off(const Mesh& m, float cut) {
@@ -230,10 +242,10 @@ Mesh cut_off(const Mesh& m, float cut) {
     return out;
 }
 
-TEST(GpuSweep, GivesTheReadBackAtlasWhereTheExaminedSurfaceIsMissing) {
+void expect_same_where_the_examined_surface_is_missing(Raster raster) {
     const Pair& p = pair();
     const Mesh examined = cut_off(p.examined, 7.0f);
-    SweepOptions host = vulkan_options(Accumulation::Host);
+    SweepOptions host = vulkan_options(Accumulation::Host, raster);
     host.render.supersample = 3;
     SweepOptions gpu = host;
     gpu.accumulate = Accumulation::Gpu;
@@ -246,6 +258,16 @@ TEST(GpuSweep, GivesTheReadBackAtlasWhereTheExaminedSurfaceIsMissing) {
     expect_same_sweep(h, g, 180.0, "angle, missing surface, s=3, 96²");
     EXPECT_GT(*std::max_element(g.zooms[0].atlas.missing.begin(), g.zooms[0].atlas.missing.end()),
               0.5f);
+}
+
+TEST(GpuSweep, GivesTheReadBackAtlasWhereTheExaminedSurfaceIsMissing) {
+    expect_same_where_the_examined_surface_is_missing(Raster::Auto);
+}
+
+TEST(GpuSweep, GivesTheReadBackAtlasWithTheComputeRasteriser) {
+    expect_same_on_a_dented_phantom(Raster::Compute);
+    expect_same_for_perspective_views_rgb_and_a_mask(Raster::Compute);
+    expect_same_where_the_examined_surface_is_missing(Raster::Compute);
 }
 
 TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {
