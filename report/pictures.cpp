@@ -96,9 +96,9 @@ class PictureWriter {
   public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options,
                   std::string reference_name)
-        : reference_name_(std::move(reference_name)),
-          reference_(reference),
+        : reference_(reference),
           result_(result),
+          reference_name_(std::move(reference_name)),
           options_(options),
           scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),
