@@ -241,7 +241,10 @@ def test_fault_cancelled_job_is_retried_then_finished_by_a_rerun(fault_cohort, c
     assert [j["State"].split()[0] for j in attempts] == ["CANCELLED", "CANCELLED"], attempts
     assert [j["ReqMem"] for j in attempts] == [f"{MEM_MB}M", f"{2 * MEM_MB}M"]
     assert not (tmp_path / "pairs" / pair).exists()
-    assert not list((tmp_path / "pairs").glob("*/*.partial-*"))
+    # A glint that ends on scancel's SIGTERM removes its staging folder; one still inside a view
+    # when its 3 s watchdog fires (a loaded node) leaves it, never under the pair's own name.
+    leftovers = list((tmp_path / "pairs").glob("*/*.partial-*"))
+    assert all(p.name.startswith(pair.split("/")[1] + ".partial-") for p in leftovers), leftovers
     assert not (tmp_path / "cohort.csv").exists()
     swept = pair_files(tmp_path)
     assert len(swept) == FAULT_SUBJECTS - 1, head.text()
@@ -250,6 +253,7 @@ def test_fault_cancelled_job_is_retried_then_finished_by_a_rerun(fault_cohort, c
     again = run(command, env)
     assert again.returncode == 0, (again.stdout, again.stderr)
     assert sorted(jobs_by_pair(cluster, rerun_from)) == [pair]
+    assert not list((tmp_path / "pairs").glob("*/*.partial-*")), "the rerun left a staging folder"
     assert {k: v for k, v in pair_files(tmp_path).items() if k in swept} == swept
     assert (tmp_path / "cohort.csv").read_bytes() == (local / "cohort.csv").read_bytes()
 
