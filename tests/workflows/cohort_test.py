@@ -169,3 +169,42 @@ def test_snakemake_reports_a_bad_manifest(tmp_path, cohort_run):
     done = subprocess.run([*command[:at], "-d", str(tmp_path / "out"), "--config", f"manifest={manifest}",
                            *command[at + 2:]], capture_output=True, text=True, timeout=120)
     assert done.returncode != 0 and "lacks path" in done.stdout + done.stderr
+
+
+def test_a_relative_profile_path_is_refused_before_any_job(tmp_path, cohort_run):
+    # Snakemake 7 would find the Slurm profile's status script from here, then look for it from
+    # the results folder after submitting the jobs; the workflow stops first and says how.
+    manifest = cohort_run[1]
+    command = ["snakemake", "-s", str(WORKFLOW / "Snakefile"), "-d", str(tmp_path / "out"), "--dry-run",
+               "--profile", "workflows/cohort/profiles/slurm", "--config", f"manifest={manifest}"]
+    done = subprocess.run(command, cwd=SOURCE, env=dict(os.environ, PWD=str(SOURCE)), capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode != 0
+    assert 'give the profile as an absolute path (--profile "$PWD/workflows/cohort/profiles/slurm")' in done.stdout + done.stderr
+    absolute = [a if a != "workflows/cohort/profiles/slurm" else str(WORKFLOW / "profiles" / "slurm") for a in command]
+    done = subprocess.run(absolute, cwd=SOURCE, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "rule sweep" in done.stdout  # the same call with the absolute path goes on
+
+
+def test_a_pair_glint_refuses_gets_its_reason_in_the_table(tmp_path, cohort_run):
+    # The header promises three vertices and none follow: glint exits 2 with one line. That pair's
+    # row carries the line; the other pair completes; the run succeeds and names the refused pair.
+    manifest, command = cohort_run[1], cohort_run[2]
+    (tmp_path / "cut.ply").write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nend_header\n")
+    bad = tmp_path / "m.csv"
+    scans = manifest.parent
+    bad.write_text(f"subject,timepoint,path\nA,0,{scans}/a0.ply\nA,1,{scans}/a1.ply\nX,0,{scans}/a0.ply\n"
+                   f"X,1,{tmp_path}/cut.ply\n")
+    at = command.index("--config")
+    done = subprocess.run([*(a for a in command[:at] if a != "--quiet"), "-d", str(tmp_path / "out"), "--config",
+                           f"manifest={bad}", *command[at + 2:]], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    good, refused = table(tmp_path / "out")
+    assert good["error"] == "" and good["regions"] == "1"
+    assert refused["error"].startswith('glint: error: mesh "') and "cut.ply" in refused["error"]
+    assert refused["regions"] == refused["report"] == ""
+    assert (tmp_path / "out" / "pairs" / "X" / "0_to_1" / "error.txt").read_text().strip() == refused["error"]
+    assert "glint refused the input of 1 of 2 pair(s)" in done.stderr
+    assert 'href="logs/X/0_to_1.log"' in (tmp_path / "out" / "cohort.html").read_text()
