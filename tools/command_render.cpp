@@ -151,9 +151,8 @@ std::string output_for(const std::string& pattern, std::size_t index, std::size_
     return (p.parent_path() / (p.stem().string() + "_" + num + p.extension().string())).string();
 }
 
-void run(const RenderArgs& a) {
-    guard_outputs({a.output}, {a.mesh, a.views_file});
-    const auto [width, height] = parse_size(a.size);
+// The base view the flags describe (azimuth, elevation, size, projection, one zoom).
+ViewSpec base_view(const RenderArgs& a, int width, int height) {
     ViewSpec base;
     base.azimuth_deg = a.azimuth;
     base.elevation_deg = a.elevation;
@@ -173,6 +172,12 @@ void run(const RenderArgs& a) {
         base.zoom = ZoomKind::DistancePixels;
         base.zoom_value = *a.distance_px;
     }
+    return base;
+}
+
+// The views to render: --views items and views-file lines over the base view, or the base view.
+std::vector<ViewSpec> view_specs(const RenderArgs& a, int width, int height) {
+    const ViewSpec base = base_view(a, width, height);
     std::vector<ViewSpec> specs;
     if (!a.views.empty()) {
         std::istringstream s(a.views);
@@ -207,8 +212,10 @@ void run(const RenderArgs& a) {
         }
     }
     if (specs.empty()) specs.push_back(base);
+    return specs;
+}
 
-    const ShadeOptions shade{.mode = parse_shade_mode(a.mode)};
+RenderOptions render_options(const RenderArgs& a) {
     RenderOptions options;
     options.backend = parse_backend(a.backend);
     options.device = a.device;
@@ -223,6 +230,16 @@ void run(const RenderArgs& a) {
         throw InputError("--normal-space \"" + a.normal_space + "\": expected world or view");
     }
     options.validate();
+    return options;
+}
+
+void run(const RenderArgs& a) {
+    guard_outputs({a.output}, {a.mesh, a.views_file});
+    const auto [width, height] = parse_size(a.size);
+    std::vector<ViewSpec> specs = view_specs(a, width, height);
+
+    const ShadeOptions shade{.mode = parse_shade_mode(a.mode)};
+    const RenderOptions options = render_options(a);
 
     const LoadedMesh loaded = load_mesh(a.mesh);
     const FramingSphere sphere = framing_sphere(loaded.mesh);
