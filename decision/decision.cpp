@@ -309,8 +309,9 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Decisi
     // cube of 12 triangles) has no scale to move to: its floors are capped and warned about.
     const bool can_scale = !detail::scale_ladder(reference, e.size).empty();
     if (implausible && !can_scale)
-        d.warnings.push_back("no smoothing scale fits this mesh (its median edge is longer than "
-                             "4 % of its size): the implausible floors are capped");
+        d.warnings.push_back(
+            "no smoothing scale fits this mesh (its median edge is longer than "
+            "4 % of its size): the implausible floors are capped");
     if (implausible && can_scale && !o.threshold && !o.shape_threshold) {
         if (reference.has_normals()) {
             decide_at_quiet_scale(reference, e, o, fields, region_options, std::move(f), d);

@@ -96,8 +96,8 @@ struct Floor {
     bool given = false;        ///< set by the user, not estimated
     bool implausible = false;  ///< the estimate exceeded the plausible limit and was capped
     FloorSource source = FloorSource::Measured;
-    std::string rule;          ///< one line: how it was obtained
-    std::string note;          ///< why it is implausible (empty otherwise)
+    std::string rule;  ///< one line: how it was obtained
+    std::string note;  ///< why it is implausible (empty otherwise)
 };
 
 /// Robust floor of values[i] over use[i] != 0 (see file comment), capped at `plausible_max`.
@@ -141,7 +141,7 @@ struct ZoomDecision {
     DecisionRule rule = DecisionRule::Normal;
     std::string rule_text;  ///< one line stating the rule applied
     Floor normal;
-    Floor shape;  ///< unset (rule empty) for the normal rule
+    Floor shape;          ///< unset (rule empty) for the normal rule
     EvidenceScale scale;  ///< the fused rule's scale (radius 0 for the normal rule)
     RegionResult regions;
     std::vector<std::size_t> histogram;  ///< normal evidence of seen vertices (metric's bins)
