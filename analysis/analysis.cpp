@@ -101,7 +101,8 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
                                         .at_border = &result.at_border,
                                         .facing_away = &result.facing_away,
                                         .metric = options.sweep.metric,
-                                        .size = result.size};
+                                        .size = result.size,
+                                        .unit = result.unit};
         result.decisions.push_back(decide(reference, evidence, options.decision));
         for (const auto& w : result.decisions.back().warnings)
             result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " +

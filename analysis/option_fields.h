@@ -27,7 +27,10 @@ struct OptionFields {
         info.kind = OptionKind::Number;
         return {std::move(info),
                 [member](const Options& o) -> OptionValue { return as_double(member(o)); },
-                [member](Options& o, const OptionValue& v) { member(o) = std::get<double>(v); }};
+                [member](Options& o, const OptionValue& v) {
+                    using Target = std::remove_cvref_t<decltype(member(o))>;
+                    member(o) = static_cast<Target>(std::get<double>(v));
+                }};
     }
 
     template <class Member>

@@ -92,7 +92,7 @@ std::vector<std::uint8_t> band_of(const Mesh& mesh, const Rows& adj,
 }
 
 // The signed depth of the surface gone in one hole (see comparison.h): minus the height above
-// the plane through its rim where the reference stood above it, else NaN.
+// the plane through its rim where the reference stood above it, else 0 (depth unknown).
 void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_t>& group,
                 std::int32_t id, const std::vector<std::uint32_t>& members,
                 const std::vector<double>& area, std::vector<float>& depth) {
@@ -103,7 +103,10 @@ void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_
             const auto w = adj.index[i];
             if (group[w] != id) rim.push_back(mesh.positions[w].cast<double>());
         }
-    if (rim.size() < 3) return;
+    if (rim.size() < 3) {
+        for (const auto u : members) depth[u] = 0.0f;
+        return;
+    }
     for (const auto& p : rim) sum += p;
     const Vec3d c = sum / static_cast<double>(rim.size());
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
@@ -119,10 +122,14 @@ void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_
         height += area[u] * normal.dot(mesh.positions[u].cast<double>() - c);
         weight += area[u];
     }
-    if (!(weight > 0 && height > 0)) return;  // below the rim: direction unknown
+    // Surface gone inside a rim the examined scan covered is a loss. Its depth is the height
+    // above the rim's plane where the reference stood above it (a worn cusp); a hole over a
+    // concave part (a facet in a valley) lost surface whose depth the rim cannot tell: 0.
+    const bool above = weight > 0 && height > 0;
     for (const auto u : members)
-        depth[u] = static_cast<float>(
-            -std::max(0.0, normal.dot(mesh.positions[u].cast<double>() - c)));
+        depth[u] = above ? static_cast<float>(-std::max(
+                               0.0, normal.dot(mesh.positions[u].cast<double>() - c)))
+                         : 0.0f;
 }
 
 std::string rule_text(const Comparison& c) {
@@ -164,7 +171,8 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     // note: one edge along the reference's own borders — on the EDJ crown small borders lie
     // next to the cusps, and 4 edges cut worn cusps and a cusp erosion short (F1 0.65); where the
     // examined surface is cut as well, its not-reached strip carries the wide band.
-    const auto reference_band = band_of(mesh, adj, border_vertices(mesh), c.edge);
+    const auto border = border_vertices(mesh);
+    const auto reference_band = band_of(mesh, adj, border, c.edge);
     std::vector<std::int32_t> group;
     const std::size_t groups = masked_components(mesh, gone, group);
     std::vector<double> group_area(groups, 0.0);
@@ -196,11 +204,13 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         for (const auto u : members[g]) not_reached[u] = 1;
     }
     const auto examined_band = band_of(mesh, adj, not_reached, c.band);
+    const auto border_band = band_of(mesh, adj, border, c.band);
     c.vertex_class.assign(n, static_cast<std::uint8_t>(CompareClass::Compared));
     for (std::size_t v = 0; v < n; ++v) {
         CompareClass k = CompareClass::Compared;
         if (not_reached[v]) k = CompareClass::NotReached;
-        else if (reference_band[v]) k = CompareClass::ReferenceBorder;
+        else if (c.in_hole[v]) k = CompareClass::Compared;  // a hole is compared, also at a border
+        else if (border_band[v]) k = CompareClass::ReferenceBorder;
         else if (examined_band[v]) k = CompareClass::ExaminedBorder;
         c.vertex_class[v] = static_cast<std::uint8_t>(k);
         double& sum = k == CompareClass::Compared         ? c.compared_area
@@ -211,6 +221,35 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     }
     c.fraction = c.reference_area > 0 ? c.compared_area / c.reference_area : 0.0;
     return c;
+}
+
+std::size_t drop_border_groups(const Mesh& mesh, std::vector<std::uint8_t>& damaged,
+                               const Comparison& c) {
+    const std::size_t n = mesh.vertex_count();
+    if (c.vertex_class.size() != n || damaged.size() != n) return 0;
+    const auto area = vertex_areas(mesh);
+    for (std::size_t v = 0; v < n; ++v)
+        if (c.vertex_class[v] == static_cast<std::uint8_t>(CompareClass::NotReached))
+            damaged[v] = 0;
+    std::vector<std::int32_t> group;
+    const std::size_t groups = masked_components(mesh, damaged, group);
+    std::vector<double> total(groups, 0.0), banded(groups, 0.0);
+    for (std::size_t v = 0; v < n; ++v) {
+        if (group[v] < 0) continue;
+        const auto g = static_cast<std::size_t>(group[v]);
+        total[g] += area[v];
+        if (!c.compared(v)) banded[g] += area[v];
+    }
+    std::size_t dropped = 0;
+    std::vector<std::uint8_t> drop(groups, 0);
+    for (std::size_t g = 0; g < groups; ++g)
+        if (banded[g] > kBorderMajority * total[g]) {
+            drop[g] = 1;
+            ++dropped;
+        }
+    for (std::size_t v = 0; v < n; ++v)
+        if (group[v] >= 0 && drop[static_cast<std::size_t>(group[v])]) damaged[v] = 0;
+    return dropped;
 }
 
 }  // namespace glint

@@ -1,12 +1,16 @@
 #include "decision/decision.h"
 
+#include "decision/detail/evidence_scale.h"
 #include "decision/detail/fused_rule.h"
 #include "mesh/components.h"
 #include "mesh/error.h"
+#include "mesh/normals.h"
+#include "mesh/units.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 namespace glint {
@@ -46,8 +50,21 @@ std::vector<std::size_t> histogram_of(const std::vector<float>& value,
     return h;
 }
 
+// An estimated floor as a sentence may state it: an angle floor beyond 180° is no angle (the
+// median and the MAD, each at most 180°, are stated instead).
+std::string stated_estimate(const Floor& f, const MetricDescriptor& m) {
+    const std::string sym(m.symbol);
+    if (&m == &describe(Metric::AngleDeg) && f.estimate > 180.0)
+        return "(median " + fixed(f.median, 2) + sym + " + " + general(f.k) + "·1.4826·MAD " +
+               fixed(f.mad, 2) + sym + ", beyond 180" + sym + ")";
+    return fixed(f.estimate, 2) + sym;
+}
+
 // The normal-evidence floor: given, or the run's noise floor.
-Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m) {
+// `with_surface_only`: over the seen vertices with an examined surface (at a chosen scale:
+// the missing surface is no part of the majority whose quiet the scale is chosen for).
+Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m,
+                   bool with_surface_only = false) {
     const double plausible =
         o.max_plausible_threshold_deg * m.color_max / describe(Metric::AngleDeg).color_max;
     Floor f;
@@ -55,10 +72,14 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
         f.value = *o.threshold;
         f.low = f.value;
         f.given = true;
+        f.source = FloorSource::Given;
         f.rule = "given";
         return f;
     }
-    f = robust_floor(e.atlas->value_mean, e.coverage->seen, o.noise_k, o.min_threshold, plausible);
+    std::vector<std::uint8_t> use = e.coverage->seen;
+    if (with_surface_only)
+        for (std::size_t v = 0; v < use.size(); ++v) use[v] = use[v] && e.atlas->missing[v] <= 0.5f;
+    f = robust_floor(e.atlas->value_mean, use, o.noise_k, o.min_threshold, plausible);
     // The fused rule asks the normal field for corroboration of a shape change, not for proof
     // on its own: the lower floor (k = shape_low_k, as for the shape) is what a group must reach.
     f.low = std::min(f.value, std::max(f.median + o.shape_low_k * 1.4826 * f.mad, o.min_threshold));
@@ -66,13 +87,11 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
              std::string(m.name) + " over seen vertices, at least " + general(o.min_threshold) +
              std::string(m.symbol);
     if (f.implausible)
-        f.note =
-            "the estimated floor " + fixed(f.median + f.k * 1.4826 * f.mad, 2) +
-            std::string(m.symbol) + " exceeds the plausible " + fixed(plausible, 1) +
-            std::string(m.symbol) +
-            ": more than half of the seen surface differs (a large edit, a poor fit, or surfaces that do not "
-            "correspond); capped at " +
-            fixed(plausible, 1) + std::string(m.symbol);
+        f.note = "the estimated floor " + stated_estimate(f, m) + " exceeds the plausible " +
+                 fixed(plausible, 1) + std::string(m.symbol) +
+                 ": more than half of the seen surface differs (a large edit, a poor fit, rough "
+                 "surfaces, or surfaces that do not correspond); capped at " +
+                 fixed(plausible, 1) + std::string(m.symbol);
     return f;
 }
 
@@ -84,6 +103,7 @@ Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess,
         f.value = *o.shape_threshold;
         f.low = 0.5 * f.value;
         f.given = true;
+        f.source = FloorSource::Given;
         f.rule = "given (lower floor: half of it)";
         return f;
     }
@@ -109,9 +129,12 @@ Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess,
     f.mad = spread.mad;
     f.median = magnitude.empty() ? 0.0 : median_of(magnitude);
     const double sigma = 1.4826 * f.mad;
-    f.value = std::max(f.median + o.shape_k * sigma, minimum);
+    f.estimate = f.median + o.shape_k * sigma;
+    f.value = std::max(f.estimate, minimum);
+    f.source = f.estimate < minimum ? FloorSource::Minimum : FloorSource::Measured;
     if (f.value > plausible) {
         f.implausible = true;
+        f.source = FloorSource::Capped;
         f.value = std::max(plausible, minimum);
     }
     f.low = std::min(f.value, std::max(f.median + o.shape_low_k * sigma, minimum));
@@ -122,7 +145,7 @@ Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess,
         " × the size; lower floor with k = " + general(o.shape_low_k);
     if (f.implausible)
         f.note =
-            "the estimated shape floor " + general(f.median + f.k * 1.4826 * f.mad) + " exceeds " +
+            "the estimated shape floor " + general(f.estimate) + " exceeds " +
             general(o.max_plausible_shape_fraction * 100) +
             " % of the size: more than half of the seen surface moved (a large edit, a poor fit, or different "
             "surfaces); capped at " +
@@ -157,16 +180,12 @@ std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floo
     return damaged;
 }
 
-// Whether the decision reads compared vertices only and holes take a kind from their rim
-// (issue 24). Off: two data scenarios regress (see decide()).
-constexpr bool kDecideComparedOnly = false;
-
-// The depth of the surface gone in holes, where it reaches `floor` (a scan's dropout over a
-// smooth part gives no depth: its region stays "missing surface"); NaN elsewhere.
-std::vector<float> gone_depth(const Comparison& c, double floor) {
+// The depth of the surface gone in holes that lost surface (decision/comparison.h: 0 or
+// negative); NaN elsewhere and in holes over a pit (direction unknown).
+std::vector<float> gone_depth(const Comparison& c) {
     std::vector<float> gone(c.hole_depth.size(), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t v = 0; v < gone.size(); ++v)
-        if (c.in_hole[v] && c.hole_depth[v] <= -floor) gone[v] = c.hole_depth[v];
+        if (c.in_hole[v]) gone[v] = c.hole_depth[v];
     return gone;
 }
 
@@ -180,7 +199,227 @@ std::vector<float> region_shape(const std::vector<float>& distance, const Compar
     return shape;
 }
 
+// The fields the regions read; the store owns what they point at.
+struct RegionFieldStore {
+    std::vector<float> gone;
+    std::vector<float> shape;
+    RegionFields fields;
+};
+
+void build_fields(const DecisionEvidence& e, const Comparison& c, RegionFieldStore& s) {
+    const bool have_distance = e.distance && e.distance->size() == e.atlas->value_mean.size();
+    const std::vector<float>& distance = have_distance ? *e.distance : e.atlas->depth_mean;
+    s.gone = gone_depth(c);
+    s.shape = region_shape(distance, c, s.gone);
+    s.fields = RegionFields{.value = &e.atlas->value_mean,
+                            .shape = &s.shape,
+                            .missing = &e.atlas->missing,
+                            .view = &e.atlas->max_view,
+                            .gone = &s.gone};
+}
+
+// The fused rule's floors from evidence `e` (one scale).
+struct FusedAtScale {
+    Floor normal;
+    Floor shape;
+    std::vector<float> excess;
+};
+
+// The floors read the compared vertices only (`compared`, decision/comparison.h): surface near
+// a border or beyond the examined scan is no part of the majority that sets the noise floor.
+FusedAtScale fused_floors(const DecisionEvidence& e, const Coverage& compared,
+                          const DecisionOptions& o, bool with_surface_only = false) {
+    DecisionEvidence over = e;
+    over.coverage = &compared;
+    FusedAtScale f;
+    f.excess = shape_excess(e);
+    f.normal = normal_floor(over, o, describe(e.metric), with_surface_only);
+    f.shape = shape_floor(over, f.excess, o);
+    return f;
+}
+
+// The damaged mask less the groups that lie mostly in a not-compared band
+// (decision/comparison.h drop_border_groups), counted in the comparison.
+std::vector<std::uint8_t> off_borders(const Mesh& reference, std::vector<std::uint8_t> mask,
+                                      ZoomDecision& d) {
+    d.comparison.border_groups += drop_border_groups(reference, mask, d.comparison);
+    return mask;
+}
+
+// The smallest damage the rule can tell at a scale: a change deeper than the shape floor
+// beyond the typical tessellation tolerance, at least as wide as the smoothing disc (at the
+// vertices' own scale: the smallest region kept).
+void state_detectable(const Mesh& reference, const DecisionEvidence& e, const DecisionOptions& o,
+                      const Floor& shape, EvidenceScale& s) {
+    std::vector<float> tol;
+    if (e.tolerance && e.tolerance->size() == reference.vertex_count())
+        for (std::size_t v = 0; v < e.tolerance->size(); ++v)
+            if (e.coverage->seen[v]) tol.push_back((*e.tolerance)[v]);
+    s.min_depth = shape.value + (tol.empty() ? 0.0 : median_of(tol));
+    const double vertex_area = surface_area(reference) / static_cast<double>(std::max<std::size_t>(
+                                                             1, reference.vertex_count()));
+    s.min_area = s.radius > 0 ? std::numbers::pi * s.radius * s.radius
+                              : static_cast<double>(o.min_region_vertices) * vertex_area;
+    s.text = (s.radius > 0 ? "evidence read over a radius of " + with_unit(s.radius, e.unit)
+                           : std::string("each vertex's own evidence")) +
+             "; the smallest detectable damage: " + with_unit(s.min_depth, e.unit) + " deep over " +
+             with_unit(s.min_area, e.unit, 2, "%.3g");
+}
+
+// The evidence of `e` read over radius r: the fit's distance, tolerance and tilt (the tilt as
+// the normal evidence, in degrees; vertices without an examined surface keep theirs).
+struct EvidenceAtScale {
+    detail::ScaledEvidence scaled;
+    ZoomAtlas atlas;
+    DecisionEvidence evidence;
+};
+
+void read_at_scale(const Mesh& reference, const DecisionEvidence& e, double r, EvidenceAtScale& s) {
+    s.scaled = detail::scaled_evidence(reference, e, r);
+    s.atlas = *e.atlas;
+    for (std::size_t v = 0; v < s.atlas.value_mean.size(); ++v)
+        if (s.atlas.missing[v] <= 0.5f) s.atlas.value_mean[v] = s.scaled.tilt_deg[v];
+    s.evidence = e;
+    s.evidence.atlas = &s.atlas;
+    s.evidence.distance = &s.scaled.distance;
+    s.evidence.tolerance = &s.scaled.tolerance;
+    s.evidence.metric = Metric::AngleDeg;
+}
+
+std::string own_scale_text(const FusedAtScale& f) {
+    std::string t = "the floors at each vertex's own scale are implausible (";
+    if (f.normal.implausible) t += "normal: " + f.normal.note;
+    if (f.normal.implausible && f.shape.implausible) t += "; ";
+    if (f.shape.implausible) t += "shape: " + f.shape.note;
+    return t + ")";
+}
+
+// The fused rule at the first scale where the floors are plausible (decision.h EvidenceScale).
+void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
+                           const Coverage& compared, const DecisionOptions& o,
+                           const RegionOptions& region_options,
+                           FusedAtScale f, ZoomDecision& d) {
+    EvidenceScale& s = d.scale;
+    s.searched = true;
+    s.quiet = false;
+    s.own_normal = f.normal;
+    s.own_shape = f.shape;
+    const std::string own = own_scale_text(f);
+    EvidenceAtScale at;
+    for (const double r : detail::scale_ladder(reference, e.size)) {
+        s.tried.push_back(r);
+        read_at_scale(reference, e, r, at);
+        f = fused_floors(at.evidence, compared, o, true);
+        if (f.normal.implausible || f.shape.implausible) continue;
+        s.quiet = true;
+        s.radius = r;
+        break;
+    }
+    d.normal = f.normal;
+    d.shape = f.shape;
+    if (!s.quiet) {
+        d.regions.region_of_vertex.assign(reference.vertex_count(), 0);
+        s.text = "no scale up to a radius of " +
+                 with_unit(s.tried.empty() ? 0.0 : s.tried.back(), e.unit) +
+                 " makes the undamaged majority quiet: no regions are reported";
+        d.rule_text = "fused: " + s.text;
+        d.warnings.push_back(own + "; " + s.text +
+                             " (the surfaces differ everywhere more than a damage could be told "
+                             "from: noise, a poor fit, or surfaces that do not correspond)");
+        return;
+    }
+    d.normal.rule = "median + " + general(o.noise_k) +
+                    "·1.4826·MAD of the tilt of the examined surface against the reference over "
+                    "a radius of " +
+                    with_unit(s.radius, e.unit) +
+                    ", over seen vertices with an examined surface, at least " +
+                    general(o.min_threshold) + "°";
+    state_detectable(reference, at.evidence, o, d.shape, s);
+    d.rule_text = fused_rule_text(d, describe(Metric::AngleDeg)) +
+                  "; evidence read over a radius of " + with_unit(s.radius, e.unit);
+    d.warnings.push_back(
+        own + "; the evidence was read over a radius of " + with_unit(s.radius, e.unit) +
+        ", where the undamaged majority is quiet (normal floor " + fixed(d.normal.value, 2) +
+        "°, shape floor " + with_unit(d.shape.value, e.unit) +
+        "); the smallest detectable damage there: " + with_unit(s.min_depth, e.unit) +
+        " deep over " + with_unit(s.min_area, e.unit, 2, "%.3g"));
+    RegionFieldStore fields;
+    build_fields(e, d.comparison, fields);
+    d.regions = find_regions(
+        reference,
+        off_borders(reference,
+                    detail::fused_mask(reference, at.evidence, f.excess, d.normal, d.shape, o), d),
+        e.coverage->seen, fields.fields, region_options);
+    detail::describe_evidence(d.regions, at.evidence, f.excess, d.normal, d.shape);
+}
+
+void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Coverage& compared,
+                  const DecisionOptions& o, const RegionOptions& region_options, ZoomDecision& d) {
+    FusedAtScale f = fused_floors(e, compared, o);
+    d.normal = f.normal;
+    d.shape = f.shape;
+    const bool implausible = f.normal.implausible || f.shape.implausible;
+    // note: a mesh too coarse for any radius of the ladder (edges beyond 4 % of its size, a
+    // cube of 12 triangles) has no scale to move to: its floors are capped and warned about.
+    const bool can_scale = !detail::scale_ladder(reference, e.size).empty();
+    if (implausible && !can_scale)
+        d.warnings.push_back(
+            "no smoothing scale fits this mesh (its median edge is longer than "
+            "4 % of its size): the implausible floors are capped");
+    if (implausible && can_scale && !o.threshold && !o.shape_threshold) {
+        if (reference.has_normals()) {
+            decide_at_quiet_scale(reference, e, compared, o, region_options, std::move(f), d);
+        } else {
+            Mesh with_normals = reference;
+            compute_vertex_normals(with_normals);
+            decide_at_quiet_scale(with_normals, e, compared, o, region_options, std::move(f),
+                                      d);
+        }
+        return;
+    }
+    if (f.normal.implausible) d.warnings.push_back("normal evidence floor: " + f.normal.note);
+    if (f.shape.implausible) d.warnings.push_back("shape evidence floor: " + f.shape.note);
+    state_detectable(reference, e, o, d.shape, d.scale);
+    d.rule_text = fused_rule_text(d, describe(e.metric));
+    RegionFieldStore fields;
+    build_fields(e, d.comparison, fields);
+    d.regions =
+        find_regions(reference,
+                     off_borders(reference,
+                                 detail::fused_mask(reference, e, f.excess, d.normal, d.shape, o),
+                                 d),
+                     e.coverage->seen, fields.fields, region_options);
+    detail::describe_evidence(d.regions, e, f.excess, d.normal, d.shape);
+}
+
+// The paper's rule: a seen vertex whose mean normal evidence reaches the floor.
+void decide_normal(const Mesh& reference, const DecisionEvidence& e,
+                   const RegionOptions& region_options, ZoomDecision& d) {
+    const MetricDescriptor& m = describe(e.metric);
+    if (d.normal.implausible) d.warnings.push_back("normal evidence floor: " + d.normal.note);
+    d.rule_text = "a seen vertex whose per-vertex mean " + std::string(m.name) +
+                  " reaches the normal floor " + fixed(d.normal.value, 2) + std::string(m.symbol) +
+                  " is damaged; regions are connected groups";
+    RegionFieldStore fields;
+    build_fields(e, d.comparison, fields);
+    d.regions = find_regions(reference, off_borders(reference, normal_rule_mask(e, d.normal), d),
+                             e.coverage->seen, fields.fields, region_options);
+    for (auto& r : d.regions.regions)
+        r.evidence = std::string(m.name) + " " + fixed(r.max_value, 2) + std::string(m.symbol) +
+                     " ≥ floor " + fixed(d.normal.value, 2) + std::string(m.symbol);
+}
+
 }  // namespace
+
+std::string to_string(FloorSource source) {
+    switch (source) {
+        case FloorSource::Measured: return "measured";
+        case FloorSource::Minimum: return "minimum";
+        case FloorSource::Capped: return "capped";
+        case FloorSource::Given: return "given";
+    }
+    return "measured";
+}
 
 DecisionRule parse_decision_rule(const std::string& text) {
     if (text == "normal") return DecisionRule::Normal;
@@ -227,15 +466,18 @@ Floor robust_floor(const std::vector<float>& values, const std::vector<std::uint
     f.minimum = minimum;
     if (x.empty()) {
         f.value = minimum;
+        f.source = FloorSource::Minimum;
         return f;
     }
     f.median = median_of(x);
     for (auto& e : x) e = static_cast<float>(std::abs(e - f.median));
     f.mad = median_of(x);
-    const double estimate = f.median + k * 1.4826 * f.mad;
-    f.value = std::max(estimate, minimum);
+    f.estimate = f.median + k * 1.4826 * f.mad;
+    f.value = std::max(f.estimate, minimum);
+    f.source = f.estimate < minimum ? FloorSource::Minimum : FloorSource::Measured;
     if (f.value > plausible_max) {
         f.implausible = true;
+        f.source = FloorSource::Capped;
         f.value = std::max(plausible_max, minimum);
     }
     return f;
@@ -251,21 +493,23 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                                    .distance = evidence.distance,
                                                    .at_border = evidence.at_border,
                                                    .facing_away = evidence.facing_away});
-    // note: the classification is reported only (report.json, atlas, pictures); restricting
-    // the decision to compared vertices and giving holes a kind from their rim (see
-    // kDecideComparedOnly) cost the EDJ cusp erosion F1 0.98 → 0.69 (its erosion lies at the
-    // reference's own small borders) and tooth-wear-mild_c3_planar its recall; off until fixed.
+    // Floors and the histogram read the compared vertices; the mask every seen vertex the
+    // examined surface reached (a group mostly in a border band is dropped: off_borders).
     Coverage compared = *evidence.coverage;
-    if (kDecideComparedOnly)
-        for (std::size_t v = 0; v < compared.seen.size(); ++v)
-            compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
+    Coverage reached = *evidence.coverage;
+    for (std::size_t v = 0; v < compared.seen.size(); ++v) {
+        compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
+        reached.seen[v] = reached.seen[v] && d.comparison.vertex_class[v] !=
+                                                 static_cast<std::uint8_t>(CompareClass::NotReached);
+    }
     DecisionEvidence e = evidence;
-    e.coverage = &compared;
+    e.coverage = &reached;
+    DecisionEvidence over_compared = evidence;
+    over_compared.coverage = &compared;
     const MetricDescriptor& m = describe(e.metric);
     d.rule = o.rule;
-    d.normal = normal_floor(e, o, m);
-    if (d.normal.implausible) d.warnings.push_back("normal evidence floor: " + d.normal.note);
-    d.histogram = histogram_of(e.atlas->value_mean, e.coverage->seen, m);
+    d.normal = normal_floor(over_compared, o, m);
+    d.histogram = histogram_of(e.atlas->value_mean, compared.seen, m);
     const bool have_distance = e.distance && e.distance->size() == reference.vertex_count();
     const RegionOptions region_options{.min_vertices = o.min_region_vertices,
                                        .fill_holes = o.fill_holes};
@@ -274,37 +518,8 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
         d.warnings.push_back(
             "no shape evidence (signed distance) was measured: the normal rule decided alone");
     }
-    std::vector<float> excess;
-    if (d.rule == DecisionRule::Fused) {
-        excess = shape_excess(e);
-        d.shape = shape_floor(e, excess, o);
-        if (d.shape.implausible) d.warnings.push_back("shape evidence floor: " + d.shape.note);
-    }
-    const std::vector<float> gone = gone_depth(d.comparison, d.shape.value);
-    const std::vector<float>& distance = have_distance ? *e.distance : e.atlas->depth_mean;
-    const std::vector<float> shape =
-        kDecideComparedOnly ? region_shape(distance, d.comparison, gone) : distance;
-    const RegionFields fields{.value = &e.atlas->value_mean,
-                              .shape = &shape,
-                              .missing = &e.atlas->missing,
-                              .view = &e.atlas->max_view,
-                              .gone = kDecideComparedOnly ? &gone : nullptr};
-    if (d.rule == DecisionRule::Fused) {
-        d.rule_text = fused_rule_text(d, m);
-        d.regions =
-            find_regions(reference, detail::fused_mask(reference, e, excess, d.normal, d.shape, o),
-                         e.coverage->seen, fields, region_options);
-        detail::describe_evidence(d.regions, e, excess, d.normal, d.shape);
-        return d;
-    }
-    d.rule_text = "a seen vertex whose per-vertex mean " + std::string(m.name) +
-                  " reaches the normal floor " + fixed(d.normal.value, 2) + std::string(m.symbol) +
-                  " is damaged; regions are connected groups";
-    d.regions = find_regions(reference, normal_rule_mask(e, d.normal), e.coverage->seen, fields,
-                             region_options);
-    for (auto& r : d.regions.regions)
-        r.evidence = std::string(m.name) + " " + fixed(r.max_value, 2) + std::string(m.symbol) +
-                     " ≥ floor " + fixed(d.normal.value, 2) + std::string(m.symbol);
+    if (d.rule == DecisionRule::Fused) decide_fused(reference, e, compared, o, region_options, d);
+    else decide_normal(reference, e, region_options, d);
     return d;
 }
 

@@ -85,6 +85,11 @@ struct DecisionOptions {
     void validate() const;
 };
 
+/// How a floor was obtained: estimated from the run (measured), raised to the stated
+/// minimum, lowered to the plausible limit (capped: always a warning), or set by the user.
+enum class FloorSource { Measured, Minimum, Capped, Given };
+[[nodiscard]] std::string to_string(FloorSource source);
+
 /// A floor and how it was obtained.
 struct Floor {
     double value = 0.0;  ///< the threshold used (metric units, or mesh units for shape)
@@ -94,10 +99,12 @@ struct Floor {
     double mad = 0.0;  ///< raw median absolute deviation
     double k = 0.0;
     double minimum = 0.0;
+    double estimate = 0.0;     ///< median + k·1.4826·MAD before the minimum and the cap
     bool given = false;        ///< set by the user, not estimated
     bool implausible = false;  ///< the estimate exceeded the plausible limit and was capped
-    std::string rule;          ///< one line: how it was obtained
-    std::string note;          ///< why it is implausible (empty otherwise)
+    FloorSource source = FloorSource::Measured;
+    std::string rule;  ///< one line: how it was obtained
+    std::string note;  ///< why it is implausible (empty otherwise)
 };
 
 /// Robust floor of values[i] over use[i] != 0 (see file comment), capped at `plausible_max`.
@@ -119,13 +126,32 @@ struct DecisionEvidence {
         nullptr;  ///< closest examined triangle faces away (may be null)
     Metric metric = Metric::AngleDeg;
     double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
+    std::string unit;   ///< the mesh unit ("mm"), for sentences; empty: "units"
+};
+
+/// The scale the fused rule read its evidence at. Where the floors at the vertices' own scale
+/// are implausible (a cap was hit: rough surfaces, CT staircase and partial-volume noise), the
+/// shape evidence is read over growing radii (decision/detail/evidence_scale.h) until the
+/// undamaged majority is quiet (neither floor implausible); the first such radius is chosen.
+/// Where none is, no region is reported: dozens of noise regions would say nothing.
+struct EvidenceScale {
+    double radius = 0.0;        ///< 0: each vertex's own evidence
+    bool searched = false;      ///< the floors at the vertices' own scale were implausible
+    bool quiet = true;          ///< false: no scale tried made the majority quiet (no regions)
+    double min_depth = 0.0;     ///< smallest detectable depth there (mesh units)
+    double min_area = 0.0;      ///< smallest detectable area there (mesh units²)
+    std::vector<double> tried;  ///< radii tried, in order
+    Floor own_normal;           ///< the floors at the vertices' own scale (when searched)
+    Floor own_shape;
+    std::string text;  ///< one line: the scale and what it can detect
 };
 
 struct ZoomDecision {
     DecisionRule rule = DecisionRule::Normal;
     std::string rule_text;  ///< one line stating the rule applied
     Floor normal;
-    Floor shape;  ///< unset (rule empty) for the normal rule
+    Floor shape;          ///< unset (rule empty) for the normal rule
+    EvidenceScale scale;  ///< the fused rule's scale (radius 0 for the normal rule)
     /// What both surfaces can compare (decision/comparison.h); floors, regions and the
     /// histogram read the compared vertices only.
     Comparison comparison;

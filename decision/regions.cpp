@@ -72,6 +72,7 @@ struct Accumulated {
     double missing_area = 0.0;
     double best_value = -1.0;
     double gone_peak = 0.0;  // most negative depth of surface gone in a hole
+    double gone_area = 0.0;  // area in a hole that lost surface
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
 };
@@ -91,8 +92,10 @@ void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
         g.shape_area += area;
     }
     if (f.missing) g.missing_area += area * (*f.missing)[v];
-    if (f.gone && std::isfinite((*f.gone)[v]))
+    if (f.gone && std::isfinite((*f.gone)[v])) {
         g.gone_peak = std::min(g.gone_peak, static_cast<double>((*f.gone)[v]));
+        g.gone_area += area;
+    }
     if (f.view && value > g.best_value) {
         g.best_value = value;
         g.r.best_view = (*f.view)[v];
@@ -108,8 +111,16 @@ void finish(Accumulated& g, const RegionOptions& options, bool holes) {
     // note: a region mostly without examined surface is a hole (decision/comparison.h); its
     // shape is the depth of the surface gone, negative where material was worn away or
     // removed: a loss. A hole of unknown direction stays "missing surface".
-    if (g.r.missing_fraction > options.missing_majority)
-        g.r.kind = g.gone_peak < 0 ? RegionKind::Dent : RegionKind::MissingSurface;
+    // A region mostly in such a hole is that loss, also where the views saw the far side of an
+    // open surface through the hole (its rim's distances point there, not at the loss).
+    const bool hole_loss =
+        g.gone_area > 0 && (g.r.missing_fraction > options.missing_majority ||
+                            g.gone_area > options.missing_majority * g.r.area);
+    if (hole_loss) {
+        g.r.kind = RegionKind::Dent;
+        g.r.peak_depth = g.gone_peak;
+    } else if (g.r.missing_fraction > options.missing_majority)
+        g.r.kind = RegionKind::MissingSurface;
     else if (holes && g.r.peak_depth == 0 && g.missing_area > 0)
         g.r.kind = RegionKind::MissingSurface;
     else g.r.kind = g.r.peak_depth < 0 ? RegionKind::Dent : RegionKind::Bump;

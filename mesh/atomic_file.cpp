@@ -1,14 +1,14 @@
 #include "mesh/atomic_file.h"
 
 #include "mesh/error.h"
+#include "mesh/file_set.h"
+#include "mesh/output_guard.h"
 
 #include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <mutex>
-#include <set>
 #include <system_error>
 
 namespace glint {
@@ -17,39 +17,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::mutex& inputs_mutex() {
-    static std::mutex m;
-    return m;
-}
-std::set<fs::path>& protected_inputs() {
-    static std::set<fs::path> inputs;
-    return inputs;
-}
-
 fs::path canonical_or_absolute(const fs::path& path) {
     std::error_code ec;
     auto c = fs::weakly_canonical(path, ec);
     return ec ? fs::absolute(path) : c;
 }
 
-}  // namespace
-
-void protect_input(const fs::path& path) {
-    std::lock_guard lock(inputs_mutex());
-    protected_inputs().insert(canonical_or_absolute(path));
-}
-
-namespace {
-
 // Checks the target and returns a temporary path beside it with the same extension.
 fs::path prepare(const fs::path& path, fs::path& target) {
     target = canonical_or_absolute(path);
-    {
-        std::lock_guard lock(inputs_mutex());
-        if (protected_inputs().count(target))
-            throw InputError("output \"" + path.string() +
-                             "\" is one of the inputs; refusing to overwrite an input");
-    }
+    refuse_output_over_inputs(path);
     const fs::path folder = target.parent_path();
     std::error_code ec;
     if (!folder.empty() && !fs::is_directory(folder, ec))
@@ -96,6 +73,45 @@ void write_atomically(const fs::path& path, const std::function<void(std::ostrea
         if (!out)
             throw IoError("cannot write \"" + path.string() + "\": write failed (disk full?)");
     });
+}
+
+FileSet::~FileSet() {
+    std::error_code ec;
+    for (const Staged& s : staged_) fs::remove(s.temp, ec);
+}
+
+void FileSet::add(const fs::path& path, const std::function<void(const fs::path&)>& write) {
+    Staged s;
+    s.path = path;
+    s.temp = prepare(path, s.target);
+    try {
+        write(s.temp);
+        std::error_code ec;
+        if (!fs::is_regular_file(s.temp, ec))
+            throw IoError("cannot write \"" + path.string() + "\": the writer produced no file");
+    } catch (...) {
+        std::error_code ec;
+        fs::remove(s.temp, ec);
+        throw;
+    }
+    staged_.push_back(std::move(s));
+}
+
+void FileSet::add(const fs::path& path, std::string_view contents) {
+    add(path, [&](const fs::path& temp) { write_file_atomically(temp, contents); });
+}
+
+void FileSet::commit() {
+    for (std::size_t i = 0; i < staged_.size(); ++i) {
+        std::error_code ec;
+        fs::rename(staged_[i].temp, staged_[i].target, ec);
+        if (!ec) continue;
+        const std::string why = ec.message();
+        for (std::size_t j = 0; j < i; ++j) fs::remove(staged_[j].target, ec);
+        throw IoError("cannot write \"" + staged_[i].path.string() + "\": rename failed: " + why +
+                      " (none of its set was kept)");
+    }
+    staged_.clear();
 }
 
 void write_file_atomically(const fs::path& path, std::string_view contents) {

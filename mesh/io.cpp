@@ -47,6 +47,9 @@ std::string lower_extension(const fs::path& path) {
 
 // The bytes of a file, memory-mapped (read-only, private) so large binary files are not
 // copied before parsing.
+// A mesh file's bytes, mapped. Only regular files are mapped, opened without blocking (a FIFO
+// or a device never hangs the run; issue 23 item 11).
+// note: a file that shrinks while it is mapped still ends in SIGBUS (issue 23 item 8, open).
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
@@ -55,25 +58,15 @@ class FileBytes {
         if (ec || !fs::exists(status)) throw InputError(quoted(source) + ": file not found");
         if (fs::is_directory(status))
             throw InputError(quoted(source) + ": is a folder, expected a mesh file");
-        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
-        struct stat st {};
-        if (::fstat(fd, &st) != 0) {
-            const int err = errno;
+        try {
+            map(fd, source);
+        } catch (...) {
             ::close(fd);
-            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(err));
+            throw;
         }
-        size_ = static_cast<std::size_t>(st.st_size);
-        if (size_ == 0) {
-            ::close(fd);
-            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
-        }
-        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-        const int err = errno;
         ::close(fd);
-        if (map == MAP_FAILED)
-            throw IoError(quoted(source) + ": cannot map: " + std::strerror(err));
-        data_ = static_cast<const char*>(map);
     }
     ~FileBytes() { release(); }
     FileBytes(const FileBytes&) = delete;
@@ -86,6 +79,27 @@ class FileBytes {
     [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
 
   private:
+    void map(int fd, const std::string& source) {
+        struct stat st {};
+        if (::fstat(fd, &st) != 0)
+            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(errno));
+        if (!S_ISREG(st.st_mode))
+            throw InputError(quoted(source) + ": is " +
+                             (S_ISFIFO(st.st_mode)   ? "a FIFO"
+                              : S_ISCHR(st.st_mode)  ? "a character device"
+                              : S_ISBLK(st.st_mode)  ? "a block device"
+                              : S_ISSOCK(st.st_mode) ? "a socket"
+                                                     : "not a regular file") +
+                             ", expected a regular mesh file");
+        size_ = static_cast<std::size_t>(st.st_size);
+        if (size_ == 0)
+            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
+        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+        if (map == MAP_FAILED)
+            throw IoError(quoted(source) + ": cannot map: " + std::strerror(errno));
+        data_ = static_cast<const char*>(map);
+    }
+
     const char* data_ = nullptr;
     std::size_t size_ = 0;
 };

@@ -76,23 +76,23 @@ struct Bytes {
 
 namespace {
 
-// The scalars a PLY carries, in order: every field under its own name, then (options) the
-// quality copy for MeshLab and the scalar_<name> copies for CloudCompare.
+// The scalars a PLY carries, in order: every field under its own name (options: as
+// scalar_<name>, the only names CloudCompare imports), then (options) the quality copy of one
+// of them for MeshLab.
 std::vector<std::pair<std::string, const ScalarField*>> ply_scalars(const Mesh& mesh,
                                                                     const fs::path& path,
                                                                     const WriteOptions& options) {
     std::vector<std::pair<std::string, const ScalarField*>> out;
     if (!options.write_scalars) return out;
-    for (const auto& f : mesh.scalars) out.emplace_back(safe_name(f.name), &f);
+    const std::string prefix = options.cloudcompare_names ? "scalar_" : "";
+    for (const auto& f : mesh.scalars) out.emplace_back(prefix + safe_name(f.name), &f);
     if (!options.quality_scalar.empty()) {
         const ScalarField* q = mesh.find_scalar(options.quality_scalar);
         if (!q)
             throw InputError("cannot write \"" + path.string() + "\": quality scalar \"" +
                              options.quality_scalar + "\" is not a scalar of the mesh");
-        if (!mesh.find_scalar("quality")) out.emplace_back("quality", q);
+        if (!mesh.find_scalar("quality") || !prefix.empty()) out.emplace_back("quality", q);
     }
-    if (options.cloudcompare_names)
-        for (const auto& f : mesh.scalars) out.emplace_back("scalar_" + safe_name(f.name), &f);
     return out;
 }
 

@@ -1,7 +1,11 @@
 // Writing meshes, in the forms the viewers people use actually read (each proven by loading a
 // written file with the real program: tests/tools/viewers_test.sh):
-//   PLY  binary; MeshLab maps only a vertex property named `quality`, CloudCompare imports
-//        only properties named `scalar_<name>`: WriteOptions adds those as copies.
+//   PLY  binary; MeshLab maps only a vertex property named `quality`; CloudCompare 2.11 (run
+//        with -SILENT: tests/tools/viewers_test.sh) imports only properties named
+//        `scalar_<name>` and shows them as <name>: WriteOptions names every scalar that way and adds the one `quality` copy.
+//        glint's PLY reader reads `scalar_<name>` back as <name> (mesh/detail/ply_reader.cpp).
+// The scalars come first in every format, so the first one is the active scalar a viewer
+// opens on (VTK: the first SCALARS block, VTP: PointData's Scalars attribute).
 //   VTK  legacy ASCII (CloudCompare 2.11 refuses binary legacy VTK; its reader also needs a
 //        POINT_DATA line before every array, which VTK accepts after an empty CELL_DATA
 //        section: mesh/write_vtk.cpp), for ParaView, 3D Slicer and CloudCompare. VTK's
@@ -24,7 +28,8 @@ struct WriteOptions {
     /// PLY: this scalar also as the property `quality` (MeshLab's only per-vertex scalar);
     /// empty: none. \throw InputError from the writers when the mesh has no such scalar.
     std::string quality_scalar;
-    /// PLY: every scalar also as `scalar_<name>` (the names CloudCompare imports).
+    /// PLY: every scalar named `scalar_<name>` instead of `<name>` (the names CloudCompare
+    /// imports; it shows them as <name>). Each scalar is still written once.
     bool cloudcompare_names = false;
     /// VTK legacy ASCII: the number written for NaN (VTK's ASCII reader fails on "nan").
     float vtk_legacy_nan = -9999.0f;

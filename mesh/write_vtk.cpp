@@ -111,6 +111,13 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
             }
             text.push_back('\n');
         });
+        // The scalars first: VTK makes the first SCALARS block the active scalars.
+        if (scalars)
+            for (const auto& f : mesh.scalars) {
+                open_array();
+                out += "SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n";
+                append_floats(out, f.values.data(), n, 9, nan_as);
+            }
         if (normals) {
             open_array();
             out += "NORMALS Normals float\n";
@@ -126,12 +133,6 @@ void write_vtk(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
                         mesh.colors[v][static_cast<std::size_t>(k)] / 255.0f;
             append_floats(out, c.data(), c.size(), 3, 0.0f);
         }
-        if (scalars)
-            for (const auto& f : mesh.scalars) {
-                open_array();
-                out += "SCALARS " + safe_name(f.name) + " float 1\nLOOKUP_TABLE default\n";
-                append_floats(out, f.values.data(), n, 9, nan_as);
-            }
         if (labels) {
             open_array();
             out += "SCALARS label int 1\nLOOKUP_TABLE default\n";
@@ -235,11 +236,11 @@ void write_vtp(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
         if (scalars) out += " Scalars=\"" + safe_name(mesh.scalars.front().name) + "\"";
         if (normals) out += " Normals=\"Normals\"";
         out += ">\n";
-        if (normals) append_array(out, "Float32", "Normals", 3, mesh.normals[0].data(), 3 * n);
-        if (colors) append_array(out, "UInt8", "rgb", 3, mesh.colors[0].data(), 3 * n);
         if (scalars)
             for (const auto& f : mesh.scalars)
                 append_array(out, "Float32", safe_name(f.name), 1, f.values.data(), n);
+        if (normals) append_array(out, "Float32", "Normals", 3, mesh.normals[0].data(), 3 * n);
+        if (colors) append_array(out, "UInt8", "rgb", 3, mesh.colors[0].data(), 3 * n);
         if (labels) append_array(out, "Int32", "label", 1, mesh.labels.data(), n);
         out += "      </PointData>\n      <Points>\n";
         append_array(out, "Float32", "Points", 3, n > 0 ? mesh.positions[0].data() : nullptr,

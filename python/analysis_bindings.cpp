@@ -222,8 +222,11 @@ void bind_analysis_class(py::module_& m) {
         .def_property_readonly(
             "fields",
             [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
-            "per-vertex numpy arrays by name: angle_max_z0, angle_mean_z0, depth_z0, missing_z0, "
-            "count_z0, seen_z0, region_z0 (…_z<k> per zoom), distance, distance_tolerance")
+            "per-vertex numpy arrays by name, each named with its unit (README: the atlas "
+            "fields): shape_change_mm (signed distance to the fitted examined surface, negative "
+            "= loss; _units when the unit is unknown), shape_tolerance_mm, and per zoom k: "
+            "seen_z<k> (1 seen, 0 unseen), angle_mean_deg_z<k>, angle_max_deg_z<k>, "
+            "missing_fraction_z<k> (0 where unseen), pixels_z<k>, region_id_z<k>")
         .def_property_readonly(
             "report", [](const AnalysisHandle& a) { return json_loads(a.report); },
             "report.json as a dict")

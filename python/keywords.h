@@ -28,11 +28,10 @@ struct Keywords {
 
 /// Which keywords a function accepts: the registry's groups (kUnitGroup, kFitGroup,
 /// kSweepGroup, kDecisionGroup, kExportGroup), and these.
-enum KeywordGroup : unsigned {
-    kSurfaceKeywords =
-        1u << 8,  ///< iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
-    kForceKeyword = 1u << 9,  ///< force
-};
+/// iso, surface_roi, largest, seed, smooth, passband, edge, tolerance
+inline constexpr unsigned kSurfaceKeywords = 1u << 8;
+/// force
+inline constexpr unsigned kForceKeyword = 1u << 9;
 
 /// Every keyword of `analyse()`.
 inline constexpr unsigned kAllKeywords = kUnitGroup | kFitGroup | kSweepGroup | kDecisionGroup |

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <string>
 
 namespace glint {
@@ -244,6 +245,14 @@ RayHit ClosestPointIndex::intersect(const Ray& ray) const {
 }
 
 RayHit pick(const ClosestPointIndex& index, const Camera& camera, double u, double v) {
+    // Embree aborts on non-finite or huge ray coordinates: only pixels of the image are picked.
+    if (!(u >= 0.0 && u <= camera.width && v >= 0.0 && v <= camera.height)) {
+        std::ostringstream s;
+        s << "pixel (" << u << ", " << v << "): expected u in 0.." << camera.width
+          << " and v in 0.." << camera.height << " (a pixel of the " << camera.width << " x "
+          << camera.height << " view)";
+        throw InputError(s.str());
+    }
     return index.intersect(camera.pixel_ray(u, v));
 }
 

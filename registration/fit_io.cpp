@@ -1,6 +1,7 @@
 #include "registration/fit_io.h"
 
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 
 #include <nlohmann/json.hpp>
 
@@ -87,6 +88,7 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
 Rigid read_fit(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("fit \"" + path + "\": cannot open");
+    protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
         in >> j;

@@ -1,6 +1,7 @@
 #include "registration/landmarks.h"
 
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 
 #include <nlohmann/json.hpp>
 
@@ -36,9 +37,78 @@ Rigid fit_landmarks(const std::vector<Vec3d>& examined, const std::vector<Vec3d>
     return t;
 }
 
+namespace {
+
+// n numbers as `shape` ("[x, y, z]"), else one line naming the pair and what was found.
+std::vector<double> json_numbers(const nlohmann::json& v, std::size_t n, const std::string& where,
+                                 const std::string& what, const std::string& shape) {
+    if (!v.is_array() || v.size() != n)
+        throw InputError(where + ": " + what + " must be " + shape + ", found " +
+                         (v.is_array() ? "an array of " + std::to_string(v.size())
+                                       : std::string(v.type_name())));
+    std::vector<double> out;
+    for (const auto& x : v) {
+        if (!x.is_number())
+            throw InputError(where + ": " + what + " must be " + shape + " (numbers), found a " +
+                             x.type_name());
+        out.push_back(x.get<double>());
+    }
+    return out;
+}
+
+// A number of a landmark's view; `fallback` when optional and absent.
+double view_number(const nlohmann::json& view, const char* field, bool required, double fallback,
+                   const std::string& where, const std::string& what) {
+    if (!view.contains(field)) {
+        if (required) throw InputError(where + ": " + what + " view has no '" + field + "'");
+        return fallback;
+    }
+    if (!view[field].is_number())
+        throw InputError(where + ": " + what + " view '" + field + "' must be a number, found " +
+                         view[field].type_name());
+    return view[field].get<double>();
+}
+
+// One side of a pair: a point [x, y, z], or a pixel picked in a view.
+LandmarkSide read_side(const nlohmann::json& p, const char* key, const std::string& where) {
+    const std::string what = std::string("'") + key + "'";
+    if (!p.contains(key))
+        throw InputError(where + ": no " + what +
+                         " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
+    const auto& s = p[key];
+    LandmarkSide out;
+    if (s.is_array()) {
+        const auto v = json_numbers(s, 3, where, what, "[x, y, z]");
+        out.point = Vec3d(v[0], v[1], v[2]);
+        return out;
+    }
+    if (!s.is_object() || !s.contains("view") || !s.contains("pixel") || !s["view"].is_object())
+        throw InputError(where + ": " + what +
+                         " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
+                         "\"size\": N}, \"pixel\": [u, v]}");
+    const auto px = json_numbers(s["pixel"], 2, where, what + " pixel", "[u, v]");
+    out.u = px[0];
+    out.v = px[1];
+    const auto& view = s["view"];
+    out.view.azimuth_deg = view_number(view, "azimuth", true, 0.0, where, what);
+    out.view.elevation_deg = view_number(view, "elevation", true, 0.0, where, what);
+    const double size = view_number(view, "size", true, 0.0, where, what);
+    if (!(size >= 1 && size <= 1 << 16 && size == std::floor(size)))
+        throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) +
+                         ", expected a whole number of pixels ≥ 1");
+    out.view.size = static_cast<int>(size);
+    out.view.footprint = view_number(view, "footprint", false, 0.0, where, what);
+    if (out.view.footprint < 0)
+        throw InputError(where + ": " + what + " view 'footprint' must be > 0 (or left out)");
+    return out;
+}
+
+}  // namespace
+
 std::vector<LandmarkPair> read_landmarks(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("landmarks \"" + path + "\": cannot open");
+    protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
         in >> j;
@@ -57,68 +127,7 @@ std::vector<LandmarkPair> read_landmarks(const std::string& path) {
         if (!p.is_object())
             throw InputError(where + ": expected {\"examined\": …, \"reference\": …}, found " +
                              p.type_name());
-        auto numbers = [&](const nlohmann::json& v, std::size_t n, const std::string& what,
-                           const std::string& shape) {
-            if (!v.is_array() || v.size() != n)
-                throw InputError(where + ": " + what + " must be " + shape + ", found " +
-                                 (v.is_array() ? "an array of " + std::to_string(v.size())
-                                               : std::string(v.type_name())));
-            std::vector<double> out;
-            for (const auto& x : v) {
-                if (!x.is_number())
-                    throw InputError(where + ": " + what + " must be " + shape +
-                                     " (numbers), found a " + x.type_name());
-                out.push_back(x.get<double>());
-            }
-            return out;
-        };
-        auto side = [&](const char* key) {
-            const std::string what = std::string("'") + key + "'";
-            if (!p.contains(key))
-                throw InputError(where + ": no " + what +
-                                 " (expected [x, y, z] or {\"view\": …, \"pixel\": [u, v]})");
-            const auto& s = p[key];
-            LandmarkSide out;
-            if (s.is_array()) {
-                const auto v = numbers(s, 3, what, "[x, y, z]");
-                out.point = Vec3d(v[0], v[1], v[2]);
-                return out;
-            }
-            if (!s.is_object() || !s.contains("view") || !s.contains("pixel") ||
-                !s["view"].is_object())
-                throw InputError(
-                    where + ": " + what +
-                    " must be [x, y, z] or {\"view\": {\"azimuth\": A, \"elevation\": E, "
-                    "\"size\": N}, \"pixel\": [u, v]}");
-            const auto px = numbers(s["pixel"], 2, what + " pixel", "[u, v]");
-            out.u = px[0];
-            out.v = px[1];
-            const auto& view = s["view"];
-            auto number = [&](const char* field, bool required, double fallback) {
-                if (!view.contains(field)) {
-                    if (required)
-                        throw InputError(where + ": " + what + " view has no '" + field + "'");
-                    return fallback;
-                }
-                if (!view[field].is_number())
-                    throw InputError(where + ": " + what + " view '" + field +
-                                     "' must be a number, found " + view[field].type_name());
-                return view[field].get<double>();
-            };
-            out.view.azimuth_deg = number("azimuth", true, 0.0);
-            out.view.elevation_deg = number("elevation", true, 0.0);
-            const double size = number("size", true, 0.0);
-            if (!(size >= 1 && size <= 1 << 16 && size == std::floor(size)))
-                throw InputError(where + ": " + what + " view 'size' = " + std::to_string(size) +
-                                 ", expected a whole number of pixels ≥ 1");
-            out.view.size = static_cast<int>(size);
-            out.view.footprint = number("footprint", false, 0.0);
-            if (out.view.footprint < 0)
-                throw InputError(where + ": " + what +
-                                 " view 'footprint' must be > 0 (or left out)");
-            return out;
-        };
-        pairs.push_back({side("examined"), side("reference")});
+        pairs.push_back({read_side(p, "examined", where), read_side(p, "reference", where)});
     }
     return pairs;
 }

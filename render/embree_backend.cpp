@@ -305,6 +305,80 @@ class EmbreeBackend final : public RenderBackend {
     }
 
   private:
+    /// Loads the 4×4 packet whose top-left sub-sample is (tx, ty): origins, directions, the
+    /// ray range, and which lanes lie inside the image and above row Y1.
+    static void load_packet(const Rays& rays, int tx, int ty, int Y1, RTCRayHit16& packet,
+                            int* valid) {
+        const int sw = rays.sw;
+        for (int k = 0; k < 16; ++k) {
+            const int X = tx + (k & 3);
+            const int Y = ty + (k >> 2);
+            valid[k] = (X < sw && Y < Y1) ? -1 : 0;
+            const Eigen::Vector3f v =
+                rays.v00 + static_cast<float>(X) * rays.dx + static_cast<float>(Y) * rays.dy;
+            const Eigen::Vector3f& org = rays.ortho ? v : rays.fixed;
+            const Eigen::Vector3f& dir = rays.ortho ? rays.fixed : v;
+            packet.ray.org_x[k] = org.x();
+            packet.ray.org_y[k] = org.y();
+            packet.ray.org_z[k] = org.z();
+            packet.ray.dir_x[k] = dir.x();
+            packet.ray.dir_y[k] = dir.y();
+            packet.ray.dir_z[k] = dir.z();
+            packet.ray.tnear[k] = rays.tnear;
+            packet.ray.tfar[k] = rays.tfar;
+            packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+            packet.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
+        }
+    }
+
+    /// Writes lane k of a traced packet to sub-sample idx: into `dst` (kDirect) or scratch.
+    template <bool kDirect>
+    void store_lane(const RTCRayHit16& packet, int k, std::size_t idx, Scratch& scratch,
+                    Frame& dst) const {
+        if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
+            if constexpr (kDirect) {
+                dst.normal[3 * idx] = dst.normal[3 * idx + 1] = dst.normal[3 * idx + 2] = 0.0f;
+                dst.primitive_id[idx] = kNoPrimitive;
+                dst.depth[idx] = kNoDepth;
+                dst.coverage[idx] = 0.0f;
+                if (!dst.barycentric.empty())
+                    dst.barycentric[2 * idx] = dst.barycentric[2 * idx + 1] =
+                        std::numeric_limits<float>::quiet_NaN();
+            } else {
+                scratch.ids[idx] = kNoPrimitive;
+            }
+            return;
+        }
+        const unsigned prim = packet.hit.primID[k];
+        const Triangle& tri = triangles_[prim];
+        const float u = packet.hit.u[k];
+        const float v = packet.hit.v[k];
+        Eigen::Vector3f n =
+            (1.0f - u - v) * normals_[tri[0]] + u * normals_[tri[1]] + v * normals_[tri[2]];
+        const float len = n.norm();
+        if (len > 0.0f) n /= len;
+        if constexpr (kDirect) {
+            float* out = &dst.normal[3 * idx];
+            out[0] = n.x();
+            out[1] = n.y();
+            out[2] = n.z();
+            dst.primitive_id[idx] = prim;
+            dst.depth[idx] = packet.ray.tfar[k];
+            dst.coverage[idx] = 1.0f;
+            if (!dst.barycentric.empty()) {
+                dst.barycentric[2 * idx] = u;
+                dst.barycentric[2 * idx + 1] = v;
+            }
+        } else {
+            float* nd = &scratch.normal_depth[4 * idx];
+            nd[0] = n.x();
+            nd[1] = n.y();
+            nd[2] = n.z();
+            nd[3] = packet.ray.tfar[k];
+            scratch.ids[idx] = prim;
+        }
+    }
+
     /// Casts the sub-sample rows [Y0, Y1) (a multiple of 4 high except at the bottom) in 4×4
     /// packets into scratch (row Y0 first), or, with kDirect (s = 1), into `dst`, whose row 0
     /// is sub-sample row `row0`.
@@ -326,25 +400,7 @@ class EmbreeBackend final : public RenderBackend {
         }
         for (int ty = Y0; ty < Y1; ty += 4) {
             for (int tx = 0; tx < sw; tx += 4) {
-                for (int k = 0; k < 16; ++k) {
-                    const int X = tx + (k & 3);
-                    const int Y = ty + (k >> 2);
-                    valid[k] = (X < sw && Y < Y1) ? -1 : 0;
-                    const Eigen::Vector3f v = rays.v00 + static_cast<float>(X) * rays.dx +
-                                              static_cast<float>(Y) * rays.dy;
-                    const Eigen::Vector3f& org = rays.ortho ? v : rays.fixed;
-                    const Eigen::Vector3f& dir = rays.ortho ? rays.fixed : v;
-                    packet.ray.org_x[k] = org.x();
-                    packet.ray.org_y[k] = org.y();
-                    packet.ray.org_z[k] = org.z();
-                    packet.ray.dir_x[k] = dir.x();
-                    packet.ray.dir_y[k] = dir.y();
-                    packet.ray.dir_z[k] = dir.z();
-                    packet.ray.tnear[k] = rays.tnear;
-                    packet.ray.tfar[k] = rays.tfar;
-                    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-                    packet.hit.primID[k] = RTC_INVALID_GEOMETRY_ID;
-                }
+                load_packet(rays, tx, ty, Y1, packet, valid);
                 rtcIntersect16(valid, scene_, &context, &packet);
                 for (int k = 0; k < 16; ++k) {
                     if (valid[k] == 0) continue;
@@ -353,49 +409,7 @@ class EmbreeBackend final : public RenderBackend {
                     const std::size_t idx = static_cast<std::size_t>(kDirect ? Y - row0 : Y - Y0) *
                                                 static_cast<std::size_t>(sw) +
                                             static_cast<std::size_t>(X);
-                    if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) {
-                        if constexpr (kDirect) {
-                            dst.normal[3 * idx] = dst.normal[3 * idx + 1] =
-                                dst.normal[3 * idx + 2] = 0.0f;
-                            dst.primitive_id[idx] = kNoPrimitive;
-                            dst.depth[idx] = kNoDepth;
-                            dst.coverage[idx] = 0.0f;
-                            if (!dst.barycentric.empty())
-                                dst.barycentric[2 * idx] = dst.barycentric[2 * idx + 1] =
-                                    std::numeric_limits<float>::quiet_NaN();
-                        } else {
-                            scratch.ids[idx] = kNoPrimitive;
-                        }
-                        continue;
-                    }
-                    const unsigned prim = packet.hit.primID[k];
-                    const Triangle& tri = triangles_[prim];
-                    const float u = packet.hit.u[k];
-                    const float v = packet.hit.v[k];
-                    Eigen::Vector3f n = (1.0f - u - v) * normals_[tri[0]] + u * normals_[tri[1]] +
-                                        v * normals_[tri[2]];
-                    const float len = n.norm();
-                    if (len > 0.0f) n /= len;
-                    if constexpr (kDirect) {
-                        float* out = &dst.normal[3 * idx];
-                        out[0] = n.x();
-                        out[1] = n.y();
-                        out[2] = n.z();
-                        dst.primitive_id[idx] = prim;
-                        dst.depth[idx] = packet.ray.tfar[k];
-                        dst.coverage[idx] = 1.0f;
-                        if (!dst.barycentric.empty()) {
-                            dst.barycentric[2 * idx] = u;
-                            dst.barycentric[2 * idx + 1] = v;
-                        }
-                    } else {
-                        float* nd = &scratch.normal_depth[4 * idx];
-                        nd[0] = n.x();
-                        nd[1] = n.y();
-                        nd[2] = n.z();
-                        nd[3] = packet.ray.tfar[k];
-                        scratch.ids[idx] = prim;
-                    }
+                    store_lane<kDirect>(packet, k, idx, scratch, dst);
                 }
             }
         }

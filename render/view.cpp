@@ -16,6 +16,34 @@ std::string field_error(const char* field, double value, const char* rule) {
     return s.str();
 }
 
+// note: no view frames the mesh smaller than a millionth of the image or sees it from a
+// million framing radii away; beyond that Embree's BVH aborts on the rays' coordinates
+// (1e30 footprints and distances, issue 23) and no picture would show anything.
+constexpr double kMaxFramedRadii = 1e6;
+
+const char* zoom_name(ZoomKind zoom) {
+    switch (zoom) {
+        case ZoomKind::Footprint: return "footprint";
+        case ZoomKind::Distance: return "distance";
+        case ZoomKind::DistancePixels: return "distance_px";
+        case ZoomKind::Fit: break;
+    }
+    return "margin";
+}
+
+// The view's extent (orthographic half height, perspective distance) against the mesh's size.
+void check_plausible(const ViewSpec& spec, double extent, double r) {
+    if (extent <= kMaxFramedRadii * r) return;
+    std::ostringstream rule;
+    rule << "a view within 1e6 framing radii (radius " << r << "): the image spans "
+         << (spec.projection == Projection::Orthographic ? 2.0 * extent : extent)
+         << (spec.projection == Projection::Orthographic ? " across" : " from the mesh");
+    const std::string text = rule.str();
+    throw InputError(field_error(zoom_name(spec.zoom),
+                                 spec.zoom == ZoomKind::Fit ? spec.margin : spec.zoom_value,
+                                 text.c_str()));
+}
+
 }  // namespace
 
 void ViewSpec::validate() const {
@@ -90,6 +118,7 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
             case ZoomKind::DistancePixels: break;  // rejected by validate()
         }
         cam.ortho_half_height = 0.5 * footprint * spec.height;
+        check_plausible(spec, cam.ortho_half_height, r);
         // The camera sits outside the sphere; the image plane is at the eye, so the near
         // plane can be tiny.
         distance = 2.0 * r;
@@ -114,6 +143,7 @@ View make_view(const FramingSphere& sphere, const ViewSpec& spec) {
                 break;
             }
         }
+        check_plausible(spec, distance, r);
         if (distance <= r) {
             throw InputError(
                 field_error("distance", distance, "> the framed radius (camera outside the mesh)"));

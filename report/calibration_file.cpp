@@ -2,6 +2,7 @@
 #include "report/calibration_file.h"
 
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 
 #include <nlohmann/json.hpp>
 
@@ -28,6 +29,7 @@ std::string to_json(const Calibration& c) {
 Calibration read_calibration(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in) throw IoError("calibration \"" + path.string() + "\": cannot open");
+    protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
         in >> j;

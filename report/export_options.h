@@ -41,9 +41,10 @@ struct ExportOptions {
     /// it is refused before anything is loaded (--force).
     bool replace_existing = false;
     int mosaic_tile = 128;  ///< mosaic thumbnail size, pixels
-    /// Per-vertex scalars added to the atlas files as they are (e.g. a scenario's ground
-    /// truth, "truth_damage" and "truth_distance", to be seen beside glint's own fields in a
-    /// viewer); each holds one value per reference vertex.
+    /// Per-vertex scalars added to the atlas files after glint's own fields (e.g. a scenario's
+    /// ground truth, "truth_damage_id" and "truth_distance{unit}", to be seen beside them
+    /// in a viewer); each holds one value per reference vertex. A name ending in "{unit}" gets
+    /// the run's unit there ("_mm", mesh/units.h unit_suffix); NaN is written as 0.
     std::vector<std::pair<std::string, std::vector<float>>> extra_scalars;
     /// Keep the atlas mesh (the reference with every atlas field) in the result (Python's
     /// Analysis.atlas); otherwise it lives only while its files are written.

@@ -1,17 +1,93 @@
 #include "report/output_folder.h"
 
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <stdio.h>  // renameat2, RENAME_EXCHANGE, RENAME_NOREPLACE (glibc 2.28)
 #include <unistd.h>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <string>
 #include <system_error>
 
 namespace glint {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+std::string host_name() {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+    return name;
+}
+
+std::string marker_text(pid_t pid) {
+    return "glint staging folder\nhost " + host_name() + "\npid " + std::to_string(pid) + "\n";
+}
+
+// The pid a staging wrapper's marker names when it is glint's, of this host; otherwise 0.
+pid_t marker_pid(const fs::path& wrapper) {
+    std::ifstream in(wrapper / kStagingMarker);
+    std::string title, host_key, host, pid_key;
+    long pid = 0;
+    if (!std::getline(in, title) || title != "glint staging folder") return 0;
+    if (!(in >> host_key >> host >> pid_key >> pid) || host_key != "host" || pid_key != "pid")
+        return 0;
+    return host == host_name() && pid > 0 ? static_cast<pid_t>(pid) : 0;
+}
+
+// Removes the staging wrappers of killed runs into `target`: marked as glint's, of this host,
+// their process gone. A folder without the marker is the user's and is left alone.
+void remove_leftovers(const fs::path& target) {
+    const std::string prefix = target.filename().string() + ".partial-";
+    std::error_code ec;
+    for (fs::directory_iterator it(target.parent_path(), ec), end; !ec && it != end;
+         it.increment(ec)) {
+        const fs::path p = it->path();
+        const std::string name = p.filename().string();
+        if (name.compare(0, prefix.size(), prefix) != 0 || it->is_symlink(ec) ||
+            !it->is_directory(ec))
+            continue;
+        const pid_t pid = marker_pid(p);
+        if (pid == 0 || pid == ::getpid()) continue;
+        if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+        std::error_code ignored;
+        fs::remove_all(p, ignored);
+    }
+}
+
+// A new wrapper beside the target, never an existing folder: "<out>.partial-<pid>[-n]".
+fs::path make_wrapper(const fs::path& target) {
+    const std::string base = target.filename().string() + ".partial-" + std::to_string(::getpid());
+    for (int n = 0; n < 100; ++n) {
+        const fs::path w = target.parent_path() / (n == 0 ? base : base + "-" + std::to_string(n));
+        std::error_code ec;
+        if (fs::create_directory(w, ec)) return w;
+        if (ec)
+            throw IoError("output folder \"" + target.string() + "\": cannot create \"" +
+                          w.string() + "\": " + ec.message());
+    }
+    throw IoError("output folder \"" + target.string() + "\": 100 folders named \"" + base +
+                  "*\" exist beside it; expected a free staging name");
+}
+
+int rename2(const fs::path& from, const fs::path& to, unsigned flags) {
+    return ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags) == 0 ? 0 : errno;
+}
+
+bool no_flags_here(int err) { return err == EINVAL || err == ENOSYS || err == ENOTSUP; }
+
+}  // namespace
+
 OutputFolder::OutputFolder(fs::path target, bool replace_existing)
-    : target_(fs::absolute(std::move(target)).lexically_normal()) {
+    : target_(fs::absolute(std::move(target)).lexically_normal()),
+      replace_existing_(replace_existing) {
     if (target_.filename().empty()) target_ = target_.parent_path();
+    refuse_output_over_inputs(target_);
     std::error_code ec;
     const fs::path parent = target_.parent_path();
     if (!fs::is_directory(parent, ec))
@@ -22,19 +98,26 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
     if (!replace_existing && fs::exists(target_, ec))
         throw InputError("output folder \"" + target_.string() +
                          "\" exists; give --force to replace it");
-    staging_ = parent / (target_.filename().string() + ".partial-" + std::to_string(::getpid()));
-    fs::remove_all(staging_, ec);
-    fs::create_directories(staging_, ec);
-    if (ec || ::access(staging_.c_str(), W_OK) != 0)
+    remove_leftovers(target_);
+    wrapper_ = make_wrapper(target_);
+    staging_ = wrapper_ / "out";
+    {
+        std::ofstream marker(wrapper_ / kStagingMarker);
+        marker << marker_text(::getpid());
+    }
+    fs::create_directory(staging_, ec);
+    if (ec || ::access(staging_.c_str(), W_OK) != 0) {
+        std::error_code ignored;
+        fs::remove_all(wrapper_, ignored);
         throw IoError("output folder \"" + target_.string() + "\": cannot create \"" +
                       staging_.string() + "\"" +
                       (ec ? ": " + ec.message() : std::string(": not writable")));
+    }
 }
 
 OutputFolder::~OutputFolder() {
-    if (committed_) return;
     std::error_code ec;
-    fs::remove_all(staging_, ec);  // destructors never throw; a leftover is harmless
+    fs::remove_all(wrapper_, ec);  // destructors never throw; a leftover is marked
 }
 
 fs::path OutputFolder::file(const fs::path& relative) const {
@@ -46,24 +129,57 @@ fs::path OutputFolder::file(const fs::path& relative) const {
     return p;
 }
 
-void OutputFolder::commit() {
-    std::error_code ec;
-    fs::path aside;
-    if (fs::exists(target_, ec)) {
-        aside = target_.parent_path() /
-                (target_.filename().string() + ".old-" + std::to_string(::getpid()));
-        fs::remove_all(aside, ec);
-        fs::rename(target_, aside, ec);
+void OutputFolder::commit_new() {
+    int err = rename2(staging_, target_, RENAME_NOREPLACE);
+    if (no_flags_here(err)) {
+        // rename(2) replaces only an empty folder; a non-empty one fails with ENOTEMPTY.
+        err = ::rename(staging_.c_str(), target_.c_str()) == 0 ? 0 : errno;
+        if (err == ENOTEMPTY) err = EEXIST;
+    }
+    if (err == EEXIST)
+        throw InputError("output folder \"" + target_.string() +
+                         "\" appeared during the run (another run or program made it); kept as "
+                         "found, expected it absent (give --force to replace it)");
+    if (err != 0)
+        throw IoError("cannot move results into \"" + target_.string() +
+                      "\": " + std::strerror(err));
+}
+
+void OutputFolder::commit_replacing() {
+    for (int attempt = 0; attempt < 10; ++attempt) {
+        int err = rename2(staging_, target_, RENAME_EXCHANGE);
+        if (err == 0) return;  // the old results are now staging_, removed with the wrapper
+        if (err == ENOENT) {   // no target (any more): a plain, non-replacing move
+            err = rename2(staging_, target_, RENAME_NOREPLACE);
+            if (err == 0) return;
+            if (err == EEXIST) continue;  // appeared meanwhile: exchange with it
+        }
+        if (!no_flags_here(err))
+            throw IoError("cannot move results into \"" + target_.string() +
+                          "\": " + std::strerror(err));
+        // No renameat2 flags on this filesystem: move the old results into the wrapper first
+        // (the target is absent for that moment), put them back if the new ones cannot move.
+        const fs::path old = wrapper_ / "old";
+        std::error_code ec;
+        if (fs::exists(target_, ec)) fs::rename(target_, old, ec);
         if (ec) throw IoError("cannot replace \"" + target_.string() + "\": " + ec.message());
+        fs::rename(staging_, target_, ec);
+        if (ec) {
+            std::error_code ec2;
+            if (fs::exists(old, ec2)) fs::rename(old, target_, ec2);
+            throw IoError("cannot move results into \"" + target_.string() + "\": " + ec.message());
+        }
+        return;
     }
-    fs::rename(staging_, target_, ec);
-    if (ec) {
-        std::error_code ec2;
-        if (!aside.empty()) fs::rename(aside, target_, ec2);  // put the old results back
-        throw IoError("cannot move results into \"" + target_.string() + "\": " + ec.message());
-    }
-    committed_ = true;
-    if (!aside.empty()) fs::remove_all(aside, ec);
+    throw IoError("cannot move results into \"" + target_.string() +
+                  "\": it kept appearing and disappearing (10 attempts)");
+}
+
+void OutputFolder::commit() {
+    if (replace_existing_) commit_replacing();
+    else commit_new();
+    std::error_code ec;
+    fs::remove_all(wrapper_, ec);  // the marker, and with --force the replaced results
 }
 
 }  // namespace glint

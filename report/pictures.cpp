@@ -65,8 +65,9 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .unit = u,
                             .roi = result.sweep.plan.options.roi.has_value()};
     char b[160];
-    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s rule)", d.normal.value,
-                  std::string(m.unit).c_str(), to_string(d.rule).c_str());
+    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s, %s rule)", d.normal.value,
+                  d.scale.radius > 0 ? "deg" : std::string(m.unit).c_str(),
+                  to_string(d.normal.source).c_str(), to_string(d.rule).c_str());
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%, compared %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
@@ -97,9 +98,9 @@ class PictureWriter {
   public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options,
                   std::string reference_name)
-        : reference_name_(std::move(reference_name)),
-          reference_(reference),
+        : reference_(reference),
           result_(result),
+          reference_name_(std::move(reference_name)),
           options_(options),
           scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),

@@ -5,8 +5,8 @@
 #include "mesh/units.h"
 #include "mesh/version.h"
 #include "mesh/write.h"
+#include "report/atlas_fields.h"
 #include "report/detail/options_json.h"
-#include "report/images.h"
 #include "report/pictures.h"
 #include "report/report_html.h"
 #include "scanner/coverage.h"
@@ -32,14 +32,10 @@ using nlohmann::json;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 json vec_json(const Vec3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 
 // JSON has no NaN: report non-finite numbers as null.
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
-
-std::string zoom_suffix(std::size_t z) { return "_z" + std::to_string(z); }
 
 json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m,
                  double peak_value) {
@@ -102,11 +98,33 @@ json unseen_json(const Mesh& reference, const SweepZoom& z, const SweepPlan& pla
 }
 
 json floor_json(const Floor& f) {
-    return {{"value", f.value},   {"low", f.low},
-            {"median", f.median}, {"mad", f.mad},
-            {"k", f.k},           {"minimum", f.minimum},
-            {"given", f.given},   {"implausible", f.implausible},
-            {"rule", f.rule},     {"note", f.note}};
+    return {{"value", f.value},
+            {"low", f.low},
+            {"median", f.median},
+            {"mad", f.mad},
+            {"k", f.k},
+            {"minimum", f.minimum},
+            {"given", f.given},
+            {"implausible", f.implausible},
+            {"source", to_string(f.source)},
+            {"rule", f.rule},
+            {"note", f.note}};
+}
+
+// The scale the fused rule read its evidence at (decision/decision.h EvidenceScale).
+json scale_json(const EvidenceScale& s) {
+    json j = {{"radius", s.radius},
+              {"searched", s.searched},
+              {"quiet", s.quiet},
+              {"min_detectable_depth", s.min_depth},
+              {"min_detectable_area", s.min_area},
+              {"radii_tried", s.tried},
+              {"text", s.text}};
+    if (s.searched) {
+        j["own_scale_normal_floor"] = floor_json(s.own_normal);
+        j["own_scale_shape_floor"] = floor_json(s.own_shape);
+    }
+    return j;
 }
 
 // How each part of the reference was classified (decision/comparison.h): areas per class.
@@ -136,28 +154,30 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
     const std::vector<double> peaks = region_peak_values(result, z);
     for (const auto& r : d.regions.regions)
         regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)]));
-    json j = {{"zoom", z},
-              {"footprint", plan.footprints[z]},
-              {"image_size", plan.sizes[z]},
-              {"coverage", sz.coverage.fraction},
-              {"unseen", unseen_json(reference, sz, plan)},
-              {"comparison", comparison_json(d.comparison)},
-              {"rule", to_string(d.rule)},
-              {"rule_text", d.rule_text},
-              {"threshold" + u, d.normal.value},
-              {"normal_floor", floor_json(d.normal)},
-              {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
-              {"damaged_vertices", d.regions.damaged_vertices},
-              {"filled_vertices", d.regions.filled_vertices},
-              {"dropped_small_groups", d.regions.dropped_small},
-              {"regions", regions},
-              {"histogram",
-               {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
-                {"bin_width", m.histogram_bin},
-                {"unit", std::string(m.unit)},
-                {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
-                {"counts", d.histogram}}},
-              {"warnings", d.warnings}};
+    json j = {
+        {"zoom", z},
+        {"footprint", plan.footprints[z]},
+        {"image_size", plan.sizes[z]},
+        {"coverage", sz.coverage.fraction},
+        {"unseen", unseen_json(reference, sz, plan)},
+        {"comparison", comparison_json(d.comparison)},
+        {"rule", to_string(d.rule)},
+        {"rule_text", d.rule_text},
+        {"threshold" + u, d.normal.value},
+        {"normal_floor", floor_json(d.normal)},
+        {"shape_floor", d.rule == DecisionRule::Fused ? floor_json(d.shape) : json(nullptr)},
+        {"evidence_scale", d.rule == DecisionRule::Fused ? scale_json(d.scale) : json(nullptr)},
+        {"damaged_vertices", d.regions.damaged_vertices},
+        {"filled_vertices", d.regions.filled_vertices},
+        {"dropped_small_groups", d.regions.dropped_small},
+        {"regions", regions},
+        {"histogram",
+         {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},
+          {"bin_width", m.histogram_bin},
+          {"unit", std::string(m.unit)},
+          {"last_bin", ">= " + std::to_string(static_cast<int>(m.histogram_max))},
+          {"counts", d.histogram}}},
+        {"warnings", d.warnings}};
     return j;
 }
 
@@ -238,62 +258,6 @@ std::string sha256_file(const fs::path& path) {
     for (unsigned int i = 0; i < len; ++i)
         hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
     return hex.str();
-}
-
-std::string atlas_quality_scalar(const AnalysisResult& result) {
-    return std::string(describe(result.sweep.options.metric).name) + "_mean" + zoom_suffix(0);
-}
-
-Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
-    Mesh atlas = reference;
-    atlas.unit = result.unit;
-    atlas.scalars.clear();
-    atlas.labels.clear();
-    const std::size_t n = reference.vertex_count();
-    const std::string metric(describe(result.sweep.options.metric).name);
-    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
-        const auto& sz = result.sweep.zooms[z];
-        const auto& a = sz.atlas;
-        std::vector<float> max(n), mean(n), depth(n), missing(n), count(n), seen(n), region(n),
-            compared(n);
-        const auto& classes = result.decisions[z].comparison.vertex_class;
-        for (std::size_t v = 0; v < n; ++v) {
-            const bool s = sz.coverage.seen[v] != 0;
-            max[v] = s ? a.value_max[v] : kNaN;
-            mean[v] = s ? a.value_mean[v] : kNaN;
-            depth[v] = s ? a.depth_mean[v] : kNaN;
-            missing[v] = s ? a.missing[v] : kNaN;
-            count[v] = static_cast<float>(a.count[v]);
-            seen[v] = s ? 1.0f : 0.0f;
-            region[v] = static_cast<float>(result.decisions[z].regions.region_of_vertex[v]);
-            // 0 compared, 1 reference border, 2 examined border, 3 not reached
-            compared[v] = classes.size() == n ? static_cast<float>(classes[v]) : 0.0f;
-        }
-        const auto k = zoom_suffix(z);
-        atlas.set_scalar(metric + "_max" + k, std::move(max));
-        atlas.set_scalar(metric + "_mean" + k, std::move(mean));
-        atlas.set_scalar("depth" + k, std::move(depth));
-        atlas.set_scalar("missing" + k, std::move(missing));
-        atlas.set_scalar("count" + k, std::move(count));
-        atlas.set_scalar("seen" + k, std::move(seen));
-        atlas.set_scalar("region" + k, std::move(region));
-        atlas.set_scalar("not_compared" + k, std::move(compared));
-    }
-    if (result.distance.size() == n) atlas.set_scalar("distance", result.distance);
-    if (result.tolerance.size() == n) atlas.set_scalar("distance_tolerance", result.tolerance);
-    if (!result.sweep.zooms.empty() && result.distance.size() == n) {
-        // The pictures' colours (report/pictures.h): signed shape change, blue loss, red gain,
-        // symmetric range; grey where zoom 0 saw nothing.
-        const ShapeScale shape = shape_scale(result);
-        std::vector<float> shown(result.distance);
-        for (std::size_t v = 0; v < n; ++v)
-            if (!result.sweep.zooms[0].coverage.seen[v]) shown[v] = kNaN;
-        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit,
-                                                  .high = shape.limit,
-                                                  .map = "diverging",
-                                                  .no_data_grey = 0.6f});
-    }
-    return atlas;
 }
 
 std::string report_json(const Mesh& reference, const AnalysisResult& result,
@@ -383,14 +347,25 @@ namespace {
 std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& reference,
                                       const AnalysisResult& result, const ExportOptions& exports) {
     Mesh atlas = make_atlas_mesh(reference, result);
-    for (const auto& [name, values] : exports.extra_scalars) {
+    for (const auto& [given, values] : exports.extra_scalars) {
         GLINT_ASSERT(values.size() == reference.vertex_count(),
-                     "extra atlas scalar '" + name + "' has the wrong length");
-        atlas.set_scalar(name, values);
+                     "extra atlas scalar '" + given + "' has the wrong length");
+        constexpr std::string_view kUnit = "{unit}";
+        const std::string name =
+            given.ends_with(kUnit)
+                ? given.substr(0, given.size() - kUnit.size()) + unit_suffix(result.unit)
+                : given;
+        std::vector<float> finite(values);  // no NaN in a viewer's file (atlas_fields.h)
+        for (float& x : finite)
+            if (!std::isfinite(x)) x = 0.0f;
+        atlas.set_scalar(name, std::move(finite));
     }
+    // The PLY names every field scalar_<name> (CloudCompare imports no other name) and holds
+    // the decision field once more as `quality` (the only scalar MeshLab reads): mesh/write.h.
     WriteOptions viewers;
     viewers.cloudcompare_names = true;
-    if (!result.sweep.zooms.empty()) viewers.quality_scalar = atlas_quality_scalar(result);
+    if (atlas.find_scalar(shape_change_field(result.unit)))
+        viewers.quality_scalar = shape_change_field(result.unit);
     const AtlasFiles& files = exports.atlas_files;
     if (files.ply) write_ply(atlas, folder.file("atlas.ply"), viewers);
     if (files.vtk) write_vtk(atlas, folder.file("atlas.vtk"), viewers);

@@ -1,6 +1,7 @@
 // Exports of an analysis into its output folder (DESIGN.md "Outputs a user opens"):
-//   atlas.ply / .vtk / .vtp  reference surface coloured by damage, with per-vertex scalars in
-//                          the forms MeshLab, CloudCompare, ParaView and 3D Slicer read (mesh/write.h)
+//   atlas.ply / .vtk / .vtp  reference surface coloured by damage, with the per-vertex fields of
+//                          report/atlas_fields.h in the forms MeshLab, CloudCompare, ParaView and
+//                          3D Slicer read (mesh/write.h)
 //   regions.csv            one row per region and zoom
 //   report.json            inputs with SHA-256, device, backend, options, fit, floors and
 //                          rule, coverage, unseen patches, regions, histograms, views, timings
@@ -11,6 +12,7 @@
 
 #include "analysis/analysis.h"
 #include "mesh/mesh.h"
+#include "report/atlas_fields.h"
 #include "report/export_options.h"
 #include "report/inspect.h"
 #include "report/output_folder.h"
@@ -27,16 +29,6 @@ namespace glint {
 
 /// SHA-256 of a file as lowercase hex. \throw IoError.
 [[nodiscard]] std::string sha256_file(const std::filesystem::path& path);
-
-/// The reference with the atlas scalars: per zoom k "<metric>_max_z<k>", "<metric>_mean_z<k>",
-/// "depth_z<k>", "missing_z<k>", "count_z<k>", "seen_z<k>", "region_z<k>", and "distance";
-/// colours: the signed distance on the pictures' diverging map and range (shape_scale in
-/// report/pictures.h), grey where zoom 0 saw nothing.
-[[nodiscard]] Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result);
-
-/// The atlas scalar MeshLab shows as `quality`: the metric's per-vertex mean at zoom 0 (the
-/// normal evidence the decision uses), e.g. "angle_mean_z0".
-[[nodiscard]] std::string atlas_quality_scalar(const AnalysisResult& result);
 
 /// The report as JSON text (what report.json holds): the inputs of `record` with their
 /// SHA-256 (each file read once more), the options, the results.

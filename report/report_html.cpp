@@ -3,6 +3,7 @@
 #include "mesh/decimate.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "report/atlas_fields.h"
 #include "report/detail/canvas.h"
 #include "scanner/metric.h"
 
@@ -95,21 +96,22 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
     const std::size_t n = shown.vertex_count();
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string unit = result.unit.empty() ? "units" : result.unit;
-    const std::string metric(m.name);
+    const Metric metric = result.sweep.options.metric;
     json fields = json::array();
     if (!result.distance.empty()) {
         std::vector<float> distance(n);
         for (std::size_t k = 0; k < n; ++k) distance[k] = result.distance[shown.vertex(k)];
-        fields.push_back(field_json("distance", "signed distance (shape change)", "signed", unit,
-                                    -1, distance, -scale.limit, scale.limit));
+        fields.push_back(field_json(shape_change_field(result.unit),
+                                    "shape change (signed distance)", "signed", unit, -1, distance,
+                                    -scale.limit, scale.limit));
     }
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         const auto& a = result.sweep.zooms[z].atlas;
         const auto& seen = result.sweep.zooms[z].coverage.seen;
         const auto& d = result.decisions[z];
-        const std::string k = "_z" + std::to_string(z);
         const std::string at = " (zoom " + std::to_string(z) + ")";
-        std::vector<float> mean(n), max(n), region(n), seen_f(n), count(n);
+        std::vector<float> mean(n), max(n), region(n), seen_f(n), count(n), compared(n);
+        const auto& classes = d.comparison.vertex_class;
         for (std::size_t i = 0; i < n; ++i) {
             const std::size_t v = shown.vertex(i);
             mean[i] = seen[v] ? a.value_mean[v] : kNaN;
@@ -117,20 +119,26 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
             region[i] = static_cast<float>(d.regions.region_of_vertex[v]);
             seen_f[i] = seen[v] ? 1.0f : 0.0f;
             count[i] = static_cast<float>(a.count[v]);
+            compared[i] = classes.size() == seen.size() ? static_cast<float>(classes[v]) : 0.0f;
         }
         const double top = std::max(2.0 * d.normal.value, 1e-6);
-        fields.push_back(field_json(metric + "_mean" + k, "normal deviation, mean" + at,
+        fields.push_back(field_json(metric_field(metric, "mean", z), "normal deviation, mean" + at,
                                     "sequential", std::string(m.symbol), static_cast<int>(z), mean,
                                     0.0, top));
-        fields.push_back(field_json(metric + "_max" + k, "normal deviation, max" + at, "sequential",
-                                    std::string(m.symbol), static_cast<int>(z), max, 0.0, top));
-        fields.push_back(field_json("region" + k, "damaged: region id" + at, "category", "",
+        fields.push_back(field_json(metric_field(metric, "max", z), "normal deviation, max" + at,
+                                    "sequential", std::string(m.symbol), static_cast<int>(z), max,
+                                    0.0, top));
+        fields.push_back(field_json(region_field(z), "damaged: region id" + at, "category", "",
                                     static_cast<int>(z), region, 0.0,
                                     static_cast<double>(d.regions.regions.size())));
-        fields.push_back(field_json("seen" + k, "coverage: seen" + at, "binary", "",
+        fields.push_back(field_json(comparison_field(z),
+                                    "not compared: 1 reference border, 2 examined border, 3 not "
+                                    "reached" + at,
+                                    "category", "", static_cast<int>(z), compared, 0.0, 3.0));
+        fields.push_back(field_json(seen_field(z), "coverage: seen" + at, "binary", "",
                                     static_cast<int>(z), seen_f, 0.0, 1.0));
         const auto most = a.count.empty() ? 1u : *std::max_element(a.count.begin(), a.count.end());
-        fields.push_back(field_json("count" + k, "coverage: observations" + at, "sequential",
+        fields.push_back(field_json(pixels_field(z), "coverage: observations" + at, "sequential",
                                     "pixels", static_cast<int>(z), count, 0.0,
                                     std::max(1.0, static_cast<double>(most))));
     }

@@ -10,6 +10,12 @@
 
 namespace glint {
 
+namespace {
+// note: as sphere:N, at most 100000 views in all (every zoom level counted): 0.001° steps
+// planned 1.8 M views and 1e-9 overflowed to one azimuth (issue 23).
+constexpr double kMaxPlanViews = 100000;
+}  // namespace
+
 void SweepPlanOptions::validate() const {
     if (kind == Kind::Rotary) {
         if (!(azimuth_step_deg > 0 && azimuth_step_deg <= 360))
@@ -28,6 +34,20 @@ void SweepPlanOptions::validate() const {
     if (size < 8 || size > max_size)
         throw OptionError("size", size, "must be in [8, " + std::to_string(max_size) + "] pixels");
     if (!(margin >= 1.0)) throw OptionError("margin", margin, "must be ≥ 1");
+    const double per_level = kind == Kind::Rotary
+                                 ? std::max(1.0, std::round(360.0 / azimuth_step_deg)) *
+                                       static_cast<double>(elevations_deg.size())
+                                 : static_cast<double>(sphere_views);
+    const double views =
+        per_level * static_cast<double>(std::max<std::size_t>(1, footprints.size()));
+    if (views > kMaxPlanViews) {
+        std::ostringstream s;
+        s << "plans " << views << " views (" << per_level << " per zoom level × "
+          << std::max<std::size_t>(1, footprints.size())
+          << " levels), expected at most 100000 (a larger step, fewer elevations or zooms)";
+        if (kind == Kind::Rotary) throw OptionError("azimuth_step", azimuth_step_deg, s.str());
+        throw OptionError("plan", "sphere:" + std::to_string(sphere_views), s.str());
+    }
 }
 
 void parse_plan_kind(const std::string& text, SweepPlanOptions& options) {

@@ -153,8 +153,9 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions,
 }
 
 // The ground truth beside glint's own fields in the atlas files, so a viewer shows both:
-// "truth_damage" (the 1-based damage a vertex belongs to, 0 = undamaged) and
-// "truth_distance" (to the examined surface placed back with the true pose, before noise).
+// "truth_damage_id" (the 1-based damage a vertex belongs to, 0 = undamaged) and
+// "truth_distance_<unit>" (unsigned distance to the examined surface placed back with the
+// true pose, before noise; report/export_options.h expands "{unit}").
 void add_truth_scalars(const ScenarioMeshes& meshes, ExportOptions& e) {
     const std::size_t n = meshes.reference.vertex_count();
     if (meshes.truth.size() == n) {
@@ -163,10 +164,10 @@ void add_truth_scalars(const ScenarioMeshes& meshes, ExportOptions& e) {
             id[v] = !meshes.truth[v]                  ? 0.0f
                     : meshes.truth_damage.size() == n ? static_cast<float>(meshes.truth_damage[v])
                                                       : 1.0f;
-        e.extra_scalars.emplace_back("truth_damage", std::move(id));
+        e.extra_scalars.emplace_back("truth_damage_id", std::move(id));
     }
     if (meshes.true_distance.size() == n)
-        e.extra_scalars.emplace_back("truth_distance", meshes.true_distance);
+        e.extra_scalars.emplace_back("truth_distance{unit}", meshes.true_distance);
 }
 
 }  // namespace
@@ -235,6 +236,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     out.coverage = result.sweep.zooms.front().coverage.fraction;
     out.compared = z0.comparison.fraction;
     out.threshold_deg = z0.normal.value;
+    out.warnings = result.warnings;
     score_outcome(sc, meshes, result, out);
     check_expect(sc.expect, z0.regions.regions, out);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -54,6 +54,7 @@ struct ScenarioOutcome {
     std::string fit_mode;
     double seconds = 0.0;
     std::vector<std::string> failures;  ///< [expect] entries that did not hold
+    std::vector<std::string> warnings;  ///< the run's warnings (report.json's)
     [[nodiscard]] bool passed() const { return !skipped && failures.empty(); }
 };
 

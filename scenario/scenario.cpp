@@ -275,9 +275,8 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
     r.finish();
 }
 
-}  // namespace
-
-Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
+// The scenario file parsed as TOML; a missing file, a folder or a syntax error named.
+toml::table parse_scenario_file(const fs::path& file) {
     std::error_code ec;
     if (!fs::exists(file, ec)) throw IoError("scenario \"" + file.string() + "\": no such file");
     if (fs::is_directory(file, ec))
@@ -291,13 +290,20 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
           << e.description();
         throw InputError(s.str());
     }
-    Scenario sc;
-    sc.file = file;
-    const fs::path dir = file.parent_path();
-    const std::string name = file.string();
-    TableReader top(root, name, "");
+    return root;
+}
 
+// name (a plain folder name under -o), description and tags.
+void read_identity(TableReader& top, const fs::path& file, Scenario& sc) {
     sc.name = top.optional<std::string>("name", "a string").value_or(file.stem().string());
+    // The name is a folder under -o: a plain name, so a scenario never writes elsewhere.
+    if (sc.name.empty() || sc.name == "." || sc.name == ".." ||
+        sc.name.find_first_of(std::string("/\\\0", 3)) != std::string::npos)
+        top.fail(
+            top.get("name"), "name",
+            "\"" + sc.name +
+                "\": expected a plain folder name (not empty, no \"/\" or \"\\\", not \".\" or "
+                "\"..\")");
     sc.description = top.optional<std::string>("description", "a string").value_or("");
     if (const toml::node* tags = top.get("tags")) {
         const auto* arr = tags->as_array();
@@ -308,6 +314,38 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
             sc.tags.push_back(*s);
         }
     }
+}
+
+// [[damage]] tables: only on a derived examined surface, not on a resampled volume.
+void read_damages(TableReader& top, const std::string& name, Scenario& sc) {
+    const toml::node* dmg = top.get("damage");
+    if (dmg == nullptr) return;
+    const auto* arr = dmg->as_array();
+    if (!arr || !arr->is_array_of_tables()) top.fail(dmg, "damage", "expected [[damage]] tables");
+    for (std::size_t i = 0; i < arr->size(); ++i) {
+        TableReader r(*(*arr)[i].as_table(), name, "damage[" + std::to_string(i) + "]");
+        sc.damages.push_back(read_damage(r));
+    }
+    if (!sc.examined_derived)
+        top.fail(dmg, "damage",
+                 "damage applies to a derived examined surface, not to an examined mesh file");
+    if (sc.resample_volume)
+        top.fail(
+            dmg, "damage",
+            "a resampled examined volume takes erode = [x, y, z, r] in [examined], not [[damage]]");
+}
+
+}  // namespace
+
+Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
+    const toml::table root = parse_scenario_file(file);
+    Scenario sc;
+    sc.file = file;
+    const fs::path dir = file.parent_path();
+    const std::string name = file.string();
+    TableReader top(root, name, "");
+
+    read_identity(top, file, sc);
 
     auto table = [&](const std::string& key, bool required) -> const toml::table* {
         const toml::node* node = top.get(key);
@@ -331,22 +369,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         TableReader r(*t, name, "examined");
         read_examined(r, dir, data_root, sc);
     }
-    if (const toml::node* dmg = top.get("damage")) {
-        const auto* arr = dmg->as_array();
-        if (!arr || !arr->is_array_of_tables())
-            top.fail(dmg, "damage", "expected [[damage]] tables");
-        for (std::size_t i = 0; i < arr->size(); ++i) {
-            TableReader r(*(*arr)[i].as_table(), name, "damage[" + std::to_string(i) + "]");
-            sc.damages.push_back(read_damage(r));
-        }
-        if (!sc.examined_derived)
-            top.fail(dmg, "damage",
-                     "damage applies to a derived examined surface, not to an examined mesh file");
-        if (sc.resample_volume)
-            top.fail(
-                dmg, "damage",
-                "a resampled examined volume takes erode = [x, y, z, r] in [examined], not [[damage]]");
-    }
+    read_damages(top, name, sc);
     read_analysis_sections(top, dir, sc.analysis);
     if (const auto* t = table("expect", false)) {
         TableReader r(*t, name, "expect");

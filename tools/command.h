@@ -7,8 +7,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdio>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace glint::cli {
 
@@ -26,6 +28,17 @@ struct GlobalFlags {
     std::string command_line;  ///< argv joined by spaces (recorded in reports)
 };
 GlobalFlags& global_flags();
+
+/// Every warning a report holds, on stderr as "warning: …", one per line. Printed with --quiet
+/// and --json too: a warning says the result may not mean what it seems (a capped floor, a
+/// scale chosen for the evidence, a poor fit), which is no chatter.
+/// `prefix` (a scenario's name) goes before each: "warning: NAME: …".
+inline void print_warnings(const std::vector<std::string>& warnings,
+                           const std::string& prefix = "") {
+    for (const auto& w : warnings)
+        std::fprintf(stderr, "warning: %s%s%s\n", prefix.c_str(), prefix.empty() ? "" : ": ",
+                     w.c_str());
+}
 
 /// Thrown by a command whose run completed but whose checks failed (exit 1).
 struct CheckFailed : std::runtime_error {

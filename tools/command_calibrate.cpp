@@ -2,6 +2,7 @@
 // deformation stops showing; `glint sweep --calibration` then flags only larger ones.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
 #include "scenario/scenario.h"
@@ -34,6 +35,7 @@ void run(const CalibrateArgs& a) {
         print_options(sc.analysis);
         return;
     }
+    guard_outputs({a.output}, {a.scenario, sc.reference.mesh, sc.examined.mesh});
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
     AnalysisOptions analysis = sc.analysis;
     if (analysis.fit.mode == FitMode::Truth)

@@ -1,6 +1,7 @@
 // glint compare FRAME_A FRAME_B -o diff.exr|png: per-pixel comparison of two frames rendered
 // earlier by `glint render` (EXR), same size and view.
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 #include "report/frame_file.h"
 #include "report/images.h"
 #include "scanner/compare.h"
@@ -25,6 +26,7 @@ struct CompareArgs {
 };
 
 void run(const CompareArgs& a) {
+    guard_outputs({a.output}, {a.reference, a.examined});
     const Frame ref = read_frame_exr(a.reference);
     const Frame exa = read_frame_exr(a.examined);
     CompareOptions options;

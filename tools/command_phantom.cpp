@@ -3,6 +3,8 @@
 #include "mesh/atomic_file.h"
 #include "mesh/damage.h"
 #include "mesh/error.h"
+#include "mesh/file_set.h"
+#include "mesh/output_guard.h"
 #include "mesh/phantom.h"
 #include "mesh/validate.h"
 #include "mesh/write.h"
@@ -35,6 +37,8 @@ nlohmann::json rigid_json(const Rigid& t) {
 }
 
 void run(const PhantomArgs& a) {
+    const std::string sidecar_path = a.output + ".json";
+    guard_outputs({a.output, sidecar_path}, {});
     PhantomOptions options;
     options.kind = parse_phantom_kind(a.kind);
     options.scheme = parse_scheme(a.scheme);
@@ -55,7 +59,8 @@ void run(const PhantomArgs& a) {
         pose = parse_pose_spec(a.pose);
         transform_mesh(mesh, pose);
     }
-    write_mesh(mesh, a.output);
+    FileSet files;  // the mesh and its sidecar appear together or not at all
+    files.add(a.output, [&](const std::filesystem::path& temp) { write_mesh(mesh, temp); });
 
     const ValidationReport v = validate_mesh(mesh, a.output);
     std::size_t damaged = 0;
@@ -74,8 +79,8 @@ void run(const PhantomArgs& a) {
         {"damaged_vertices", damaged},
         {"mesh", std::filesystem::path(a.output).filename().string()},
     };
-    const std::string sidecar_path = a.output + ".json";
-    write_file_atomically(sidecar_path, sidecar.dump(2) + "\n");
+    files.add(sidecar_path, sidecar.dump(2) + "\n");
+    files.commit();
     if (global_flags().json) {
         std::cout << sidecar.dump(2) << '\n';
     } else if (!global_flags().quiet) {

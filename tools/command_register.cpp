@@ -4,7 +4,9 @@
 #include "analysis/units.h"
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/file_set.h"
 #include "mesh/io.h"
+#include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "mesh/write.h"
 #include "tools/command.h"
@@ -12,12 +14,16 @@
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
 namespace glint::cli {
 namespace {
+
+namespace fs = std::filesystem;
 
 struct RegisterArgs {
     std::string reference;
@@ -47,6 +53,17 @@ void run(RegisterArgs& a) {
     if (!a.roi_mask.empty()) fit.registration.roi = parse_roi("mask:" + a.roi_mask);
     fit.validate();
     a.options.units.validate();
+    if (!a.apply.empty()) {
+        std::string ext = fs::path(a.apply).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext != ".ply" && ext != ".vtk" && ext != ".vtp")
+            throw InputError("--apply \"" + a.apply + "\": unknown extension \"" + ext +
+                             "\", expected .ply, .vtk or .vtp (nothing was written)");
+        if (fs::path(a.apply) == fs::path(a.output))
+            throw InputError("--apply \"" + a.apply + "\" is the -o file; expected two files");
+    }
+    guard_outputs({a.output, a.apply}, {a.reference, a.examined, fit.fit_file, fit.landmarks_file,
+                                        fit.init_file, a.roi_mask});
     const LoadedSurface ref = load_surface(a.reference, a.surface);
     LoadedSurface exa = load_surface(a.examined, a.surface);
     // Sizes checked before the fit; files in two stated units are fitted in the reference's.
@@ -57,12 +74,14 @@ void run(RegisterArgs& a) {
             std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
-    write_file_atomically(a.output, outcome.json);
+    FileSet files;  // fit.json and the fitted mesh appear together or not at all
+    files.add(a.output, outcome.json);
     if (!a.apply.empty()) {
         Mesh moved = exa.mesh;
         transform_mesh(moved, r.reference_from_examined);
-        write_mesh(moved, a.apply);
+        files.add(a.apply, [&](const fs::path& temp) { write_mesh(moved, temp); });
     }
+    files.commit();
     if (global_flags().json) std::cout << outcome.json;
     else if (!global_flags().quiet) print_result(r, a.output, units.unit);
     if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);

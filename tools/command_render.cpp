@@ -7,6 +7,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/output_guard.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "render/shade.h"
@@ -16,9 +17,13 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <cstring>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -105,6 +110,36 @@ ViewSpec parse_view_item(const std::string& item, const ViewSpec& base, const st
     return spec;
 }
 
+// note: a views file is a hand-written or generated list of views; 1 MiB holds ~30 000 lines,
+// and 10 000 views already take hours. /dev/zero or a FIFO used to grow memory without end.
+constexpr std::size_t kMaxViewsFileBytes = std::size_t{1} << 20;
+constexpr std::size_t kMaxViews = 10000;
+
+// The views file's text: a regular file (opened without blocking) of at most 1 MiB.
+std::string read_views_file(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    if (fd < 0) throw IoError("cannot read views file \"" + path + "\": " + std::strerror(errno));
+    struct stat st {};
+    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
+    const auto size = static_cast<std::size_t>(regular ? st.st_size : 0);
+    std::string text(regular && size <= kMaxViewsFileBytes ? size : 0, '\0');
+    std::size_t done = 0;
+    while (done < text.size()) {
+        const ssize_t n = ::read(fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) break;
+        done += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+    if (!regular)
+        throw InputError("views file \"" + path + "\": not a regular file, expected a text file");
+    if (size > kMaxViewsFileBytes)
+        throw InputError("views file \"" + path + "\": " + std::to_string(size) +
+                         " bytes, expected at most 1 MiB");
+    text.resize(done);
+    return text;
+}
+
 std::string output_for(const std::string& pattern, std::size_t index, std::size_t count) {
     if (count == 1 && pattern.find("{i}") == std::string::npos) return pattern;
     char num[16];
@@ -116,9 +151,8 @@ std::string output_for(const std::string& pattern, std::size_t index, std::size_
     return (p.parent_path() / (p.stem().string() + "_" + num + p.extension().string())).string();
 }
 
-void run(const RenderArgs& a) {
-    protect_input(a.mesh);
-    const auto [width, height] = parse_size(a.size);
+// The base view the flags describe (azimuth, elevation, size, projection, one zoom).
+ViewSpec base_view(const RenderArgs& a, int width, int height) {
     ViewSpec base;
     base.azimuth_deg = a.azimuth;
     base.elevation_deg = a.elevation;
@@ -138,6 +172,12 @@ void run(const RenderArgs& a) {
         base.zoom = ZoomKind::DistancePixels;
         base.zoom_value = *a.distance_px;
     }
+    return base;
+}
+
+// The views to render: --views items and views-file lines over the base view, or the base view.
+std::vector<ViewSpec> view_specs(const RenderArgs& a, int width, int height) {
+    const ViewSpec base = base_view(a, width, height);
     std::vector<ViewSpec> specs;
     if (!a.views.empty()) {
         std::istringstream s(a.views);
@@ -146,11 +186,13 @@ void run(const RenderArgs& a) {
             if (!item.empty())
                 specs.push_back(parse_view_item(
                     item, base, "--views item " + std::to_string(specs.size() + 1)));
+            if (specs.size() > kMaxViews)
+                throw InputError("--views: more than " + std::to_string(kMaxViews) +
+                                 " views, expected at most " + std::to_string(kMaxViews));
         }
     }
     if (!a.views_file.empty()) {
-        std::ifstream in(a.views_file);
-        if (!in) throw IoError("cannot read views file \"" + a.views_file + "\"");
+        std::istringstream in(read_views_file(a.views_file));
         std::string line;
         int line_no = 0;
         while (std::getline(in, line)) {
@@ -162,11 +204,18 @@ void run(const RenderArgs& a) {
             if (line.empty()) continue;
             specs.push_back(
                 parse_view_item(line, base, a.views_file + ":" + std::to_string(line_no)));
+            if (specs.size() > kMaxViews)
+                throw InputError("views file \"" + a.views_file + "\": more than " +
+                                 std::to_string(kMaxViews) + " views (line " +
+                                 std::to_string(line_no) + "), expected at most " +
+                                 std::to_string(kMaxViews));
         }
     }
     if (specs.empty()) specs.push_back(base);
+    return specs;
+}
 
-    const ShadeOptions shade{.mode = parse_shade_mode(a.mode)};
+RenderOptions render_options(const RenderArgs& a) {
     RenderOptions options;
     options.backend = parse_backend(a.backend);
     options.device = a.device;
@@ -181,6 +230,16 @@ void run(const RenderArgs& a) {
         throw InputError("--normal-space \"" + a.normal_space + "\": expected world or view");
     }
     options.validate();
+    return options;
+}
+
+void run(const RenderArgs& a) {
+    guard_outputs({a.output}, {a.mesh, a.views_file});
+    const auto [width, height] = parse_size(a.size);
+    std::vector<ViewSpec> specs = view_specs(a, width, height);
+
+    const ShadeOptions shade{.mode = parse_shade_mode(a.mode)};
+    const RenderOptions options = render_options(a);
 
     const LoadedMesh loaded = load_mesh(a.mesh);
     const FramingSphere sphere = framing_sphere(loaded.mesh);

@@ -1,6 +1,7 @@
 // glint run SCENARIO… and glint eval SCENARIO…|FOLDER: scenarios end to end, and scored.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 #include "scenario/run_scenario.h"
 #include "scenario/scenario.h"
 #include "tools/command.h"
@@ -141,6 +142,11 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
                 throw InputError("output folder \"" + (fs::path(a.output) / sc.name).string() +
                                  "\" exists (an earlier run of scenario " + sc.name +
                                  "); give --force to replace it");
+    // No scenario's folder, nor eval.json / eval.csv, is, holds or lies inside an input.
+    for (const auto& sc : scenarios)
+        guard_outputs({fs::path(a.output) / sc.name, fs::path(a.output) / "eval.json",
+                       fs::path(a.output) / "eval.csv"},
+                      {sc.file, sc.reference.mesh, sc.examined.mesh});
     std::error_code ec;
     fs::create_directories(a.output, ec);
     if (ec) throw IoError("output folder \"" + a.output + "\": " + ec.message());
@@ -177,6 +183,7 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
             }
         }
         bar.finish();
+        print_warnings(o.warnings, o.name);
         if (!global_flags().quiet && !global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
             else

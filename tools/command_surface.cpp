@@ -1,5 +1,6 @@
 // glint surface VOLUME --iso VALUE [-o mesh.ply] …: the bone surface of a CT (or any
 // iso-surface of a volume) in physical coordinates (mm), with a report of what was done.
+#include "mesh/output_guard.h"
 #include "mesh/write.h"
 #include "tools/command.h"
 #include "tools/surface_flags.h"
@@ -41,6 +42,7 @@ nlohmann::json to_json(const SurfaceReport& r, const std::string& volume,
 
 void run(const SurfaceArgs& a) {
     if (!a.options.iso) a.options.validate();  // names the missing iso before reading anything
+    guard_outputs({a.output}, {a.volume});
     const Volume volume = read_volume(a.volume);
     const ExtractedSurface s = extract_surface(volume, a.options);
     if (!a.output.empty()) write_mesh(s.mesh, a.output);

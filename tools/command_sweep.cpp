@@ -3,6 +3,7 @@
 #include "analysis/analysis.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
 #include "report/inspect.h"
@@ -37,6 +38,21 @@ struct SweepArgs {
     bool force = false;
 };
 
+// "normal floor 2.00° (minimum), shape floor 0.012 mm (measured)": each floor with how it was
+// obtained (decision/decision.h FloorSource).
+std::string floors_line(const ZoomDecision& d, const MetricDescriptor& m, const std::string& u) {
+    // note: at a chosen scale the normal evidence is the tilt over that scale, in degrees.
+    const std::string sym = d.scale.radius > 0 ? "°" : std::string(m.symbol);
+    char b[200];
+    std::snprintf(b, sizeof b, "normal floor %.2f%s (%s)", d.normal.value, sym.c_str(),
+                  to_string(d.normal.source).c_str());
+    std::string line = b;
+    if (d.rule == DecisionRule::Fused)
+        line += ", shape floor " + with_unit(d.shape.value, u, 1, "%.3g") + " (" +
+                to_string(d.shape.source) + ")";
+    return line;
+}
+
 void print_summary(const Inspection& inspection) {
     const AnalysisResult& r = inspection.analysis;
     const MetricDescriptor& m = describe(r.sweep.options.metric);
@@ -48,11 +64,11 @@ void print_summary(const Inspection& inspection) {
                 with_unit(r.units.examined_size, u).c_str());
     for (std::size_t z = 0; z < r.decisions.size(); ++z) {
         const auto& d = r.decisions[z];
-        std::printf(
-            "zoom %zu: footprint %s/px (%d px), coverage %.1f%%, normal floor %.2f%s (%s), %zu region(s)\n",
-            z, with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
-            100.0 * r.sweep.zooms[z].coverage.fraction, d.normal.value, sym.c_str(),
-            d.normal.given ? "given" : "noise floor", d.regions.regions.size());
+        std::printf("zoom %zu: footprint %s/px (%d px), coverage %.1f%%, %s, %zu region(s)\n", z,
+                    with_unit(r.sweep.plan.footprints[z], u).c_str(), r.sweep.plan.sizes[z],
+                    100.0 * r.sweep.zooms[z].coverage.fraction, floors_line(d, m, u).c_str(),
+                    d.regions.regions.size());
+        if (!d.scale.text.empty()) std::printf("  %s\n", d.scale.text.c_str());
         const Comparison& c = d.comparison;
         const auto pct = [&](double a) {
             return c.reference_area > 0 ? 100.0 * a / c.reference_area : 0.0;
@@ -73,8 +89,6 @@ void print_summary(const Inspection& inspection) {
                 g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(),
                 u.empty() ? "units" : u.c_str());
     }
-    for (const auto& w : r.units.warnings) std::printf("note: %s\n", w.c_str());
-    if (!r.swap_hint.empty()) std::printf("warning: %s\n", r.swap_hint.c_str());
     std::printf(
         "%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
         r.sweep.views.size(), inspection.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
@@ -98,6 +112,9 @@ void run(SweepArgs& a) {
         print_options(options.analysis, options.exports);
         return;
     }
+    const FitOptions& fit = options.analysis.fit;
+    guard_outputs({a.output}, {a.reference, a.examined, fit.fit_file, fit.landmarks_file,
+                               fit.init_file, a.calibration});
     auto [ref, exa] = load_run_pair(a.reference, a.examined, a.surface);
     RunRecord record{.command_line = global_flags().command_line};
     record.add(ref);
@@ -115,6 +132,7 @@ void run(SweepArgs& a) {
     };
     const Inspection result = inspect(ref.mesh, std::move(exa.mesh), options, record, observer);
     if (bar) bar->finish();
+    print_warnings(result.analysis.warnings);
     if (global_flags().json) std::cout << result.report_json;
     else if (!global_flags().quiet) print_summary(result);
 }

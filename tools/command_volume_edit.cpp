@@ -4,6 +4,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/damage.h"
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 #include "tools/command.h"
 #include "volume/edit.h"
 
@@ -46,6 +47,7 @@ std::vector<double> numbers(const std::string& text, const char* flag, std::size
 }
 
 void run(const EditArgs& a) {
+    guard_outputs({a.output, a.output + ".json"}, {a.input});
     VolumeEdit edit;
     const auto p = numbers(a.pivot, "--pivot", 3);
     edit.moved_from_original = motion_about(parse_pose_spec(a.pose), Vec3d(p[0], p[1], p[2]));

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <csignal>
 #include <cstdint>
 #include <exception>
@@ -35,7 +36,15 @@ namespace {
 // never return. A single SIGTERM from `timeout` or a batch system must still end glint.
 constexpr unsigned kCancelGraceSeconds = 3;
 
-extern "C" void on_watchdog(int) { _exit(130); }
+// One line, as every other end of glint gives, written with write(2) (a signal handler may not
+// use iostreams): the step under way did not come back within the grace period.
+extern "C" void on_watchdog(int) {
+    static constexpr char kLine[] =
+        "glint: interrupted: the step under way did not stop within 3 s; ended without cleaning "
+        "up (a staging folder left behind is removed by the next run into the same output)\n";
+    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
+    _exit(130);
+}
 
 extern "C" void on_signal(int signal) {
     glint::request_cancel(signal);
@@ -98,6 +107,10 @@ std::string check_command_word(CLI::App& app, int argc, char** argv) {
             global_flags().json = true;
             continue;
         }
+        if (word == "--max-triangles") {  // the one global option with a separate value
+            ++i;
+            continue;
+        }
         if (word.starts_with("-")) continue;  // global flags, --help, --version: CLI11's
         for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; }))
             if (sub->check_name(word)) return "";
@@ -120,6 +133,20 @@ int parse_failure(CLI::App& app, const CLI::ParseError& e) {
     }
     const std::string name = parsed.front()->get_name();
     return fail(kExitBadInput, "error", name + ": " + e.what() + " (glint " + name + " --help)");
+}
+
+// note: triangle indices are 32-bit: no mesh holds more than 2^32 - 1 triangles.
+constexpr std::uint64_t kMaxTrianglesLimit = 4294967295u;
+
+// --max-triangles N: an integer from 1 to 2^32 - 1 (0 printed a 309-digit range, 2^64 passed).
+std::uint64_t parse_max_triangles(const std::string& text) {
+    std::uint64_t n = 0;
+    const char* end = text.data() + text.size();
+    const auto [at, ec] = std::from_chars(text.data(), end, n);
+    if (ec != std::errc() || at != end || n < 1 || n > kMaxTrianglesLimit)
+        throw glint::InputError("--max-triangles = " + text + ": expected an integer from 1 to " +
+                                std::to_string(kMaxTrianglesLimit));
+    return n;
 }
 
 // Runs the command; every glint error becomes its one line and exit code.
@@ -160,11 +187,14 @@ int main(int argc, char** argv) {
                  "Machine-readable JSON on stdout (errors too: {\"error\": …})");
     // note: a global option (fallthrough lets it follow any subcommand); it sets the budget
     // of every mesh load, scenarios' included, before any command runs.
-    app.add_option_function<std::uint64_t>(
-           "--max-triangles", [](const std::uint64_t& n) { glint::set_default_max_triangles(n); },
-           "Refuse meshes with more triangles than this (default " +
-               std::to_string(glint::kDefaultMaxTriangles) + ")")
-        ->check(CLI::PositiveNumber);
+    app.add_option_function<std::string>(
+        "--max-triangles",
+        [](const std::string& text) {
+            glint::set_default_max_triangles(parse_max_triangles(text));
+        },
+        "Refuse meshes with more triangles than this (default " +
+            std::to_string(glint::kDefaultMaxTriangles) + ", at most " +
+            std::to_string(kMaxTrianglesLimit) + ")");
     add_registered_commands(app);
     install_interrupt_handlers();
     for (int i = 0; i < argc; ++i) {

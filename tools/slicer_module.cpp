@@ -55,9 +55,11 @@ SlicerGroup surfaces_group() {
           .channel = "output",
           .label = "Damage atlas",
           .description =
-              "The reference with the atlas scalars (angle_mean_z0: per-vertex normal deviation in "
-              "degrees, distance: signed distance to the examined surface, negative = loss, region_z0: "
-              "region id, seen_z0, count_z0, …).",
+              "The reference with the atlas fields, shown first shape_change_mm (signed distance "
+              "to the examined surface in the run's unit, negative = loss), then "
+              "shape_tolerance_mm, per zoom seen_z0 (1 seen, 0 unseen), angle_mean_deg_z0 and "
+              "angle_max_deg_z0 (normal deviation, 0 where unseen), missing_fraction_z0, "
+              "pixels_z0, region_id_z0 (README: the atlas fields).",
           .type = "model",
           .file_extensions = ".vtp"},
          {.tag = "table",

@@ -4,6 +4,7 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/output_guard.h"
 #include "volume/detail/itk_io.h"
 
 #include <algorithm>
@@ -58,6 +59,7 @@ bool is_volume_path(const fs::path& path) {
 Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(quoted(path) + ": no such file or folder");
+    for (const fs::path& f : input_files(path)) protect_input(f);  // never an output
     detail::RawVolume raw = detail::itk_read(path, max_voxels);
     Volume v;
     v.path = path;

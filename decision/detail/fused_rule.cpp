@@ -11,6 +11,23 @@
 
 namespace glint::detail {
 
+Adjacency adjacency(const Mesh& mesh) {
+    const std::size_t n = mesh.vertex_count();
+    Adjacency a;
+    a.offset.assign(n + 1, 0);
+    for (const auto& t : mesh.triangles)
+        for (const auto v : t) a.offset[v + 1] += 2;
+    for (std::size_t v = 0; v < n; ++v) a.offset[v + 1] += a.offset[v];
+    a.index.resize(a.offset[n]);
+    std::vector<std::uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
+    for (const auto& t : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            a.index[fill[t[k]]++] = t[(k + 1) % 3];
+            a.index[fill[t[k]]++] = t[(k + 2) % 3];
+        }
+    return a;
+}
+
 namespace {
 
 // A vertex whose examined surface is missing: most observations found none behind it, or its
@@ -56,30 +73,6 @@ struct Group {
     float peak_distance = 0.0f;  // largest signed distance magnitude
     float max_normal = 0.0f;
 };
-
-// Vertex neighbours through mesh edges, in compressed rows: neighbours of v are
-// index[offset[v] .. offset[v + 1]).
-struct Adjacency {
-    std::vector<std::uint32_t> offset;
-    std::vector<std::uint32_t> index;
-};
-
-Adjacency adjacency(const Mesh& mesh) {
-    const std::size_t n = mesh.vertex_count();
-    Adjacency a;
-    a.offset.assign(n + 1, 0);
-    for (const auto& t : mesh.triangles)
-        for (const auto v : t) a.offset[v + 1] += 2;
-    for (std::size_t v = 0; v < n; ++v) a.offset[v + 1] += a.offset[v];
-    a.index.resize(a.offset[n]);
-    std::vector<std::uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
-    for (const auto& t : mesh.triangles)
-        for (std::size_t k = 0; k < 3; ++k) {
-            a.index[fill[t[k]]++] = t[(k + 1) % 3];
-            a.index[fill[t[k]]++] = t[(k + 2) % 3];
-        }
-    return a;
-}
 
 // What both signs' growth reads of the mesh: its adjacency and the smoothed tessellation
 // tolerance, built once per zoom.

@@ -9,6 +9,14 @@
 
 namespace glint::detail {
 
+/// Vertex neighbours through mesh edges, in compressed rows: neighbours of v are
+/// index[offset[v] .. offset[v + 1]) (each shared edge listed once per triangle).
+struct Adjacency {
+    std::vector<std::uint32_t> offset;
+    std::vector<std::uint32_t> index;
+};
+[[nodiscard]] Adjacency adjacency(const Mesh& mesh);
+
 /// The damaged vertices under the fused rule (decision.h steps 2–5), before hole filling and
 /// the size rule (find_regions does those). `excess` = shape excess per vertex.
 [[nodiscard]] std::vector<std::uint8_t> fused_mask(const Mesh& reference,

@@ -1,5 +1,6 @@
 #include "mesh/detail/ply_reader.h"
 
+#include "mesh/detail/ply_format.h"
 #include "mesh/detail/scan.h"
 #include "mesh/error.h"
 
@@ -17,96 +18,9 @@ namespace glint::detail {
 
 namespace {
 
-enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
-
-std::size_t size_of(Type t) {
-    switch (t) {
-        case Type::Int8:
-        case Type::UInt8: return 1;
-        case Type::Int16:
-        case Type::UInt16: return 2;
-        case Type::Int32:
-        case Type::UInt32:
-        case Type::Float32: return 4;
-        case Type::Float64: return 8;
-    }
-    return 0;
-}
-
-bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
-
-std::optional<Type> parse_type(std::string_view s) {
-    if (s == "char" || s == "int8") return Type::Int8;
-    if (s == "uchar" || s == "uint8") return Type::UInt8;
-    if (s == "short" || s == "int16") return Type::Int16;
-    if (s == "ushort" || s == "uint16") return Type::UInt16;
-    if (s == "int" || s == "int32") return Type::Int32;
-    if (s == "uint" || s == "uint32") return Type::UInt32;
-    if (s == "float" || s == "float32") return Type::Float32;
-    if (s == "double" || s == "float64") return Type::Float64;
-    return std::nullopt;
-}
-
-// Where a vertex property's value goes.
-enum class Target { Ignore, X, Y, Z, Nx, Ny, Nz, Red, Green, Blue, Label, Scalar, FaceIndices };
-
-struct Property {
-    std::string name;
-    Type type = Type::Float32;
-    bool is_list = false;
-    Type count_type = Type::UInt8;
-    Target target = Target::Ignore;
-    std::size_t scalar_index = 0;  ///< into Mesh::scalars when target == Scalar
-    std::size_t offset = 0;        ///< byte offset in a fixed-size binary item
-};
-
-struct Element {
-    std::string name;
-    std::uint64_t count = 0;
-    std::vector<Property> properties;
-    bool is_fixed_size = true;  ///< no list property: every item has the same byte size
-    std::size_t stride = 0;     ///< bytes per item when is_fixed_size
-};
-
-enum class Encoding { Ascii, BinaryLe, BinaryBe };
+using namespace ply;
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
-template <class T, bool Swap>
-T load(const char* p) {
-    return load_bytes<T, Swap>(p);
-}
-
-template <bool Swap>
-double load_value(const char* p, Type t) {
-    switch (t) {
-        case Type::Int8: return load<std::int8_t, Swap>(p);
-        case Type::UInt8: return load<std::uint8_t, Swap>(p);
-        case Type::Int16: return load<std::int16_t, Swap>(p);
-        case Type::UInt16: return load<std::uint16_t, Swap>(p);
-        case Type::Int32: return load<std::int32_t, Swap>(p);
-        case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return static_cast<double>(load<float, Swap>(p));
-        case Type::Float64: return load<double, Swap>(p);
-    }
-    return 0.0;
-}
-
-// Integer value of a list count or index (exact for every PLY integer type).
-template <bool Swap>
-std::int64_t load_int(const char* p, Type t) {
-    switch (t) {
-        case Type::Int8: return load<std::int8_t, Swap>(p);
-        case Type::UInt8: return load<std::uint8_t, Swap>(p);
-        case Type::Int16: return load<std::int16_t, Swap>(p);
-        case Type::UInt16: return load<std::uint16_t, Swap>(p);
-        case Type::Int32: return load<std::int32_t, Swap>(p);
-        case Type::UInt32: return load<std::uint32_t, Swap>(p);
-        case Type::Float32: return clamp_to<std::int64_t>(load<float, Swap>(p));
-        case Type::Float64: return clamp_to<std::int64_t>(load<double, Swap>(p));
-    }
-    return 0;
-}
 
 // What the reader builds while it walks the body.
 struct Builder {
@@ -199,6 +113,39 @@ class PlyParser {
 
     // ---- header -------------------------------------------------------------------------
 
+    /// One "property" line of the current (last) element: a scalar, which takes the next
+    /// bytes of a fixed-size item, or a list.
+    Property parse_property(std::string_view line, const std::vector<std::string_view>& words,
+                            std::size_t line_no) {
+        Property p;
+        if (words.size() == 5 && words[1] == "list") {
+            p.is_list = true;
+            const auto ct = parse_type(words[2]);
+            const auto it = parse_type(words[3]);
+            if (!ct || !it) fail_line(line_no, "unknown type in \"" + std::string(line) + "\"");
+            if (!is_integer(*ct))
+                fail_line(line_no, "list count type must be an integer type, found \"" +
+                                       std::string(words[2]) + "\"");
+            p.count_type = *ct;
+            p.type = *it;
+            p.name = std::string(words[4]);
+            elements_.back().is_fixed_size = false;
+        } else if (words.size() == 3) {
+            const auto t = parse_type(words[1]);
+            if (!t) fail_line(line_no, "unknown property type \"" + std::string(words[1]) + "\"");
+            p.type = *t;
+            p.name = std::string(words[2]);
+            p.offset = elements_.back().stride;
+            elements_.back().stride += size_of(*t);
+        } else {
+            fail_line(line_no,
+                      "expected \"property TYPE NAME\" or \"property list "
+                      "COUNT_TYPE INDEX_TYPE NAME\", found \"" +
+                          std::string(line) + "\"");
+        }
+        return p;
+    }
+
     void parse_header() {
         std::size_t pos = 0;
         std::size_t line_no = 0;
@@ -241,35 +188,12 @@ class PlyParser {
                 elements_.push_back(std::move(el));
             } else if (key == "property") {
                 if (elements_.empty()) fail_line(line_no, "property before any element");
-                Property p;
-                if (words.size() == 5 && words[1] == "list") {
-                    p.is_list = true;
-                    const auto ct = parse_type(words[2]);
-                    const auto it = parse_type(words[3]);
-                    if (!ct || !it)
-                        fail_line(line_no, "unknown type in \"" + std::string(line) + "\"");
-                    if (!is_integer(*ct))
-                        fail_line(line_no, "list count type must be an integer type, found \"" +
-                                               std::string(words[2]) + "\"");
-                    p.count_type = *ct;
-                    p.type = *it;
-                    p.name = std::string(words[4]);
-                    elements_.back().is_fixed_size = false;
-                } else if (words.size() == 3) {
-                    const auto t = parse_type(words[1]);
-                    if (!t)
-                        fail_line(line_no,
-                                  "unknown property type \"" + std::string(words[1]) + "\"");
-                    p.type = *t;
-                    p.name = std::string(words[2]);
-                    p.offset = elements_.back().stride;
-                    elements_.back().stride += size_of(*t);
-                } else {
-                    fail_line(line_no,
-                              "expected \"property TYPE NAME\" or \"property list "
-                              "COUNT_TYPE INDEX_TYPE NAME\", found \"" +
-                                  std::string(line) + "\"");
-                }
+                Property p = parse_property(line, words, line_no);
+                for (const Property& q : elements_.back().properties)
+                    if (q.name == p.name)
+                        fail_line(line_no, "property \"" + p.name +
+                                               "\" declared twice in element \"" +
+                                               elements_.back().name + "\"");
                 elements_.back().properties.push_back(std::move(p));
             } else {
                 fail_line(line_no, "unknown PLY header keyword \"" + std::string(key) + "\"");
@@ -283,23 +207,9 @@ class PlyParser {
                                                            : "ply-binary-be";
     }
 
-    void setup_targets() {
-        for (std::size_t e = 0; e < elements_.size(); ++e) {
-            if (elements_[e].name == "vertex" && vertex_element_ < 0)
-                vertex_element_ = static_cast<std::ptrdiff_t>(e);
-            if (elements_[e].name == "face" && face_element_ < 0)
-                face_element_ = static_cast<std::ptrdiff_t>(e);
-        }
-        if (vertex_element_ < 0) fail("PLY header declares no \"vertex\" element");
-        Element& v = elements_[static_cast<std::size_t>(vertex_element_)];
-        const std::size_t n = static_cast<std::size_t>(v.count);
-        // note: a lying header must not make us allocate gigabytes: every vertex needs at
-        // least one byte per property in any encoding.
-        const std::size_t left = data_.size() - body_;
-        if (encoding_ != Encoding::Ascii && v.is_fixed_size && v.stride > 0 && n > left / v.stride)
-            fail_truncated(v, left / v.stride);
-        check_element_fits(v);
-        b_.vertex_count = n;
+    /// Which of the vertex element's properties fill positions, normals, colours, labels and
+    /// scalars; incomplete normals or colours are ignored with a warning.
+    void target_vertex_properties(Element& v, std::size_t n) {
         int xyz = 0, normal = 0, rgb = 0;
         for (auto& p : v.properties) {
             if (p.is_list) {
@@ -324,7 +234,7 @@ class PlyParser {
             } else {
                 p.target = Target::Scalar;
                 p.scalar_index = b_.mesh.scalars.size();
-                b_.mesh.scalars.push_back({s, std::vector<float>(n, 0.0f)});
+                b_.mesh.scalars.push_back({scalar_name(v, s), std::vector<float>(n, 0.0f)});
             }
         }
         if (xyz != 3) fail("PLY element \"vertex\" lacks one of the properties x, y, z");
@@ -350,24 +260,47 @@ class PlyParser {
                 "incomplete vertex colour (not all of red, green, blue) ignored");
         }
         if (b_.has_labels) b_.mesh.labels.assign(n, 0);
+    }
 
-        if (face_element_ >= 0) {
-            Element& f = elements_[static_cast<std::size_t>(face_element_)];
-            bool found = false;
-            for (auto& p : f.properties) {
-                if (!found && p.is_list &&
-                    (p.name == "vertex_indices" || p.name == "vertex_index")) {
-                    if (!is_integer(p.type))
-                        fail("PLY face list \"" + p.name + "\" has a non-integer index type");
-                    p.target = Target::FaceIndices;
-                    found = true;
-                }
+    /// The face element's index list (vertex_indices or vertex_index), which must be integer.
+    void target_face_indices() {
+        if (face_element_ < 0) return;
+        Element& f = elements_[static_cast<std::size_t>(face_element_)];
+        bool found = false;
+        for (auto& p : f.properties) {
+            if (!found && p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+                if (!is_integer(p.type))
+                    fail("PLY face list \"" + p.name + "\" has a non-integer index type");
+                p.target = Target::FaceIndices;
+                found = true;
             }
-            if (!found) fail("PLY element \"face\" has no \"vertex_indices\" list property");
-            const std::size_t faces = static_cast<std::size_t>(
-                std::min<std::uint64_t>(f.count, (data_.size() - body_) / 2 + 1));
-            b_.mesh.triangles.reserve(faces);
         }
+        if (!found) fail("PLY element \"face\" has no \"vertex_indices\" list property");
+        const std::size_t faces = static_cast<std::size_t>(
+            std::min<std::uint64_t>(f.count, (data_.size() - body_) / 2 + 1));
+        b_.mesh.triangles.reserve(faces);
+    }
+
+    void setup_targets() {
+        for (std::size_t e = 0; e < elements_.size(); ++e) {
+            if (elements_[e].name == "vertex" && vertex_element_ < 0)
+                vertex_element_ = static_cast<std::ptrdiff_t>(e);
+            if (elements_[e].name == "face" && face_element_ < 0)
+                face_element_ = static_cast<std::ptrdiff_t>(e);
+        }
+        if (vertex_element_ < 0) fail("PLY header declares no \"vertex\" element");
+        Element& v = elements_[static_cast<std::size_t>(vertex_element_)];
+        const std::size_t n = static_cast<std::size_t>(v.count);
+        // note: a lying header must not make us allocate gigabytes: every vertex needs at
+        // least one byte per property in any encoding.
+        const std::size_t left = data_.size() - body_;
+        if (encoding_ != Encoding::Ascii && v.is_fixed_size && v.stride > 0 && n > left / v.stride)
+            fail_truncated(v, left / v.stride);
+        check_element_fits(v);
+        b_.vertex_count = n;
+        target_vertex_properties(v, n);
+
+        target_face_indices();
         for (const auto& el : elements_) {
             if (&el == &v || static_cast<std::ptrdiff_t>(&el - elements_.data()) == face_element_)
                 continue;
@@ -415,6 +348,45 @@ class PlyParser {
              std::to_string(el.count) + " is truncated: the file ends before the header's count");
     }
 
+    /// The items of a fixed-size binary vertex element (their bytes already known to be there).
+    template <bool Swap>
+    void read_fixed_vertices(const Element& el) {
+        const char* base = data_.data() + body_;
+        // note: float positions (the usual case) are copied straight into the Vec3f
+        // array; every other property goes through the typed store.
+        std::vector<const Property*> rest;
+        std::size_t float_xyz[3] = {0, 0, 0};
+        int float_xyz_found = 0;
+        for (const auto& p : el.properties) {
+            if (p.target == Target::Ignore) continue;
+            const int axis = p.target == Target::X   ? 0
+                             : p.target == Target::Y ? 1
+                             : p.target == Target::Z ? 2
+                                                     : -1;
+            if (axis >= 0 && p.type == Type::Float32) {
+                float_xyz[axis] = p.offset;
+                ++float_xyz_found;
+            } else {
+                rest.push_back(&p);
+            }
+        }
+        if (float_xyz_found != 3) {
+            rest.clear();
+            for (const auto& p : el.properties)
+                if (p.target != Target::Ignore) rest.push_back(&p);
+        }
+        Vec3f* out = b_.mesh.positions.data();
+        for (std::size_t v = 0; v < el.count; ++v, base += el.stride) {
+            poll_cancel(v);
+            if (float_xyz_found == 3)
+                out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]),
+                               load<float, Swap>(base + float_xyz[1]),
+                               load<float, Swap>(base + float_xyz[2]));
+            for (const Property* p : rest)
+                b_.store(v, *p, load_value<Swap>(base + p->offset, p->type));
+        }
+    }
+
     template <bool Swap>
     void read_binary(const Element& el, bool is_vertex, bool is_face) {
         const char* const begin = data_.data();
@@ -423,42 +395,7 @@ class PlyParser {
             const std::size_t available = size - body_;
             if (el.stride > 0 && el.count > available / el.stride)
                 fail_truncated(el, available / el.stride);
-            if (is_vertex) {
-                const char* base = begin + body_;
-                // note: float positions (the usual case) are copied straight into the Vec3f
-                // array; every other property goes through the typed store.
-                std::vector<const Property*> rest;
-                std::size_t float_xyz[3] = {0, 0, 0};
-                int float_xyz_found = 0;
-                for (const auto& p : el.properties) {
-                    if (p.target == Target::Ignore) continue;
-                    const int axis = p.target == Target::X   ? 0
-                                     : p.target == Target::Y ? 1
-                                     : p.target == Target::Z ? 2
-                                                             : -1;
-                    if (axis >= 0 && p.type == Type::Float32) {
-                        float_xyz[axis] = p.offset;
-                        ++float_xyz_found;
-                    } else {
-                        rest.push_back(&p);
-                    }
-                }
-                if (float_xyz_found != 3) {
-                    rest.clear();
-                    for (const auto& p : el.properties)
-                        if (p.target != Target::Ignore) rest.push_back(&p);
-                }
-                Vec3f* out = b_.mesh.positions.data();
-                for (std::size_t v = 0; v < el.count; ++v, base += el.stride) {
-                    poll_cancel(v);
-                    if (float_xyz_found == 3)
-                        out[v] = Vec3f(load<float, Swap>(base + float_xyz[0]),
-                                       load<float, Swap>(base + float_xyz[1]),
-                                       load<float, Swap>(base + float_xyz[2]));
-                    for (const Property* p : rest)
-                        b_.store(v, *p, load_value<Swap>(base + p->offset, p->type));
-                }
-            }
+            if (is_vertex) read_fixed_vertices<Swap>(el);
             body_ += static_cast<std::size_t>(el.count) * el.stride;
             return;
         }

@@ -1,6 +1,7 @@
 #include "mesh/detail/vtk_reader.h"
 
 #include "mesh/detail/scan.h"
+#include "mesh/detail/vtk_values.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -16,90 +17,6 @@
 namespace glint::detail {
 
 namespace {
-
-enum class Type {
-    Bit,
-    Int8,
-    UInt8,
-    Int16,
-    UInt16,
-    Int32,
-    UInt32,
-    Int64,
-    UInt64,
-    Float32,
-    Float64,
-    String
-};
-
-std::optional<Type> parse_type(std::string_view s) {
-    std::string t(s);
-    for (char& c : t) c = static_cast<char>(c | 0x20);  // VTK writes them lower case; accept any
-    if (t == "bit") return Type::Bit;
-    if (t == "char" || t == "signed_char") return Type::Int8;
-    if (t == "unsigned_char") return Type::UInt8;
-    if (t == "short") return Type::Int16;
-    if (t == "unsigned_short") return Type::UInt16;
-    if (t == "int") return Type::Int32;
-    if (t == "unsigned_int") return Type::UInt32;
-    // note: "long" is written with the writer's sizeof(long); VTK's binary files come from
-    // LP64 platforms in practice, so 8 bytes. vtkIdType is 64-bit in default VTK builds.
-    if (t == "long" || t == "vtktypeint64" || t == "vtkidtype") return Type::Int64;
-    if (t == "unsigned_long" || t == "vtktypeuint64") return Type::UInt64;
-    if (t == "float") return Type::Float32;
-    if (t == "double") return Type::Float64;
-    if (t == "string" || t == "utf8_string") return Type::String;
-    return std::nullopt;
-}
-
-std::size_t size_of(Type t) {
-    switch (t) {
-        case Type::Int8:
-        case Type::UInt8: return 1;
-        case Type::Int16:
-        case Type::UInt16: return 2;
-        case Type::Int32:
-        case Type::UInt32:
-        case Type::Float32: return 4;
-        case Type::Int64:
-        case Type::UInt64:
-        case Type::Float64: return 8;
-        case Type::Bit:
-        case Type::String: return 0;
-    }
-    return 0;
-}
-
-// a·b, saturating instead of wrapping (counts come from the file).
-std::uint64_t mul(std::uint64_t a, std::uint64_t b) {
-    return b != 0 && a > UINT64_MAX / b ? UINT64_MAX : a * b;
-}
-
-bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64 && t != Type::String; }
-
-// Big-endian load (VTK legacy binary is always big endian).
-template <class T>
-T load_be(const char* p) {
-    return load_bytes<T, true>(p);
-}
-
-double load_value(const char* p, Type t) {
-    switch (t) {
-        case Type::Int8: return load_be<std::int8_t>(p);
-        case Type::UInt8: return load_be<std::uint8_t>(p);
-        case Type::Int16: return load_be<std::int16_t>(p);
-        case Type::UInt16: return load_be<std::uint16_t>(p);
-        case Type::Int32: return load_be<std::int32_t>(p);
-        case Type::UInt32: return load_be<std::uint32_t>(p);
-        case Type::Int64: return static_cast<double>(load_be<std::int64_t>(p));
-        case Type::UInt64: return static_cast<double>(load_be<std::uint64_t>(p));
-        case Type::Float32: return static_cast<double>(load_be<float>(p));
-        case Type::Float64: return load_be<double>(p);
-        case Type::Bit:
-        case Type::String: return 0.0;
-    }
-    return 0.0;
-}
 
 std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
 
@@ -208,18 +125,18 @@ class VtkParser {
         return n;
     }
 
-    Type type_word(std::size_t i) const {
+    VtkType type_word(std::size_t i) const {
         if (i >= words_.size())
             fail("expected a data type after \"" + std::string(words_[0]) + "\"");
-        const auto t = parse_type(words_[i]);
+        const auto t = parse_vtk_type(words_[i]);
         if (!t) fail("unknown VTK data type \"" + printable(words_[i]) + "\"");
         return *t;
     }
 
     // Reads `count` values of `type`, calling sink(i, value). `what` names the section.
     template <class Sink>
-    void read_values(std::uint64_t count, Type type, const std::string& what, Sink sink) {
-        if (type == Type::String) {
+    void read_values(std::uint64_t count, VtkType type, const std::string& what, Sink sink) {
+        if (type == VtkType::String) {
             if (!binary_) {  // ASCII: one string per line
                 std::string_view line;
                 for (std::uint64_t i = 0; i < count; ++i)
@@ -263,7 +180,7 @@ class VtkParser {
             }
             return;
         }
-        if (type == Type::Bit) {
+        if (type == VtkType::Bit) {
             const std::uint64_t bytes = (count + 7) / 8;
             if (bytes > data_.size() - pos_) truncated(what, (data_.size() - pos_) * 8, count);
             for (std::uint64_t i = 0; i < count; ++i) {
@@ -284,7 +201,7 @@ class VtkParser {
         pos_ += static_cast<std::size_t>(count) * s;
     }
 
-    void skip_values(std::uint64_t count, Type type, const std::string& what) {
+    void skip_values(std::uint64_t count, VtkType type, const std::string& what) {
         read_values(count, type, what, [](std::size_t, double) {});
     }
 
@@ -320,7 +237,7 @@ class VtkParser {
 
     // A lying count must not make us allocate gigabytes before the data runs out: every value
     // takes at least its binary size, or two characters ("0 ") in ASCII.
-    void guard_count(std::uint64_t count, Type t, const std::string& what) {
+    void guard_count(std::uint64_t count, VtkType t, const std::string& what) {
         const std::size_t left = data_.size() - pos_;
         const std::size_t min_bytes = binary_ ? std::max<std::size_t>(size_of(t), 1) : 2;
         if (count <= left / min_bytes + 1) return;
@@ -333,20 +250,20 @@ class VtkParser {
     void read_points() {
         if (has_points_) fail("second POINTS section");
         const std::uint64_t n = count_word(1, "point count");
-        const Type t = type_word(2);
-        if (t == Type::String || t == Type::Bit) fail("POINTS must be numeric");
-        guard_count(mul(3, n), t, "POINTS");
+        const VtkType t = type_word(2);
+        if (t == VtkType::String || t == VtkType::Bit) fail("POINTS must be numeric");
+        guard_count(saturating_mul(3, n), t, "POINTS");
         mesh_.positions.resize(static_cast<std::size_t>(n));
         float* out = mesh_.positions.empty() ? nullptr : mesh_.positions[0].data();
         // note: Vec3f is three packed floats (Eigen fixed-size, no padding) so index 3v+k works.
         static_assert(sizeof(Vec3f) == 3 * sizeof(float));
-        read_values(mul(3, n), t, "POINTS",
+        read_values(saturating_mul(3, n), t, "POINTS",
                     [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
         has_points_ = true;
         point_count_ = static_cast<std::size_t>(n);
     }
 
-    std::vector<std::int64_t> read_ints(std::uint64_t count, Type t, const std::string& what) {
+    std::vector<std::int64_t> read_ints(std::uint64_t count, VtkType t, const std::string& what) {
         if (!is_integer(t)) fail(what + " must have an integer type");
         guard_count(count, t, what);
         std::vector<std::int64_t> out(static_cast<std::size_t>(count));
@@ -355,14 +272,14 @@ class VtkParser {
         return out;
     }
 
-    void read_cells(CellKind kind) {
-        const std::string what(words_[0]);
+    /// Reads a cell section's arrays as (offsets, connectivity), from either layout; false when
+    /// the section holds no cell.
+    bool read_cell_arrays(const std::string& what, std::vector<std::int64_t>& offsets,
+                          std::vector<std::int64_t>& conn) {
         const std::uint64_t n = count_word(1, "cell count");
         const std::uint64_t size = count_word(2, "connectivity size");
         // Cells as (offsets, connectivity): the classic layout stores [k, i0..ik-1] per cell;
         // VTK 5.1 writes OFFSETS (n+1 entries) and CONNECTIVITY arrays.
-        std::vector<std::int64_t> offsets;
-        std::vector<std::int64_t> conn;
         const auto next = peek_words();
         if (!next.empty() && iequals(next[0], "OFFSETS")) {
             std::string_view line;
@@ -382,9 +299,9 @@ class VtkParser {
             if (!offsets.empty() && offsets.back() != static_cast<std::int64_t>(conn.size()))
                 fail(what + " OFFSETS end at " + std::to_string(offsets.back()) +
                      " but CONNECTIVITY has " + std::to_string(conn.size()) + " entries");
-            if (offsets.empty()) return;
+            if (offsets.empty()) return false;
         } else {
-            const auto flat = read_ints(size, Type::Int32, what);
+            const auto flat = read_ints(size, VtkType::Int32, what);
             if (n > flat.size())
                 fail(what + " declares " + std::to_string(n) + " cells in only " +
                      std::to_string(size) + " numbers");
@@ -413,12 +330,13 @@ class VtkParser {
                 fail(what + " declares size " + std::to_string(size) + " but its " +
                      std::to_string(n) + " cells use " + std::to_string(i) + " numbers");
         }
+        return true;
+    }
+
+    /// Adds the triangles of polygon or strip cells; counts the cells of fewer than 3 points.
+    void add_cells(CellKind kind, const std::string& what, const std::vector<std::int64_t>& offsets,
+                   const std::vector<std::int64_t>& conn) {
         const std::size_t cells = offsets.size() - 1;
-        cell_count_ += cells;
-        if (kind == CellKind::Vertices || kind == CellKind::Lines) {
-            skipped_cells_.emplace_back(what, cells);
-            return;
-        }
         auto index = [&](std::size_t c, std::int64_t i) {
             if (i < 0 || (has_points_ && static_cast<std::uint64_t>(i) >= point_count_))
                 fail(what + " cell " + std::to_string(c) + " uses point " + std::to_string(i) +
@@ -462,6 +380,20 @@ class VtkParser {
                 }
             }
         }
+    }
+
+    void read_cells(CellKind kind) {
+        const std::string what(words_[0]);
+        std::vector<std::int64_t> offsets;
+        std::vector<std::int64_t> conn;
+        if (!read_cell_arrays(what, offsets, conn)) return;
+        const std::size_t cells = offsets.size() - 1;
+        cell_count_ += cells;
+        if (kind == CellKind::Vertices || kind == CellKind::Lines) {
+            skipped_cells_.emplace_back(what, cells);
+            return;
+        }
+        add_cells(kind, what, offsets, conn);
         if (short_cells_ > 0 && kind == CellKind::Polygons) {
             report_.warnings.push_back(std::to_string(short_cells_) + " " + what +
                                        " cells with fewer than 3 points skipped");
@@ -499,7 +431,8 @@ class VtkParser {
         if (upper == "LOOKUP_TABLE") {
             // A standalone colour table: size RGBA entries (floats in ASCII, bytes in BINARY).
             const std::uint64_t size = count_word(2, "table size");
-            skip_values(mul(4, size), binary_ ? Type::UInt8 : Type::Float32, "LOOKUP_TABLE");
+            skip_values(saturating_mul(4, size), binary_ ? VtkType::UInt8 : VtkType::Float32,
+                        "LOOKUP_TABLE");
             return;
         }
         if (section_ == Section::None) fail(key + " outside POINT_DATA / CELL_DATA");
@@ -508,7 +441,7 @@ class VtkParser {
         const std::string name = attribute_name();
         const std::string what = key + " \"" + name + "\"";
         if (upper == "SCALARS") {
-            const Type t = type_word(2);
+            const VtkType t = type_word(2);
             const std::uint64_t comps = words_.size() > 3 ? count_word(3, "component count") : 1;
             const auto next = peek_words();
             if (!next.empty() && iequals(next[0], "LOOKUP_TABLE")) {
@@ -518,11 +451,11 @@ class VtkParser {
             read_array(name, t, comps, n, keep, what);
         } else if (upper == "COLOR_SCALARS") {
             const std::uint64_t comps = count_word(2, "component count");
-            const Type t = binary_ ? Type::UInt8 : Type::Float32;
+            const VtkType t = binary_ ? VtkType::UInt8 : VtkType::Float32;
             if (keep && comps >= 3) {
-                guard_count(mul(comps, n), t, what);
+                guard_count(saturating_mul(comps, n), t, what);
                 mesh_.colors.assign(n, Rgb8{0, 0, 0});
-                read_values(mul(comps, n), t, what, [&](std::size_t i, double v) {
+                read_values(saturating_mul(comps, n), t, what, [&](std::size_t i, double v) {
                     const std::size_t c = i % comps;
                     if (c >= 3) return;
                     const double scaled = binary_ ? v : v * 255.0;  // ASCII colours are in [0, 1]
@@ -530,42 +463,42 @@ class VtkParser {
                         static_cast<std::uint8_t>(std::clamp(std::lround(scaled), 0L, 255L));
                 });
             } else {
-                skip_values(mul(comps, n), t, what);
+                skip_values(saturating_mul(comps, n), t, what);
             }
         } else if (upper == "NORMALS") {
-            const Type t = type_word(2);
+            const VtkType t = type_word(2);
             if (keep) {
-                guard_count(mul(3, n), t, what);
+                guard_count(saturating_mul(3, n), t, what);
                 mesh_.normals.assign(n, Vec3f::Zero());
                 float* out = n ? mesh_.normals[0].data() : nullptr;
-                read_values(mul(3, n), t, what,
+                read_values(saturating_mul(3, n), t, what,
                             [&](std::size_t i, double v) { out[i] = static_cast<float>(v); });
             } else {
-                skip_values(mul(3, n), t, what);
+                skip_values(saturating_mul(3, n), t, what);
             }
         } else if (upper == "VECTORS") {
-            skip_values(mul(3, n), type_word(2), what);
+            skip_values(saturating_mul(3, n), type_word(2), what);
             if (keep) report_.warnings.push_back("VTK point " + what + " skipped");
         } else if (upper == "TEXTURE_COORDINATES") {
             const std::uint64_t dim = count_word(2, "dimension");
-            skip_values(mul(dim, n), type_word(3), what);
+            skip_values(saturating_mul(dim, n), type_word(3), what);
         } else if (upper == "TENSORS") {
-            skip_values(mul(9, n), type_word(2), what);
+            skip_values(saturating_mul(9, n), type_word(2), what);
         } else {  // GLOBAL_IDS, PEDIGREE_IDS
             skip_values(n, type_word(2), what);
         }
     }
 
     // One data array of `tuples` × `comps` values: a point scalar when kept and 1-component.
-    void read_array(const std::string& name, Type t, std::uint64_t comps, std::uint64_t tuples,
+    void read_array(const std::string& name, VtkType t, std::uint64_t comps, std::uint64_t tuples,
                     bool keep, const std::string& what) {
-        const bool as_field = keep && comps == 1 && tuples == point_count_ && t != Type::String;
+        const bool as_field = keep && comps == 1 && tuples == point_count_ && t != VtkType::String;
         if (!as_field) {
-            if (keep && t != Type::String)
+            if (keep && t != VtkType::String)
                 report_.warnings.push_back(
                     "VTK point array \"" + name + "\" with " + std::to_string(comps) +
                     " components skipped (only 1-component arrays are kept)");
-            skip_values(mul(comps, tuples), t, what);
+            skip_values(saturating_mul(comps, tuples), t, what);
             return;
         }
         if (name == "label" && is_integer(t)) {
@@ -605,7 +538,7 @@ class VtkParser {
                 name.replace(i, 3, " ");
             const std::uint64_t comps = count_word(1, "component count");
             const std::uint64_t tuples = count_word(2, "tuple count");
-            const Type t = type_word(3);
+            const VtkType t = type_word(3);
             read_array(name, t, comps, tuples, section_ == Section::Point,
                        "FIELD \"" + field_name + "\" array \"" + name + "\"");
             const auto next = peek_words();

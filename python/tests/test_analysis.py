@@ -62,21 +62,32 @@ def test_analyse_finds_the_dent(analysis):
     assert result.fit.converged
 
 
+def shape_field(result):
+    """The decision field's name: the signed shape change with the run's unit (shape_change_mm)."""
+    return "shape_change_" + (result.report["unit"] or "units")
+
+
 def test_atlas_fields_are_per_vertex_arrays(analysis, dent_pair):
     result, _ = analysis
     reference = glint.load(dent_pair[0])
     fields = result.fields
-    for name in ("angle_max_z0", "angle_mean_z0", "depth_z0", "missing_z0", "count_z0", "seen_z0", "region_z0",
-                 "distance", "distance_tolerance"):
+    shape = shape_field(result)
+    unit = result.report["unit"] or "units"
+    assert list(fields)[0] == shape  # the decision field first, as in every atlas file
+    for name in (shape, "shape_tolerance_" + unit, "seen_z0", "angle_mean_deg_z0", "angle_max_deg_z0",
+                 "missing_fraction_z0", "pixels_z0", "region_id_z0"):
         assert fields[name].shape == (reference.vertex_count,) and fields[name].dtype == np.float32, name
+        assert np.isfinite(fields[name]).all(), f"{name}: unseen vertices hold 0, never NaN"
     np.testing.assert_array_equal(result.atlas.positions, reference.positions)
-    region = fields["region_z0"]
+    region = fields["region_id_z0"]
     assert int((region > 0).sum()) == sum(r["vertices"] for r in result.regions if r["zoom"] == 0)
     # Inside the region the surface moved inward; far from it, it did not.
-    assert np.nanmin(fields["distance"][region > 0]) < -0.3
+    assert fields[shape][region > 0].min() < -0.3
     far = np.linalg.norm(reference.positions - DENT_CENTER, axis=1) > 6
-    assert np.nanmax(np.abs(fields["distance"][far])) < 0.05
+    assert np.abs(fields[shape][far]).max() < 0.05
     assert fields["seen_z0"].max() == 1.0
+    unseen = fields["seen_z0"] == 0
+    assert (fields["angle_mean_deg_z0"][unseen] == 0).all()
 
 
 def test_report_is_report_json(analysis):
@@ -102,7 +113,7 @@ def test_analyse_without_register_on_aligned_copies(dent_pair):
     result = glint.analyse(ref, ref, register=False, **SMALL_SWEEP)
     assert result.regions == [] and result.fit.mode == "identity"
     assert result.output is None
-    assert np.nanmax(np.abs(result.fields["distance"])) < 1e-4
+    assert np.abs(result.fields[shape_field(result)]).max() < 1e-4
 
 
 def test_analyse_from_a_fit_file(dent_pair, tmp_path):
@@ -120,6 +131,20 @@ def test_existing_output_is_refused_then_replaced_with_force(dent_pair, tmp_path
         glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", **SMALL_SWEEP)
     glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", force=True, **SMALL_SWEEP)
     assert (tmp_path / "atlas" / "report.json").is_file()
+
+
+def test_output_holding_the_inputs_is_refused_before_any_work(dent_pair, tmp_path):
+    """Issue 23 item 1: output=<the inputs' folder>, force=True deleted the inputs."""
+    d = tmp_path / "d"
+    d.mkdir()
+    (d / "ref.ply").write_bytes(dent_pair[0].read_bytes())
+    (d / "notes.txt").write_text("precious")
+    with pytest.raises(glint.InputError, match="contains the input"):
+        glint.analyse(d / "ref.ply", d / "ref.ply", register=False, output=d, force=True,
+                      **SMALL_SWEEP)
+    assert (d / "ref.ply").read_bytes() == dent_pair[0].read_bytes()
+    assert (d / "notes.txt").read_text() == "precious"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d"]
 
 
 def test_invalid_option_names_its_key(dent_pair):

@@ -113,3 +113,10 @@ def test_surface_keywords_on_a_mesh_file_are_refused(test_data):
 def test_path_of_the_wrong_type_is_a_type_error():
     with pytest.raises(TypeError):
         glint.load(42)
+
+
+def test_a_truncated_dicom_file_is_an_input_error_not_a_crash(tmp_path):
+    """Issue 23 item 6: GDCM asserted on this folder and killed the interpreter."""
+    (tmp_path / "f").write_bytes(b"\x08\x00\x05\x00")
+    with pytest.raises(glint.InputError, match='no DICOM series in it.*"f": 4 bytes'):
+        glint.load(tmp_path, iso=100)

@@ -99,6 +99,7 @@ class GpuAtlasImpl {
     void write_params(Slot& slot, const View& view, const Scales& scales);
     void record(Slot& slot, const View& view, bool clear_first);
     void record_clear(VkCommandBuffer cmd);
+    void record_frames(Slot& slot, const View& view);
     void wait(Slot& slot);
     [[nodiscard]] ViewNumbers finish(Slot& slot);
     void add_timings(const Slot& slot);

@@ -141,31 +141,9 @@ void GpuAtlasImpl::record_clear(VkCommandBuffer cmd) {
     }
 }
 
-void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
+// Draws this view's two frames: the compute rasteriser, or the graphics pipeline's render passes.
+void GpuAtlasImpl::record_frames(Slot& slot, const View& view) {
     VkCommandBuffer cmd = slot.cmd;
-    begin(cmd);
-    if (clear_first) record_clear(cmd);
-    // Timestamps, each written once every command before it has completed.
-    const auto stamp = [&](std::uint32_t query) {
-        if (slot.timestamps != VK_NULL_HANDLE)
-            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, query);
-    };
-    if (slot.timestamps != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 4);
-    if (raster_ == nullptr) {
-        // Barrier: the previous view's passes (atlas, scratch and pixel buffer writes) and its
-        // summary copy, and the clear above, come before this view's summary fill and passes.
-        barrier(
-            cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-            VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-            VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-            VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-        vkCmdFillBuffer(cmd, slot.summary.buffer, 0, VK_WHOLE_SIZE, 0u);
-        // Barrier: the zeroed summary before the pixel pass's atomics on it.
-        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    }
-    stamp(0);
     if (raster_ != nullptr) {
         // The frames in compute. Its first barrier stands for the two above: the previous
         // view's passes and copies (earlier) and the clear come before the fills (the summary's
@@ -200,6 +178,34 @@ void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
                            slot.height, pipelines_->graphics[examined_.cull_back_faces ? 1 : 0],
                            graphics_layout, examined_.buffers, view);
     }
+}
+
+void GpuAtlasImpl::record(Slot& slot, const View& view, bool clear_first) {
+    VkCommandBuffer cmd = slot.cmd;
+    begin(cmd);
+    if (clear_first) record_clear(cmd);
+    // Timestamps, each written once every command before it has completed.
+    const auto stamp = [&](std::uint32_t query) {
+        if (slot.timestamps != VK_NULL_HANDLE)
+            vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, slot.timestamps, query);
+    };
+    if (slot.timestamps != VK_NULL_HANDLE) vkCmdResetQueryPool(cmd, slot.timestamps, 0, 4);
+    if (raster_ == nullptr) {
+        // Barrier: the previous view's passes (atlas, scratch and pixel buffer writes) and its
+        // summary copy, and the clear above, come before this view's summary fill and passes.
+        barrier(
+            cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+        vkCmdFillBuffer(cmd, slot.summary.buffer, 0, VK_WHOLE_SIZE, 0u);
+        // Barrier: the zeroed summary before the pixel pass's atomics on it.
+        barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    stamp(0);
+    record_frames(slot, view);
     stamp(1);
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_->layout, 0, 1,
                             &slot.set, 0, nullptr);

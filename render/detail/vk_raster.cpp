@@ -135,29 +135,15 @@ void destroy_raster_target(VkDevice device, RasterTarget& target) noexcept {
     target.set = VK_NULL_HANDLE;
 }
 
-void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pipelines,
-                                  std::span<const RasterJob> jobs, int width, int height,
-                                  const View& view, VkPipelineStageFlags earlier,
-                                  std::span<const VkBuffer> zero, VkPipelineStageFlags later_stages,
-                                  VkAccessFlags later_access) {
-    const PushConstants normal = normal_push_constants(view);
-    RasterPushConstants pc{};
-    std::memcpy(pc.clip_from_world, normal.clip_from_world, sizeof(pc.clip_from_world));
-    std::memcpy(pc.depth_row, normal.depth_row, sizeof(pc.depth_row));
-    pc.size[0] = static_cast<std::uint32_t>(width);
-    pc.size[1] = static_cast<std::uint32_t>(height);
-    const auto push = [&](const RasterJob& job) {
-        pc.size[2] = job.mesh->index_count / 3;
-        pc.size[3] = job.cull_back_faces ? GLINT_RASTER_CULL : 0u;
-        vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.layout, 0, 1,
-                                &job.target->set, 0, nullptr);
-    };
+namespace {
 
-    // Barrier: the previous frame's passes wrote and read the buffers, and `earlier` read the
-    // images, before the fills and the attribute pass overwrite them, and what `earlier` wrote
-    // is visible to this frame's passes; the images' contents are discarded (UNDEFINED →
-    // GENERAL) since the attribute pass writes every sub-sample.
+// Barrier: the previous frame's passes wrote and read the buffers, and `earlier` read the
+// images, before the fills and the attribute pass overwrite them, and what `earlier` wrote is
+// visible to this frame's passes; the images' contents are discarded (UNDEFINED → GENERAL) since
+// the attribute pass writes every sub-sample. Then the visibility buffers are cleared, the large
+// passes' indirect dispatches reset and the caller's `zero` buffers zeroed.
+void record_clear_targets(VkCommandBuffer cmd, std::span<const RasterJob> jobs,
+                          VkPipelineStageFlags earlier, std::span<const VkBuffer> zero) {
     std::vector<VkImageMemoryBarrier> images;
     for (const RasterJob& job : jobs) {
         for (VkImage image : {job.normal_depth, job.primitive}) {
@@ -193,6 +179,30 @@ void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pi
         vkCmdFillBuffer(cmd, t.large.buffer, 12, 4, 0u);
     }
     for (VkBuffer b : zero) vkCmdFillBuffer(cmd, b, 0, VK_WHOLE_SIZE, 0u);
+}
+
+}  // namespace
+
+void record_compute_normal_passes(VkCommandBuffer cmd, const RasterPipelines& pipelines,
+                                  std::span<const RasterJob> jobs, int width, int height,
+                                  const View& view, VkPipelineStageFlags earlier,
+                                  std::span<const VkBuffer> zero, VkPipelineStageFlags later_stages,
+                                  VkAccessFlags later_access) {
+    const PushConstants normal = normal_push_constants(view);
+    RasterPushConstants pc{};
+    std::memcpy(pc.clip_from_world, normal.clip_from_world, sizeof(pc.clip_from_world));
+    std::memcpy(pc.depth_row, normal.depth_row, sizeof(pc.depth_row));
+    pc.size[0] = static_cast<std::uint32_t>(width);
+    pc.size[1] = static_cast<std::uint32_t>(height);
+    const auto push = [&](const RasterJob& job) {
+        pc.size[2] = job.mesh->index_count / 3;
+        pc.size[3] = job.cull_back_faces ? GLINT_RASTER_CULL : 0u;
+        vkCmdPushConstants(cmd, pipelines.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(pc), &pc);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines.layout, 0, 1,
+                                &job.target->set, 0, nullptr);
+    };
+
+    record_clear_targets(cmd, jobs, earlier, zero);
     // Barrier: the fills before the small pass's atomics on both buffers (and before the
     // caller's shaders that use the buffers in `zero`).
     barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,

@@ -58,6 +58,9 @@
     return [c.r, c.g, c.b];
   }
   function seenField(f) { return byName["seen_z" + (f.zoom >= 0 ? f.zoom : state.zoom)]; }
+  // The decision field, the signed shape change ("shape_change_mm"), is the first field
+  // (report/atlas_fields.h); the page opens on it.
+  const shapeField = fields.find((f) => f.name.startsWith("shape_change_")) || fields[0];
   function colourOf(f, v, low, high) {
     const x = f.data[v];
     if (Number.isNaN(x)) return GREY;
@@ -257,7 +260,7 @@
   // The direction a region faces: the mean of its vertices' normals; when they cancel out, its
   // best view's direction (the sweep's view that saw its strongest deviation).
   function regionFacing(r) {
-    const ids = byName["region_z" + state.zoom], normal = geometry.attributes.normal.array;
+    const ids = byName["region_id_z" + state.zoom], normal = geometry.attributes.normal.array;
     const sum = new THREE.Vector3();
     let count = 0;
     if (ids)
@@ -419,7 +422,7 @@
     $("subtitle").textContent = DATA.mesh.vertices + " vertices, " + DATA.mesh.triangles + " triangles" + shown +
       " · lengths in " + UNIT +
       " · " + z0.regions.length + " region(s) at zoom 0 · coverage " + fmt(100 * z0.coverage) + " %";
-    selectField(byName.distance ? "distance" : fields[0].name);
+    selectField(shapeField.name);
     buildRegions();
     buildEvidence();
     try {
@@ -548,7 +551,7 @@
     const verdict = { ok: false, checks: {}, errors: [] };
     try {
       await nextFrame();
-      selectField(byName.distance ? "distance" : fields[0].name);
+      selectField(shapeField.name);
       verdict.checks.canvas = checkCanvas(readCanvas());
       verdict.checks.region_click = await checkRegionClick();
       checkColourAndPick(readCanvas(), verdict);

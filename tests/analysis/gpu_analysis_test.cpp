@@ -5,6 +5,7 @@
 
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
+#include "tests/scanner/dented_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -13,43 +14,11 @@
 namespace glint {
 namespace {
 
-/// The reference condyle and a re-tessellated examined one with a 0.4 mm dent.
-struct Pair {
-    Mesh reference = make_phantom(
-        {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 4});
-    Mesh examined = [] {
-        Mesh m = make_phantom(
-            {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 40});
-        apply_damage(
-            m, {DamageSpec{
-                   .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
-        return m;
-    }();
-};
-
-const Pair& pair() {
-    static const Pair p;
-    return p;
-}
-
-SweepOptions vulkan_options(Accumulation accumulate) {
-    SweepOptions o;
-    o.plan.azimuth_step_deg = 60;
-    o.plan.elevations_deg = {-30, 30};
-    o.plan.size = 96;
-    o.render.backend = Backend::Vulkan;
-    // lavapipe, or the device GLINT_DEVICE names.
-    if (std::getenv("GLINT_DEVICE") == nullptr) o.render.device = "llvmpipe";
-    o.render.supersample = 2;
-    o.accumulate = accumulate;
-    return o;
-}
-
 TEST(GpuAnalysis, DecidesTheSameRegionsAsTheReadBackPath) {
-    const Pair& p = pair();
+    const test::DentedPair& p = test::dented_pair();
     AnalysisOptions o;
     o.fit.mode = FitMode::Identity;
-    o.sweep = vulkan_options(Accumulation::Auto);  // no output folder: the GPU path
+    o.sweep = test::small_vulkan_sweep(Accumulation::Auto);  // no output folder: the GPU path
     const AnalysisResult g = analyse(p.reference, p.examined, o);
     o.sweep.accumulate = Accumulation::Host;
     const AnalysisResult h = analyse(p.reference, p.examined, o);

@@ -80,6 +80,20 @@ TEST(MalformedInput, RejectsTruncatedAsciiPlyNamingTheLine) {
     EXPECT_CONTAINS(msg, "line 12");
 }
 
+// A property declared twice (x twice, no y) was read as y = 0 without a word.
+TEST(MalformedInput, RejectsAPlyPropertyDeclaredTwiceNamingTheLine) {
+    const auto path =
+        write_bytes("twice_x.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float x\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+                    "3 0 1 2\n");
+    const std::string msg = load_error<InputError>(path);
+    EXPECT_CONTAINS(msg, path.string());
+    EXPECT_CONTAINS(msg, "line 5");
+    EXPECT_CONTAINS(msg, "property \"x\" declared twice in element \"vertex\"");
+}
+
 TEST(MalformedInput, RejectsUnparsableAsciiPlyValueNamingTheLine) {
     const auto path =
         write_bytes("garbage_ascii.ply",

@@ -129,11 +129,18 @@ TEST(WritePly, AddsQualityForMeshLabAndScalarNamesForCloudCompare) {
     in.scalars.erase(in.scalars.begin() + 1);  // no field named quality of its own
     const auto path = out_dir() / "viewers.ply";
     write_ply(in, path, {.quality_scalar = "damage", .cloudcompare_names = true});
+    // Each scalar once, as CloudCompare names it, then MeshLab's quality: no other copy.
+    const std::string header = read_text(path).substr(0, read_text(path).find("end_header"));
+    EXPECT_EQ(count(header, "property float scalar_damage\n"), 1u) << header;
+    EXPECT_EQ(count(header, "property float damage\n"), 0u) << header;
+    EXPECT_EQ(count(header, "property float quality\n"), 1u) << header;
+    EXPECT_LT(header.find("scalar_damage"), header.find("quality")) << "the field comes first";
+    // glint reads CloudCompare's scalar_<name> back as <name>.
     const LoadedMesh loaded = load_mesh(path, kAsStored);
     ASSERT_NE(loaded.mesh.find_scalar("quality"), nullptr);
-    ASSERT_NE(loaded.mesh.find_scalar("scalar_damage"), nullptr);
+    ASSERT_NE(loaded.mesh.find_scalar("damage"), nullptr);
+    EXPECT_EQ(loaded.mesh.find_scalar("scalar_damage"), nullptr);
     EXPECT_EQ(loaded.mesh.find_scalar("quality")->values, in.find_scalar("damage")->values);
-    EXPECT_EQ(loaded.mesh.find_scalar("scalar_damage")->values, in.find_scalar("damage")->values);
     EXPECT_EQ(loaded.mesh.find_scalar("damage")->values, in.find_scalar("damage")->values);
     EXPECT_THROW(write_ply(in, out_dir() / "bad_quality.ply", {.quality_scalar = "nope"}),
                  InputError);
@@ -179,6 +186,21 @@ TEST(WriteVtp, ArraysAreExactIncludingNaN) {
     const auto points = vtp_floats(xml, "Points");
     ASSERT_EQ(points.size(), 18u);
     EXPECT_EQ(points[3], -1.0f);  // vertex 1 = (-1, 0, 0)
+}
+
+// The first scalar is the one a viewer opens on: VTK makes the first SCALARS block the active
+// scalars (a COLOR_SCALARS block before it would be), VTP names it in PointData's Scalars.
+TEST(WriteVtkAndVtp, TheFirstScalarComesFirst) {
+    const Mesh in = octahedron();
+    write_vtk(in, out_dir() / "first.vtk");
+    const std::string vtk = read_text(out_dir() / "first.vtk");
+    EXPECT_LT(vtk.find("SCALARS damage"), vtk.find("NORMALS"));
+    EXPECT_LT(vtk.find("SCALARS damage"), vtk.find("COLOR_SCALARS"));
+    EXPECT_LT(vtk.find("SCALARS damage"), vtk.find("SCALARS quality"));
+    write_vtp(in, out_dir() / "first.vtp");
+    const std::string vtp = read_text(out_dir() / "first.vtp");
+    EXPECT_NE(vtp.find("<PointData Scalars=\"damage\""), std::string::npos);
+    EXPECT_LT(vtp.find("Name=\"damage\""), vtp.find("Name=\"Normals\""));
 }
 
 TEST(WriteMesh, ChoosesTheFormatByExtension) {

@@ -5,6 +5,7 @@
 #include "mesh/phantom.h"
 #include "mesh/surface_index.h"
 #include "render/context.h"
+#include "tests/scanner/dented_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -14,45 +15,13 @@
 namespace glint {
 namespace {
 
-/// The reference condyle and a re-tessellated examined one with a 0.4 mm dent.
-struct Pair {
-    Mesh reference = make_phantom(
-        {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Ico, .resolution = 4});
-    Mesh examined = [] {
-        Mesh m = make_phantom(
-            {.kind = PhantomKind::Condyle, .scheme = TessellationScheme::Uv, .resolution = 40});
-        apply_damage(
-            m, {DamageSpec{
-                   .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
-        return m;
-    }();
-};
-
-const Pair& pair() {
-    static const Pair p;
-    return p;
-}
-
-SweepOptions vulkan_options(Accumulation accumulate) {
-    SweepOptions o;
-    o.plan.azimuth_step_deg = 60;
-    o.plan.elevations_deg = {-30, 30};
-    o.plan.size = 96;
-    o.render.backend = Backend::Vulkan;
-    // lavapipe, or the device GLINT_DEVICE names.
-    if (std::getenv("GLINT_DEVICE") == nullptr) o.render.device = "llvmpipe";
-    o.render.supersample = 2;
-    o.accumulate = accumulate;
-    return o;
-}
-
 TEST(Inspect, ReadsFramesBackFromTheGpuOnlyWhenPerViewExrsAreWritten) {
-    const Pair& p = pair();
+    const test::DentedPair& p = test::dented_pair();
     const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "gpu_sweep";
     std::filesystem::create_directories(dir);
     InspectOptions o;
     o.analysis.fit.mode = FitMode::Identity;
-    o.analysis.sweep = vulkan_options(Accumulation::Auto);
+    o.analysis.sweep = test::small_vulkan_sweep(Accumulation::Auto);
     o.analysis.sweep.plan.size = 48;
     o.exports.write_views = false;
     o.exports.replace_existing = true;
@@ -73,7 +42,7 @@ TEST(Inspect, ReadsFramesBackFromTheGpuOnlyWhenPerViewExrsAreWritten) {
 // One BVH per surface per run (mesh/surface_index.h): the fit, the distance, the Embree sweep
 // and the pictures share them; a run used to build five, three over the reference.
 TEST(Inspect, BuildsOneBvhPerSurface) {
-    const Pair& p = pair();
+    const test::DentedPair& p = test::dented_pair();
     const std::filesystem::path dir = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "inspect_bvh";
     InspectOptions o;
     o.analysis.fit.mode = FitMode::Register;

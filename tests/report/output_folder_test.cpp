@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
+#include <string>
 
 namespace glint {
 namespace {
@@ -99,6 +102,117 @@ TEST(OutputFolder, RefusesAFileInPlaceOfTheFolder) {
     const fs::path dir = base("file");
     write_file_atomically(dir / "atlas", "a file");
     EXPECT_THROW(OutputFolder(dir / "atlas"), InputError);
+}
+
+// A file and its folder, as a user makes them.
+void write_new(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path);
+    std::string text;
+    std::getline(in, text);
+    return text;
+}
+
+std::size_t entries(const fs::path& dir) {
+    return static_cast<std::size_t>(
+        std::distance(fs::directory_iterator(dir), fs::directory_iterator{}));
+}
+
+// Item 1 of issue 23: `-o d --force` where d holds the inputs deleted them.
+TEST(OutputFolder, RefusesAFolderHoldingAnInputBeforeMakingAnything) {
+    const fs::path dir = base("holds_input");
+    write_new(dir / "d" / "ref.ply", "input");
+    protect_input(dir / "d" / "ref.ply");
+    try {
+        OutputFolder out(dir / "d", /*replace_existing=*/true);
+        FAIL() << "an output folder holding an input was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("contains the input"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_text(dir / "d" / "ref.ply"), "input");
+    EXPECT_EQ(entries(dir), 1u);  // nothing staged beside it
+}
+
+// Item 4: without --force a folder that appeared during the run is kept, the run refused.
+TEST(OutputFolder, KeepsATargetThatAppearedDuringTheRun) {
+    const fs::path dir = base("appeared");
+    OutputFolder out(dir / "atlas");
+    write_file_atomically(out.file("report.json"), "mine");
+    fs::create_directories(dir / "atlas");
+    write_file_atomically(dir / "atlas" / "report.json", "theirs");
+    try {
+        out.commit();
+        FAIL() << "commit replaced a folder that appeared during the run";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("appeared during the run"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(read_text(dir / "atlas" / "report.json"), "theirs");
+}
+
+// Item 4 with an empty folder made by another program: still refused (renameat2 NOREPLACE).
+TEST(OutputFolder, KeepsAnEmptyTargetThatAppearedDuringTheRun) {
+    const fs::path dir = base("appeared_empty");
+    OutputFolder out(dir / "atlas");
+    write_file_atomically(out.file("report.json"), "mine");
+    fs::create_directories(dir / "atlas");
+    EXPECT_THROW(out.commit(), InputError);
+    EXPECT_TRUE(fs::is_directory(dir / "atlas"));
+}
+
+// Item 5: a user's folder named like a staging folder is never taken over or deleted.
+TEST(OutputFolder, NeverTakesOverAUserFolderNamedLikeItsStaging) {
+    const fs::path dir = base("user_partial");
+    const fs::path user = dir / ("atlas.partial-" + std::to_string(::getpid()));
+    write_new(user / "notes.txt", "precious");
+    {
+        OutputFolder out(dir / "atlas");
+        EXPECT_NE(out.staging().parent_path(), user);
+        write_file_atomically(out.file("report.json"), "new");
+        out.commit();
+    }
+    EXPECT_EQ(read_text(user / "notes.txt"), "precious");
+    EXPECT_EQ(read_text(dir / "atlas" / "report.json"), "new");
+}
+
+// Item 5: leftovers of killed runs (marked, process gone) are removed; unmarked ones stay.
+TEST(OutputFolder, RemovesTheMarkedLeftoversOfKilledRunsOnly) {
+    const fs::path dir = base("leftovers");
+    const pid_t child = ::fork();
+    if (child == 0) {
+        OutputFolder out(dir / "atlas");
+        write_file_atomically(out.file("report.json"), "half");
+        ::_exit(0);  // killed: no destructor runs
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    const fs::path left = dir / ("atlas.partial-" + std::to_string(child));
+    ASSERT_TRUE(fs::exists(left / kStagingMarker));
+    const fs::path unmarked = dir / "atlas.partial-1";
+    write_new(unmarked / "notes.txt", "user's");
+    {
+        OutputFolder out(dir / "atlas");
+        out.commit();
+    }
+    EXPECT_FALSE(fs::exists(left));
+    EXPECT_EQ(read_text(unmarked / "notes.txt"), "user's");
+    EXPECT_FALSE(fs::exists(dir / "atlas" / kStagingMarker));
+}
+
+// Item 5: --force replaces with one exchange: the old folder is whole or the new one is.
+TEST(OutputFolder, ReplacingLeavesNoStagingOrAsideFolders) {
+    const fs::path dir = base("exchange");
+    for (const char* content : {"one", "two"}) {
+        OutputFolder out(dir / "atlas", /*replace_existing=*/true);
+        write_file_atomically(out.file("report.json"), content);
+        out.commit();
+    }
+    EXPECT_EQ(read_text(dir / "atlas" / "report.json"), "two");
+    EXPECT_EQ(entries(dir), 1u);
 }
 
 }  // namespace

@@ -128,18 +128,18 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_EQ(indices[3 * 5 + 1], ref.triangles[5][1]);
     std::map<std::string, nlohmann::json> fields;
     for (const auto& f : data["fields"]) fields[f["name"]] = f;
-    for (const char* name :
-         {"distance", "angle_mean_z0", "angle_max_z0", "region_z0", "seen_z0", "count_z0"})
+    for (const char* name : {"shape_change_mm", "angle_mean_deg_z0", "angle_max_deg_z0",
+                             "region_id_z0", "seen_z0", "pixels_z0"})
         ASSERT_TRUE(fields.count(name)) << name;
-    const auto distance = decode<float>(fields["distance"]["values"]);
+    const auto distance = decode<float>(fields["shape_change_mm"]["values"]);
     ASSERT_EQ(distance.size(), ref.vertex_count());
     for (std::size_t v = 0; v < distance.size(); v += 97)
         EXPECT_EQ(distance[v], result.distance[v]);
-    const auto region = decode<float>(fields["region_z0"]["values"]);
+    const auto region = decode<float>(fields["region_id_z0"]["values"]);
     for (std::size_t v = 0; v < region.size(); ++v)
         ASSERT_EQ(region[v], static_cast<float>(result.decisions[0].regions.region_of_vertex[v]));
-    EXPECT_EQ(fields["distance"]["range"][0].get<double>(),
-              -fields["distance"]["range"][1].get<double>());
+    EXPECT_EQ(fields["shape_change_mm"]["range"][0].get<double>(),
+              -fields["shape_change_mm"]["range"][1].get<double>());
     // The sweep's vertex normals, int16 scaled by 32767 (the live view renders with them).
     const auto normals = decode<std::int16_t>(data["mesh"]["normals"]);
     ASSERT_EQ(normals.size(), 3 * ref.vertex_count());
@@ -201,8 +201,8 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_EQ(small["mesh"]["shown"]["triangles"].get<std::size_t>(), shown_indices.size() / 3);
     std::map<std::string, nlohmann::json> small_fields;
     for (const auto& f : small["fields"]) small_fields[f["name"]] = f;
-    const auto shown_distance = decode<float>(small_fields["distance"]["values"]);
-    const auto shown_region = decode<float>(small_fields["region_z0"]["values"]);
+    const auto shown_distance = decode<float>(small_fields["shape_change_mm"]["values"]);
+    const auto shown_region = decode<float>(small_fields["region_id_z0"]["values"]);
     ASSERT_EQ(shown_distance.size(), ids.size());
     std::vector<std::uint8_t> is_shown(ref.vertex_count(), 0);
     for (std::size_t k = 0; k < ids.size(); ++k) {

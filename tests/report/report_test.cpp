@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <numeric>
@@ -63,6 +64,15 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     const auto* truth_read = atlas.find_scalar("truth_damage");
     ASSERT_NE(truth_read, nullptr);
     EXPECT_EQ(truth_read->values, truth);
+    // The decision field first, named with its unit, and MeshLab's quality the same values; no
+    // field holds NaN (unseen is 0 with seen_z0 = 0: report/atlas_fields.h).
+    ASSERT_FALSE(atlas.scalars.empty());
+    EXPECT_EQ(atlas.scalars.front().name, shape_change_field(atlas.unit));
+    ASSERT_NE(atlas.find_scalar("quality"), nullptr);
+    EXPECT_EQ(atlas.find_scalar("quality")->values, atlas.scalars.front().values);
+    for (const auto& f : atlas.scalars)
+        for (float x : f.values) ASSERT_TRUE(std::isfinite(x)) << f.name;
+    EXPECT_EQ(atlas.find_scalar("depth_z0"), nullptr);  // the view-ray depth misled: dropped
 
     std::ifstream in(dir / "atlas" / "report.json");
     const nlohmann::json r = nlohmann::json::parse(in);

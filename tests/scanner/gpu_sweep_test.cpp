@@ -24,6 +24,7 @@
 #include "mesh/error.h"
 #include "mesh/phantom.h"
 #include "render/gpu_atlas.h"
+#include "tests/scanner/dented_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -40,41 +41,6 @@ namespace {
 
 constexpr int kAngleUlps = 1;
 constexpr double kMeanTolerance = 1e-6;
-
-Mesh condyle(TessellationScheme scheme, int resolution) {
-    return make_phantom({.kind = PhantomKind::Condyle, .scheme = scheme, .resolution = resolution});
-}
-
-/// The reference condyle and a re-tessellated examined one with a 0.4 mm dent.
-struct Pair {
-    Mesh reference = condyle(TessellationScheme::Ico, 4);
-    Mesh examined = [] {
-        Mesh m = condyle(TessellationScheme::Uv, 40);
-        apply_damage(
-            m, {DamageSpec{
-                   .kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
-        return m;
-    }();
-};
-
-const Pair& pair() {
-    static const Pair p;
-    return p;
-}
-
-SweepOptions vulkan_options(Accumulation accumulate, Raster raster = Raster::Auto) {
-    SweepOptions o;
-    o.render.raster = raster;
-    o.plan.azimuth_step_deg = 60;
-    o.plan.elevations_deg = {-30, 30};
-    o.plan.size = 96;
-    o.render.backend = Backend::Vulkan;
-    // lavapipe, or the device GLINT_DEVICE names (a GPU machine checks its own arithmetic).
-    if (std::getenv("GLINT_DEVICE") == nullptr) o.render.device = "llvmpipe";
-    o.render.supersample = 2;
-    o.accumulate = accumulate;
-    return o;
-}
 
 std::int64_t ulps(float a, float b) {
     std::int32_t ia = 0, ib = 0;
@@ -161,12 +127,12 @@ void expect_same_sweep(const SweepResult& host, const SweepResult& gpu, double m
 }
 
 void expect_same_on_a_dented_phantom(Raster raster) {
-    const Pair& p = pair();
-    SweepOptions host = vulkan_options(Accumulation::Host, raster);
+    const test::DentedPair& p = test::dented_pair();
+    SweepOptions host = test::small_vulkan_sweep(Accumulation::Host, raster);
     const SweepPlan plan = make_sweep_plan(p.reference, host.plan);
     const SweepResult h = run_sweep(p.reference, p.examined, plan, host);
-    const SweepResult g =
-        run_sweep(p.reference, p.examined, plan, vulkan_options(Accumulation::Gpu, raster));
+    const SweepResult g = run_sweep(p.reference, p.examined, plan,
+                                    test::small_vulkan_sweep(Accumulation::Gpu, raster));
     expect_same_sweep(h, g, 180.0, "angle, ortho, s=2, 96²");
     // Not trivially equal: the dent deviates, and most of the surface was observed.
     EXPECT_GT(
@@ -208,8 +174,8 @@ SweepPlan perspective_plan(const Mesh& mesh, int size) {
 }
 
 void expect_same_for_perspective_views_rgb_and_a_mask(Raster raster) {
-    const Pair& p = pair();
-    SweepOptions host = vulkan_options(Accumulation::Host, raster);
+    const test::DentedPair& p = test::dented_pair();
+    SweepOptions host = test::small_vulkan_sweep(Accumulation::Host, raster);
     host.metric = Metric::RgbAbs;
     host.render.supersample = 1;
     host.render.min_coverage = 0.5f;  // the frame mask (render/renderer.cpp finish_frame)
@@ -243,9 +209,9 @@ Mesh cut_off(const Mesh& m, float cut) {
 }
 
 void expect_same_where_the_examined_surface_is_missing(Raster raster) {
-    const Pair& p = pair();
+    const test::DentedPair& p = test::dented_pair();
     const Mesh examined = cut_off(p.examined, 7.0f);
-    SweepOptions host = vulkan_options(Accumulation::Host, raster);
+    SweepOptions host = test::small_vulkan_sweep(Accumulation::Host, raster);
     host.render.supersample = 3;
     SweepOptions gpu = host;
     gpu.accumulate = Accumulation::Gpu;
@@ -271,8 +237,8 @@ TEST(GpuSweep, GivesTheReadBackAtlasWithTheComputeRasteriser) {
 }
 
 TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {
-    const Pair& p = pair();
-    SweepOptions o = vulkan_options(Accumulation::Auto);
+    const test::DentedPair& p = test::dented_pair();
+    SweepOptions o = test::small_vulkan_sweep(Accumulation::Auto);
     o.render.backend = Backend::Embree;
     o.render.device.clear();
     o.plan.elevations_deg = {30};
@@ -285,8 +251,8 @@ TEST(GpuSweep, FallsBackToTheReadBackPathOnEmbreeAndSaysWhy) {
 }
 
 TEST(GpuSweep, ObserverSeesEveryViewInOrderWithoutFramesAndCanStopTheSweep) {
-    const Pair& p = pair();
-    SweepOptions o = vulkan_options(Accumulation::Gpu);
+    const test::DentedPair& p = test::dented_pair();
+    SweepOptions o = test::small_vulkan_sweep(Accumulation::Gpu);
     o.plan.size = 64;
     const SweepPlan plan = make_sweep_plan(p.reference, o.plan);
     std::vector<int> seen;

@@ -11,7 +11,7 @@ loaded from disk (file://…/report.html#selftest); its self-test writes a JSON 
   - any console error, uncaught exception or error log entry appeared;
   - the page asked for anything over the network, or the HTML names an external resource;
   - the screenshot's 3D view is blank;
-  - the known vertex's value differs from atlas.ply's `distance`, or its expected colour from
+  - the known vertex's value differs from atlas.ply's shape change (`scalar_shape_change_<unit>`), or its expected colour from
     the diverging map computed here (ColorBrewer RdBu, 9 classes, reversed);
   - the region table does not list report.json's regions.
 WebGL runs on SwiftShader (--use-angle=swiftshader --enable-unsafe-swiftshader): no GPU needed.
@@ -173,11 +173,13 @@ def check_screenshot(shot, rect, workdir):
 def check_verdict(verdict, atlas_dir):
     problems = [] if verdict.get("ok") else ["self-test verdict not ok"]
     colour = verdict["checks"].get("colour", {})
-    if colour.get("field") == "distance":
-        values = read_ply(os.path.join(atlas_dir, "atlas.ply"))["distance"]
+    field = colour.get("field", "")
+    if field.startswith("shape_change_"):
+        # The page's field has the atlas's name; the PLY writes it as CloudCompare names it.
+        values = read_ply(os.path.join(atlas_dir, "atlas.ply"))["scalar_" + field]
         v, value = colour["vertex"], colour["value"]
         if abs(values[v] - value) > 1e-6 * max(1.0, abs(value)):
-            problems.append(f"vertex {v}: page value {value}, atlas.ply distance {values[v]}")
+            problems.append(f"vertex {v}: page value {value}, atlas.ply {field} {values[v]}")
         low, high = colour["low"], colour["high"]
         if not (high > 0 and abs(low + high) <= 1e-9 * high):
             problems.append(f"distance range [{low}, {high}] is not symmetric about 0")
@@ -187,7 +189,7 @@ def check_verdict(verdict, atlas_dir):
         if abs(value) < 0.2 * high:
             problems.append(f"the known vertex's value {value} is too pale to test the colour map")
     else:
-        problems.append("the colour check did not use the signed distance")
+        problems.append(f"the colour check used {field!r}, not the signed shape change")
     return problems
 
 

@@ -179,7 +179,9 @@ def test_outputs_are_where_slicer_reads_them(run):
     vtp = etree.parse(str(outputs["atlas"])).getroot()
     assert vtp.get("type") == "PolyData"
     arrays = {a.get("Name") for a in vtp.iter("DataArray")}
-    assert {"angle_mean_z0", "distance", "region_z0", "seen_z0"} <= arrays
+    assert {"angle_mean_deg_z0", "shape_change_mm", "region_id_z0", "seen_z0"} <= arrays
+    # Slicer opens the model on its active scalar: the signed shape change, with its unit.
+    assert vtp.find(".//PointData").get("Scalars") == "shape_change_mm"
     points = int(vtp.find(".//Piece").get("NumberOfPoints"))
     assert points == 2562  # the ico-4 condyle's vertices: the atlas is the reference
     rows = outputs["regions"].read_text().splitlines()

@@ -1,15 +1,20 @@
 #!/usr/bin/env python3
 """Checks what real viewers read from a glint atlas against the values glint wrote.
 
-The truth is atlas.ply as written, parsed here with nothing but the standard library:
+The truth is atlas.ply as written, parsed here with nothing but the standard library. Every
+mode first checks the atlas itself (README "The atlas fields"): its first field is the signed
+shape change named with its unit (shape_change_mm), written once as scalar_<name> (no other
+copy but MeshLab's `quality`, which holds the same values), no field holds NaN, and some
+vertices are unseen (seen_z0 = 0, their angles 0), so the viewers meet the sentinel.
 
   viewers_check.py vtk ATLAS_DIR
       VTK (python3-vtk9, the reader ParaView and 3D Slicer use) reads atlas.vtp and atlas.vtk:
-      same points, triangles and every scalar (NaN exact in .vtp, the documented number in .vtk).
-  viewers_check.py meshlab ATLAS_DIR MESHLAB_OUT.ply
-      The PLY meshlabserver wrote after loading atlas.ply holds `quality` = the primary field.
+      same points, triangles and every field, and the shape change as the active scalars.
+  viewers_check.py meshlab ATLAS_DIR MESHLAB_OUT.ply [COLORIZED.ply]
+      The PLY meshlabserver wrote after loading atlas.ply holds `quality` = the shape change;
+      after "Colorize by vertex Quality", its colours follow the quality (not one colour).
   viewers_check.py cloudcompare ATLAS_DIR FIELD_PREFIX EXPORT.asc [EXPORT.asc …]
-      CloudCompare's ASCII export of the atlas's vertices holds every scalar with its values.
+      CloudCompare's ASCII export of the atlas's vertices holds every field with its values.
 
 Exit 0 when everything matches, 1 with the first mismatches listed.
 """
@@ -20,7 +25,6 @@ import sys
 PLY_TYPES = {"char": "b", "uchar": "B", "short": "h", "ushort": "H", "int": "i", "uint": "I",
              "float": "f", "double": "d", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
              "int32": "i", "uint32": "I", "float32": "f", "float64": "d"}
-VTK_LEGACY_NAN = -9999.0  # mesh/write.h WriteOptions::vtk_legacy_nan
 
 
 def read_ply(path):
@@ -67,19 +71,46 @@ def compare(what, expected, found, problems, tol=1e-6):
                         f"{found[i]} read, {expected[i]} written")
 
 
-def scalar_names(ply):
-    """The atlas scalars: every property except geometry, colour, label and the viewer copies."""
-    fixed = {"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue", "alpha", "label", "quality"}
-    return [n for n in ply if n not in fixed and not n.startswith("scalar_")]
+def atlas_fields(ply):
+    """The atlas fields in file order: the PLY's scalar_<name> properties, as <name>."""
+    return {n[len("scalar_"):]: v for n, v in ply.items() if n.startswith("scalar_")}
+
+
+def check_atlas(atlas):
+    """The atlas.ply itself: what every viewer then reads. Returns (fields, problems)."""
+    ply = read_ply(f"{atlas}/atlas.ply")
+    fields = atlas_fields(ply)
+    problems = []
+    names = list(fields)
+    if not names or not names[0].startswith("shape_change_"):
+        problems.append(f"atlas.ply: the first field is {names[:1]}, not shape_change_<unit>")
+    fixed = {"x", "y", "z", "nx", "ny", "nz", "red", "green", "blue", "quality"}
+    copies = [n for n in ply if n not in fixed and not n.startswith("scalar_")]
+    if copies:
+        problems.append(f"atlas.ply: properties other than scalar_<name>: {copies}")
+    for name, values in list(fields.items()) + [("quality", ply.get("quality", []))]:
+        bad = sum(1 for v in values if not math.isfinite(v))
+        if bad:
+            problems.append(f"atlas.ply: {name} holds {bad} NaN or infinite values")
+    if names and ply.get("quality") != fields[names[0]]:
+        problems.append(f"atlas.ply: quality is not {names[0]}")
+    unseen = [i for i, s in enumerate(fields.get("seen_z0", [])) if s == 0]
+    if not unseen:
+        problems.append("atlas.ply: no unseen vertex (seen_z0 = 0): the fixture proves nothing")
+    angles = [n for n in names if n.endswith("_z0") and ("_mean_" in n or "_max_" in n)]
+    for name in angles:
+        if any(fields[name][i] != 0 for i in unseen):
+            problems.append(f"atlas.ply: {name} is not 0 at every unseen vertex")
+    print(f"atlas.ply: fields {names}; {len(unseen)} of {len(ply['x'])} vertices unseen at zoom 0")
+    return ply, fields, problems
 
 
 def check_vtk(atlas):
     import vtk  # python3-vtk9
-    ply = read_ply(f"{atlas}/atlas.ply")
-    names = scalar_names(ply)
-    problems = []
-    for file, reader, nan_as in ((f"{atlas}/atlas.vtp", vtk.vtkXMLPolyDataReader(), None),
-                                 (f"{atlas}/atlas.vtk", vtk.vtkPolyDataReader(), VTK_LEGACY_NAN)):
+    ply, fields, problems = check_atlas(atlas)
+    shape = next(iter(fields), "")
+    for file, reader in ((f"{atlas}/atlas.vtp", vtk.vtkXMLPolyDataReader()),
+                         (f"{atlas}/atlas.vtk", vtk.vtkPolyDataReader())):
         reader.SetFileName(file)
         if hasattr(reader, "ReadAllScalarsOn"):
             reader.ReadAllScalarsOn()
@@ -93,29 +124,38 @@ def check_vtk(atlas):
         for k, axis in enumerate("xyz"):
             compare(f"{file} {axis}", ply[axis], [poly.GetPoint(i)[k] for i in range(n)], problems)
         data = poly.GetPointData()
-        for name in names:
+        # What ParaView and Slicer colour by when the file opens.
+        active = data.GetScalars().GetName() if data.GetScalars() is not None else None
+        if active != shape:
+            problems.append(f"{file}: the active scalars are {active}, not {shape}")
+        for name, values in fields.items():
             array = data.GetArray(name)
             if array is None:
                 problems.append(f"{file}: no point-data array {name}")
                 continue
-            expected = [nan_as if (nan_as is not None and math.isnan(v)) else v for v in ply[name]]
-            compare(f"{file} {name}", expected, [array.GetValue(i) for i in range(n)], problems)
-        print(f"{file}: {n} points, {poly.GetNumberOfPolys()} triangles, {len(names)} scalars read by VTK "
-              f"{vtk.vtkVersion.GetVTKVersion()}")
+            compare(f"{file} {name}", values, [array.GetValue(i) for i in range(n)], problems)
+        print(f"{file}: {n} points, {poly.GetNumberOfPolys()} triangles, {len(fields)} fields read by VTK "
+              f"{vtk.vtkVersion.GetVTKVersion()}, active scalars {active}")
     return problems
 
 
-def check_meshlab(atlas, out_ply):
-    ply = read_ply(f"{atlas}/atlas.ply")
+def check_meshlab(atlas, out_ply, colorized=None):
+    _, fields, problems = check_atlas(atlas)
+    shape = next(iter(fields), "")
+    if not shape:
+        return problems
     written = read_ply(out_ply)
-    problems = []
     if "quality" not in written:
-        return [f"{out_ply}: MeshLab wrote no quality property (it read none)"]
-    compare("MeshLab quality", ply["quality"], written["quality"], problems)
-    # The quality glint wrote is the primary field (the metric's zoom-0 mean).
-    primary = [n for n in scalar_names(ply) if n.endswith("_mean_z0")][0]
-    compare(f"quality vs {primary}", ply[primary], ply["quality"], problems, tol=0)
-    print(f"MeshLab kept quality on {len(written['quality'])} vertices (= {primary})")
+        return problems + [f"{out_ply}: MeshLab wrote no quality property (it read none)"]
+    compare(f"MeshLab quality vs {shape}", fields[shape], written["quality"], problems)
+    print(f"MeshLab kept quality on {len(written['quality'])} vertices (= {shape})")
+    if colorized:
+        c = read_ply(colorized)
+        colours = set(zip(c.get("red", []), c.get("green", []), c.get("blue", [])))
+        compare(f"{colorized} quality vs {shape}", fields[shape], c.get("quality", []), problems)
+        if len(colours) < 16:
+            problems.append(f"{colorized}: Colorize by vertex Quality gave {len(colours)} colours")
+        print(f"MeshLab's Colorize by vertex Quality: {len(colours)} colours on {len(c['x'])} vertices")
     return problems
 
 
@@ -127,24 +167,20 @@ def read_asc(path):
 
 
 def check_cloudcompare(atlas, prefix, exports):
-    ply = read_ply(f"{atlas}/atlas.ply")
-    names = scalar_names(ply)
-    problems = []
+    ply, fields, problems = check_atlas(atlas)
     for path in exports:
         asc = read_asc(path)
         for axis in "XYZ":
             compare(f"{path} {axis}", ply[axis.lower()], asc.get(axis, []), problems, tol=1e-5)
-        for name in names:
-            # CloudCompare turns '_' into ' ' in names, and its ASCII export ' ' back into '_'.
+        for name, values in fields.items():
+            # CloudCompare shows scalar_<name> as <name>, turns '_' into ' ' in names, and its
+            # ASCII export ' ' back into '_'.
             column = (prefix + name).replace(" ", "_")
             if column not in asc:
                 problems.append(f"{path}: no scalar field {column} (CloudCompare fields: {sorted(asc)})")
                 continue
-            expected = ply[name]
-            if path.endswith("vtk.asc"):
-                expected = [VTK_LEGACY_NAN if math.isnan(v) else v for v in expected]
-            compare(f"{path} {column}", expected, asc[column], problems, tol=1e-5)
-        print(f"{path}: CloudCompare read {len(asc.get('X', []))} vertices with {len(names)} scalar fields")
+            compare(f"{path} {column}", values, asc[column], problems, tol=1e-5)
+        print(f"{path}: CloudCompare read {len(asc.get('X', []))} vertices with {len(fields)} scalar fields")
     return problems
 
 
@@ -153,7 +189,7 @@ def main(argv):
     if mode == "vtk":
         problems = check_vtk(atlas)
     elif mode == "meshlab":
-        problems = check_meshlab(atlas, argv[3])
+        problems = check_meshlab(atlas, argv[3], argv[4] if len(argv) > 4 else None)
     elif mode == "cloudcompare":
         problems = check_cloudcompare(atlas, argv[3], argv[4:])
     else:

@@ -4,6 +4,7 @@
 #include "volume/load.h"
 
 #include "mesh/error.h"
+#include "volume/detail/dicom_check.h"
 #include "volume/phantom.h"
 
 #include <gtest/gtest.h>
@@ -304,6 +305,37 @@ TEST(ReadVolume, RejectsAFolderWithoutDicom) {
     const fs::path dir = fresh_dir("no_dicom");
     write_text(dir / "notes.txt", "not a DICOM file\n");
     expect_input_error(dir, "no DICOM series");
+}
+
+// Issue 23 item 6: a truncated file in a DICOM folder aborted inside GDCM (SIGABRT).
+TEST(ReadVolume, RejectsAFolderHoldingOnlyATruncatedFileBeforeGdcmSeesIt) {
+    const fs::path dir = fresh_dir("dicom_truncated");
+    write_text(dir / "f", std::string("\x08\x00\x05\x00", 4));
+    expect_input_error(
+        dir, "no DICOM series in it (1 file(s) are not DICOM files; first \"f\": 4 bytes");
+}
+
+TEST(ReadVolume, ReadsADicomSeriesBesideATruncatedFile) {
+    const Volume v = small_volume();
+    const fs::path dir = fresh_dir("dicom_beside") / "series";
+    write_dicom_series(v, dir);
+    write_text(dir / "f", std::string("\x08\x00\x05\x00", 4));
+    const Volume back = read_volume(dir);
+    EXPECT_EQ(back.voxels, v.voxels);
+}
+
+TEST(DicomCheck, NamesWhatIsWrongWithACutFile) {
+    const Volume v = small_volume();
+    const fs::path dir = fresh_dir("dicom_cut") / "series";
+    write_dicom_series(v, dir);
+    const fs::path slice = fs::directory_iterator(dir)->path();
+    EXPECT_EQ(detail::dicom_file_problem(slice), "");
+    fs::resize_file(slice, fs::file_size(slice) - 7);
+    EXPECT_NE(detail::dicom_file_problem(slice).find("the file has"), std::string::npos)
+        << detail::dicom_file_problem(slice);
+    fs::resize_file(slice, 200);
+    EXPECT_NE(detail::dicom_file_problem(slice), "");
+    EXPECT_NE(detail::dicom_file_problem(dir).find("not a regular file"), std::string::npos);
 }
 
 TEST(LoadSurface, AVolumeWithoutIsoAsksForItAndGivesTheRange) {

@@ -16,6 +16,7 @@ GLINT = os.environ.get("GLINT_EXE", "")
 WORKFLOW = SOURCE / "workflows" / "cohort"
 sys.path.insert(0, str(WORKFLOW))
 import cohort  # noqa: E402
+import summary  # noqa: E402
 
 DENT = "dent:center=2,-1,8.8 radius=3 depth=0.6"    # on the condyle's top
 BUMP = "bump:center=-5,0,7 radius=2.5 depth=0.5"    # on its side, 7 mm from the dent
@@ -112,6 +113,15 @@ def test_summary_files(cohort_run):
     assert json.loads((work / "cohort.json").read_text())[0]["subject"] == "A"
 
 
+def test_cohort_colours_are_the_atlas_colours():
+    """cohort.png draws loss and gain in the colours every atlas picture gives them: the ends of
+    the diverging map (blue = loss, red = gain), read from the C++ table the pictures use."""
+    canvas = (SOURCE / "report" / "detail" / "canvas.cpp").read_text()
+    table = canvas[canvas.index("kRdBu = {"):]
+    knots = [line.split("//")[1].strip() for line in table[:table.index("};")].splitlines() if "//" in line]
+    assert (summary.LOSS_COLOUR, summary.GAIN_COLOUR) == (knots[0], knots[-1])
+
+
 def test_a_second_run_has_nothing_to_do(cohort_run):
     again = cohort_run[3]
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
@@ -159,3 +169,42 @@ def test_snakemake_reports_a_bad_manifest(tmp_path, cohort_run):
     done = subprocess.run([*command[:at], "-d", str(tmp_path / "out"), "--config", f"manifest={manifest}",
                            *command[at + 2:]], capture_output=True, text=True, timeout=120)
     assert done.returncode != 0 and "lacks path" in done.stdout + done.stderr
+
+
+def test_a_relative_profile_path_is_refused_before_any_job(tmp_path, cohort_run):
+    # Snakemake 7 would find the Slurm profile's status script from here, then look for it from
+    # the results folder after submitting the jobs; the workflow stops first and says how.
+    manifest = cohort_run[1]
+    command = ["snakemake", "-s", str(WORKFLOW / "Snakefile"), "-d", str(tmp_path / "out"), "--dry-run",
+               "--profile", "workflows/cohort/profiles/slurm", "--config", f"manifest={manifest}"]
+    done = subprocess.run(command, cwd=SOURCE, env=dict(os.environ, PWD=str(SOURCE)), capture_output=True,
+                          text=True, timeout=120)
+    assert done.returncode != 0
+    assert 'give the profile as an absolute path (--profile "$PWD/workflows/cohort/profiles/slurm")' in done.stdout + done.stderr
+    absolute = [a if a != "workflows/cohort/profiles/slurm" else str(WORKFLOW / "profiles" / "slurm") for a in command]
+    done = subprocess.run(absolute, cwd=SOURCE, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "rule sweep" in done.stdout  # the same call with the absolute path goes on
+
+
+def test_a_pair_glint_refuses_gets_its_reason_in_the_table(tmp_path, cohort_run):
+    # The header promises three vertices and none follow: glint exits 2 with one line. That pair's
+    # row carries the line; the other pair completes; the run succeeds and names the refused pair.
+    manifest, command = cohort_run[1], cohort_run[2]
+    (tmp_path / "cut.ply").write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                      "property float z\nend_header\n")
+    bad = tmp_path / "m.csv"
+    scans = manifest.parent
+    bad.write_text(f"subject,timepoint,path\nA,0,{scans}/a0.ply\nA,1,{scans}/a1.ply\nX,0,{scans}/a0.ply\n"
+                   f"X,1,{tmp_path}/cut.ply\n")
+    at = command.index("--config")
+    done = subprocess.run([*(a for a in command[:at] if a != "--quiet"), "-d", str(tmp_path / "out"), "--config",
+                           f"manifest={bad}", *command[at + 2:]], capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    good, refused = table(tmp_path / "out")
+    assert good["error"] == "" and good["regions"] == "1"
+    assert refused["error"].startswith('glint: error: mesh "') and "cut.ply" in refused["error"]
+    assert refused["regions"] == refused["report"] == ""
+    assert (tmp_path / "out" / "pairs" / "X" / "0_to_1" / "error.txt").read_text().strip() == refused["error"]
+    assert "glint refused the input of 1 of 2 pair(s)" in done.stderr
+    assert 'href="logs/X/0_to_1.log"' in (tmp_path / "out" / "cohort.html").read_text()

@@ -13,10 +13,14 @@ Manifest (CSV, header required, one row per scan):
   landmarks  landmark pairs (JSON, glint register --landmarks) starting the fit of the pair that
              ends at this row
 Each subject's consecutive time points make one pair; `glint sweep --register` runs once per
-pair (one process per pair), the earlier scan as the reference.
+pair (one process per pair), the earlier scan as the reference. A pair whose input glint refuses
+(exit code 2: a file it cannot read, a mesh without triangles, an option it rejects) gets a
+folder holding only error.txt, glint's one-line reason, and a table row with that reason in
+`error` and no numbers.
 """
 import csv
 import json
+import os
 import pathlib
 import re
 
@@ -27,6 +31,30 @@ _IDENT = re.compile(r"^[A-Za-z0-9][A-Za-z0-9._-]*$")
 
 class ManifestError(ValueError):
     """A manifest problem, one line naming the file, the row and the column."""
+
+
+class ProfileError(ValueError):
+    """A Snakemake profile given in a way this workflow cannot use, and how to give it."""
+
+
+def lost_profile(argv, environ):
+    """The profile folder given to snakemake as a relative path (--profile or SNAKEMAKE_PROFILE)
+    that this process no longer sees from the results folder it changed into (-d), or None.
+
+    note: Snakemake 7 resolves the profile's status script against the folder it was started in
+    and then changes into -d; from there the script's relative path names nothing, and the first
+    status check, after the jobs are submitted, fails. The Snakefile stops before that."""
+    profile = environ.get("SNAKEMAKE_PROFILE", "")
+    for i, arg in enumerate(argv):
+        if arg == "--profile" and i + 1 < len(argv):
+            profile = argv[i + 1]
+        elif arg.startswith("--profile="):
+            profile = arg.split("=", 1)[1]
+    start = environ.get("PWD", "")  # the shell's folder: os.chdir leaves PWD as it was
+    if not profile or os.path.isabs(profile) or not start:
+        return None
+    was_path = os.path.isdir(os.path.join(start, profile))  # else a name, found in ~/.config/snakemake
+    return profile if was_path and not os.path.isdir(profile) else None
 
 
 def _number(text):
@@ -134,7 +162,9 @@ def sweep_arguments(pair, config):
 
 TABLE_COLUMNS = ("subject", "before", "after", "regions", "dents", "bumps", "missing_surface", "area",
                  "volume_lost", "volume_gained", "max_depth", "max_height", "coverage", "fit_converged", "fit_rms",
-                 "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report")
+                 "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report",
+                 "error")
+ERROR_FILE = "error.txt"  # in a pair's folder when glint refused its input (the Snakefile writes it)
 
 
 def pair_row(pair_id, pair, report):
@@ -160,7 +190,16 @@ def pair_row(pair_id, pair, report):
         "fit_rotation_deg": fit.get("rotation_deg"), "fit_termination": fit.get("termination"),
         "unit": report.get("unit") or "",
         "report": f"pairs/{pair_id}/report.json",
+        "error": "",
     }
+
+
+def error_row(pair, message):
+    """The table row of a pair glint refused: who and when, the reason, no numbers."""
+    row = dict.fromkeys(TABLE_COLUMNS)
+    row.update(subject=pair["subject"], before=pair["before"]["timepoint"], after=pair["after"]["timepoint"],
+               report="", error=message)
+    return row
 
 
 def write_table(rows, csv_path, json_path):
@@ -178,10 +217,19 @@ def write_table(rows, csv_path, json_path):
 
 
 def cohort_table(pair_ids, all_pairs, out_dir, csv_path, json_path):
-    """Reads every pair's report.json and writes the cohort table."""
+    """Reads every pair's report.json (or its error.txt) and writes the cohort table."""
     rows = []
     for pair_id in pair_ids:
-        report_path = pathlib.Path(out_dir) / "pairs" / pair_id / "report.json"
-        rows.append(pair_row(pair_id, all_pairs[pair_id], json.loads(report_path.read_text())))
+        folder = pathlib.Path(out_dir) / "pairs" / pair_id
+        if (folder / ERROR_FILE).is_file():
+            rows.append(error_row(all_pairs[pair_id], (folder / ERROR_FILE).read_text().strip()))
+        else:
+            rows.append(pair_row(pair_id, all_pairs[pair_id], json.loads((folder / "report.json").read_text())))
     write_table(rows, csv_path, json_path)
     return rows
+
+
+def refused(json_path):
+    """The rows of cohort.json whose pair glint refused (empty when there is no table yet)."""
+    path = pathlib.Path(json_path)
+    return [r for r in json.loads(path.read_text()) if r.get("error")] if path.is_file() else []

@@ -1,0 +1,137 @@
+#include "decision/detail/evidence_scale.h"
+
+#include "decision/detail/fused_rule.h"
+#include "mesh/error.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <thread>
+
+namespace glint::detail {
+
+namespace {
+
+// note: a fit needs a few neighbours beyond the plane's three unknowns; with fewer the
+// vertex keeps its own distance and no tilt.
+constexpr int kMinFitVertices = 6;
+
+// The vertices a fit may use: seen, with an examined surface and a finite distance.
+std::vector<std::uint8_t> usable(const DecisionEvidence& e) {
+    const auto& d = *e.distance;
+    std::vector<std::uint8_t> u(d.size(), 0);
+    for (std::size_t v = 0; v < d.size(); ++v)
+        u[v] = e.coverage->seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(d[v]);
+    return u;
+}
+
+// One vertex's fit over the connected ball of radius r (breadth first through mesh edges).
+class BallFit {
+  public:
+    BallFit(const Mesh& mesh, const Adjacency& adj, const DecisionEvidence& e,
+            const std::vector<std::uint8_t>& use, double radius)
+        : mesh_(mesh),
+          adj_(adj),
+          e_(e),
+          use_(use),
+          r2_(radius * radius),
+          inv_two_sigma2_(2.0 / (radius * radius)),
+          stamp_(mesh.vertex_count(), -1) {}
+
+    void fit(std::size_t v, ScaledEvidence& out) {
+        const Eigen::Vector3d p = mesh_.positions[v].cast<double>();
+        const Eigen::Vector3d n = mesh_.normals[v].cast<double>().normalized();
+        const Eigen::Vector3d t1 = n.unitOrthogonal();
+        const Eigen::Vector3d t2 = n.cross(t1);
+        Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        double tol = 0.0, weight = 0.0;
+        int used = 0;
+        queue_.assign(1, static_cast<std::uint32_t>(v));
+        stamp_[v] = static_cast<std::int64_t>(v);
+        for (std::size_t head = 0; head < queue_.size(); ++head) {
+            const std::uint32_t u = queue_[head];
+            const Eigen::Vector3d q = mesh_.positions[u].cast<double>() - p;
+            if (use_[u]) {
+                const double w = std::exp(-q.squaredNorm() * inv_two_sigma2_);
+                const Eigen::Vector3d x(1.0, q.dot(t1), q.dot(t2));
+                a += w * x * x.transpose();
+                b += w * x * static_cast<double>((*e_.distance)[u]);
+                if (e_.tolerance) tol += w * static_cast<double>((*e_.tolerance)[u]);
+                weight += w;
+                ++used;
+            }
+            for (std::uint32_t k = adj_.offset[u]; k < adj_.offset[u + 1]; ++k) {
+                const std::uint32_t w = adj_.index[k];
+                if (stamp_[w] == static_cast<std::int64_t>(v)) continue;
+                stamp_[w] = static_cast<std::int64_t>(v);
+                if ((mesh_.positions[w].cast<double>() - p).squaredNorm() <= r2_)
+                    queue_.push_back(w);
+            }
+        }
+        const bool has_tolerance = e_.tolerance && e_.tolerance->size() == use_.size();
+        out.tolerance[v] = has_tolerance ? (*e_.tolerance)[v] : 0.0f;
+        out.distance[v] = (*e_.distance)[v];
+        out.tilt_deg[v] = 0.0f;
+        if (used < kMinFitVertices) return;
+        const Eigen::Vector3d c = a.ldlt().solve(b);
+        if (!c.allFinite()) return;
+        out.distance[v] = static_cast<float>(c[0]);
+        out.tilt_deg[v] =
+            static_cast<float>(std::atan(std::hypot(c[1], c[2])) * 180.0 / std::numbers::pi);
+        if (has_tolerance && weight > 0) out.tolerance[v] = static_cast<float>(tol / weight);
+    }
+
+  private:
+    const Mesh& mesh_;
+    const Adjacency& adj_;
+    const DecisionEvidence& e_;
+    const std::vector<std::uint8_t>& use_;
+    double r2_;
+    double inv_two_sigma2_;  // Gaussian weights, σ = r/2: 1/(2σ²) = 2/r²
+    std::vector<std::int64_t> stamp_;
+    std::vector<std::uint32_t> queue_;
+};
+
+}  // namespace
+
+ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e, double radius) {
+    GLINT_ASSERT(e.distance && e.distance->size() == reference.vertex_count(),
+                 "scaled evidence without a distance per vertex");
+    GLINT_ASSERT(reference.has_normals(), "scaled evidence needs the reference's normals");
+    const std::size_t n = reference.vertex_count();
+    ScaledEvidence out{.radius = radius,
+                       .distance = std::vector<float>(n, 0.0f),
+                       .tolerance = std::vector<float>(n, 0.0f),
+                       .tilt_deg = std::vector<float>(n, 0.0f)};
+    const Adjacency adj = adjacency(reference);
+    const std::vector<std::uint8_t> use = usable(e);
+    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t)
+        pool.emplace_back([&, t] {
+            BallFit fit(reference, adj, e, use, radius);
+            for (std::size_t v = t; v < n; v += threads) fit.fit(v, out);
+        });
+    for (auto& th : pool) th.join();
+    return out;
+}
+
+std::vector<double> scale_ladder(const Mesh& reference, double size) {
+    std::vector<float> edge;
+    edge.reserve(reference.triangle_count());
+    for (const auto& t : reference.triangles)
+        edge.push_back((reference.positions[t[0]] - reference.positions[t[1]]).norm());
+    if (edge.empty()) return {};
+    const auto mid = edge.begin() + static_cast<std::ptrdiff_t>(edge.size() / 2);
+    std::nth_element(edge.begin(), mid, edge.end());
+    const double h = *mid;
+    std::vector<double> radii;
+    for (const double k : {2.0, 4.0, 8.0, 16.0, 32.0})
+        if (k * h <= 0.08 * size) radii.push_back(k * h);
+    return radii;
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,36 @@
+// The evidence at a smoothing scale (decision/decision.h, "Floors that stay honest"): where the
+// floors measured at the vertices' own scale are implausible (rough surfaces: CT staircase and
+// partial-volume noise), the shape evidence is read over a neighbourhood of radius r instead,
+// where noise averages out and a change at least that wide keeps its depth. Internal to
+// decision/decision.cpp.
+#pragma once
+
+#include "decision/decision.h"
+#include "mesh/mesh.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace glint::detail {
+
+/// The shape evidence over radius r around each vertex: a weighted plane fit of the signed
+/// distance in the vertex's tangent plane over the connected part of the mesh within r
+/// (Gaussian weights, σ = r/2; seen vertices with an examined surface only).
+struct ScaledEvidence {
+    double radius = 0.0;
+    std::vector<float> distance;   ///< the fit's value at the vertex (mesh units)
+    std::vector<float> tolerance;  ///< tessellation tolerance, averaged the same way
+    /// The fit's slope as an angle (degrees): the tilt of the examined surface against the
+    /// reference over r, the normal evidence at this scale.
+    std::vector<float> tilt_deg;
+};
+
+/// \pre evidence.distance holds one value per reference vertex; reference has normals.
+[[nodiscard]] ScaledEvidence scaled_evidence(const Mesh& reference,
+                                             const DecisionEvidence& evidence, double radius);
+
+/// The radii tried, smallest first: 2, 4, 8, 16 and 32 median edge lengths of the reference,
+/// at most 8 % of the size.
+[[nodiscard]] std::vector<double> scale_ladder(const Mesh& reference, double size);
+
+}  // namespace glint::detail

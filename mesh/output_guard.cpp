@@ -1,0 +1,148 @@
+#include "mesh/output_guard.h"
+
+#include "mesh/error.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <mutex>
+#include <set>
+#include <string>
+#include <system_error>
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::mutex& inputs_mutex() {
+    static std::mutex m;
+    return m;
+}
+std::set<fs::path>& protected_inputs() {
+    static std::set<fs::path> inputs;
+    return inputs;
+}
+
+// Symbolic links of the existing part resolved, so "d/../d/x" and a link to "d" name one place.
+fs::path resolved(const fs::path& path) {
+    std::error_code ec;
+    fs::path c = fs::weakly_canonical(path, ec);
+    if (ec) c = fs::absolute(path, ec).lexically_normal();
+    if (c.has_filename() || c == c.root_path()) return c;
+    return c.parent_path();  // "d/" → "d"
+}
+
+// Whether `inner` lies strictly inside `outer` (component-wise).
+bool strictly_inside(const fs::path& inner, const fs::path& outer) {
+    auto i = inner.begin();
+    for (auto o = outer.begin(); o != outer.end(); ++o, ++i)
+        if (i == inner.end() || *i != *o) return false;
+    return i != inner.end();
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+    if (a == b) return true;
+    std::error_code ec;
+    return fs::equivalent(a, b, ec) && !ec;  // hard links, bind mounts
+}
+
+void check_one(const fs::path& output, const fs::path& out, const fs::path& input) {
+    const fs::path in = resolved(input);
+    const char* relation = same_file(out, in)         ? "is"
+                           : strictly_inside(in, out) ? "contains"
+                           : strictly_inside(out, in) ? "lies inside"
+                                                      : nullptr;
+    if (relation)
+        throw InputError("output \"" + output.string() + "\" " + relation + " the input \"" +
+                         input.string() +
+                         "\"; expected an output apart from every input (nothing was written)");
+}
+
+// The value of `key` in a text header ("Key = value" or "key: value"), or empty.
+std::string header_value(const fs::path& header, const std::string& key, char separator) {
+    std::ifstream in(header);
+    std::string line;
+    for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+        if (line.size() <= key.size() || line.compare(0, key.size(), key) != 0) continue;
+        const auto at = line.find(separator, key.size());
+        if (at == std::string::npos) continue;
+        std::string v = line.substr(at + 1);
+        const auto not_space = [](unsigned char c) { return std::isspace(c) == 0; };
+        v.erase(v.begin(), std::find_if(v.begin(), v.end(), not_space));
+        v.erase(std::find_if(v.rbegin(), v.rend(), not_space).base(), v.end());
+        return v;
+    }
+    return {};
+}
+
+std::string lower_name(const fs::path& path) {
+    std::string name = path.filename().string();
+    for (char& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return name;
+}
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+}  // namespace
+
+void protect_input(const fs::path& path) {
+    if (path.empty()) return;
+    std::lock_guard lock(inputs_mutex());
+    protected_inputs().insert(resolved(path));
+}
+
+std::vector<fs::path> input_files(const fs::path& path) {
+    std::vector<fs::path> files{path};
+    const std::string name = lower_name(path);
+    std::string data;
+    if (ends_with(name, ".mhd")) data = header_value(path, "ElementDataFile", '=');
+    else if (ends_with(name, ".nhdr")) data = header_value(path, "data file", ':');
+    // LOCAL: the data follows the header; LIST and patterns name several files (not followed).
+    if (!data.empty() && data != "LOCAL" && data.find("LIST") != 0 &&
+        data.find('%') == std::string::npos && data.find(' ') == std::string::npos)
+        files.push_back(path.parent_path() / data);
+    return files;
+}
+
+std::vector<fs::path> output_files(const fs::path& path) {
+    std::vector<fs::path> files{path};
+    const std::string name = lower_name(path);
+    if (ends_with(name, ".mhd") || ends_with(name, ".nhdr")) {
+        fs::path stem = path;
+        for (const char* ext : {".raw", ".zraw", ".raw.gz"})
+            files.push_back(stem.replace_extension(ext));
+    }
+    return files;
+}
+
+void refuse_output_over_inputs(const fs::path& output, std::span<const fs::path> inputs) {
+    if (output.empty()) return;
+    const fs::path out = resolved(output);
+    for (const fs::path& input : inputs)
+        if (!input.empty()) check_one(output, out, input);
+    std::vector<fs::path> registered;
+    {
+        std::lock_guard lock(inputs_mutex());
+        registered.assign(protected_inputs().begin(), protected_inputs().end());
+    }
+    for (const fs::path& input : registered) check_one(output, out, input);
+}
+
+void guard_outputs(std::initializer_list<fs::path> outputs,
+                   std::initializer_list<fs::path> inputs) {
+    std::vector<fs::path> all;
+    for (const fs::path& input : inputs)
+        if (!input.empty())
+            for (fs::path& f : input_files(input)) all.push_back(std::move(f));
+    for (const fs::path& output : outputs)
+        if (!output.empty())
+            for (const fs::path& f : output_files(output)) refuse_output_over_inputs(f, all);
+    for (const fs::path& input : all) protect_input(input);
+}
+
+}  // namespace glint

@@ -1,0 +1,104 @@
+#include "mesh/output_guard.h"
+
+#include "mesh/atomic_file.h"
+#include "mesh/error.h"
+#include "mesh/file_set.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path base(const std::string& name) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "output_guard" / name;
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    return dir;
+}
+
+std::string refusal(const fs::path& output, std::initializer_list<fs::path> inputs) {
+    try {
+        guard_outputs({output}, inputs);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+TEST(OutputGuard, RefusesAnOutputThatIsContainsOrLiesInsideAnInput) {
+    const fs::path dir = base("relations");
+    fs::create_directories(dir / "d");
+    write_file_atomically(dir / "d" / "ref.ply", "x");
+    fs::create_directories(dir / "dcm");
+    EXPECT_NE(refusal(dir / "d" / "ref.ply", {dir / "d" / "ref.ply"}).find("\" is the input"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir / "d", {dir / "d" / "ref.ply"}).find("contains the input"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir / "d" / ".." / "d" / "", {dir / "d" / "ref.ply"}).find("contains"),
+              std::string::npos);
+    EXPECT_NE(refusal(dir / "dcm" / "out.ply", {dir / "dcm"}).find("lies inside the input"),
+              std::string::npos);
+    EXPECT_EQ(refusal(dir / "out", {dir / "d" / "ref.ply"}), "");
+}
+
+TEST(OutputGuard, FollowsSymbolicLinksAndHardLinks) {
+    const fs::path dir = base("links");
+    write_file_atomically(dir / "a.json", "{}");
+    fs::create_hard_link(dir / "a.json", dir / "b.json");
+    fs::create_directory_symlink(dir, dir / "link");
+    EXPECT_NE(refusal(dir / "b.json", {dir / "a.json"}), "");
+    EXPECT_NE(refusal(dir / "link" / "a.json", {dir / "a.json"}), "");
+}
+
+// Item 3 of issue 23: volume-edit v.mhd overwrote its raw data file.
+TEST(OutputGuard, AHeaderInputProtectsItsDataFile) {
+    const fs::path dir = base("mhd");
+    write_file_atomically(dir / "v.mhd", "ObjectType = Image\nElementDataFile = w.raw\n");
+    write_file_atomically(dir / "w.raw", "voxels");
+    const auto files = input_files(dir / "v.mhd");
+    ASSERT_EQ(files.size(), 2u);
+    EXPECT_EQ(files[1], dir / "w.raw");
+    // w.mhd writes w.raw: the input's data.
+    EXPECT_NE(refusal(dir / "w.mhd", {dir / "v.mhd"}).find("w.raw"), std::string::npos);
+}
+
+TEST(OutputGuard, WriteAtomicallyRefusesARegisteredInput) {
+    const fs::path dir = base("registered");
+    write_file_atomically(dir / "S.toml", "name = \"s\"\n");
+    protect_input(dir / "S.toml");
+    EXPECT_THROW(write_file_atomically(dir / "S.toml", "overwritten"), InputError);
+    std::ifstream in(dir / "S.toml");
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line, "name = \"s\"");
+}
+
+// Item 19 / 1: a set of files appears together or not at all.
+TEST(FileSet, AFailingMemberLeavesNoneOfTheSet) {
+    const fs::path dir = base("set");
+    {
+        FileSet files;
+        files.add(dir / "fit.json", "{}");
+        EXPECT_THROW(files.add(dir / "moved.ply",
+                               [](const fs::path&) { throw IoError("simulated full disk"); }),
+                     IoError);
+    }
+    EXPECT_FALSE(fs::exists(dir / "fit.json"));
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 0);
+    FileSet files;
+    files.add(dir / "fit.json", "{}");
+    files.add(dir / "p.ply.json", "{}");
+    EXPECT_FALSE(fs::exists(dir / "fit.json"));
+    files.commit();
+    EXPECT_TRUE(fs::exists(dir / "fit.json"));
+    EXPECT_TRUE(fs::exists(dir / "p.ply.json"));
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,175 @@
+#include "volume/detail/dicom_check.h"
+
+#include "mesh/error.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <string_view>
+#include <system_error>
+
+namespace glint::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class Fd {
+  public:
+    explicit Fd(const fs::path& p) : fd_(::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)) {}
+    ~Fd() {
+        if (fd_ >= 0) ::close(fd_);
+    }
+    Fd(const Fd&) = delete;
+    Fd& operator=(const Fd&) = delete;
+    [[nodiscard]] int get() const { return fd_; }
+
+  private:
+    int fd_;
+};
+
+bool read_at(int fd, std::uint64_t offset, void* into, std::size_t n) {
+    return ::pread(fd, into, n, static_cast<off_t>(offset)) == static_cast<ssize_t>(n);
+}
+
+std::uint16_t u16(const unsigned char* p) { return static_cast<std::uint16_t>(p[0] | p[1] << 8); }
+std::uint32_t u32(const unsigned char* p) {
+    return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
+           static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
+}
+
+// VRs with a 2-byte reserved field and a 4-byte length in explicit VR encoding.
+bool long_vr(std::string_view vr) {
+    for (std::string_view v :
+         {"OB", "OD", "OF", "OL", "OV", "OW", "SQ", "SV", "UC", "UN", "UR", "UT", "UV"})
+        if (vr == v) return true;
+    return false;
+}
+
+struct Walk {
+    std::uint64_t offset = 0;
+    std::string transfer_syntax;
+    std::string problem;
+};
+
+// One element at w.offset; false at the end of what can be walked. `explicit_vr`: the VR is in
+// the stream. `meta_only`: stop at the first element outside group 0002.
+bool step(int fd, std::uint64_t size, bool explicit_vr, bool meta_only, Walk& w) {
+    if (w.offset == size) return false;
+    unsigned char h[12];
+    if (size - w.offset < 8 || !read_at(fd, w.offset, h, 8)) {
+        w.problem = "an element header at byte " + std::to_string(w.offset) + " is cut off";
+        return false;
+    }
+    const std::uint16_t group = u16(h);
+    if (meta_only && group != 0x0002) return false;
+    std::uint64_t header = 8, length = 0;
+    const std::string_view vr(reinterpret_cast<const char*>(h + 4), 2);
+    if (explicit_vr && !(vr[0] >= 'A' && vr[0] <= 'Z' && vr[1] >= 'A' && vr[1] <= 'Z')) {
+        w.problem = "byte " + std::to_string(w.offset + 4) + ": no value representation";
+        return false;
+    }
+    if (explicit_vr && long_vr(vr)) {
+        if (size - w.offset < 12 || !read_at(fd, w.offset + 8, h + 8, 4)) {
+            w.problem = "an element header at byte " + std::to_string(w.offset) + " is cut off";
+            return false;
+        }
+        header = 12;
+        length = u32(h + 8);
+    } else {
+        length = explicit_vr ? u16(h + 6) : u32(h + 4);
+    }
+    if (length == 0xFFFFFFFFu) return false;  // undefined length: GDCM parses the rest
+    if (length > size - w.offset - header) {
+        w.problem = "element (" + std::to_string(group) + "," + std::to_string(u16(h + 2)) +
+                    ") at byte " + std::to_string(w.offset) + " holds " + std::to_string(length) +
+                    " bytes, the file has " + std::to_string(size - w.offset - header) + " left";
+        return false;
+    }
+    if (group == 0x0002 && u16(h + 2) == 0x0010 && length < 128) {
+        std::string uid(length, '\0');
+        if (read_at(fd, w.offset + header, uid.data(), length))
+            w.transfer_syntax = uid.substr(0, uid.find_last_not_of(std::string("\0 ", 2)) + 1);
+    }
+    w.offset += header + length;
+    return true;
+}
+
+}  // namespace
+
+std::string dicom_file_problem(const fs::path& path) {
+    const Fd fd(path);
+    if (fd.get() < 0) return std::string("cannot open: ") + std::strerror(errno);
+    struct stat st {};
+    if (::fstat(fd.get(), &st) != 0 || !S_ISREG(st.st_mode))
+        return "not a regular file, expected a DICOM file";
+    const auto size = static_cast<std::uint64_t>(st.st_size);
+    std::array<char, 4> magic{};
+    if (size < 132 || !read_at(fd.get(), 128, magic.data(), 4))
+        return std::to_string(size) + " bytes, expected at least 132 (preamble and \"DICM\")";
+    if (std::string_view(magic.data(), 4) != "DICM")
+        return "no \"DICM\" after the 128-byte preamble, expected a DICOM Part 10 file";
+    Walk w{.offset = 132};
+    while (step(fd.get(), size, true, true, w)) {
+    }
+    if (!w.problem.empty()) return "file meta group: " + w.problem;
+    if (w.offset == 132) return "no file meta group (0002) after \"DICM\"";
+    const std::string& ts = w.transfer_syntax;
+    if (ts == "1.2.840.10008.1.2.1.99" || ts == "1.2.840.10008.1.2.2") return {};  // not walked
+    const bool explicit_vr = ts != "1.2.840.10008.1.2";
+    for (int n = 0; n < 100000 && step(fd.get(), size, explicit_vr, false, w); ++n) {
+    }
+    return w.problem.empty() ? std::string() : "data set: " + w.problem;
+}
+
+DicomFolderScan scan_dicom_folder(const fs::path& folder) {
+    DicomFolderScan scan;
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+        std::error_code e2;
+        if (it->is_directory(e2)) continue;  // GDCM reads one level, as glint does
+        std::string problem = dicom_file_problem(it->path());
+        if (problem.empty()) {
+            scan.accepted.push_back(it->path());
+            continue;
+        }
+        if (scan.rejected++ == 0)
+            scan.first_rejection = "\"" + it->path().filename().string() + "\": " + problem;
+    }
+    return scan;
+}
+
+CheckedDicomFolder::CheckedDicomFolder(const fs::path& folder) : path_(folder) {
+    const DicomFolderScan scan = scan_dicom_folder(folder);
+    const std::string quoted = "\"" + folder.string() + "\"";
+    if (scan.accepted.empty())
+        throw InputError(quoted + ": a folder with no DICOM series in it" +
+                         (scan.rejected == 0 ? std::string()
+                                             : " (" + std::to_string(scan.rejected) +
+                                                   " file(s) are not DICOM files; first " +
+                                                   scan.first_rejection + ")"));
+    if (scan.rejected == 0) return;
+    static std::atomic<unsigned> counter{0};
+    std::error_code ec;
+    path_ = fs::temp_directory_path(ec) /
+            ("glint-dicom-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    temporary_ = true;
+    fs::remove_all(path_, ec);
+    fs::create_directory(path_, ec);
+    for (const fs::path& f : scan.accepted)
+        if (!ec) fs::create_symlink(fs::absolute(f), path_ / f.filename(), ec);
+    if (ec)
+        throw IoError(quoted + ": cannot link its DICOM files into \"" + path_.string() +
+                      "\": " + ec.message());
+}
+
+CheckedDicomFolder::~CheckedDicomFolder() {
+    std::error_code ec;
+    if (temporary_) fs::remove_all(path_, ec);
+}
+
+}  // namespace glint::detail
