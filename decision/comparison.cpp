@@ -122,9 +122,11 @@ void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_
         height += area[u] * normal.dot(mesh.positions[u].cast<double>() - c);
         weight += area[u];
     }
-    // Surface gone inside a rim the examined scan covered is a loss. Its depth is the height
-    // above the rim's plane where the reference stood above it (a worn cusp); a hole over a
-    // concave part (a facet in a valley) lost surface whose depth the rim cannot tell: 0.
+    // Surface gone inside a rim the examined scan covered is a loss where the reference stood
+    // above the plane through the rim (a worn cusp): its depth is the height above the plane,
+    // a loss where it reaches the shape floor (decision.cpp). Over a flat or concave patch (a
+    // scanner's dropout, a pit) the rim cannot tell removed material from surface never
+    // captured: 0, "missing surface".
     const bool above = weight > 0 && height > 0;
     for (const auto u : members)
         depth[u] = above ? static_cast<float>(-std::max(
@@ -141,8 +143,9 @@ std::string rule_text(const Comparison& c) {
          "beyond half an edge); a part without examined surface that stays off the reference's "
          "borders and under "
       << 100.0 * kMaxHoleShare
-      << " % of its area is a hole the examined scan covered around: compared (missing surface; "
-         "a loss where the reference stood above the hole's rim)";
+      << " % of its area is a hole the examined scan covered around: compared (a loss where the "
+         "reference stood above the hole's rim, else missing surface); a damaged group with more "
+         "than half its area not compared is dropped";
     return s.str();
 }
 

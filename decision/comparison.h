@@ -1,31 +1,36 @@
 // What both surfaces can compare (issue 24). A reference vertex is compared only where both
-// surfaces hold surface around it; elsewhere it is *not compared*, reported as coverage and
-// never part of a dent, a bump or a missing-surface region.
+// surfaces hold surface around it; elsewhere it is *not compared*: reported as coverage, left
+// out of the noise floors, and never the seat of a dent, a bump or a missing-surface region.
 //
 // The rule, per reference vertex (ℓ = the reference's median edge length):
 //   gone         the examined surface is absent there: most views found no examined surface
 //                behind the seen vertex (the sweep's per-view hits, ZoomAtlas::missing), or its
 //                closest examined point lies more than ℓ/2 away on a border of the examined
 //                mesh (a partial scan, a cut, a hole) or on a triangle facing away from the
-//                vertex's normal (another sheet: the scanned side of a thin part whose far side
-//                the scan never saw). Gone vertices are grouped through edges.
+//                vertex's normal (another sheet). Gone vertices are grouped through edges.
 //   hole         a gone group that lies away from the reference's own borders (at most a
-//                quarter of its area inside their band) and covers at most kMaxHoleShare of the reference's area: the examined
-//                scan covered the surface around it, so the surface is really gone there (a
-//                resection, worn-away material). It stays compared: a missing-surface region,
-//                whose kind follows the shape (below).
+//                quarter of its area within one edge of them) and covers at most kMaxHoleShare
+//                of the reference's area: the examined scan covered the surface around it, so
+//                the surface is really gone there (a resection, worn-away material, or a
+//                scanner's dropout). It stays compared; its kind follows the shape (below).
 //   not reached  every other gone group: the examined scan did not cover it.
-//   reference border  within one edge ℓ (along the reference's edges) of a border edge of
+//   reference border  within kBandEdges·ℓ (along the reference's edges) of a border edge of
 //                the reference: a field-of-view cut, a scan's edge, a crop.
 //   examined border   within kBandEdges·ℓ of a not-reached vertex: the examined surface's
 //                open border mapped onto the reference through the fit.
-// Classes are exclusive, in this order: not reached, reference border, examined border,
-// compared.
+// Classes are exclusive, in this order: not reached, hole (compared), reference border,
+// examined border, compared.
 //
-// A hole's shape: a plane is fitted to its rim (the compared vertices next to it), oriented by
-// the reference's normals over the hole; where the reference stood above that plane (on
-// average) the material is gone: a loss, each vertex's depth minus its height above the rim.
-// Where it lies below (a hole over a pit), the direction is unknown (NaN).
+// How the decision reads them (decision.cpp): the floors and the histogram read compared
+// vertices only; the damaged mask every reached vertex, less every connected damaged group
+// with more than kBorderMajority of its area in the two border bands (the curl of a cut's
+// rows) — a damage that reaches a border is reported whole.
+//
+// A hole's shape: a plane is fitted to its rim (the vertices next to it), oriented by the
+// reference's normals over the hole. Where the reference stood above that plane on average
+// the material is gone: a loss, each vertex's depth minus its height above the rim, a dent
+// where it reaches the shape floor. Over a flat or concave patch the rim cannot tell worn-away
+// material from surface a scanner never captured: depth 0, "missing surface".
 #pragma once
 
 #include "mesh/mesh.h"
@@ -66,8 +71,8 @@ struct ComparisonInputs {
 
 struct Comparison {
     std::vector<std::uint8_t> vertex_class;  ///< CompareClass per reference vertex
-    /// Signed depth of the surface gone in a hole (mesh units, negative = loss; NaN where
-    /// unknown or outside holes).
+    /// Signed depth of the surface gone in a hole (mesh units, negative = loss, 0 where the
+    /// rim cannot tell; NaN outside holes).
     std::vector<float> hole_depth;
     std::vector<std::uint8_t> in_hole;  ///< 1: the vertex lies in a hole (compared, gone)
     double edge = 0.0;  ///< the reference's median edge length ℓ (mesh units)

@@ -180,12 +180,12 @@ std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floo
     return damaged;
 }
 
-// The depth of the surface gone in holes that lost surface (decision/comparison.h: 0 or
-// negative); NaN elsewhere and in holes over a pit (direction unknown).
-std::vector<float> gone_depth(const Comparison& c) {
+// In holes (decision/comparison.h) the depth of the surface gone where it reaches the shape
+// floor, 0 where the loss is not measurable (a dropout, a flat patch); NaN outside holes.
+std::vector<float> gone_depth(const Comparison& c, double floor) {
     std::vector<float> gone(c.hole_depth.size(), std::numeric_limits<float>::quiet_NaN());
     for (std::size_t v = 0; v < gone.size(); ++v)
-        if (c.in_hole[v]) gone[v] = c.hole_depth[v];
+        if (c.in_hole[v]) gone[v] = c.hole_depth[v] <= -floor ? c.hole_depth[v] : 0.0f;
     return gone;
 }
 
@@ -206,10 +206,11 @@ struct RegionFieldStore {
     RegionFields fields;
 };
 
-void build_fields(const DecisionEvidence& e, const Comparison& c, RegionFieldStore& s) {
+void build_fields(const DecisionEvidence& e, const Comparison& c, double shape_floor,
+                  RegionFieldStore& s) {
     const bool have_distance = e.distance && e.distance->size() == e.atlas->value_mean.size();
     const std::vector<float>& distance = have_distance ? *e.distance : e.atlas->depth_mean;
-    s.gone = gone_depth(c);
+    s.gone = gone_depth(c, shape_floor);
     s.shape = region_shape(distance, c, s.gone);
     s.fields = RegionFields{.value = &e.atlas->value_mean,
                             .shape = &s.shape,
@@ -344,7 +345,7 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
         "); the smallest detectable damage there: " + with_unit(s.min_depth, e.unit) +
         " deep over " + with_unit(s.min_area, e.unit, 2, "%.3g"));
     RegionFieldStore fields;
-    build_fields(e, d.comparison, fields);
+    build_fields(e, d.comparison, d.shape.value, fields);
     d.regions = find_regions(
         reference,
         off_borders(reference,
@@ -382,7 +383,7 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Covera
     state_detectable(reference, e, o, d.shape, d.scale);
     d.rule_text = fused_rule_text(d, describe(e.metric));
     RegionFieldStore fields;
-    build_fields(e, d.comparison, fields);
+    build_fields(e, d.comparison, d.shape.value, fields);
     d.regions =
         find_regions(reference,
                      off_borders(reference,
@@ -401,7 +402,7 @@ void decide_normal(const Mesh& reference, const DecisionEvidence& e,
                   " reaches the normal floor " + fixed(d.normal.value, 2) + std::string(m.symbol) +
                   " is damaged; regions are connected groups";
     RegionFieldStore fields;
-    build_fields(e, d.comparison, fields);
+    build_fields(e, d.comparison, 0.0, fields);
     d.regions = find_regions(reference, off_borders(reference, normal_rule_mask(e, d.normal), d),
                              e.coverage->seen, fields.fields, region_options);
     for (auto& r : d.regions.regions)

@@ -72,7 +72,7 @@ struct Accumulated {
     double missing_area = 0.0;
     double best_value = -1.0;
     double gone_peak = 0.0;  // most negative depth of surface gone in a hole
-    double gone_area = 0.0;  // area in a hole that lost surface
+    double gone_area = 0.0;  // area in a hole
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
 };
@@ -113,13 +113,12 @@ void finish(Accumulated& g, const RegionOptions& options, bool holes) {
     // removed: a loss. A hole of unknown direction stays "missing surface".
     // A region mostly in such a hole is that loss, also where the views saw the far side of an
     // open surface through the hole (its rim's distances point there, not at the loss).
-    const bool hole_loss =
-        g.gone_area > 0 && (g.r.missing_fraction > options.missing_majority ||
-                            g.gone_area > options.missing_majority * g.r.area);
-    if (hole_loss) {
+    const bool hole = g.gone_area > 0 && (g.r.missing_fraction > options.missing_majority ||
+                                          g.gone_area > options.missing_majority * g.r.area);
+    if (hole && g.gone_peak < 0) {
         g.r.kind = RegionKind::Dent;
         g.r.peak_depth = g.gone_peak;
-    } else if (g.r.missing_fraction > options.missing_majority)
+    } else if (hole || g.r.missing_fraction > options.missing_majority)
         g.r.kind = RegionKind::MissingSurface;
     else if (holes && g.r.peak_depth == 0 && g.missing_area > 0)
         g.r.kind = RegionKind::MissingSurface;

@@ -39,9 +39,9 @@ struct RegionFields {
     const std::vector<float>* missing =
         nullptr;  ///< share of observations without examined surface
     const std::vector<std::int32_t>* view = nullptr;  ///< view of the vertex's maximum
-    /// Depth of the surface gone in a hole (decision/comparison.h; negative = loss, NaN =
-    /// unknown or no hole): a region mostly without examined surface is a dent when its
-    /// hole lost surface, else "missing surface".
+    /// Depth of the surface gone in a hole (decision/comparison.h): negative = a measurable
+    /// loss, 0 = a hole whose loss is not measurable, NaN = no hole. A region mostly in a hole
+    /// is a dent when the hole lost measurable surface, else "missing surface".
     const std::vector<float>* gone = nullptr;
 };
 

@@ -31,6 +31,8 @@ std::string missing_input(const Scenario& sc) {
             return s->mesh.string() +
                    (s->needs_data_root ? " (shared data; give --data-root or GLINT_DATA)" : "");
     if (!sc.truth_mask.empty() && !fs::exists(sc.truth_mask)) return sc.truth_mask.string();
+    if (!sc.truth_pose_conf.empty() && !fs::exists(sc.truth_pose_conf))
+        return sc.truth_pose_conf.string();
     return "";
 }
 

@@ -1,5 +1,7 @@
 #include "scenario/scenario.h"
 
+#include "scenario/pose_conf.h"
+
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/remesh.h"
@@ -171,6 +173,32 @@ void read_volume_edit(TableReader& r, Scenario& sc) {
                "needs a volume reference (mesh = \"scan.nii.gz\")");
 }
 
+// [examined] truth_pose_conf / truth_pose_entry: a scan's ground-truth pose from a Stanford
+// .conf file (scenario/pose_conf.h); it replaces pose as the truth the fit is scored against.
+void read_conf_truth(TableReader& r, const fs::path& dir, const fs::path& data_root,
+                     Scenario& sc) {
+    const auto conf = r.optional<std::string>("truth_pose_conf", "a string (a .conf file)");
+    const auto entry = r.optional<std::string>("truth_pose_entry", "a string (a scan's name)");
+    if (!conf && !entry) return;
+    if (!conf || !entry)
+        r.fail(r.get(conf ? "truth_pose_conf" : "truth_pose_entry"),
+               conf ? "truth_pose_conf" : "truth_pose_entry",
+               "needs both truth_pose_conf and truth_pose_entry");
+    if (r.has("pose")) r.fail(r.get("pose"), "pose", "give pose or truth_pose_conf, not both");
+    bool needs = false;
+    const fs::path file = resolve_mesh(r, "truth_pose_conf", *conf, dir, data_root, needs);
+    std::error_code ec;
+    if (!fs::exists(file, ec)) {
+        sc.truth_pose_conf = file;  // reported missing with the data, as a mesh is
+        sc.truth_pose_conf_needs_data_root = needs;
+        sc.truth_pose_entry = *entry;
+        return;
+    }
+    sc.pose = read_conf_pose(file, *entry).inverse();  // examined = pose · reference
+    sc.truth_pose_conf = file;
+    sc.truth_pose_entry = *entry;
+}
+
 Rigid read_pose(TableReader& r) {
     const toml::node* node = r.get("pose");
     if (!node) return Rigid::Identity();
@@ -206,6 +234,7 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
         bool needs = false;
         sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
     }
+    read_conf_truth(r, dir, data_root, sc);
     read_volume_edit(r, sc);
     if (sc.noise_sigma > 0 && sc.resample_volume)
         r.fail(r.get("noise"), "noise",
@@ -266,8 +295,9 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
     if (auto v = r.optional<bool>("all_damages_detected", "true or false"))
         x.all_damages_detected = *v;
     for (const char* key : {"kind", "every_kind"})
-        if (auto v = r.optional<std::string>(key, "a string (dent or bump)")) {
-            if (*v != "dent" && *v != "bump") r.fail(r.get(key), key, "expected dent or bump");
+        if (auto v = r.optional<std::string>(key, "a string (dent, bump or missing surface)")) {
+            if (*v != "dent" && *v != "bump" && *v != "missing surface")
+                r.fail(r.get(key), key, "expected dent, bump or missing surface");
             (std::string(key) == "kind" ? x.kind : x.every_kind) = *v;
         }
     e("min_compared", x.min_compared);
@@ -551,8 +581,12 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                              std::to_string(out.truth.size()) + " values, the reference has " +
                              std::to_string(out.reference.vertex_count()) + " vertices");
     }
-    out.has_truth_pose =
-        sc.pose.matrix() != Rigid::Identity().matrix() || sc.analysis.fit.mode == FitMode::Truth;
+    if (!sc.truth_pose_conf.empty() && !fs::exists(sc.truth_pose_conf))
+        throw IoError("scenario \"" + sc.file.string() + "\": pose file \"" +
+                      sc.truth_pose_conf.string() + "\" not found" +
+                      (sc.truth_pose_conf_needs_data_root ? "; give --data-root or GLINT_DATA" : ""));
+    out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() ||
+                         sc.analysis.fit.mode == FitMode::Truth || !sc.truth_pose_conf.empty();
     out.true_reference_from_examined = sc.pose.inverse();
     if (sc.expect.max_close_region_vertices) {
         // Two scans given in one frame (or with the stated pose): the true distance is to the

@@ -44,8 +44,9 @@ struct ScenarioExpect {
     std::optional<double> max_translation_error;
     std::optional<double> max_centroid_error;
     std::optional<double> min_coverage;
-    std::optional<std::string> kind;  ///< "dent" or "bump" for the largest region
-    /// "dent" or "bump" for every region (zoom 0): worn-away surface is a loss everywhere.
+    /// "dent", "bump" or "missing surface" for the largest region
+    std::optional<std::string> kind;
+    /// The kind of every region (zoom 0): worn-away surface is a loss everywhere.
     std::optional<std::string> every_kind;
     /// At least this share of the reference's area compared (decision/comparison.h).
     std::optional<double> min_compared;
@@ -97,6 +98,11 @@ struct Scenario {
     bool resample_volume = false;  ///< pivot or erode given
     /// Per-vertex ground-truth mask on the *reference* from a file (tooth-wear .npy masks).
     std::filesystem::path truth_mask;
+    /// A range scan's ground-truth pose from a Stanford .conf file ([examined]
+    /// truth_pose_conf, truth_pose_entry; scenario/pose_conf.h): sets pose.
+    std::filesystem::path truth_pose_conf;
+    bool truth_pose_conf_needs_data_root = false;
+    std::string truth_pose_entry;
     /// The analysis: [registration] (fit mode register by default; "truth" uses the known
     /// pose), [sweep], [threshold] and [decision], with the command line's defaults.
     AnalysisOptions analysis;

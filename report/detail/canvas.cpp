@@ -104,6 +104,18 @@ bool has_font() { return !font().empty(); }
 void draw_text(ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour,
                IBA::TextAlignX align, int shadow) {
     if (font().empty() || text.empty()) return;
+    // note: OpenImageIO 2.4's render_text aborts (an assertion in its pixel iterator) on text
+    // that reaches below the image; text that does not fit whole is not drawn.
+    const ROI box = IBA::text_size(text, size, font());
+    if (box.defined()) {
+        const int left = align == IBA::TextAlignX::Center  ? x - box.width() / 2
+                         : align == IBA::TextAlignX::Right ? x - box.width()
+                                                           : x;
+        const ROI image = dst.roi();
+        if (left + box.xbegin - shadow < image.xbegin || left + box.xend + shadow > image.xend ||
+            y + box.ybegin - shadow < image.ybegin || y + box.yend + shadow > image.yend)
+            return;
+    }
     IBA::render_text(dst, x, y, text, size, font(), colour, align, IBA::TextAlignY::Baseline,
                      shadow);
 }

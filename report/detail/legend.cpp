@@ -125,7 +125,7 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     }
     cy += 4;
     for (std::size_t i = 0; i < c.regions.size(); ++i) {
-        if (cy + kLine > y + height && i + 1 < c.regions.size()) {
+        if (cy + 2 * kLine > y + height && i + 1 < c.regions.size()) {
             draw_text(dst, x0, cy,
                       "... " + std::to_string(c.regions.size() - i) + " more (regions.csv)",
                       kFont - 1);

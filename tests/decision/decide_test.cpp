@@ -186,9 +186,10 @@ TEST(Decide, FusedRuleNeedsTheNormalFieldToCorroborateAShapeChange) {
     EXPECT_TRUE(d.regions.regions.empty());
 }
 
-// A patch without examined surface inside covered surface is surface gone: a loss (a dent),
-// its depth unknown on a flat part (decision/comparison.h).
-TEST(Decide, MissingExaminedSurfaceInsideCoveredSurfaceIsALoss) {
+// A patch without examined surface inside covered surface is a hole; on a flat part its rim
+// cannot tell removed material from a scanner's dropout: "missing surface"
+// (decision/comparison.h). A worn cap is a loss: comparison_test.cpp.
+TEST(Decide, AHoleOverAFlatPartIsMissingSurface) {
     Evidence e;
     for (int y = 10; y <= 14; ++y)
         for (int x = 10; x <= 14; ++x) {
@@ -197,7 +198,7 @@ TEST(Decide, MissingExaminedSurfaceInsideCoveredSurfaceIsALoss) {
         }
     const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
     ASSERT_EQ(d.regions.regions.size(), 1u);
-    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Dent);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::MissingSurface);
     EXPECT_GT(d.regions.regions[0].missing_fraction, 0.5);
     EXPECT_EQ(d.comparison.holes, 1u);
     EXPECT_EQ(vertices_of(d, 1).size(), 25u);

@@ -170,6 +170,25 @@ TEST(Canvas, IsEightBitAndEncodesAsItIs) {
     EXPECT_EQ(detail::to_byte(2.0f), 255);
 }
 
+// A legend listing more regions than its panel holds, on the smallest sheet, with long lines
+// (the bunny's 14 "missing surface" regions aborted in OpenImageIO's render_text once: text
+// below the image). Text that does not fit is left out; nothing aborts.
+TEST(Legend, ManyRegionsOnASmallSheetAreCutNotDrawnOffTheImage) {
+    detail::LegendContent legend;
+    legend.unit = "mm";
+    legend.lines.assign(6, "normal floor 8.12 deg (measured; median + 3 MAD over compared)");
+    for (int i = 1; i <= 40; ++i)
+        legend.regions.push_back(std::to_string(i) + " missing surface, 0.0123 mm2");
+    const OIIO::ImageBuf sheet = detail::framed_sheet(64, 32, "", legend);
+    EXPECT_GE(sheet.spec().height, detail::legend_min_height(legend));
+    OIIO::ImageBuf c = detail::canvas(40, 20);
+    detail::draw_text(c, 5, 60, "below the image", 12);
+    detail::draw_text(c, 2, 24, "half below", 12);
+    detail::draw_text(c, 35, 15, "past the right edge", 12);
+    detail::draw_text(c, 20, -5, "above", 12, detail::kText, OIIO::ImageBufAlgo::TextAlignX::Center);
+    EXPECT_EQ(pixel(c, 39, 19), pixel(detail::canvas(40, 20), 39, 19));
+}
+
 AnalysisResult result_with(std::vector<double> peaks, double floor) {
     AnalysisResult r;
     r.size = 100.0;
