@@ -53,7 +53,8 @@ double median_edge(const Mesh& mesh) {
     e.reserve(3 * mesh.triangles.size());
     for (const auto& t : mesh.triangles)
         for (std::size_t k = 0; k < 3; ++k)
-            e.push_back((mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).cast<double>().norm());
+            e.push_back(
+                (mesh.positions[t[k]] - mesh.positions[t[(k + 1) % 3]]).cast<double>().norm());
     if (e.empty()) return 0.0;
     const auto mid = e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2);
     std::nth_element(e.begin(), mid, e.end());
@@ -78,8 +79,7 @@ std::vector<std::uint8_t> band_of(const Mesh& mesh, const Rows& adj,
         if (d > dist[u]) continue;
         for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
             const std::uint32_t w = adj.index[i];
-            const double dw =
-                d + (mesh.positions[u] - mesh.positions[w]).cast<double>().norm();
+            const double dw = d + (mesh.positions[u] - mesh.positions[w]).cast<double>().norm();
             if (dw < dist[w] && dw <= width) {
                 dist[w] = dw;
                 queue.emplace(dw, w);
@@ -129,8 +129,8 @@ void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_
     // captured: 0, "missing surface".
     const bool above = weight > 0 && height > 0;
     for (const auto u : members)
-        depth[u] = above ? static_cast<float>(-std::max(
-                               0.0, normal.dot(mesh.positions[u].cast<double>() - c)))
+        depth[u] = above ? static_cast<float>(
+                               -std::max(0.0, normal.dot(mesh.positions[u].cast<double>() - c)))
                          : 0.0f;
 }
 
@@ -216,7 +216,7 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         else if (border_band[v]) k = CompareClass::ReferenceBorder;
         else if (examined_band[v]) k = CompareClass::ExaminedBorder;
         c.vertex_class[v] = static_cast<std::uint8_t>(k);
-        double& sum = k == CompareClass::Compared         ? c.compared_area
+        double& sum = k == CompareClass::Compared          ? c.compared_area
                       : k == CompareClass::NotReached      ? c.not_reached_area
                       : k == CompareClass::ReferenceBorder ? c.reference_border_area
                                                            : c.examined_border_area;

@@ -61,9 +61,9 @@ inline constexpr double kMaxHoleShare = 0.25;
 
 /// What the classification reads, one value per reference vertex (optional ones may be null).
 struct ComparisonInputs {
-    const std::vector<std::uint8_t>* seen = nullptr;     ///< required
-    const std::vector<float>* missing = nullptr;         ///< required: share without examined
-    const std::vector<float>* distance = nullptr;        ///< signed distance (may be null)
+    const std::vector<std::uint8_t>* seen = nullptr;       ///< required
+    const std::vector<float>* missing = nullptr;           ///< required: share without examined
+    const std::vector<float>* distance = nullptr;          ///< signed distance (may be null)
     const std::vector<std::uint8_t>* at_border = nullptr;  ///< (may be null)
     /// The closest examined triangle faces away from the vertex's normal (may be null).
     const std::vector<std::uint8_t>* facing_away = nullptr;
@@ -75,8 +75,8 @@ struct Comparison {
     /// rim cannot tell; NaN outside holes).
     std::vector<float> hole_depth;
     std::vector<std::uint8_t> in_hole;  ///< 1: the vertex lies in a hole (compared, gone)
-    double edge = 0.0;  ///< the reference's median edge length ℓ (mesh units)
-    double band = 0.0;  ///< kBandEdges·ℓ
+    double edge = 0.0;                  ///< the reference's median edge length ℓ (mesh units)
+    double band = 0.0;                  ///< kBandEdges·ℓ
     double reference_area = 0.0;
     double compared_area = 0.0;
     double reference_border_area = 0.0;

@@ -298,8 +298,7 @@ std::string own_scale_text(const FusedAtScale& f) {
 // The fused rule at the first scale where the floors are plausible (decision.h EvidenceScale).
 void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
                            const Coverage& compared, const DecisionOptions& o,
-                           const RegionOptions& region_options,
-                           FusedAtScale f, ZoomDecision& d) {
+                           const RegionOptions& region_options, FusedAtScale f, ZoomDecision& d) {
     EvidenceScale& s = d.scale;
     s.searched = true;
     s.quiet = false;
@@ -373,8 +372,7 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Covera
         } else {
             Mesh with_normals = reference;
             compute_vertex_normals(with_normals);
-            decide_at_quiet_scale(with_normals, e, compared, o, region_options, std::move(f),
-                                      d);
+            decide_at_quiet_scale(with_normals, e, compared, o, region_options, std::move(f), d);
         }
         return;
     }
@@ -384,12 +382,10 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Covera
     d.rule_text = fused_rule_text(d, describe(e.metric));
     RegionFieldStore fields;
     build_fields(e, d.comparison, d.shape.value, fields);
-    d.regions =
-        find_regions(reference,
-                     off_borders(reference,
-                                 detail::fused_mask(reference, e, f.excess, d.normal, d.shape, o),
-                                 d),
-                     e.coverage->seen, fields.fields, region_options);
+    d.regions = find_regions(
+        reference,
+        off_borders(reference, detail::fused_mask(reference, e, f.excess, d.normal, d.shape, o), d),
+        e.coverage->seen, fields.fields, region_options);
     detail::describe_evidence(d.regions, e, f.excess, d.normal, d.shape);
 }
 
@@ -500,8 +496,9 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
     Coverage reached = *evidence.coverage;
     for (std::size_t v = 0; v < compared.seen.size(); ++v) {
         compared.seen[v] = compared.seen[v] && d.comparison.compared(v);
-        reached.seen[v] = reached.seen[v] && d.comparison.vertex_class[v] !=
-                                                 static_cast<std::uint8_t>(CompareClass::NotReached);
+        reached.seen[v] =
+            reached.seen[v] &&
+            d.comparison.vertex_class[v] != static_cast<std::uint8_t>(CompareClass::NotReached);
     }
     DecisionEvidence e = evidence;
     e.coverage = &reached;

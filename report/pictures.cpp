@@ -71,8 +71,7 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%, compared %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
-                  100.0 * result.sweep.zooms[z].coverage.fraction,
-                  100.0 * d.comparison.fraction);
+                  100.0 * result.sweep.zooms[z].coverage.fraction, 100.0 * d.comparison.fraction);
     c.lines.emplace_back(b);
     for (const auto& r : d.regions.regions) {
         std::snprintf(b, sizeof b, "%d  %s  %s %s, %s %s^2", r.id,

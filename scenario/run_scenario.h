@@ -34,11 +34,11 @@ struct ScenarioOutcome {
     std::filesystem::path output;  ///< atlas folder (when exported)
     std::size_t reference_vertices = 0;
     std::size_t views = 0;
-    std::size_t regions = 0;              ///< zoom 0
-    std::string largest_kind;             ///< "dent"/"bump"/"" (zoom 0)
-    double coverage = 0.0;                ///< zoom 0
-    double compared = 0.0;  ///< zoom 0: compared / reference area (decision/comparison.h)
-    double threshold_deg = 0.0;           ///< zoom 0
+    std::size_t regions = 0;     ///< zoom 0
+    std::string largest_kind;    ///< "dent"/"bump"/"" (zoom 0)
+    double coverage = 0.0;       ///< zoom 0
+    double compared = 0.0;       ///< zoom 0: compared / reference area (decision/comparison.h)
+    double threshold_deg = 0.0;  ///< zoom 0
     std::optional<DetectionScore> score;  ///< when the scenario has ground truth
     std::optional<PoseError> pose;        ///< when the scenario knows the true pose
     std::optional<RegionTally>

@@ -175,8 +175,7 @@ void read_volume_edit(TableReader& r, Scenario& sc) {
 
 // [examined] truth_pose_conf / truth_pose_entry: a scan's ground-truth pose from a Stanford
 // .conf file (scenario/pose_conf.h); it replaces pose as the truth the fit is scored against.
-void read_conf_truth(TableReader& r, const fs::path& dir, const fs::path& data_root,
-                     Scenario& sc) {
+void read_conf_truth(TableReader& r, const fs::path& dir, const fs::path& data_root, Scenario& sc) {
     const auto conf = r.optional<std::string>("truth_pose_conf", "a string (a .conf file)");
     const auto entry = r.optional<std::string>("truth_pose_entry", "a string (a scan's name)");
     if (!conf && !entry) return;
@@ -185,18 +184,12 @@ void read_conf_truth(TableReader& r, const fs::path& dir, const fs::path& data_r
                conf ? "truth_pose_conf" : "truth_pose_entry",
                "needs both truth_pose_conf and truth_pose_entry");
     if (r.has("pose")) r.fail(r.get("pose"), "pose", "give pose or truth_pose_conf, not both");
-    bool needs = false;
-    const fs::path file = resolve_mesh(r, "truth_pose_conf", *conf, dir, data_root, needs);
-    std::error_code ec;
-    if (!fs::exists(file, ec)) {
-        sc.truth_pose_conf = file;  // reported missing with the data, as a mesh is
-        sc.truth_pose_conf_needs_data_root = needs;
-        sc.truth_pose_entry = *entry;
-        return;
-    }
-    sc.pose = read_conf_pose(file, *entry).inverse();  // examined = pose · reference
-    sc.truth_pose_conf = file;
+    sc.truth_pose_conf = resolve_mesh(r, "truth_pose_conf", *conf, dir, data_root,
+                                      sc.truth_pose_conf_needs_data_root);
     sc.truth_pose_entry = *entry;
+    std::error_code ec;  // a missing file is reported with the data, as a mesh is
+    if (fs::exists(sc.truth_pose_conf, ec))  // examined = pose · reference
+        sc.pose = read_conf_pose(sc.truth_pose_conf, *entry).inverse();
 }
 
 Rigid read_pose(TableReader& r) {
@@ -582,9 +575,10 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                              std::to_string(out.reference.vertex_count()) + " vertices");
     }
     if (!sc.truth_pose_conf.empty() && !fs::exists(sc.truth_pose_conf))
-        throw IoError("scenario \"" + sc.file.string() + "\": pose file \"" +
-                      sc.truth_pose_conf.string() + "\" not found" +
-                      (sc.truth_pose_conf_needs_data_root ? "; give --data-root or GLINT_DATA" : ""));
+        throw IoError(
+            "scenario \"" + sc.file.string() + "\": pose file \"" + sc.truth_pose_conf.string() +
+            "\" not found" +
+            (sc.truth_pose_conf_needs_data_root ? "; give --data-root or GLINT_DATA" : ""));
     out.has_truth_pose = sc.pose.matrix() != Rigid::Identity().matrix() ||
                          sc.analysis.fit.mode == FitMode::Truth || !sc.truth_pose_conf.empty();
     out.true_reference_from_examined = sc.pose.inverse();

@@ -273,9 +273,9 @@ void eval_command(const RunArgs& a) {
             line, sizeof line,
             "%-34s %-6s %4zu %-4s %6.3f %6.3f %6.2f %6s %6s %6s %6s %8s %9s %9s %6.1f %5s %5s %5s %6s %5s\n",
             o.name.substr(0, 34).c_str(), status.c_str(), o.regions,
-            o.largest_kind.substr(0, 4).c_str(), o.coverage, o.compared, o.threshold_deg, opt(prec).c_str(),
-            opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(), opt(cen, "%.3g").c_str(),
-            opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
+            o.largest_kind.substr(0, 4).c_str(), o.coverage, o.compared, o.threshold_deg,
+            opt(prec).c_str(), opt(rec).c_str(), opt(f1).c_str(), opt(iou).c_str(),
+            opt(cen, "%.3g").c_str(), opt(rot, "%.5f").c_str(), opt(tr, "%.3g").c_str(), o.seconds,
             opt(false_regions, "%.0f").c_str(), found.c_str(), opt(close, "%.0f").c_str(),
             opt(bf1).c_str(), opt(breg, "%.0f").c_str());
         table << line;

@@ -185,7 +185,8 @@ TEST(Legend, ManyRegionsOnASmallSheetAreCutNotDrawnOffTheImage) {
     detail::draw_text(c, 5, 60, "below the image", 12);
     detail::draw_text(c, 2, 24, "half below", 12);
     detail::draw_text(c, 35, 15, "past the right edge", 12);
-    detail::draw_text(c, 20, -5, "above", 12, detail::kText, OIIO::ImageBufAlgo::TextAlignX::Center);
+    detail::draw_text(c, 20, -5, "above", 12, detail::kText,
+                      OIIO::ImageBufAlgo::TextAlignX::Center);
     EXPECT_EQ(pixel(c, 39, 19), pixel(detail::canvas(40, 20), 39, 19));
 }
 

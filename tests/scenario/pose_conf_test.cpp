@@ -39,8 +39,9 @@ TEST(ConfPose, MapsAScanPointByTheTransposedRotationThenTheTranslation) {
     // q = (0, sin 45°, 0, cos 45°): 90° about y. R(q) maps x to −z; R(q)ᵀ maps x to +z.
     const double h = std::sin(std::numbers::pi / 4);
     const fs::path conf = write_file(
-        "scan.conf", "camera 0 0 0 0 0 0 1\n# a comment\nbmesh a.ply 0 0 0 0 0 0 1\nbmesh b.ply 1 2 3 0 " +
-                         std::to_string(h) + " 0 " + std::to_string(h) + "\n");
+        "scan.conf",
+        "camera 0 0 0 0 0 0 1\n# a comment\nbmesh a.ply 0 0 0 0 0 0 1\nbmesh b.ply 1 2 3 0 " +
+            std::to_string(h) + " 0 " + std::to_string(h) + "\n");
     const Rigid b = read_conf_pose(conf, "b.ply");
     const Vec3d p = b * Vec3d(1, 0, 0);
     EXPECT_NEAR(p.x(), 1.0, 1e-6);
@@ -64,9 +65,10 @@ TEST(ConfPose, NamesTheFileAndLineOfEveryFault) {
 
 TEST(ConfPose, AScenarioTakesItsTruthFromTheConfAndNeedsBothKeys) {
     const fs::path conf = write_file("bun.conf", "bmesh s.ply 0.5 0 0 0 0 0 1\n");
-    const std::string head = "[reference]\nphantom = \"sphere\"\n[examined]\nphantom = \"sphere\"\n";
-    const fs::path good = write_file(
-        "good.toml", head + "truth_pose_conf = \"" + conf.string() + "\"\ntruth_pose_entry = \"s.ply\"\n");
+    const std::string head =
+        "[reference]\nphantom = \"sphere\"\n[examined]\nphantom = \"sphere\"\n";
+    const fs::path good = write_file("good.toml", head + "truth_pose_conf = \"" + conf.string() +
+                                                      "\"\ntruth_pose_entry = \"s.ply\"\n");
     const Scenario sc = load_scenario(good, {});
     EXPECT_NEAR(sc.pose.translation().x(), -0.5, 1e-12);  // examined = pose · reference
     const fs::path half = write_file("half.toml", head + "truth_pose_entry = \"s.ply\"\n");
