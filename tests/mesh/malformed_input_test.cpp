@@ -94,6 +94,33 @@ TEST(MalformedInput, RejectsAPlyPropertyDeclaredTwiceNamingTheLine) {
     EXPECT_CONTAINS(msg, "property \"x\" declared twice in element \"vertex\"");
 }
 
+// assimp clamps an OFF index past the last vertex and reads −1 as 0 (issue 23, item 15).
+TEST(MalformedInput, RejectsAnOffFaceIndexOutsideTheVerticesNamingTheLine) {
+    const std::string head = "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 3\n";
+    for (const char* bad : {"40", "-1", "4", "x"}) {
+        const auto path =
+            write_bytes(std::string("index_") + bad + ".off", head + "3 0 1 " + bad + "\n");
+        const std::string msg = load_error<InputError>(path);
+        EXPECT_CONTAINS(msg, "line 8");
+        EXPECT_CONTAINS(msg, "OFF face 1 uses vertex \"" + std::string(bad) + "\"");
+        EXPECT_CONTAINS(msg, "expected an index from 0 to 3");
+    }
+    const auto fine = write_bytes("fine.off", head + "3 0 1 3\n");
+    EXPECT_EQ(load_mesh(fine).mesh.triangle_count(), 2u);
+}
+
+// A 30 000-corner OBJ face took assimp's ear clipping 107 s (issue 23, item 12).
+TEST(MalformedInput, RejectsAnObjFaceOfThousandsOfCornersBeforeTriangulating) {
+    std::string obj;
+    for (int i = 0; i < 2000; ++i)
+        obj += "v " + std::to_string(i) + " " + std::to_string(i % 7) + " 0\n";
+    obj += "f";
+    for (int i = 1; i <= 2000; ++i) obj += " " + std::to_string(i);
+    const auto path = write_bytes("many_corners.obj", obj + "\n");
+    const std::string msg = load_error<InputError>(path);
+    EXPECT_CONTAINS(msg, "line 2001: a face of 2000 corners, expected at most 1024");
+}
+
 TEST(MalformedInput, RejectsUnparsableAsciiPlyValueNamingTheLine) {
     const auto path =
         write_bytes("garbage_ascii.ply",
