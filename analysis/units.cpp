@@ -59,8 +59,9 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined,
     } else {
         r.unit = !ref_unit.empty() ? ref_unit : exa_unit;
     }
-    r.reference_size = bounds(reference).diagonal();
-    r.examined_size = bounds(examined).diagonal() * r.examined_scale;
+    // In double: a float diagonal of coordinates near 1e20 overflows to inf.
+    r.reference_size = bounds(reference).extent().cast<double>().norm();
+    r.examined_size = bounds(examined).extent().cast<double>().norm() * r.examined_scale;
     const double lo = std::min(r.reference_size, r.examined_size),
                  hi = std::max(r.reference_size, r.examined_size);
     const bool mismatch = !(lo > 0) || hi / lo > kMaxScaleRatio;
@@ -74,6 +75,11 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined,
             "mesh sizes differ: reference " + size_text(r.reference_size, ref_label) +
             ", examined " + size_text(r.examined_size, exa_label) + " (bounding-box diagonals; " +
             (lo > 0 ? ratio_text(r.reference_size, r.examined_size) : "one is empty") + ")";
+        if (!(hi / lo <= kMaxAllowedScaleRatio))
+            throw InputError(what + ", expected within " +
+                             std::to_string(static_cast<int>(kMaxScaleRatio)) +
+                             "× (--allow-scale-mismatch allows up to 10^6×): convert one mesh "
+                             "into the other's unit");
         if (!options.allow_scale_mismatch)
             throw InputError(
                 what + ", expected within " + std::to_string(static_cast<int>(kMaxScaleRatio)) +

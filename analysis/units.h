@@ -18,6 +18,9 @@ namespace glint {
 /// note: 5× leaves room for a partial scan against a whole bone (a condyle against the
 /// mandible is ~4×) while catching mm against cm (10×) and mm against m (1000×).
 inline constexpr double kMaxScaleRatio = 5.0;
+/// Beyond this ratio no run is meaningful, --allow-scale-mismatch or not: a mesh scaled by 1e20
+/// spent minutes in closest-point queries before any message.
+inline constexpr double kMaxAllowedScaleRatio = 1e6;
 
 struct UnitOptions {
     /// The unit both meshes are in ("mm", "m", "um", "cm", "in"; mesh/units.h spellings);

@@ -62,6 +62,19 @@ TEST(ResolveUnits, AllowsAMismatchWhenToldAndWarns) {
     EXPECT_NE(r.warnings[0].find("allowed"), std::string::npos);
 }
 
+// Coordinates scaled by 1e20 spent minutes in closest-point queries under
+// --allow-scale-mismatch (issue 23, item 14); their float diagonal overflowed to inf.
+TEST(ResolveUnits, RefusesHugeCoordinatesEvenWhenAMismatchIsAllowed) {
+    try {
+        (void)resolve_units(triangle(10, ""), triangle(1e20f, ""), {.allow_scale_mismatch = true});
+        FAIL() << "a 1e19x size difference was accepted";
+    } catch (const InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("examined 1.414e+20 units"), std::string::npos) << m;
+        EXPECT_NE(m.find("allows up to 10^6×"), std::string::npos) << m;
+    }
+}
+
 TEST(ResolveUnits, AcceptsAPartialScanWithinTheRatio) {
     // A condyle against its mandible is ~4× smaller: not a unit mistake.
     EXPECT_NO_THROW((void)resolve_units(triangle(40, "mm"), triangle(10, "mm"), {}));
