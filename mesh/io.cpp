@@ -200,6 +200,11 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
     report.degenerate_triangles = counts.degenerate_triangles;
     report.duplicate_triangles = counts.duplicate_triangles;
     report.unused_vertices = counts.unused_vertices;
+    if (!points_only && mesh.triangles.empty())
+        throw InputError(quoted(source) + ": all " +
+                         std::to_string(counts.degenerate_triangles + counts.duplicate_triangles) +
+                         " triangles are degenerate (zero area) or duplicates, expected a "
+                         "triangle mesh with area");
     if (!points_only) {
         check_mesh(mesh, source);
     } else if (mesh.positions.empty()) {
@@ -261,7 +266,7 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
                 char hex[8];
                 std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(data[bad]));
                 throw InputError(quoted(source) + ": byte " + std::to_string(bad) + " is " + hex +
-                                 ", binary content in a " + ext.substr(1) +
+                                 ", binary content in a ." + ext.substr(1) +
                                  " file, which is a text format");
             }
             detail::check_before_assimp(data, ext, source, options.max_triangles);

@@ -109,6 +109,15 @@ TEST(MalformedInput, RejectsAnOffFaceIndexOutsideTheVerticesNamingTheLine) {
     EXPECT_EQ(load_mesh(fine).mesh.triangle_count(), 2u);
 }
 
+// A mesh whose every triangle is degenerate said "has no vertices" (issue 23, item 18).
+TEST(MalformedInput, SaysThatEveryTriangleIsDegenerateNotThatThereAreNoVertices) {
+    const auto path = write_bytes("degenerate_only.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    const std::string msg = load_error<InputError>(path);
+    EXPECT_CONTAINS(msg, "all 1 triangles are degenerate (zero area) or duplicates");
+    const auto binary = write_bytes("escape.obj", "v 0 0 0\x1b[31m\n");
+    EXPECT_CONTAINS(load_error<InputError>(binary), "binary content in a .obj file");
+}
+
 // A 30 000-corner OBJ face took assimp's ear clipping 107 s (issue 23, item 12).
 TEST(MalformedInput, RejectsAnObjFaceOfThousandsOfCornersBeforeTriangulating) {
     std::string obj;
