@@ -396,7 +396,13 @@ void check_off_faces(std::span<const char> data, std::size_t pos, std::uint64_t 
         if (words.empty() || words[0].starts_with('#')) continue;
         if (seen++ < vertices) continue;
         std::uint64_t n = 0;
-        std::from_chars(words[0].data(), words[0].data() + words[0].size(), n);
+        const auto nr = std::from_chars(words[0].data(), words[0].data() + words[0].size(), n);
+        if (nr.ec != std::errc() || nr.ptr != words[0].data() + words[0].size() || n < 3 ||
+            n + 1 > words.size())
+            throw InputError(quoted(source) + ": line " + std::to_string(line_of(data, pos - 1)) +
+                             ": OFF face " + std::to_string(seen - vertices - 1) + " starts \"" +
+                             printable(line) + "\", expected a corner count of at least 3 and " +
+                             "that many vertex indices");
         for (std::size_t k = 1; k <= n && k < words.size(); ++k) {
             const auto w = words[k];
             std::uint64_t index = 0;
@@ -422,8 +428,18 @@ void check_off(std::span<const char> data, const std::string& source) {
     std::string_view line;
     std::vector<std::string_view> words;
     int count_lines = 0;  // lines the counts came from
+    bool first = true;
     while (words.size() < 3 && next_line(data, pos, line)) {
-        if (line.starts_with('#')) continue;
+        if (line.starts_with('#') || split_words(line).empty()) continue;
+        // note: without the OFF keyword the first line must be the three counts: a first line
+        // of 8 numbers made assimp read a face without indices (an invalid read under ASan,
+        // fuzz/fuzz_off).
+        if (first && line.find("OFF") == std::string_view::npos && split_words(line).size() != 3)
+            throw InputError(quoted(source) + ": line " + std::to_string(line_of(data, pos - 1)) +
+                             ": an OFF file without the OFF keyword starts with " +
+                             std::to_string(split_words(line).size()) +
+                             " words, expected the three counts (vertices faces edges)");
+        first = false;
         const std::size_t before = words.size();
         for (auto w : split_words(line)) {
             if (words.empty() && w.find("OFF") != std::string_view::npos) {

@@ -105,6 +105,13 @@ TEST(MalformedInput, RejectsAnOffFaceIndexOutsideTheVerticesNamingTheLine) {
         EXPECT_CONTAINS(msg, "OFF face 1 uses vertex \"" + std::string(bad) + "\"");
         EXPECT_CONTAINS(msg, "expected an index from 0 to 3");
     }
+    // A face of fewer than three corners, and a file without the keyword whose first line is
+    // not the three counts (assimp read a face without indices from it: fuzz/fuzz_off).
+    const auto two = write_bytes("two_corners.off", head + "2 0 1\n");
+    EXPECT_CONTAINS(load_error<InputError>(two), "expected a corner count of at least 3");
+    const auto eight = write_bytes("eight_counts.off", "#5\n1 1 0 0 0 25 0 0\n\n\ng 0 25 0 0\n");
+    EXPECT_CONTAINS(load_error<InputError>(eight),
+                    "line 2: an OFF file without the OFF keyword starts with 8 words");
     const auto fine = write_bytes("fine.off", head + "3 0 1 3\n");
     EXPECT_EQ(load_mesh(fine).mesh.triangle_count(), 2u);
 }
