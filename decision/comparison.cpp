@@ -1,5 +1,6 @@
 #include "decision/comparison.h"
 
+#include "decision/detail/fused_rule.h"
 #include "mesh/components.h"
 #include "mesh/error.h"
 
@@ -25,29 +26,6 @@ std::string to_string(CompareClass c) {
 
 namespace {
 
-// Vertex neighbours in compressed rows (duplicates allowed).
-struct Rows {
-    std::vector<std::uint32_t> offset;
-    std::vector<std::uint32_t> index;
-};
-
-Rows neighbours(const Mesh& mesh) {
-    const std::size_t n = mesh.vertex_count();
-    Rows a;
-    a.offset.assign(n + 1, 0);
-    for (const auto& t : mesh.triangles)
-        for (const auto v : t) a.offset[v + 1] += 2;
-    for (std::size_t v = 0; v < n; ++v) a.offset[v + 1] += a.offset[v];
-    a.index.resize(a.offset[n]);
-    std::vector<std::uint32_t> fill(a.offset.begin(), a.offset.end() - 1);
-    for (const auto& t : mesh.triangles)
-        for (std::size_t k = 0; k < 3; ++k) {
-            a.index[fill[t[k]]++] = t[(k + 1) % 3];
-            a.index[fill[t[k]]++] = t[(k + 2) % 3];
-        }
-    return a;
-}
-
 double median_edge(const Mesh& mesh) {
     std::vector<double> e;
     e.reserve(3 * mesh.triangles.size());
@@ -62,7 +40,7 @@ double median_edge(const Mesh& mesh) {
 }
 
 // Vertices within `width` of a seed, along mesh edges (multi-source Dijkstra).
-std::vector<std::uint8_t> band_of(const Mesh& mesh, const Rows& adj,
+std::vector<std::uint8_t> band_of(const Mesh& mesh, const detail::Adjacency& adj,
                                   const std::vector<std::uint8_t>& seed, double width) {
     const std::size_t n = seed.size();
     std::vector<double> dist(n, std::numeric_limits<double>::infinity());
@@ -93,9 +71,10 @@ std::vector<std::uint8_t> band_of(const Mesh& mesh, const Rows& adj,
 
 // The signed depth of the surface gone in one hole (see comparison.h): minus the height above
 // the plane through its rim where the reference stood above it, else 0 (depth unknown).
-void hole_shape(const Mesh& mesh, const Rows& adj, const std::vector<std::int32_t>& group,
-                std::int32_t id, const std::vector<std::uint32_t>& members,
-                const std::vector<double>& area, std::vector<float>& depth) {
+void hole_shape(const Mesh& mesh, const detail::Adjacency& adj,
+                const std::vector<std::int32_t>& group, std::int32_t id,
+                const std::vector<std::uint32_t>& members, const std::vector<double>& area,
+                std::vector<float>& depth) {
     Vec3d sum{0, 0, 0};
     std::vector<Vec3d> rim;
     for (const auto u : members)
@@ -159,7 +138,7 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     c.edge = median_edge(mesh);
     c.band = kBandEdges * c.edge;
     c.rule = rule_text(c);
-    const Rows adj = neighbours(mesh);
+    const detail::Adjacency adj = detail::adjacency(mesh);
     const auto area = vertex_areas(mesh);
     for (const double a : area) c.reference_area += a;
     const bool have_distance = in.distance && in.distance->size() == n;
