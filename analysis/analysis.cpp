@@ -2,6 +2,7 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/fault_injection.h"
 #include "mesh/normals.h"
 #include "render/context.h"
 
@@ -21,6 +22,7 @@ double seconds_since(Clock::time_point t0) {
 }
 
 void announce(const AnalysisObserver& observer, std::string_view stage) {
+    fault_point(stage);
     throw_if_cancelled();
     if (observer.stage) observer.stage(stage);
 }

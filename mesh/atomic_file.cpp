@@ -1,6 +1,8 @@
 #include "mesh/atomic_file.h"
 
+#include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/fault_injection.h"
 #include "mesh/file_set.h"
 #include "mesh/output_guard.h"
 
@@ -33,14 +35,26 @@ fs::path prepare(const fs::path& path, fs::path& target) {
         throw IoError("cannot write \"" + path.string() + "\": folder \"" + folder.string() +
                       "\" does not exist");
     static std::atomic<unsigned> counter{0};
-    return folder / ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                     std::to_string(counter++) + target.extension().string());
+    fs::path temp = folder / ("." + target.stem().string() + ".tmp-" + std::to_string(::getpid()) +
+                              "-" + std::to_string(counter++) + target.extension().string());
+    track_staged(temp);  // removed by the watchdog when a step never comes back
+    return temp;
+}
+
+// Removes a temporary that will not be committed.
+void discard(const fs::path& temp) noexcept {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    untrack_staged(temp);
 }
 
 void commit(const fs::path& temp, const fs::path& target, const fs::path& path) {
+    fault_point("file-commit");
+    throw_if_cancelled();  // a signal that came during the writing is not swallowed here
     std::error_code ec;
     fs::rename(temp, target, ec);
     if (ec) throw IoError("cannot write \"" + path.string() + "\": rename failed: " + ec.message());
+    untrack_staged(temp);
 }
 
 }  // namespace
@@ -56,8 +70,7 @@ void write_atomically_to_path(const fs::path& path,
             throw IoError("cannot write \"" + path.string() + "\": the writer produced no file");
         commit(temp, target, path);
     } catch (...) {
-        std::error_code ec;
-        fs::remove(temp, ec);
+        discard(temp);
         throw;
     }
 }
@@ -76,8 +89,7 @@ void write_atomically(const fs::path& path, const std::function<void(std::ostrea
 }
 
 FileSet::~FileSet() {
-    std::error_code ec;
-    for (const Staged& s : staged_) fs::remove(s.temp, ec);
+    for (const Staged& s : staged_) discard(s.temp);
 }
 
 void FileSet::add(const fs::path& path, const std::function<void(const fs::path&)>& write) {
@@ -90,8 +102,7 @@ void FileSet::add(const fs::path& path, const std::function<void(const fs::path&
         if (!fs::is_regular_file(s.temp, ec))
             throw IoError("cannot write \"" + path.string() + "\": the writer produced no file");
     } catch (...) {
-        std::error_code ec;
-        fs::remove(s.temp, ec);
+        discard(s.temp);
         throw;
     }
     staged_.push_back(std::move(s));
@@ -102,10 +113,15 @@ void FileSet::add(const fs::path& path, std::string_view contents) {
 }
 
 void FileSet::commit() {
+    fault_point("file-commit");
+    throw_if_cancelled();  // the destructor removes the temporaries: none of the set appears
     for (std::size_t i = 0; i < staged_.size(); ++i) {
         std::error_code ec;
         fs::rename(staged_[i].temp, staged_[i].target, ec);
-        if (!ec) continue;
+        if (!ec) {
+            untrack_staged(staged_[i].temp);
+            continue;
+        }
         const std::string why = ec.message();
         for (std::size_t j = 0; j < i; ++j) fs::remove(staged_[j].target, ec);
         throw IoError("cannot write \"" + staged_[i].path.string() + "\": rename failed: " + why +

@@ -9,6 +9,8 @@
 
 #include "mesh/error.h"
 
+#include <filesystem>
+
 namespace glint {
 
 /// Thrown by throw_if_cancelled() once cancellation was requested (glint exits 130).
@@ -28,5 +30,18 @@ void request_cancel(int signal) noexcept;
 void reset_cancel() noexcept;
 /// \throw Cancelled naming the signal when cancellation was requested.
 void throw_if_cancelled();
+
+// Staged outputs (temporary files, staging folders) of this process. The cooperative stop
+// removes them as the stack unwinds; when a step does not come back (a library call that
+// cannot poll), the command line's watchdog removes what is still listed here before it ends
+// the process, so even then nothing half-written is left under a name of the user's.
+
+/// Lists a staged path (a file or a folder) until untrack_staged(). Thread-safe.
+void track_staged(const std::filesystem::path& path);
+/// Takes a path off the list (committed, or removed by its owner). Thread-safe.
+void untrack_staged(const std::filesystem::path& path) noexcept;
+/// Removes every listed path (folders with their contents) and empties the list; returns how
+/// many it removed. For the watchdog thread: never throws.
+std::size_t remove_staged_now() noexcept;
 
 }  // namespace glint

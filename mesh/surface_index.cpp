@@ -1,6 +1,7 @@
 #include "mesh/surface_index.h"
 
 #include "mesh/error.h"
+#include "mesh/memory_limits.h"
 
 #include <embree3/rtcore.h>
 
@@ -25,8 +26,7 @@ struct Device {
     Device() {
         device = rtcNewDevice(nullptr);
         if (device == nullptr)
-            throw DeviceError("cannot create an Embree device (error " +
-                              std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+            throw DeviceError(embree_device_failure(static_cast<int>(rtcGetDeviceError(nullptr))));
         rtcSetDeviceErrorFunction(
             device,
             [](void* user, RTCError code, const char* message) {

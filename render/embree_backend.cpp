@@ -10,6 +10,7 @@
 // which is what the rasteriser's perspective-correct interpolation computes per fragment.
 // Scene flag ROBUST: watertight traversal, so rays through shared edges do not leak.
 #include "mesh/error.h"
+#include "mesh/memory_limits.h"
 #include "render/detail/backend.h"
 
 #include <embree3/rtcore.h>
@@ -63,8 +64,7 @@ class EmbreeDevice {
         const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : "";
         device_ = rtcNewDevice(config.empty() ? nullptr : config.c_str());
         if (device_ == nullptr) {
-            throw DeviceError("cannot create an Embree device (error " +
-                              std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+            throw DeviceError(embree_device_failure(static_cast<int>(rtcGetDeviceError(nullptr))));
         }
         ++creation_counters().embree_devices;
         rtcSetDeviceErrorFunction(device_, embree_error, &errors_);

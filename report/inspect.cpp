@@ -1,6 +1,7 @@
 #include "report/inspect.h"
 
 #include "mesh/cancel.h"
+#include "mesh/fault_injection.h"
 #include "report/output_folder.h"
 #include "report/report.h"
 #include "report/report_html.h"
@@ -80,6 +81,7 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     auto& warnings = out.analysis.warnings;
     warnings.insert(warnings.begin(), record.warnings.begin(), record.warnings.end());
 
+    fault_point("export");
     throw_if_cancelled();
     if (observer.stage) observer.stage("export");
     const auto t = Clock::now();

@@ -1,6 +1,8 @@
 #include "report/output_folder.h"
 
+#include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/fault_injection.h"
 #include "mesh/output_guard.h"
 
 #include <fcntl.h>
@@ -100,6 +102,7 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
                          "\" exists; give --force to replace it");
     remove_leftovers(target_);
     wrapper_ = make_wrapper(target_);
+    track_staged(wrapper_);  // removed by the watchdog when a step never comes back
     staging_ = wrapper_ / "out";
     {
         std::ofstream marker(wrapper_ / kStagingMarker);
@@ -109,6 +112,7 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
     if (ec || ::access(staging_.c_str(), W_OK) != 0) {
         std::error_code ignored;
         fs::remove_all(wrapper_, ignored);
+        untrack_staged(wrapper_);
         throw IoError("output folder \"" + target_.string() + "\": cannot create \"" +
                       staging_.string() + "\"" +
                       (ec ? ": " + ec.message() : std::string(": not writable")));
@@ -118,6 +122,7 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
 OutputFolder::~OutputFolder() {
     std::error_code ec;
     fs::remove_all(wrapper_, ec);  // destructors never throw; a leftover is marked
+    untrack_staged(wrapper_);
 }
 
 fs::path OutputFolder::file(const fs::path& relative) const {
@@ -176,8 +181,14 @@ void OutputFolder::commit_replacing() {
 }
 
 void OutputFolder::commit() {
+    fault_point("commit");
+    // A signal that came while the last files were written stops the run here, before the
+    // point of no return; one that comes after is reported by the command line (exit 130,
+    // the results kept and complete).
+    throw_if_cancelled();
     if (replace_existing_) commit_replacing();
     else commit_new();
+    fault_point("committed");
     std::error_code ec;
     fs::remove_all(wrapper_, ec);  // the marker, and with --force the replaced results
 }

@@ -2,6 +2,7 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/fault_injection.h"
 #include "render/gpu_atlas.h"
 #include "scanner/coverage.h"
 
@@ -68,6 +69,7 @@ bool run_sweep_on_gpu(const Mesh& reference, Renderer& reference_renderer,
     const DeviationMap no_deviation;
     const auto t_run = Clock::now();
     atlas.run(views, [&](std::size_t i, const ViewNumbers& g) {
+        fault_point("view");
         throw_if_cancelled();
         const PlannedView& pv = plan.views[i];
         ViewSummary summary;

@@ -2,6 +2,7 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/fault_injection.h"
 #include "scanner/backproject.h"
 #include "scanner/gpu_sweep.h"
 
@@ -200,6 +201,7 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         *ref_renderer, *exa_renderer, views,
         [&](std::size_t, const FrameRows& ref, const FrameRows& exa) { stream.rows(ref, exa); },
         [&](std::size_t i) {
+            fault_point("view");
             throw_if_cancelled();
             const auto t = Clock::now();
             result.views.push_back(stream.done(i, observer));

@@ -45,10 +45,16 @@ struct CheckFailed : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-/// Installs the SIGINT / SIGTERM handlers: the first signal requests cancellation
-/// (mesh/cancel.h: library loops throw Cancelled at their next safe point, the run unwinds,
-/// staged outputs are removed and glint exits 130); a second one ends the process at once.
+/// Installs the SIGINT / SIGTERM handlers (tools/interrupts.cpp; they are already in place
+/// from before the libraries' initialisers) and starts the watchdog: the first signal requests
+/// cancellation (mesh/cancel.h: library loops throw Cancelled at their next safe point, the
+/// run unwinds, staged outputs are removed and glint exits 130); a step that does not stop
+/// within 3 s, or a second signal given a second or more later, ends the process after the
+/// watchdog removed the staged outputs. The same signal repeated within a second is one.
 void install_interrupt_handlers();
+/// The command line printed its own line about the interrupt: the watchdog, should it still
+/// end the process, stays silent (one line per run).
+void note_interrupt_reported() noexcept;
 
 using CommandSetup = std::function<void(CLI::App& app)>;
 

@@ -2,6 +2,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/memory_limits.h"
 #include "mesh/version.h"
 #include "tools/command.h"
 #include "tools/slicer_module.h"
@@ -16,11 +17,10 @@
 #include <exception>
 #include <functional>
 #include <iostream>
+#include <new>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <unistd.h>
 
 namespace glint::cli {
 
@@ -30,29 +30,6 @@ GlobalFlags& global_flags() {
 }
 
 namespace {
-// note: 3 s for the cooperative stop (the next view or the next thousand file lines, then the
-// staged outputs removed) before the watchdog ends the process with the same exit code: a call
-// into a library (ITK, VTK, a driver) cannot poll the flag, and one given a hostile input may
-// never return. A single SIGTERM from `timeout` or a batch system must still end glint.
-constexpr unsigned kCancelGraceSeconds = 3;
-
-// One line, as every other end of glint gives, written with write(2) (a signal handler may not
-// use iostreams): the step under way did not come back within the grace period.
-extern "C" void on_watchdog(int) {
-    static constexpr char kLine[] =
-        "glint: interrupted: the step under way did not stop within 3 s; ended without cleaning "
-        "up (a staging folder left behind is removed by the next run into the same output)\n";
-    [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
-    _exit(130);
-}
-
-extern "C" void on_signal(int signal) {
-    glint::request_cancel(signal);
-    std::signal(signal, SIG_DFL);  // a second one ends the process at once
-    std::signal(SIGALRM, on_watchdog);
-    alarm(kCancelGraceSeconds);
-}
-
 std::vector<std::pair<int, CommandSetup>>& registry() {
     static std::vector<std::pair<int, CommandSetup>> commands;
     return commands;
@@ -61,11 +38,6 @@ std::vector<std::pair<int, CommandSetup>>& registry() {
 
 CommandRegistrar::CommandRegistrar(int order, CommandSetup setup) {
     registry().emplace_back(order, std::move(setup));
-}
-
-void install_interrupt_handlers() {
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
 }
 
 void add_registered_commands(CLI::App& app) {
@@ -156,6 +128,7 @@ int guarded(CLI::App& app, const std::function<void()>& body) {
     } catch (const CLI::ParseError& e) {
         return parse_failure(app, e);
     } catch (const glint::Cancelled& e) {
+        note_interrupt_reported();
         return fail(kExitInterrupted, "interrupted", e.what());
     } catch (const CheckFailed& e) {
         // The command printed its result (JSON too) before its checks failed: stderr only.
@@ -167,8 +140,25 @@ int guarded(CLI::App& app, const std::function<void()>& body) {
         return fail(kExitDeviceOrIo, "error", e.what());
     } catch (const glint::DeviceError& e) {
         return fail(kExitDeviceOrIo, "device error", e.what());
+    } catch (const std::bad_alloc&) {
+        const std::string& line = global_flags().command_line;
+        return fail(kExitDeviceOrIo, "out of memory",
+                    "`" + line.substr(0, 200) + "` needed more memory than it could get (" +
+                        glint::memory_limits_text() + ")");
     } catch (const std::exception& e) {
         return fail(kExitInternal, "internal error", e.what());
+    }
+    // A signal that came after the last point that polls (the outputs' commit): the results
+    // are complete and kept, but the request to stop is not swallowed.
+    if (glint::cancel_requested()) {
+        note_interrupt_reported();
+        const int s = glint::cancel_signal();
+        return fail(kExitInterrupted, "interrupted",
+                    std::string(s == SIGINT    ? "SIGINT"
+                                : s == SIGTERM ? "SIGTERM"
+                                               : "a signal") +
+                        " received after the command completed; its results are complete and "
+                        "kept");
     }
     return kExitOk;
 }
@@ -206,5 +196,8 @@ int main(int argc, char** argv) {
     if (is_slicer_call(argc, argv)) return guarded(app, [&] { run_slicer_module(argc, argv); });
     if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty())
         return fail(kExitBadInput, "error", unknown);
-    return guarded(app, [&] { app.parse(argc, argv); });
+    return guarded(app, [&] {
+        glint::throw_if_cancelled();  // a signal during start-up: no work begins
+        app.parse(argc, argv);
+    });
 }

@@ -1,9 +1,12 @@
 #include "mesh/atomic_file.h"
 
+#include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/file_set.h"
 
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -45,6 +48,50 @@ TEST(WriteAtomically, FailureMidwayKeepsTheOldFileAndRemovesTheTemporary) {
                  IoError);
     EXPECT_EQ(read_all(dir / "a.txt"), "old");
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+// Issue 23 item 16: a signal during the writing stops before the rename; the old file stays.
+TEST(WriteAtomically, ASignalDuringTheWritingKeepsTheOldFile) {
+    const auto dir = fresh_dir("cancelled");
+    write_file_atomically(dir / "f.txt", "old");
+    EXPECT_THROW(write_atomically(dir / "f.txt",
+                                  [](std::ostream& out) {
+                                      out << "new";
+                                      request_cancel(SIGINT);
+                                  }),
+                 Cancelled);
+    reset_cancel();
+    EXPECT_EQ(read_all(dir / "f.txt"), "old");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+// A set of files (a mesh and its sidecar) stopped by a signal: none of them appears.
+TEST(FileSet, ASignalBeforeTheCommitLeavesNoneOfTheSet) {
+    const auto dir = fresh_dir("set_cancelled");
+    {
+        FileSet set;
+        set.add(dir / "p.ply", "ply");
+        set.add(dir / "p.ply.json", "{}");
+        request_cancel(SIGTERM);
+        EXPECT_THROW(set.commit(), Cancelled);
+        reset_cancel();
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
+// Temporaries are listed for the watchdog while they exist, and off the list once renamed.
+TEST(FileSet, ItsTemporariesAreListedForTheWatchdogUntilCommitted) {
+    const auto dir = fresh_dir("set_listed");
+    FileSet set;
+    set.add(dir / "a.txt", "a");
+    set.add(dir / "b.txt", "b");
+    EXPECT_EQ(remove_staged_now(), 2u);
+    EXPECT_TRUE(fs::is_empty(dir));
+    FileSet again;
+    again.add(dir / "a.txt", "a");
+    again.commit();
+    EXPECT_EQ(remove_staged_now(), 0u);
+    EXPECT_EQ(read_all(dir / "a.txt"), "a");
 }
 
 TEST(WriteAtomically, RefusesToOverwriteAnInput) {

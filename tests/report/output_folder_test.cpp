@@ -1,12 +1,14 @@
 #include "report/output_folder.h"
 
 #include "mesh/atomic_file.h"
+#include "mesh/cancel.h"
 #include "mesh/error.h"
 
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -54,6 +56,47 @@ TEST(OutputFolder, InterruptedRunLeavesNothingAndKeepsThePreviousResults) {
     std::string text;
     std::getline(in, text);
     EXPECT_EQ(text, "old");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+// Issue 23 item 16: a signal that came while the last files were written stops the commit
+// (it used to be swallowed, exit 0); the previous results stay, nothing staged is left.
+TEST(OutputFolder, ASignalBeforeTheCommitStopsItAndKeepsThePreviousResults) {
+    const fs::path dir = base("cancel_before_commit");
+    {
+        OutputFolder first(dir / "atlas");
+        write_file_atomically(first.file("report.json"), "old");
+        first.commit();
+    }
+    {
+        OutputFolder second(dir / "atlas", /*replace_existing=*/true);
+        write_file_atomically(second.file("report.json"), "new");
+        request_cancel(SIGTERM);
+        EXPECT_THROW(second.commit(), Cancelled);
+        reset_cancel();
+    }
+    std::ifstream in(dir / "atlas" / "report.json");
+    std::string text;
+    std::getline(in, text);
+    EXPECT_EQ(text, "old");
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
+}
+
+// The watchdog's last resort: the staging folder is listed while it exists and removed by
+// remove_staged_now() (a step that never came back), and off the list once committed.
+TEST(OutputFolder, ItsStagingFolderIsListedForTheWatchdogUntilCommitted) {
+    const fs::path dir = base("staged_list");
+    {
+        OutputFolder stuck(dir / "stuck");
+        write_file_atomically(stuck.file("views/a.txt"), "x");
+        EXPECT_EQ(remove_staged_now(), 1u);
+        EXPECT_FALSE(fs::exists(stuck.staging()));
+    }
+    OutputFolder done(dir / "done");
+    write_file_atomically(done.file("report.json"), "{}");
+    done.commit();
+    EXPECT_EQ(remove_staged_now(), 0u);
+    EXPECT_TRUE(fs::exists(dir / "done" / "report.json"));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }
 

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Issue 23 item 16: how a signal ends glint, whenever it comes.
+#   repeat  the same SIGTERM delivered twice at once (timeout(1), shells and batch systems send
+#           it to the process and to its group): one request, the cooperative stop, one line;
+#   insist  a step that never returns, SIGTERM, then another a second later: ended at once by
+#           the watchdog, staged outputs removed, one line;
+#   early   SIGTERM as soon as glint's handler is in place (before the libraries' start-up,
+#           from .preinit_array): exit 130 and one line, no work begun.
+#   signals_test.sh GLINT WORKDIR CASE
+set -euo pipefail
+glint=$1
+work=$2/signals_$3
+case_name=$3
+rm -rf "$work"
+mkdir -p "$work"
+fail() { echo "FAIL [$case_name]: $*"; exit 1; }
+"$glint" --quiet phantom condyle --scheme ico --resolution 4 -o "$work/ref.ply" >/dev/null
+# A long sweep run in place of a subshell, so that `$!` of `(long_sweep …) &` is glint's pid.
+long_sweep() {
+    exec "$glint" --quiet sweep "$work/ref.ply" "$work/ref.ply" --azimuth-step 2 \
+        --elevations -60,-30,0,30,60 --size 128 --no-exr -o "$work/atlas"
+}
+wait_for_staging() {
+    for _ in $(seq 300); do
+        compgen -G "$work/atlas.partial-*" >/dev/null && return 0
+        sleep 0.1
+    done
+    fail "no staging folder appeared"
+}
+finish() {  # finish PID: waits, checks exit 130, one line, nothing left; prints the line
+    set +e
+    wait "$1"
+    local code=$?
+    set -e
+    [ "$code" -eq 130 ] || fail "exit $code, expected 130: $(cat "$work/err.txt")"
+    [ "$(wc -l <"$work/err.txt")" -eq 1 ] || fail "expected one line: $(cat "$work/err.txt")"
+    [ ! -e "$work/atlas" ] || fail "$work/atlas exists"
+    [ -z "$(find "$work" -maxdepth 1 -name 'atlas.*' | head -1)" ] || fail "staging left: $(ls "$work")"
+    cat "$work/err.txt"
+}
+
+case "$case_name" in
+    repeat)
+        (long_sweep 2>"$work/err.txt") &
+        pid=$!
+        wait_for_staging
+        kill -TERM "$pid"
+        kill -TERM "$pid"
+        finish "$pid"
+        grep -q "SIGTERM received: stopped" "$work/err.txt" || fail "not the cooperative stop"
+        ;;
+    insist)
+        (GLINT_FAULT="view#2:stall" long_sweep 2>"$work/err.txt") &
+        pid=$!
+        wait_for_staging
+        sleep 0.5
+        kill -TERM "$pid"
+        sleep 1.2
+        start=$(date +%s%N)
+        kill -TERM "$pid"
+        finish "$pid"
+        elapsed_ms=$((($(date +%s%N) - start) / 1000000))
+        grep -q "a second signal: ended at once" "$work/err.txt" || fail "not the second-signal line"
+        [ "$elapsed_ms" -lt 1500 ] || fail "the second signal took $elapsed_ms ms to end the run"
+        ;;
+    early)
+        (long_sweep 2>"$work/err.txt") &
+        pid=$!
+        # SigCgt bit 15 (SIGTERM) set: the handler is in place.
+        for _ in $(seq 2000); do
+            mask=$(awk '/^SigCgt/ {print $2}' "/proc/$pid/status" 2>/dev/null || echo 0)
+            (((16#$mask >> 14) & 1)) && break
+            sleep 0.005
+        done
+        kill -TERM "$pid"
+        finish "$pid"
+        grep -q "SIGTERM received" "$work/err.txt" || fail "the line does not name SIGTERM"
+        ;;
+    *) fail "unknown case" ;;
+esac
+echo "ok: $case_name"
