@@ -2,6 +2,15 @@
 #   -DCOMMAND="a;b;c" -DEXPECT_CODE=N [-DEXPECT_STDERR=regex] [-DEXPECT_STDOUT=regex]
 #   [-DEXPECT_LINES=N (stderr has exactly N lines)] [-DWORKDIR=dir] [-DENV="K=V;K2=V2"]
 #   [-DEXPECT_ABSENT="path;glob…" (nothing matches after the run: no half-written output)]
+# What must be absent after the run is removed before it: a rerun judges only itself.
+if(DEFINED EXPECT_ABSENT)
+  foreach(pattern ${EXPECT_ABSENT})
+    file(GLOB stale "${pattern}")
+    if(stale)
+      file(REMOVE_RECURSE ${stale})
+    endif()
+  endforeach()
+endif()
 if(DEFINED ENV_VARS)
   foreach(kv ${ENV_VARS})
     string(REGEX MATCH "^([^=]+)=(.*)$" _ "${kv}")

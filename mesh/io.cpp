@@ -1,6 +1,7 @@
 #include "mesh/io.h"
 
 #include "mesh/atomic_file.h"
+#include "mesh/cancel.h"
 #include "mesh/detail/assimp_reader.h"
 #include "mesh/detail/ply_reader.h"
 #include "mesh/detail/scene_check.h"
@@ -45,11 +46,15 @@ std::string lower_extension(const fs::path& path) {
     return ext;
 }
 
-// The bytes of a file, memory-mapped (read-only, private) so large binary files are not
-// copied before parsing.
-// A mesh file's bytes, mapped. Only regular files are mapped, opened without blocking (a FIFO
-// or a device never hangs the run; issue 23 item 11).
-// note: a file that shrinks while it is mapped still ends in SIGBUS (issue 23 item 8, open).
+// A mesh file's bytes, read into memory. Only regular files are read, opened without blocking
+// (a FIFO or a device never hangs the run; issue 23 item 11).
+// note: read(2), not mmap, up to kMaxReadBytes: a mapped file that shrinks while it is parsed
+// (another program rewriting it, a network filesystem) ends the process with SIGBUS (issue 23
+// item 8); a read that comes up short, or a size that changed meanwhile, is an error naming
+// the file. The copy costs the file's size once, freed (release()) before the mesh is built
+// up. A larger file (no mesh within the triangle budget needs one: 50 M triangles are ~1.5 GB
+// of binary PLY; only padding, comments or junk elements make it so big) is still mapped, so
+// that its pages are read only as far as the parser gets before it refuses the file.
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
@@ -61,25 +66,30 @@ class FileBytes {
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
         try {
-            map(fd, source);
+            read_all(fd, source);
         } catch (...) {
             ::close(fd);
             throw;
         }
         ::close(fd);
     }
-    ~FileBytes() { release(); }
     FileBytes(const FileBytes&) = delete;
     FileBytes& operator=(const FileBytes&) = delete;
 
+    ~FileBytes() { release(); }
+
     void release() {
-        if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
-        data_ = nullptr;
+        if (mapped_ != nullptr) ::munmap(mapped_, size_);
+        mapped_ = nullptr;
+        data_.reset();
+        size_ = 0;
     }
-    [[nodiscard]] std::span<const char> bytes() const { return {data_, size_}; }
+    [[nodiscard]] std::span<const char> bytes() const {
+        return {mapped_ != nullptr ? static_cast<const char*>(mapped_) : data_.get(), size_};
+    }
 
   private:
-    void map(int fd, const std::string& source) {
+    static std::size_t regular_size(int fd, const std::string& source) {
         struct stat st {};
         if (::fstat(fd, &st) != 0)
             throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(errno));
@@ -91,16 +101,43 @@ class FileBytes {
                               : S_ISSOCK(st.st_mode) ? "a socket"
                                                      : "not a regular file") +
                              ", expected a regular mesh file");
-        size_ = static_cast<std::size_t>(st.st_size);
-        if (size_ == 0)
-            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
-        void* map = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-        if (map == MAP_FAILED)
-            throw IoError(quoted(source) + ": cannot map: " + std::strerror(errno));
-        data_ = static_cast<const char*>(map);
+        return static_cast<std::size_t>(st.st_size);
     }
 
-    const char* data_ = nullptr;
+    void read_all(int fd, const std::string& source) {
+        size_ = regular_size(fd, source);
+        if (size_ == 0)
+            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
+        if (size_ > kMaxReadBytes) {
+            mapped_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+            if (mapped_ == MAP_FAILED) {
+                mapped_ = nullptr;
+                throw IoError(quoted(source) + ": cannot map: " + std::strerror(errno));
+            }
+            return;
+        }
+        data_ = std::make_unique_for_overwrite<char[]>(size_);
+        std::size_t done = 0;
+        while (done < size_) {
+            throw_if_cancelled();
+            const std::size_t chunk = std::min<std::size_t>(size_ - done, std::size_t{1} << 26);
+            const ssize_t n = ::read(fd, data_.get() + done, chunk);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) throw IoError(quoted(source) + ": cannot read: " + std::strerror(errno));
+            if (n == 0) break;
+            done += static_cast<std::size_t>(n);
+        }
+        const std::size_t now = regular_size(fd, source);
+        if (done != size_ || now != size_)
+            throw InputError(quoted(source) + ": changed while it was read (" +
+                             std::to_string(size_) + " bytes when opened, " + std::to_string(done) +
+                             " read, " + std::to_string(now) +
+                             " now); expected a file no other program is writing");
+    }
+
+    static constexpr std::size_t kMaxReadBytes = std::size_t{2} << 30;  // 2 GiB
+    std::unique_ptr<char[]> data_;
+    void* mapped_ = nullptr;
     std::size_t size_ = 0;
 };
 

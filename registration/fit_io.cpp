@@ -85,6 +85,14 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
     return j.dump(2) + "\n";
 }
 
+namespace {
+std::string row_text(const nlohmann::json& row) {
+    std::string text;
+    for (const auto& v : row) text += (text.empty() ? "" : " ") + v.dump();
+    return text;
+}
+}  // namespace
+
 Rigid read_fit(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw IoError("fit \"" + path + "\": cannot open");
@@ -113,7 +121,17 @@ Rigid read_fit(const std::string& path) {
                 throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) +
                                  " of reference_from_examined: entry " + std::to_string(c + 1) +
                                  " is " + v.type_name() + ", expected a number");
-            t(r, c) = v.get<double>();
+            const double x = v.get<double>();
+            if (!std::isfinite(x))
+                throw InputError("fit \"" + path + "\": row " + std::to_string(r + 1) +
+                                 " of reference_from_examined: entry " + std::to_string(c + 1) +
+                                 " is not finite, expected a number");
+            // Issue 23 item 15: a bottom row of "5 6 7 8" was taken as 0 0 0 1 without a word.
+            if (r == 3 && x != (c == 3 ? 1.0 : 0.0))
+                throw InputError("fit \"" + path + "\": row 4 of reference_from_examined is " +
+                                 row_text(m[3]) +
+                                 ", expected 0 0 0 1 (a rigid motion's homogeneous row)");
+            t(r, c) = x;
         }
     }
     const Eigen::Matrix3d rot = t.linear();

@@ -11,10 +11,12 @@
 // Triangles are wound so that normals point from the inside (values above iso, bone) out.
 #pragma once
 
+#include "mesh/io.h"
 #include "mesh/mesh.h"
 #include "mesh/roi.h"
 #include "volume/volume.h"
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +34,10 @@ struct SurfaceOptions {
     double edge_mm = 0.0;       ///< target mean edge length (mm) after decimation; 0: no decimation
     /// Largest distance (mm) decimation may move the surface; 0: a quarter of the smallest spacing.
     double tolerance_mm = 0.0;
+    /// Most triangles the contour may have, checked before flying edges runs (a lower bound
+    /// counted from the voxel edges that cross the iso value) and after it; 0: the process'
+    /// budget at the time of extraction (default_max_triangles(), the CLI's --max-triangles).
+    std::uint64_t max_triangles = 0;
 
     /// \throw OptionError naming the key (iso, surface_roi, seed, smooth, passband, edge, tolerance).
     void validate() const;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <optional>
 #include <string_view>
@@ -481,18 +482,67 @@ void check_off(std::span<const char> data, const std::string& source) {
 // cylinder a few hundred.
 inline constexpr std::uint64_t kMaxObjFaceCorners = 1024;
 
+// A "v x y z" line's coordinates: a NaN or infinite one is named by line, vertex and axis
+// (issue 23 item 18: after assimp it was "vertex 14 of 15: coordinate x" for the z of the
+// fifth). Words that are no number are left to assimp.
+void check_obj_vertex(std::string_view line, std::uint64_t line_no, std::uint64_t vertex,
+                      const std::string& source) {
+    const auto words = split_words(line);
+    for (std::size_t k = 1; k < std::min<std::size_t>(words.size(), 4); ++k) {
+        double x = 0.0;
+        const auto w = words[k];
+        const auto r = std::from_chars(w.data(), w.data() + w.size(), x);
+        if (r.ec == std::errc() && !std::isfinite(x))
+            throw InputError(quoted(source) + ": line " + std::to_string(line_no) + ": vertex " +
+                             std::to_string(vertex) + " coordinate " + "xyz"[k - 1] + " is \"" +
+                             printable(w) + "\", expected a finite number");
+    }
+}
+
+// The largest positive vertex index of the faces, and its line (checked once every vertex is
+// counted: an index may name a vertex given later in the file).
+struct ObjIndex {
+    std::uint64_t value = 0, line = 0;
+};
+
+// A face's corners "v", "v/vt", "v//vn", "v/vt/vn": v an integer, not 0, a negative one
+// counting back from the vertices given so far (issue 23 item 18: assimp said only "OBJ:
+// Invalid face index.", with no line).
+void check_obj_face(const std::vector<std::string_view>& words, std::uint64_t line_no,
+                    std::uint64_t vertices, const std::string& source, ObjIndex& last) {
+    for (std::size_t k = 1; k < words.size(); ++k) {
+        const std::string_view w = words[k].substr(0, words[k].find('/'));
+        long long index = 0;
+        const auto r = std::from_chars(w.data(), w.data() + w.size(), index);
+        const bool number = r.ec == std::errc() && r.ptr == w.data() + w.size();
+        if (!number || index == 0 || (index < 0 && static_cast<std::uint64_t>(-index) > vertices))
+            throw InputError(quoted(source) + ": line " + std::to_string(line_no) +
+                             ": face corner " + std::to_string(k) + " is \"" + printable(words[k]) +
+                             "\", expected a vertex index from 1 to the vertex count, or from -1 "
+                             "back to -" +
+                             std::to_string(vertices) + " (the vertices so far)");
+        if (index > 0 && static_cast<std::uint64_t>(index) > last.value)
+            last = {static_cast<std::uint64_t>(index), line_no};
+    }
+}
+
 // An OBJ face line of n corners gives n − 2 triangles; no face may have more than
-// kMaxObjFaceCorners corners.
+// kMaxObjFaceCorners corners. Vertex coordinates are finite.
 void check_obj(std::span<const char> data, const std::string& source, std::uint64_t max_triangles) {
-    std::uint64_t triangles = 0, lines = 0;
+    std::uint64_t triangles = 0, lines = 0, vertices = 0;
+    ObjIndex last_index;
     std::size_t pos = 0;
     std::string_view line;
     while (next_line(data, pos, line)) {
         poll_cancel(++lines);
         while (!line.empty() && (line.front() == ' ' || line.front() == '\t'))
             line.remove_prefix(1);
+        if (line.size() >= 2 && line[0] == 'v' && (line[1] == ' ' || line[1] == '\t'))
+            check_obj_vertex(line, lines, ++vertices, source);
         if (line.size() < 2 || line[0] != 'f' || (line[1] != ' ' && line[1] != '\t')) continue;
-        const std::uint64_t corners = split_words(line).size() - 1;
+        const auto corner_words = split_words(line);
+        const std::uint64_t corners = corner_words.size() - 1;
+        check_obj_face(corner_words, lines, vertices, source, last_index);
         if (corners > kMaxObjFaceCorners)
             throw InputError(quoted(source) + ": line " + std::to_string(lines) + ": a face of " +
                              std::to_string(corners) + " corners, expected at most " +
@@ -500,6 +550,11 @@ void check_obj(std::span<const char> data, const std::string& source, std::uint6
                              " (split the polygon; triangulating it would take minutes)");
         triangles += std::max<std::uint64_t>(1, corners >= 2 ? corners - 2 : 1);
     }
+    if (last_index.value > vertices)
+        throw InputError(quoted(source) + ": line " + std::to_string(last_index.line) +
+                         ": a face uses vertex " + std::to_string(last_index.value) +
+                         ", the file has " + std::to_string(vertices) +
+                         " vertices; expected an index from 1 to " + std::to_string(vertices));
     check_triangle_budget(triangles, max_triangles, source, "OBJ's faces give at least");
 }
 

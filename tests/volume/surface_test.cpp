@@ -55,6 +55,33 @@ TEST(ExtractSurface, EllipsoidWithinATenthOfAVoxelInThePhysicalFrame) {
     EXPECT_EQ(s.mesh.unit, "mm");
 }
 
+// Issue 23 item 9: the triangle budget holds for extracted surfaces. Before the contour runs a
+// lower bound is counted from the voxel edges crossing the iso value (a smooth closed surface
+// makes about 1.5 times that): a budget under it is refused before the work; one between it and
+// the true count after the contour; one over the true count passes.
+TEST(ExtractSurface, TriangleBudgetIsCheckedBeforeAndAfterTheContour) {
+    const Volume volume = make_ellipsoid_volume(rotated_grid_ellipsoid());
+    const std::size_t made = extract_surface(volume, {.iso = 500.0}).mesh.triangle_count();
+    ASSERT_GT(made, 1000u);
+    const auto refusal = [&](std::uint64_t budget) -> std::string {
+        SurfaceOptions o{.iso = 500.0};
+        o.max_triangles = budget;
+        try {
+            (void)extract_surface(volume, o);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        return "";
+    };
+    const std::string before = refusal(made / 2);
+    EXPECT_NE(before.find("would have at least about"), std::string::npos) << before;
+    EXPECT_NE(before.find("--max-triangles"), std::string::npos) << before;
+    const std::string after = refusal(made * 95 / 100);
+    EXPECT_NE(after.find(" has " + std::to_string(made) + " triangles"), std::string::npos)
+        << after;
+    EXPECT_EQ(refusal(made), "");
+}
+
 TEST(ExtractSurface, LeftHandedDirectionKeepsNormalsOutward) {
     EllipsoidVolumeOptions o = rotated_grid_ellipsoid();
     o.grid.direction.col(2) *= -1.0;  // a mirrored k axis (determinant -1)
