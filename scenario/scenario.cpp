@@ -60,8 +60,7 @@ void read_surface_options(TableReader& r, SurfaceOptions& o) {
     }
     if (auto v = r.optional<bool>("largest", "a boolean")) o.largest = *v;
     if (auto v = r.numbers("surface_seed", 3, 3)) o.seed = vec3(*v);
-    if (auto v = r.optional<std::int64_t>("smooth", "an integer (iterations)"))
-        o.smooth_iterations = static_cast<int>(*v);
+    if (auto v = r.integer("smooth", 0, 100000)) o.smooth_iterations = static_cast<int>(*v);
     if (auto v = r.optional<double>("passband", "a number in (0, 2)")) o.passband = *v;
     if (auto v = r.optional<double>("edge", "a number (mm)")) o.edge_mm = *v;
     if (auto v = r.optional<double>("tolerance", "a number (mm)")) o.tolerance_mm = *v;
@@ -89,7 +88,7 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
         r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
                "surface keys need a volume file: mesh = \"scan.nii.gz\"");
     const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
-    const auto resolution = r.optional<std::int64_t>("resolution", "an integer");
+    const auto resolution = r.integer("resolution", 0, 1 << 20);
     const auto size = r.numbers("size", 1, 3);
     if (phantom || scheme || resolution || size) {
         if (mesh)
@@ -133,8 +132,7 @@ DamageSpec read_damage(TableReader& r) {
     if (auto v = r.positive("radius")) d.radius = *v;
     if (auto v = r.positive("depth")) d.depth = *v;
     if (auto v = r.positive("sigma")) d.sigma = *v;
-    if (auto v = r.optional<std::int64_t>("seed", "an integer"))
-        d.seed = static_cast<std::uint32_t>(*v);
+    if (auto v = r.integer("seed", 0, 4294967295)) d.seed = static_cast<std::uint32_t>(*v);
     if (auto n = r.numbers("normal", 3, 3)) d.plane_normal = vec3(*n);
     if (const toml::node* p = r.get("path")) {
         const auto* arr = p->as_array();
@@ -218,10 +216,10 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
     sc.examined_derived = sc.examined.mesh.empty();
     sc.pose = read_pose(r);
     if (auto v = r.optional<double>("noise", "a number (σ, mesh units)")) {
-        if (*v < 0) r.fail(r.get("noise"), "noise", "must be ≥ 0");
+        if (!(*v >= 0)) r.fail(r.get("noise"), "noise", "must be ≥ 0");
         sc.noise_sigma = *v;
     }
-    if (auto v = r.optional<std::int64_t>("noise_seed", "an integer"))
+    if (auto v = r.integer("noise_seed", 0, 4294967295))
         sc.noise_seed = static_cast<std::uint32_t>(*v);
     if (auto m = r.optional<std::string>("truth_mask", "a string (a .npy file)")) {
         bool needs = false;
@@ -233,13 +231,12 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
         r.fail(r.get("noise"), "noise",
                "a resampled examined volume (pivot, erode) takes no mesh noise");
     sc.remesh = r.positive("remesh");
-    if (auto v = r.optional<std::int64_t>("remesh_iterations", "an integer ≥ 1")) {
+    if (auto v = r.integer("remesh_iterations", 1, 100000)) {
         if (*v < 1) r.fail(r.get("remesh_iterations"), "remesh_iterations", "must be ≥ 1");
         sc.remesh_iterations = static_cast<int>(*v);
     }
     if (auto v = r.optional<bool>("shuffle", "true or false")) sc.shuffle = *v;
-    if (auto v = r.optional<std::int64_t>("seed", "an integer"))
-        sc.shuffle_seed = static_cast<std::uint32_t>(*v);
+    if (auto v = r.integer("seed", 0, 4294967295)) sc.shuffle_seed = static_cast<std::uint32_t>(*v);
     if ((sc.remesh || sc.shuffle) && (!sc.examined_derived || sc.reference.phantom))
         r.fail(r.get(sc.remesh ? "remesh" : "shuffle"), sc.remesh ? "remesh" : "shuffle",
                "re-meshing and shuffling derive the examined surface from a reference mesh file");

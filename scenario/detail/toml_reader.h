@@ -6,6 +6,7 @@
 
 #include <toml++/toml.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <set>
@@ -56,7 +57,13 @@ class TableReader {
         const toml::node* node = get(key);
         if (!node) return std::nullopt;
         if constexpr (std::is_same_v<T, double>) {
-            if (auto v = node->value<double>()) return *v;  // integers convert too
+            if (auto v = node->value<double>()) {  // integers convert too
+                // Issue 23 item 15: TOML's nan and inf were taken (noise = nan passed).
+                if (!std::isfinite(*v))
+                    fail(node, key,
+                         std::string("expected ") + expected + ", found " + std::to_string(*v));
+                return *v;
+            }
         } else if constexpr (std::is_same_v<T, std::int64_t>) {
             if (node->is_integer()) return node->value<std::int64_t>();
         } else if constexpr (std::is_same_v<T, bool>) {
@@ -80,6 +87,8 @@ class TableReader {
                 if (!v2)
                     fail(node, key,
                          "expected an array of numbers, found an element of type " + type_name(e));
+                if (!std::isfinite(*v2))
+                    fail(node, key, "expected finite numbers, found " + std::to_string(*v2));
                 out.push_back(*v2);
             }
         } else {
@@ -93,6 +102,17 @@ class TableReader {
             fail(node, key, s.str());
         }
         return out;
+    }
+
+    /// An integer in [lo, hi] (issue 23 item 15: resolution = 4294967301 became 5 through a
+    /// cast to int; seeds wrapped at 2^32).
+    std::optional<std::int64_t> integer(const std::string& key, std::int64_t lo, std::int64_t hi) {
+        auto v = optional<std::int64_t>(key, "an integer");
+        if (v && (*v < lo || *v > hi))
+            fail(get(key), key,
+                 "expected an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], found " + std::to_string(*v));
+        return v;
     }
 
     std::optional<double> positive(const std::string& key) {
