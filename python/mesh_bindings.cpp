@@ -3,6 +3,7 @@
 
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/units.h"
 #include "mesh/validate.h"
 #include "mesh/write.h"
 #include "python/interrupt.h"
@@ -70,8 +71,23 @@ std::shared_ptr<MeshHandle> load(const std::filesystem::path& path, const Surfac
 // mesh is, with vertex normals.
 std::shared_ptr<MeshHandle> from_arrays(
     const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
-    const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& triangles,
-    const std::optional<std::string>& unit) {
+    const py::object& triangle_object, const std::optional<std::string>& unit) {
+    // Issue 23 item 15: float indices were truncated (1.7 became vertex 1) by a forced cast.
+    const py::array triangle_array = py::array::ensure(triangle_object);
+    if (!triangle_array)
+        throw InputError("glint.Mesh: triangles must be an M×3 array of vertex indices");
+    const char kind = triangle_array.dtype().kind();
+    if (kind != 'i' && kind != 'u')
+        throw InputError(
+            "glint.Mesh: triangles must be an array of integers (vertex indices), "
+            "found dtype " +
+            py::cast<std::string>(py::str(triangle_array.dtype())));
+    const auto triangles =
+        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(
+            triangle_array);
+    if (!triangles)
+        throw InputError("glint.Mesh: triangles do not fit 64-bit integers, found dtype " +
+                         py::cast<std::string>(py::str(triangle_array.dtype())));
     if (positions.ndim() != 2 || positions.shape(1) != 3)
         throw InputError("glint.Mesh: positions must be an N×3 array, found shape " +
                          py::cast<std::string>(py::repr(positions.attr("shape"))));
@@ -96,7 +112,13 @@ std::shared_ptr<MeshHandle> from_arrays(
             mesh.triangles[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
                 static_cast<std::uint32_t>(v);
         }
-    mesh.unit = unit.value_or("");
+    // Issue 23 item 15: unit='parsec' was kept; a unit is one glint can convert, or none.
+    if (unit && canonical_unit(*unit).empty())
+        throw InputError("glint.Mesh: unit '" + *unit +
+                         "' is no length unit glint knows, expected "
+                         "one of " +
+                         known_units() + " (or None)");
+    mesh.unit = unit ? canonical_unit(*unit) : "";
     check_mesh(mesh, "glint.Mesh");
     compute_vertex_normals(mesh);
     handle->source = "arrays";

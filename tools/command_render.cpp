@@ -12,18 +12,14 @@
 #include "render/renderer.h"
 #include "render/shade.h"
 #include "render/view.h"
+#include "render/view_list.h"
 #include "tools/command.h"
 #include "tools/progress.h"
 
 #include <nlohmann/json.hpp>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -72,74 +68,6 @@ std::pair<int, int> parse_size(const std::string& text) {
     return {w, h};
 }
 
-/// "az=30,el=20[,fp=0.1|dist=5]" → a spec (fields not given keep the base values).
-ViewSpec parse_view_item(const std::string& item, const ViewSpec& base, const std::string& where) {
-    ViewSpec spec = base;
-    std::istringstream s(item);
-    std::string kv;
-    bool has_az = false;
-    while (std::getline(s, kv, ',')) {
-        const auto eq = kv.find('=');
-        if (eq == std::string::npos)
-            throw InputError(where + ": \"" + kv + "\", expected key=value");
-        const std::string key = kv.substr(0, eq);
-        double value = 0.0;
-        try {
-            std::size_t used = 0;
-            value = std::stod(kv.substr(eq + 1), &used);
-            if (used != kv.size() - eq - 1) throw std::invalid_argument("trailing");
-        } catch (const std::exception&) {
-            throw InputError(where + ": \"" + kv + "\", expected a number after '='");
-        }
-        if (key == "az") {
-            spec.azimuth_deg = value;
-            has_az = true;
-        } else if (key == "el") {
-            spec.elevation_deg = value;
-        } else if (key == "fp") {
-            spec.zoom = ZoomKind::Footprint;
-            spec.zoom_value = value;
-        } else if (key == "dist") {
-            spec.zoom = ZoomKind::Distance;
-            spec.zoom_value = value;
-        } else {
-            throw InputError(where + ": unknown key \"" + key + "\" (az, el, fp, dist)");
-        }
-    }
-    if (!has_az) throw InputError(where + ": \"" + item + "\" has no az=");
-    return spec;
-}
-
-// note: a views file is a hand-written or generated list of views; 1 MiB holds ~30 000 lines,
-// and 10 000 views already take hours. /dev/zero or a FIFO used to grow memory without end.
-constexpr std::size_t kMaxViewsFileBytes = std::size_t{1} << 20;
-constexpr std::size_t kMaxViews = 10000;
-
-// The views file's text: a regular file (opened without blocking) of at most 1 MiB.
-std::string read_views_file(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0) throw IoError("cannot read views file \"" + path + "\": " + std::strerror(errno));
-    struct stat st {};
-    const bool regular = ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode);
-    const auto size = static_cast<std::size_t>(regular ? st.st_size : 0);
-    std::string text(regular && size <= kMaxViewsFileBytes ? size : 0, '\0');
-    std::size_t done = 0;
-    while (done < text.size()) {
-        const ssize_t n = ::read(fd, text.data() + done, text.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break;
-        done += static_cast<std::size_t>(n);
-    }
-    ::close(fd);
-    if (!regular)
-        throw InputError("views file \"" + path + "\": not a regular file, expected a text file");
-    if (size > kMaxViewsFileBytes)
-        throw InputError("views file \"" + path + "\": " + std::to_string(size) +
-                         " bytes, expected at most 1 MiB");
-    text.resize(done);
-    return text;
-}
-
 std::string output_for(const std::string& pattern, std::size_t index, std::size_t count) {
     if (count == 1 && pattern.find("{i}") == std::string::npos) return pattern;
     char num[16];
@@ -179,37 +107,15 @@ ViewSpec base_view(const RenderArgs& a, int width, int height) {
 std::vector<ViewSpec> view_specs(const RenderArgs& a, int width, int height) {
     const ViewSpec base = base_view(a, width, height);
     std::vector<ViewSpec> specs;
-    if (!a.views.empty()) {
-        std::istringstream s(a.views);
-        std::string item;
-        while (std::getline(s, item, ';')) {
-            if (!item.empty())
-                specs.push_back(parse_view_item(
-                    item, base, "--views item " + std::to_string(specs.size() + 1)));
-            if (specs.size() > kMaxViews)
-                throw InputError("--views: more than " + std::to_string(kMaxViews) +
-                                 " views, expected at most " + std::to_string(kMaxViews));
-        }
-    }
+    if (!a.views.empty()) specs = parse_view_list(a.views, ';', base, "--views");
     if (!a.views_file.empty()) {
-        std::istringstream in(read_views_file(a.views_file));
-        std::string line;
-        int line_no = 0;
-        while (std::getline(in, line)) {
-            ++line_no;
-            const auto hash = line.find('#');
-            if (hash != std::string::npos) line.erase(hash);
-            line.erase(0, line.find_first_not_of(" \t\r"));
-            line.erase(line.find_last_not_of(" \t\r") + 1);
-            if (line.empty()) continue;
-            specs.push_back(
-                parse_view_item(line, base, a.views_file + ":" + std::to_string(line_no)));
-            if (specs.size() > kMaxViews)
-                throw InputError("views file \"" + a.views_file + "\": more than " +
-                                 std::to_string(kMaxViews) + " views (line " +
-                                 std::to_string(line_no) + "), expected at most " +
-                                 std::to_string(kMaxViews));
-        }
+        auto listed = parse_view_list(read_views_file(a.views_file), '\n', base,
+                                      "views file \"" + a.views_file + "\"");
+        if (specs.size() + listed.size() > kMaxListedViews)
+            throw InputError(
+                "--views and --views-file: " + std::to_string(specs.size() + listed.size()) +
+                " views together, expected at most " + std::to_string(kMaxListedViews));
+        specs.insert(specs.end(), listed.begin(), listed.end());
     }
     if (specs.empty()) specs.push_back(base);
     return specs;

@@ -61,6 +61,19 @@ def test_mesh_from_arrays_rejects_a_vertex_out_of_range():
         glint.Mesh(np.eye(3), [[0, 1, 2], [0, 1, 9]])
 
 
+def test_mesh_from_arrays_refuses_float_indices():
+    # Issue 23 item 15: 1.7 was truncated to vertex 1 without a word.
+    with pytest.raises(glint.InputError, match="triangles must be an array of integers.*float64"):
+        glint.Mesh(np.eye(3), [[0, 1.7, 2]])
+
+
+def test_mesh_from_arrays_refuses_an_unknown_unit():
+    # Issue 23 item 15: unit='parsec' was kept, and every later conversion was wrong.
+    with pytest.raises(glint.InputError, match="unit 'parsec' is no length unit glint knows"):
+        glint.Mesh(np.eye(3), [[0, 1, 2]], unit="parsec")
+    assert glint.Mesh(np.eye(3), [[0, 1, 2]], unit="millimetre").unit == "mm"
+
+
 def test_mesh_from_arrays_rejects_a_wrong_shape():
     with pytest.raises(glint.InputError, match=r"positions must be an N×3 array, found shape \(3, 2\)"):
         glint.Mesh(np.zeros((3, 2)), [[0, 1, 2]])
