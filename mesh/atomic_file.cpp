@@ -69,6 +69,9 @@ void write_atomically_to_path(const fs::path& path,
         if (!fs::is_regular_file(temp, ec))
             throw IoError("cannot write \"" + path.string() + "\": the writer produced no file");
         commit(temp, target, path);
+    } catch (const IoError& e) {
+        discard(temp);
+        throw naming_target(e, temp, path);  // a writer names the file it was given
     } catch (...) {
         discard(temp);
         throw;
@@ -101,6 +104,9 @@ void FileSet::add(const fs::path& path, const std::function<void(const fs::path&
         std::error_code ec;
         if (!fs::is_regular_file(s.temp, ec))
             throw IoError("cannot write \"" + path.string() + "\": the writer produced no file");
+    } catch (const IoError& e) {
+        discard(s.temp);
+        throw naming_target(e, s.temp, path);
     } catch (...) {
         discard(s.temp);
         throw;
@@ -128,6 +134,16 @@ void FileSet::commit() {
                       " (none of its set was kept)");
     }
     staged_.clear();
+}
+
+IoError naming_target(const IoError& error, const fs::path& staged, const fs::path& target) {
+    std::string text = error.what();
+    const std::string from = staged.string(), to = target.string();
+    if (!from.empty())
+        for (std::size_t at = text.find(from); at != std::string::npos;
+             at = text.find(from, at + to.size()))
+            text.replace(at, from.size(), to);
+    return IoError(text);
 }
 
 void write_file_atomically(const fs::path& path, std::string_view contents) {

@@ -2,6 +2,8 @@
 // same folder, flush, then rename over the target.
 #pragma once
 
+#include "mesh/error.h"
+
 #include <filesystem>
 #include <functional>
 #include <ostream>
@@ -25,6 +27,11 @@ void write_atomically_to_path(const std::filesystem::path& path,
 
 /// Registers a path as an input of this process: write_atomically refuses to replace it.
 void protect_input(const std::filesystem::path& path);
+
+/// `error` with every mention of `staged` (a temporary or staging name the user never sees)
+/// replaced by `target`, the name the user gave.
+[[nodiscard]] IoError naming_target(const IoError& error, const std::filesystem::path& staged,
+                                    const std::filesystem::path& target);
 
 /// Convenience: writes bytes/text atomically.
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents);

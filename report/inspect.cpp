@@ -1,5 +1,6 @@
 #include "report/inspect.h"
 
+#include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/fault_injection.h"
 #include "report/output_folder.h"
@@ -88,8 +89,12 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     out.analysis.total_seconds = seconds_since(t_start);
     out.report_json = report_json(reference, out.analysis, options, record);
     if (folder) {
-        out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
-                                  options.exports, record, out.report_json, observer.stage);
+        try {
+            out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
+                                      options.exports, record, out.report_json, observer.stage);
+        } catch (const IoError& e) {  // the folder the user named, not the staging folder
+            throw naming_target(e, folder->staging(), folder->target());
+        }
         folder->commit();
         out.output = folder->target();
     } else if (options.exports.keep_atlas) {

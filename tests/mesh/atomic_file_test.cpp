@@ -94,6 +94,22 @@ TEST(FileSet, ItsTemporariesAreListedForTheWatchdogUntilCommitted) {
     EXPECT_EQ(read_all(dir / "a.txt"), "a");
 }
 
+// A writer's error names the file the user asked for, not the temporary it was handed (a full
+// disk said "cannot write \".p.tmp-13939-0.ply\"" for p.ply).
+TEST(WriteAtomically, AWritersErrorNamesTheTargetNotTheTemporary) {
+    const auto dir = fresh_dir("error_names_target");
+    try {
+        write_atomically_to_path(dir / "p.ply", [](const fs::path& temp) {
+            throw IoError("cannot write \"" + temp.string() + "\": write failed (disk full?)");
+        });
+        FAIL() << "the writer's error was swallowed";
+    } catch (const IoError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "cannot write \"" + (dir / "p.ply").string() + "\": write failed (disk full?)");
+    }
+    EXPECT_TRUE(fs::is_empty(dir));
+}
+
 TEST(WriteAtomically, RefusesToOverwriteAnInput) {
     const auto dir = fresh_dir("input");
     write_file_atomically(dir / "in.ply", "data");

@@ -26,6 +26,12 @@ check "$found" "$glint" info "$work/dcm"
 check "$found" "$glint" surface "$work/dcm" --iso 100 -o "$work/s.ply"
 check "$found" "$glint" sweep "$work/dcm" "$work/dcm" --iso 100 -o "$work/atlas"
 check 'no DICOM series in it' "$glint" info /proc
+# fuzz_dicom's first finding: a file whose meta group length (0002,0000) runs past its end
+# (GDCM asserted "Should not happen"); beside it a good slice.
+mkdir -p "$work/meta"
+{ head -c 128 /dev/zero; printf 'DICM\x02\x00\x00\x00UL\x04\x00n\x00d\x00'; } >"$work/meta/b.dcm"
+check 'no DICOM series in it .*"b.dcm": file meta group: its length \(0002,0000\) says 6553710 bytes, its elements take 0' \
+    "$glint" info "$work/meta"
 [ ! -e "$work/s.ply" ] && [ ! -e "$work/atlas" ] || { echo "FAIL: output written"; fail=1; }
 [ "$fail" -eq 0 ] && echo "ok: DICOM folders checked before GDCM sees them"
 exit "$fail"

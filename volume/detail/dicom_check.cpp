@@ -9,6 +9,8 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <system_error>
 
@@ -54,6 +56,8 @@ struct Walk {
     std::uint64_t offset = 0;
     std::string transfer_syntax;
     std::string problem;
+    std::optional<std::uint32_t> meta_length;  ///< (0002,0000), the group's stated length
+    std::uint64_t meta_start = 0;              ///< where the elements it counts begin
 };
 
 // One element at w.offset; false at the end of what can be walked. `explicit_vr`: the VR is in
@@ -90,6 +94,13 @@ bool step(int fd, std::uint64_t size, bool explicit_vr, bool meta_only, Walk& w)
                     " bytes, the file has " + std::to_string(size - w.offset - header) + " left";
         return false;
     }
+    if (group == 0x0002 && u16(h + 2) == 0x0000 && length == 4) {
+        unsigned char v[4];
+        if (read_at(fd, w.offset + header, v, 4)) {
+            w.meta_length = u32(v);
+            w.meta_start = w.offset + header + length;
+        }
+    }
     if (group == 0x0002 && u16(h + 2) == 0x0010 && length < 128) {
         std::string uid(length, '\0');
         if (read_at(fd, w.offset + header, uid.data(), length))
@@ -118,6 +129,11 @@ std::string dicom_file_problem(const fs::path& path) {
     }
     if (!w.problem.empty()) return "file meta group: " + w.problem;
     if (w.offset == 132) return "no file meta group (0002) after \"DICM\"";
+    // note: GDCM reads the meta group by its stated length and asserts ("Should not happen",
+    // SIGABRT) when the file ends inside it: fuzz_dicom's first finding.
+    if (w.meta_length && *w.meta_length != w.offset - w.meta_start)
+        return "file meta group: its length (0002,0000) says " + std::to_string(*w.meta_length) +
+               " bytes, its elements take " + std::to_string(w.offset - w.meta_start);
     const std::string& ts = w.transfer_syntax;
     if (ts == "1.2.840.10008.1.2.1.99" || ts == "1.2.840.10008.1.2.2") return {};  // not walked
     const bool explicit_vr = ts != "1.2.840.10008.1.2";
