@@ -2,6 +2,7 @@
 
 #include "analysis/option_fields.h"
 #include "mesh/error.h"
+#include "report/orientation.h"
 
 #include <filesystem>
 #include <system_error>
@@ -41,6 +42,7 @@ void ExportOptions::validate() const {
         throw OptionError("exports.atlas_files", "none", "expected at least one of ply, vtk, vtp");
     if (mosaic_tile < 16 || mosaic_tile > 1024)
         throw OptionError("exports.mosaic_tile", mosaic_tile, "must be in [16, 1024] pixels");
+    (void)resolve_orientation(PatientSpace::Unknown, up);
     std::error_code ec;
     if (!output.empty() && !replace_existing && std::filesystem::exists(output, ec))
         throw InputError("output folder \"" + output.string() +
@@ -96,6 +98,19 @@ const std::vector<OptionField<ExportOptions>>& export_option_table() {
              .label = "Mosaic tile",
              .help = "Mosaic thumbnail size"},
             [](auto& o) -> auto& { return o.mosaic_tile; }),
+        F::text(
+            {.name = "up",
+             .section = "exports",
+             .key = "up",
+             .slicer = "up",
+             .group = kExportGroup,
+             .label = "Up in pictures",
+             .help = "Which axis the pictures draw up: +x, -x, +y, -y, +z, -z (default: superior "
+                     "when the reference is in a patient space, else +z)",
+             .choices = up_choices()},
+            OptionKind::Choice, [](const ExportOptions& o) { return F::text_or_unset(o.up); },
+            [](ExportOptions& o, const std::string& v) { o.up = v; },
+            [](ExportOptions& o) { o.up.clear(); }),
     };
     return table;
 }

@@ -41,6 +41,9 @@ struct ExportOptions {
     /// it is refused before anything is loaded (--force).
     bool replace_existing = false;
     int mosaic_tile = 128;  ///< mosaic thumbnail size, pixels
+    /// Which axis the pictures draw up ("+x" … "-z", report/orientation.h); empty: superior
+    /// when the reference is in a patient space, else +z.
+    std::string up;
     /// Per-vertex scalars added to the atlas files after glint's own fields (e.g. a scenario's
     /// ground truth, "truth_damage_id" and "truth_distance{unit}", to be seen beside them
     /// in a viewer); each holds one value per reference vertex. A name ending in "{unit}" gets

@@ -96,11 +96,12 @@ View resized(const View& v, int size) {
 class PictureWriter {
   public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options,
-                  std::string reference_name)
+                  Orientation orientation, std::string reference_name)
         : reference_(reference),
           result_(result),
           reference_name_(std::move(reference_name)),
           options_(options),
+          orientation_(std::move(orientation)),
           scale_(shape_scale(result)),
           threads_(result.sweep.options.render.threads),
           renderer_(shared_render_context(
@@ -151,7 +152,8 @@ class PictureWriter {
                                            .plan = &result_.sweep.plan,
                                            .coverage = result_.sweep.zooms[0].coverage.fraction,
                                            .name = name,
-                                           .unit = unit_or_units(result_)});
+                                           .unit = unit_or_units(result_),
+                                           .orientation = &orientation_});
     }
 
   private:
@@ -162,6 +164,7 @@ class PictureWriter {
     const AnalysisResult& result_;
     std::string reference_name_;
     const ExportOptions& options_;
+    Orientation orientation_;
     ShapeScale scale_;
     int threads_ = 0;  ///< workers (RenderOptions::threads: 0 = the machine's)
     Renderer renderer_;
@@ -179,10 +182,15 @@ ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, c
     const auto z = static_cast<std::size_t>(v.zoom_index);
     const auto painted =
         detail::paint_surface(reference_, frame, shown, zooms_[z].fields, {.limit = scale_.limit});
-    char title[200];
+    // In a patient space the view is also named from where it looks ("from anterior-left").
+    const std::string from =
+        orientation_.space == PatientSpace::Unknown
+            ? std::string()
+            : " from " + orientation_.name(shown.camera.world_from_camera.linear().col(2));
+    char title[240];
     std::snprintf(title, sizeof title,
-                  "view %d: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)", v.index,
-                  v.azimuth_deg, v.elevation_deg, v.zoom_index,
+                  "view %d%s: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)", v.index,
+                  from.c_str(), v.azimuth_deg, v.elevation_deg, v.zoom_index,
                   detail::format_number(v.footprint).c_str(), unit_or_units(result_).c_str());
     ImageBuf sheet = blank;
     detail::draw_title(sheet, title);
@@ -202,7 +210,8 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
     for (int i : wanted) {
         const auto& pv = plan.views[static_cast<std::size_t>(i)];
         const auto z = static_cast<std::size_t>(pv.view.zoom_index);
-        shown.push_back(resized(pv.view, std::clamp(plan.sizes[z], kViewMin, kViewMax)));
+        shown.push_back(
+            upright(resized(pv.view, std::clamp(plan.sizes[z], kViewMin, kViewMax)), orientation_));
         if (!blank.count(z))
             blank.emplace(
                 z, detail::framed_sheet(shown.back().camera.width, shown.back().camera.height, "",
@@ -235,7 +244,7 @@ std::string PictureWriter::mosaic(std::size_t z) {
     for (const auto& pv : plan.views)
         if (static_cast<std::size_t>(pv.view.zoom_index) == z) {
             members.push_back(&pv);
-            shown.push_back(resized(pv.view, t));
+            shown.push_back(upright(resized(pv.view, t), orientation_));
         }
     const int grid_w = kRowLabel + plan.columns * (t + kGap);
     const int grid_h = kColLabel + plan.rows * (t + kGap);
@@ -347,11 +356,11 @@ std::string view_file_stem(const View& v) {
 
 PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                              const AnalysisResult& result, const ExportOptions& options,
-                             const std::string& reference_name) {
+                             const Orientation& orientation, const std::string& reference_name) {
     PictureOutput out;
     if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size())
         return out;
-    PictureWriter writer(reference, result, options, reference_name);
+    PictureWriter writer(reference, result, options, orientation, reference_name);
     writer.write_views(folder, out);
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         out.mosaics.push_back(writer.mosaic(z));

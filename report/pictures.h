@@ -8,6 +8,9 @@
 //   mosaic_z<k>.png              every view of zoom k, azimuth across, elevation down
 //   atlas.png                    the atlas (zoom 0) from six directions along the axes
 //
+// Every picture draws the orientation's up up (report/orientation.h): superior for a surface
+// in a patient space, else +z or what --up says; the sweep's views are only rolled for it.
+//
 // They are drawn after the decision (regions are known only then) from the reference alone:
 // its frames are rendered again on the CPU (Embree, render/renderer.h, one ray per pixel),
 // per-pixel values come from the frame's primitive ids (report/detail/surface_paint.h).
@@ -19,6 +22,7 @@
 #include "mesh/mesh.h"
 #include "render/view.h"
 #include "report/export_options.h"
+#include "report/orientation.h"
 #include "report/output_folder.h"
 
 #include <map>
@@ -51,11 +55,13 @@ struct PictureOutput {
 /// Best views kept for the report page, at most (the largest regions' first).
 inline constexpr std::size_t kMaxBestViews = 24;
 
-/// Writes the pictures above into the folder; `reference_name` (the file name, or "") titles
-/// atlas.png. \throw IoError, DeviceError (rendering).
+/// Writes the pictures above into the folder, drawn with `orientation`'s up up and its
+/// directions' names; `reference_name` (the file name, or "") titles atlas.png.
+/// \throw IoError, DeviceError (rendering).
 [[nodiscard]] PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                                            const AnalysisResult& result,
                                            const ExportOptions& options,
+                                           const Orientation& orientation,
                                            const std::string& reference_name = {});
 
 }  // namespace glint

@@ -7,6 +7,7 @@
 #include "mesh/write.h"
 #include "report/atlas_fields.h"
 #include "report/detail/options_json.h"
+#include "report/orientation.h"
 #include "report/pictures.h"
 #include "report/report_html.h"
 #include "scanner/coverage.h"
@@ -190,6 +191,7 @@ json inputs_json(const std::vector<InputRecord>& inputs) {
             j["sha256"] = sha256_file(in.path);
         }
         if (!in.description.empty()) j["description"] = in.description;
+        if (!in.space.empty()) j["space"] = in.space;
         list.push_back(j);
     }
     return list;
@@ -260,6 +262,28 @@ std::string sha256_file(const fs::path& path) {
     return hex.str();
 }
 
+namespace {
+
+// How the pictures are oriented: the reference's space and --up.
+Orientation run_orientation(const RunRecord& record, const ExportOptions& exports) {
+    PatientSpace space = PatientSpace::Unknown;
+    for (const auto& in : record.inputs)
+        if (in.role == "reference") space = parse_space(in.space);
+    return resolve_orientation(space, exports.up);
+}
+
+json orientation_json(const Orientation& o) {
+    return {{"space", o.space == PatientSpace::Unknown ? json(nullptr) : json(to_string(o.space))},
+            {"up", vec_json(o.up)},
+            {"up_name", o.name(o.up)},
+            {"up_stated", o.up_known},
+            {"front", vec_json(o.front)},
+            {"front_name", o.name(o.front)},
+            {"source", o.source}};
+}
+
+}  // namespace
+
 std::string report_json(const Mesh& reference, const AnalysisResult& result,
                         const InspectOptions& options, const RunRecord& record) {
     const auto& s = result.sweep;
@@ -286,6 +310,7 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
           {"unit", std::string(m.unit)},
           {"description", std::string(m.description)}}},
         {"plan", plan_json(s.plan)},
+        {"orientation", orientation_json(run_orientation(record, options.exports))},
         {"size", result.size},
         {"unit", result.unit.empty() ? json(nullptr) : json(result.unit)},
         {"units", units_json(result)},
@@ -400,8 +425,8 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     for (const auto& in : record.inputs)
         if (in.role == "reference" && !in.path.empty())
             reference_name = in.path.filename().string();
-    const PictureOutput pictures =
-        write_pictures(folder, reference, result, exports, reference_name);
+    const PictureOutput pictures = write_pictures(folder, reference, result, exports,
+                                                  run_orientation(record, exports), reference_name);
     write_file_atomically(folder.file("report.html"),
                           report_html(std::move(page), json_text, pictures));
     return atlas;

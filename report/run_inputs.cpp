@@ -1,5 +1,7 @@
 #include "report/run_inputs.h"
 
+#include "report/orientation.h"
+
 #include <exception>
 #include <thread>
 
@@ -13,7 +15,9 @@ RunInput load_run_input(const std::string& role, const fs::path& path,
     RunInput in;
     in.record = {role, path,
                  loaded.surface ? "surface of a volume: " + describe(*loaded.surface) : "",
-                 loaded.mesh.vertex_count(), loaded.mesh.triangle_count()};
+                 loaded.mesh.vertex_count(), loaded.mesh.triangle_count(),
+                 // A volume's surface is in its physical space, which ITK reads as LPS.
+                 loaded.surface ? "LPS" : to_string(space_stated_in(path))};
     for (const auto& w : loaded.report.warnings)
         in.warnings.push_back(loaded.report.path.string() + ": " + w);
     in.mesh = std::move(loaded.mesh);

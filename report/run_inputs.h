@@ -21,6 +21,9 @@ struct InputRecord {
     std::string description;     ///< e.g. "phantom condyle ico 5"
     std::size_t vertices = 0;
     std::size_t triangles = 0;
+    /// The patient space its coordinates are in (report/orientation.h): "LPS" for a volume's
+    /// surface, what a mesh file states (SPACE=), "" when unknown.
+    std::string space;
 };
 
 /// A surface of a run and how it was obtained.

@@ -17,27 +17,33 @@ namespace {
 constexpr int kPanel = 320;    // px: one direction
 constexpr int kCloseUp = 240;  // px: one close-up (four fill the width of three directions)
 
-struct Direction {
+// The six panels, in the orientation's display frame (report/orientation.h): from the front,
+// turning about up, then from up and from below.
+struct Panel {
     double azimuth;
     double elevation;
-    const char* name;
 };
-// note: mesh axes, not anatomy: glint cannot know how a scan is oriented.
-constexpr Direction kDirections[] = {{0, 0, "from +x"},        {90, 0, "from +y"},
-                                     {180, 0, "from -x"},      {270, 0, "from -y"},
-                                     {0, 90, "from +z (top)"}, {0, -90, "from -z (bottom)"}};
+constexpr Panel kPanels[] = {{0, 0}, {90, 0}, {180, 0}, {270, 0}, {0, 90}, {0, -90}};
+
+// A camera looking from `direction` (unit, mesh coordinates) with the orientation's up up.
+ViewSpec panel_spec(const Orientation& o, const Vec3d& direction, int size) {
+    return ViewSpec{
+        .azimuth_deg = std::atan2(direction.y(), direction.x()) * 180.0 / std::numbers::pi,
+        .elevation_deg = std::asin(std::clamp(direction.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi,
+        .width = size,
+        .height = size,
+        .up = up_hint(o, direction)};
+}
 
 // The six views at one scale: the largest half extent of the bounding box's corners across
 // them (a sphere around an elongated jaw would leave most of each panel empty).
-std::vector<View> direction_views(const Mesh& mesh) {
+std::vector<View> direction_views(const Mesh& mesh, const Orientation& o) {
     const FramingSphere sphere = framing_sphere(mesh);
     const Bounds b = bounds(mesh);
     double half = 0.0;
-    for (const auto& d : kDirections) {
-        const View v = make_view(sphere, ViewSpec{.azimuth_deg = d.azimuth,
-                                                  .elevation_deg = d.elevation,
-                                                  .width = kPanel,
-                                                  .height = kPanel});
+    for (const auto& p : kPanels) {
+        const View v =
+            make_view(sphere, panel_spec(o, panel_direction(o, p.azimuth, p.elevation), kPanel));
         const Rigid camera_from_world = v.camera.world_from_camera.inverse();
         for (int c = 0; c < 8; ++c) {
             const Vec3d corner((c & 1 ? b.max : b.min).x(), (c & 2 ? b.max : b.min).y(),
@@ -49,14 +55,40 @@ std::vector<View> direction_views(const Mesh& mesh) {
     // note: 4 % margin, so the silhouette never touches the panel's edge.
     const double footprint = 2.0 * 1.04 * std::max(half, 1e-12) / kPanel;
     std::vector<View> views;
-    for (const auto& d : kDirections)
-        views.push_back(make_view(sphere, ViewSpec{.azimuth_deg = d.azimuth,
-                                                   .elevation_deg = d.elevation,
-                                                   .zoom = ZoomKind::Footprint,
-                                                   .zoom_value = footprint,
-                                                   .width = kPanel,
-                                                   .height = kPanel}));
+    for (const auto& p : kPanels) {
+        ViewSpec spec = panel_spec(o, panel_direction(o, p.azimuth, p.elevation), kPanel);
+        spec.zoom = ZoomKind::Footprint;
+        spec.zoom_value = footprint;
+        views.push_back(make_view(sphere, spec));
+    }
     return views;
+}
+
+// "from anterior (az 270, el +0 deg)"; the panel from up also says "(top)" when up is stated.
+std::string panel_caption(const Orientation& o, const View& v) {
+    const Vec3d from = v.camera.world_from_camera.linear().col(2);
+    const bool top = o.up_known && from.dot(o.up) > 0.999;
+    const bool bottom = o.up_known && from.dot(o.up) < -0.999;
+    char label[120];
+    std::snprintf(label, sizeof label, "from %s%s (az %.0f, el %+.0f deg)", o.name(from).c_str(),
+                  top      ? " (top)"
+                  : bottom ? " (bottom)"
+                           : "",
+                  v.azimuth_deg, v.elevation_deg);
+    return label;
+}
+
+// The direction names at the panel's edges, as a radiologist's viewer puts them: what lies
+// up, left and right in the picture.
+void draw_edge_letters(ImageBuf& sheet, int x, int y, int size, const Orientation& o,
+                       const View& v) {
+    const auto& axes = v.camera.world_from_camera.linear();
+    draw_text(sheet, x + size / 2, y + 16, o.letter(axes.col(1)), 13, kDimText,
+              IBA::TextAlignX::Center, 2);
+    draw_text(sheet, x + 6, y + size / 2 + 5, o.letter(-axes.col(0)), 13, kDimText,
+              IBA::TextAlignX::Left, 2);
+    draw_text(sheet, x + size - 6, y + size / 2 + 5, o.letter(axes.col(0)), 13, kDimText,
+              IBA::TextAlignX::Right, 2);
 }
 
 // The direction a region faces: the mean of its vertices' normals; when they cancel out (a
@@ -80,38 +112,36 @@ Vec3d facing(const Mesh& mesh, const SurfaceFields& fields, const Region& r,
 // area) across, at least 6 % of the mesh's radius. The framing sphere encloses the whole mesh
 // so nothing in front of or behind the region is clipped away.
 View close_up_view(const Mesh& mesh, const SurfaceFields& fields, const FramingSphere& whole,
-                   const Region& r, const SweepPlan& plan) {
-    const Vec3d d = facing(mesh, fields, r, plan);
-    const double az = std::atan2(d.y(), d.x()) * 180.0 / std::numbers::pi;
-    const double el = std::asin(std::clamp(d.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+                   const Region& r, const SweepPlan& plan, const Orientation& o) {
     const double radius = whole.radius + (r.centroid - whole.center).norm();
     const double half =
         std::max(4.0 * std::sqrt(std::max(r.area, 0.0) / std::numbers::pi), 0.06 * whole.radius);
-    return make_view(FramingSphere{r.centroid, radius},
-                     ViewSpec{.azimuth_deg = az,
-                              .elevation_deg = el,
-                              .zoom = ZoomKind::Footprint,
-                              .zoom_value = 2.0 * half / kCloseUp,
-                              .width = kCloseUp,
-                              .height = kCloseUp});
+    ViewSpec spec = panel_spec(o, facing(mesh, fields, r, plan), kCloseUp);
+    spec.zoom = ZoomKind::Footprint;
+    spec.zoom_value = 2.0 * half / kCloseUp;
+    return make_view(FramingSphere{r.centroid, radius}, spec);
 }
 
+// A painted panel with its label at the top left (close-ups) or the bottom left (the six
+// directions, whose top edge names the up direction).
 void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const std::string& label,
-           int min_pixels) {
+           int min_pixels, bool label_below = false) {
     IBA::paste(sheet, x, y, 0, 0, painted.image);
     draw_region_numbers(sheet, x, y, painted.image.spec().width, painted.anchors, 13,
                         static_cast<std::size_t>(min_pixels));
-    draw_text(sheet, x + 8, y + 18, label, 13, kText, IBA::TextAlignX::Left, 2);
+    const int label_y = label_below ? y + painted.image.spec().height - 8 : y + 18;
+    draw_text(sheet, x + 8, label_y, label, 13, kText, IBA::TextAlignX::Left, 2);
 }
 
 }  // namespace
 
 std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
-    const std::vector<View> views = direction_views(*in.mesh);
+    const Orientation o = in.orientation != nullptr ? *in.orientation : Orientation{};
+    const std::vector<View> views = direction_views(*in.mesh, o);
     std::vector<View> close;
     const FramingSphere whole = framing_sphere(*in.mesh);
     for (std::size_t i = 0; i < in.regions->size() && close.size() < kMaxCloseUps; ++i)
-        close.push_back(close_up_view(*in.mesh, *in.fields, whole, (*in.regions)[i], *in.plan));
+        close.push_back(close_up_view(*in.mesh, *in.fields, whole, (*in.regions)[i], *in.plan, o));
     const int close_h = close.empty() ? 0 : kCloseUp + 6;
     char title[300];
     std::snprintf(
@@ -121,12 +151,11 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
     ImageBuf sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, *in.legend);
     const PaintStyle style{.limit = in.limit};
     renderer.render_views(views, [&](std::size_t k, const Frame& frame) {
-        char label[80];
-        std::snprintf(label, sizeof label, "%s (az %.0f, el %+.0f deg)", kDirections[k].name,
-                      kDirections[k].azimuth, kDirections[k].elevation);
-        place(sheet, static_cast<int>(k % 3) * kPanel,
-              kTitleHeight + static_cast<int>(k / 3) * kPanel,
-              paint_surface(*in.mesh, frame, views[k], *in.fields, style), label, 20);
+        const int x = static_cast<int>(k % 3) * kPanel;
+        const int y = kTitleHeight + static_cast<int>(k / 3) * kPanel;
+        place(sheet, x, y, paint_surface(*in.mesh, frame, views[k], *in.fields, style),
+              panel_caption(o, views[k]), 20, true);
+        draw_edge_letters(sheet, x, y, kPanel, o, views[k]);
     });
     const int y0 = kTitleHeight + 2 * kPanel + 6;
     renderer.render_views(close, [&](std::size_t k, const Frame& frame) {

@@ -1,5 +1,6 @@
-// atlas.png (private to report/): the atlas of zoom 0 from the six directions along the mesh
-// axes, all at one scale framed tightly on the mesh, and below them close-ups of the largest
+// atlas.png (private to report/): the atlas of zoom 0 from the six directions of the run's
+// orientation (report/orientation.h: front, left, back, right, top, bottom in a patient space,
+// the mesh axes otherwise; letters at the panels' edges name what lies there), all at one scale framed tightly on the mesh, and below them close-ups of the largest
 // regions seen face on (their mean normal), so a damage a few millimetres wide on a whole jaw
 // still shows its colours.
 #pragma once
@@ -9,6 +10,7 @@
 #include "render/renderer.h"
 #include "report/detail/legend.h"
 #include "report/detail/surface_paint.h"
+#include "report/orientation.h"
 #include "scanner/plan.h"
 
 #include <string>
@@ -26,6 +28,8 @@ struct OverviewInput {
     double coverage = 0.0;            ///< share of the surface seen
     std::string name;                 ///< of the reference, for the title
     std::string unit;
+    /// Which way is up and what directions are called; null: +z up, axes named by axis.
+    const Orientation* orientation = nullptr;
 };
 
 /// Close-ups shown, at most (the largest regions).

@@ -69,7 +69,7 @@ void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
             if (x + i < dst.spec().width && y1 + j < dst.spec().height)
                 dst.setpixel(x + i, y1 + j, g, 3);
         }
-    draw_text(dst, x + s + 8, y1 + s - 2, "not compared (open border, not scanned)", kFont);
+    draw_text(dst, x + s + 8, y1 + s - 2, "not compared (border, unscanned)", kFont);
     const int y2 = y1 + kLine + 6;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);

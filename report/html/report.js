@@ -83,7 +83,11 @@
   const center = new THREE.Vector3().fromArray(DATA.mesh.center);
   const radius = Math.max(DATA.mesh.radius, 1e-9);
   const camera = new THREE.PerspectiveCamera(35, 1, radius * 0.01, radius * 100);
-  camera.up.set(0, 0, 1);  // +z up, as the sweep's views
+  // Up as the pictures draw it (report.json "orientation": superior in a patient space, else +z
+  // or --up); the page first looks from the front, turned left and raised, as atlas.png does.
+  const ORIENT = REPORT.orientation || { up: [0, 0, 1], front: [1, 0, 0] };
+  const UP = new THREE.Vector3().fromArray(ORIENT.up), FRONT = new THREE.Vector3().fromArray(ORIENT.front);
+  camera.up.copy(UP);
   const geometry = new THREE.BufferGeometry();
   geometry.setAttribute("position", new THREE.BufferAttribute(positions, 3));
   geometry.setIndex(new THREE.BufferAttribute(indices, 1));
@@ -135,7 +139,11 @@
   function fitDistance(extent) { return extent / Math.sin((camera.fov * Math.PI) / 360); }
   function resetView() {
     controls.target.copy(center);
-    camera.position.copy(center).addScaledVector(dirFromAzEl(-60, 25), fitDistance(radius * 1.05));
+    const a = (-60 * Math.PI) / 180, e = (25 * Math.PI) / 180;
+    const side = new THREE.Vector3().crossVectors(UP, FRONT);
+    const dir = FRONT.clone().multiplyScalar(Math.cos(e) * Math.cos(a))
+      .addScaledVector(side, Math.cos(e) * Math.sin(a)).addScaledVector(UP, Math.sin(e));
+    camera.position.copy(center).addScaledVector(dir, fitDistance(radius * 1.05));
     controls.update();
     requestRender();
   }
