@@ -39,6 +39,48 @@ double median_edge(const Mesh& mesh) {
     return *mid;
 }
 
+// Per gone group: the longest run of the reference's own open border inside it (`open`, in
+// vertices: one loop of border vertices joined by edges) and how many of its vertices lie next
+// to surface the examined scan reached (`closed`). The strip between two fields of view holds
+// the reference's whole cut, about as long as its rim on the other side; a hole the scan
+// covered around holds at most a few small openings of the reference (the EDJ crown's), each
+// short against its rim. Vertices, not edge lengths: a triangulation's diagonals would weigh
+// the closed side more.
+void rim_counts(const detail::Adjacency& adj, const std::vector<std::int32_t>& group,
+                std::size_t groups, const std::vector<std::uint8_t>& border,
+                std::vector<double>& open, std::vector<double>& closed) {
+    open.assign(groups, 0.0);
+    closed.assign(groups, 0.0);
+    std::vector<std::uint8_t> visited(group.size(), 0);
+    std::vector<std::uint32_t> stack;
+    for (std::size_t v = 0; v < group.size(); ++v) {
+        if (group[v] < 0) continue;
+        const auto g = static_cast<std::size_t>(group[v]);
+        for (std::uint32_t i = adj.offset[v]; i < adj.offset[v + 1]; ++i)
+            if (group[adj.index[i]] < 0) {
+                closed[g] += 1.0;
+                break;
+            }
+        if (!border[v] || visited[v]) continue;
+        double run = 0.0;  // the border vertices of this group joined to v
+        stack.assign(1, static_cast<std::uint32_t>(v));
+        visited[v] = 1;
+        while (!stack.empty()) {
+            const std::uint32_t u = stack.back();
+            stack.pop_back();
+            run += 1.0;
+            for (std::uint32_t i = adj.offset[u]; i < adj.offset[u + 1]; ++i) {
+                const std::uint32_t w = adj.index[i];
+                if (border[w] && !visited[w] && group[w] == group[v]) {
+                    visited[w] = 1;
+                    stack.push_back(w);
+                }
+            }
+        }
+        open[g] = std::max(open[g], run);
+    }
+}
+
 // Vertices within `width` of a seed, along mesh edges (multi-source Dijkstra).
 std::vector<std::uint8_t> band_of(const Mesh& mesh, const detail::Adjacency& adj,
                                   const std::vector<std::uint8_t>& seed, double width) {
@@ -120,7 +162,9 @@ std::string rule_text(const Comparison& c) {
       << ") of a border of the reference, or of a part the examined surface did not reach (no "
          "examined surface behind most views, or its closest point on an examined border "
          "beyond half an edge); a part without examined surface that stays off the reference's "
-         "borders and under "
+         "borders (under a quarter of its area next to them, no run of them half as long as its "
+         "rim) "
+         "and under "
       << 100.0 * kMaxHoleShare
       << " % of its area is a hole the examined scan covered around: compared (a loss where the "
          "reference stood above the hole's rim, else missing surface); a damaged group with more "
@@ -167,14 +211,26 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         if (reference_band[v]) banded[g] += area[v];
         members[g].push_back(static_cast<std::uint32_t>(v));
     }
+    std::vector<double> open_rim, closed_rim;
+    rim_counts(adj, group, groups, border, open_rim, closed_rim);
+    // A group around the reference's own cut: a long run of its open border, and a surface that
+    // turns round (its normals cancel: a band round a bone, not a cap worn off a cusp).
+    const auto field_of_view = [&](std::size_t g) {
+        if (!(open_rim[g] >= kMaxOpenRim * (open_rim[g] + closed_rim[g]))) return false;
+        if (!mesh.has_normals()) return true;
+        Vec3d sum = Vec3d::Zero();
+        for (const auto u : members[g]) sum += area[u] * mesh.normals[u].cast<double>();
+        return sum.norm() < kMinCapCoherence * group_area[g];
+    };
     c.hole_depth.assign(n, std::numeric_limits<float>::quiet_NaN());
     c.in_hole.assign(n, 0);
     std::vector<std::uint8_t> not_reached(n, 0);
     for (std::size_t g = 0; g < groups; ++g) {
         // note: a quarter — a worn cusp of the EDJ crown reaches the band of a small border
         // of the reference with a sliver of its area; a strip beyond a field-of-view cut lies
-        // mostly in the band of the reference's own cut.
-        if (banded[g] <= 0.25 * group_area[g] &&
+        // mostly in the band of the reference's own cut. A wide strip (two fields of view 6 mm
+        // apart) has little of its area in that band but a third or more of its rim on the cut.
+        if (banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
             group_area[g] <= kMaxHoleShare * c.reference_area) {
             ++c.holes;
             c.hole_area += group_area[g];

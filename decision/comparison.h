@@ -9,7 +9,9 @@
 //                mesh (a partial scan, a cut, a hole) or on a triangle facing away from the
 //                vertex's normal (another sheet). Gone vertices are grouped through edges.
 //   hole         a gone group that lies away from the reference's own borders (at most a
-//                quarter of its area within one edge of them) and covers at most kMaxHoleShare
+//                quarter of its area within one edge of them, no run of them as long as
+//                half its rim on reached surface unless it is a cap: kMaxOpenRim,
+//                kMinCapCoherence) and covers at most kMaxHoleShare
 //                of the reference's area: the examined scan covered the surface around it, so
 //                the surface is really gone there (a resection, worn-away material, or a
 //                scanner's dropout). It stays compared; its kind follows the shape (below).
@@ -58,6 +60,16 @@ inline constexpr double kBandEdges = 4.0;
 /// crown (three worn cusps, combined_c0_2_3); a partial scan (a bunny range scan, a one-sided
 /// jaw of ≤ 70 % of the surface) leaves ≥ 30 % unscanned.
 inline constexpr double kMaxHoleShare = 0.25;
+/// note: a gone group holding one run of the reference's open border at least half as long as
+/// its rim on reached surface (a third of the two together) is no hole: the strip between two
+/// fields of view holds the reference's whole cut, as long as its other side; a hole the scan
+/// covered around holds at most small openings of the reference (the EDJ crown has some).
+inline constexpr double kMaxOpenRim = 1.0 / 3.0;
+/// note: … unless its surface is a cap (|area-weighted mean normal| ≥ half): worn cusps of the
+/// EDJ crown hold a long opening of the reference too (390 border vertices against 421 on the
+/// rim in tooth_wear_combined_c0_2_3), but are caps, while the strip round a cut bone turns
+/// round and its normals cancel. A field-of-view strip over a flat surface stays a hole.
+inline constexpr double kMinCapCoherence = 0.5;
 
 /// What the classification reads, one value per reference vertex (optional ones may be null).
 struct ComparisonInputs {

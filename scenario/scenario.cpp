@@ -5,6 +5,8 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/remesh.h"
+#include "scenario/detail/ct_acquisition.h"
+#include "scenario/detail/partial_scan.h"
 #include "scenario/detail/scenario_options.h"
 #include "scenario/detail/toml_reader.h"
 #include "scenario/pair_truth.h"
@@ -84,6 +86,7 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
         s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
     }
     read_surface_options(r, s.surface);
+    s.cut = detail::read_scan_cut(r);
     if ((s.surface.iso || s.surface.any()) && !mesh)
         r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
                "surface keys need a volume file: mesh = \"scan.nii.gz\"");
@@ -164,7 +167,8 @@ void read_volume_edit(TableReader& r, Scenario& sc) {
                                static_cast<float>(erode_to.value_or(0.0))});
     }
     if (erode_to && !erode) r.fail(r.get("erode_to"), "erode_to", "needs erode = [x, y, z, r]");
-    sc.resample_volume = erode || r.has("pivot");
+    sc.resample_volume =
+        erode || r.has("pivot") || sc.examined.acquisition.any() || sc.reference.acquisition.any();
     const bool volume_reference = !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh);
     if ((erode || r.has("pivot")) && !volume_reference)
         r.fail(r.get(erode ? "erode" : "pivot"), erode ? "erode" : "pivot",
@@ -226,7 +230,12 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
         sc.truth_mask = resolve_mesh(r, "truth_mask", *m, dir, data_root, needs);
     }
     read_conf_truth(r, dir, data_root, sc);
+    sc.examined.acquisition = detail::read_acquisition(
+        r, !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
     read_volume_edit(r, sc);
+    if (sc.examined.cut && !sc.examined_derived)
+        r.fail(r.get("keep_side"), "keep_side",
+               "cuts an examined surface derived from the reference");
     if (sc.noise_sigma > 0 && sc.resample_volume)
         r.fail(r.get("noise"), "noise",
                "a resampled examined volume (pivot, erode) takes no mesh noise");
@@ -383,6 +392,8 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     {
         TableReader r(*table("reference", true), name, "reference");
         sc.reference = read_surface(r, dir, data_root, true);
+        sc.reference.acquisition = detail::read_acquisition(
+            r, !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
         r.finish();
     }
     if (const auto* t = table("examined", false)) {
@@ -403,53 +414,6 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     top.finish();
     validate_analysis_sections(root, name, sc.analysis);
     return sc;
-}
-
-std::vector<std::uint8_t> read_npy_mask(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("mask \"" + path.string() + "\": cannot open");
-    char magic[8] = {};
-    in.read(magic, 8);
-    if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
-        throw InputError("mask \"" + path.string() + "\": not a NumPy .npy file (bad magic)");
-    const int major = static_cast<unsigned char>(magic[6]);
-    const std::uintmax_t file_size = fs::file_size(path);
-    std::uint32_t header_len = 0;
-    unsigned char b[4] = {};
-    in.read(reinterpret_cast<char*>(b), major == 1 ? 2 : 4);
-    for (int i = (major == 1 ? 1 : 3); i >= 0; --i) header_len = (header_len << 8) | b[i];
-    // note: a header longer than the file is a lie; refuse it before allocating for it.
-    if (!in || header_len > file_size)
-        throw InputError("mask \"" + path.string() + "\": header length " +
-                         std::to_string(header_len) + " exceeds the file's " +
-                         std::to_string(file_size) + " bytes");
-    std::string header(header_len, '\0');
-    in.read(header.data(), header_len);
-    if (!in) throw InputError("mask \"" + path.string() + "\": truncated header");
-    if (header.find("'|b1'") == std::string::npos && header.find("'|u1'") == std::string::npos)
-        throw InputError("mask \"" + path.string() + "\": dtype is not bool or uint8 (header " +
-                         header + ")");
-    if (header.find("'fortran_order': False") == std::string::npos)
-        throw InputError("mask \"" + path.string() + "\": expected C order");
-    const auto open = header.find("'shape': (");
-    if (open == std::string::npos)
-        throw InputError("mask \"" + path.string() + "\": no shape in header");
-    std::size_t count = 0;
-    const char* first = header.data() + open + 10;
-    const auto parsed = std::from_chars(first, header.data() + header.size(), count);
-    const std::uintmax_t data_bytes =
-        file_size - std::min<std::uintmax_t>(file_size, static_cast<std::uintmax_t>(in.tellg()));
-    if (parsed.ec != std::errc() || count > data_bytes)
-        throw InputError("mask \"" + path.string() + "\": header says " +
-                         std::string(first, parsed.ptr) + " values, the file holds " +
-                         std::to_string(data_bytes));
-    std::vector<std::uint8_t> mask(count);
-    in.read(reinterpret_cast<char*>(mask.data()), static_cast<std::streamsize>(count));
-    if (static_cast<std::size_t>(in.gcount()) != count)
-        throw InputError("mask \"" + path.string() + "\": header says " + std::to_string(count) +
-                         " values, file has " + std::to_string(in.gcount()));
-    for (auto& m : mask) m = m ? 1 : 0;
-    return mask;
 }
 
 namespace {
@@ -495,6 +459,8 @@ void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
     } else {
         out.truth.assign(out.reference.vertex_count(), 0);
     }
+    if (sc.examined.cut)  // the truth stays that of the whole surface
+        out.notes.push_back(detail::cut_scan(out.examined, *sc.examined.cut, "examined"));
     if (sc.noise_sigma > 0) {
         DamageSpec noise;
         noise.kind = DamageKind::Noise;
@@ -515,11 +481,17 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
     if (!sc.reference.surface.iso)
         throw InputError("scenario \"" + sc.file.string() + "\": reference volume \"" +
                          sc.reference.mesh_as_written + "\" needs iso = VALUE in [reference]");
-    out.reference = extract_surface(volume, sc.reference.surface).mesh;
+    // Each scan from the noiseless volume, with its own noise and voxel size.
+    out.reference =
+        extract_surface(detail::acquire(volume, {}, sc.reference.acquisition), sc.reference.surface)
+            .mesh;
     VolumeEdit edit;
     edit.moved_from_original = motion_about(sc.pose, sc.pivot);
     edit.erosions = sc.erosions;
-    out.examined = extract_surface(edit_volume(volume, edit), sc.reference.surface).mesh;
+    out.examined = extract_surface(detail::acquire(volume, edit, sc.examined.acquisition),
+                                   sc.reference.surface)
+                       .mesh;
+    detail::cut_pair(sc, out, edit.moved_from_original);
     out.truth.assign(out.reference.vertex_count(), 0);
     for (std::size_t v = 0; v < out.truth.size(); ++v)
         for (const Erosion& e : sc.erosions)
@@ -528,14 +500,16 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
     out.true_reference_from_examined = edit.moved_from_original.inverse();
     out.has_truth_pose = true;
     out.notes.push_back("examined: the reference volume resampled under the known motion with " +
-                        std::to_string(sc.erosions.size()) + " erosion(s)");
+                        std::to_string(sc.erosions.size()) + " erosion(s); reference scan " +
+                        detail::describe(sc.reference.acquisition) + ", examined scan " +
+                        detail::describe(sc.examined.acquisition));
     return out;
 }
 
 }  // namespace
 
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
-    if (sc.examined_derived && sc.resample_volume) {
+    if (sc.examined_derived && (sc.resample_volume || sc.reference.acquisition.any())) {
         std::error_code ec;
         if (!fs::exists(sc.reference.mesh, ec))
             throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" +
@@ -559,6 +533,8 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
         return load_surface(s.mesh, inherit ? sc.reference.surface : s.surface).mesh;
     };
     out.reference = load(sc.reference, "reference");
+    if (sc.reference.cut)
+        out.notes.push_back(detail::cut_scan(out.reference, *sc.reference.cut, "reference"));
     if (sc.examined_derived) {
         derive_examined(sc, out);
         return out;

@@ -13,12 +13,29 @@
 #include "volume/edit.h"
 #include "volume/surface.h"
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace glint {
+
+/// A partial scan or a field of view: a surface keeps the side of a plane that `normal` points
+/// to (scenario/detail/partial_scan.h), given in the reference's frame.
+struct ScanCut {
+    Vec3d point{0, 0, 0};
+    Vec3d normal{1, 0, 0};
+};
+
+/// How one scan of a volume pair is acquired from the noiseless volume
+/// (scenario/detail/ct_acquisition.h).
+struct Acquisition {
+    std::optional<Vec3d> voxel_size;  ///< mm; unset: the volume's own grid
+    double noise = 0.0;               ///< σ of Gaussian noise per voxel (the volume's values)
+    std::uint32_t noise_seed = 1;
+    [[nodiscard]] bool any() const { return voxel_size.has_value() || noise > 0; }
+};
 
 /// Where a surface comes from: a phantom or a mesh file.
 struct SurfaceSource {
@@ -30,6 +47,10 @@ struct SurfaceSource {
     /// tolerance): how its surface is extracted. An examined volume without iso takes the
     /// reference's options.
     SurfaceOptions surface;
+    /// keep_side = [x, y, z, nx, ny, nz]: only that side is kept (a partial scan, a field of
+    /// view); an examined cut needs an examined surface derived from the reference.
+    std::optional<ScanCut> cut;
+    Acquisition acquisition;  ///< a volume pair's scan: its noise and voxel size
 };
 
 struct ScenarioExpect {

@@ -1,4 +1,5 @@
 // glint volume-edit IN -o OUT.mha [--erode x,y,z,r]… [--erode-to V] [--pose rx,ry,rz,tx,ty,tz]
+//                   [--voxel-size x,y,z] [--noise σ --noise-seed N]
 // [--pivot x,y,z]: a longitudinal "after" scan with a known change (volume/edit.h), and
 // OUT.json beside it with the ground truth.
 #include "mesh/atomic_file.h"
@@ -8,6 +9,7 @@
 #include "tools/command.h"
 #include "volume/edit.h"
 
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -24,6 +26,9 @@ struct EditArgs {
     std::optional<double> erode_to;
     std::string pose = "0,0,0,0,0,0";
     std::string pivot = "0,0,0";
+    std::string voxel_size;
+    double noise = 0.0;
+    std::uint32_t noise_seed = 1;
 };
 
 std::vector<double> numbers(const std::string& text, const char* flag, std::size_t count) {
@@ -59,6 +64,14 @@ void run(const EditArgs& a) {
         edit.erosions.push_back(
             {Vec3d(v[0], v[1], v[2]), v[3], static_cast<float>(a.erode_to.value_or(lowest))});
     }
+    if (!a.voxel_size.empty()) {
+        const auto v = numbers(a.voxel_size, "--voxel-size", 3);
+        edit.spacing = Vec3d(v[0], v[1], v[2]);
+    }
+    if (!(a.noise >= 0) || !std::isfinite(a.noise))
+        throw InputError("--noise " + std::to_string(a.noise) + ": expected a σ ≥ 0");
+    edit.noise_sigma = a.noise;
+    edit.noise_seed = a.noise_seed;
     const Volume out = edit_volume(input, edit);
     write_volume(out, a.output);
     const std::string truth = a.output + ".json";
@@ -86,6 +99,14 @@ void setup(CLI::App& app) {
     cmd->add_option("--pose", a.pose, "Rigid motion rx,ry,rz,tx,ty,tz (degrees, mm) about --pivot")
         ->capture_default_str();
     cmd->add_option("--pivot", a.pivot, "Centre of the rotation x,y,z (mm)")->capture_default_str();
+    cmd->add_option("--voxel-size", a.voxel_size,
+                    "x,y,z (mm): resample onto this voxel size over the same extent, each voxel "
+                    "the mean over its own extent (another scanner's grid)");
+    cmd->add_option("--noise", a.noise,
+                    "Gaussian noise σ added to every voxel, in the volume's values (an "
+                    "acquisition's own noise)");
+    cmd->add_option("--noise-seed", a.noise_seed, "Seed of the noise realisation")
+        ->capture_default_str();
     cmd->callback([] { run(a); });
 }
 

@@ -6,6 +6,8 @@
 #include "mesh/geometry.h"
 #include "volume/volume.h"
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,13 +24,23 @@ struct VolumeEdit {
     /// Where a point of the object goes: p_new = moved_from_original · p (physical mm).
     Rigid moved_from_original = Rigid::Identity();
     std::vector<Erosion> erosions;
+    /// Another acquisition's voxel size (mm along i, j, k); unset: the input's grid. The output
+    /// grid keeps the input's origin and direction and covers its extent; each output voxel is
+    /// the mean of 2 × 2 × 2 samples spread over its own extent (the scanner integrates over
+    /// its voxel: partial volume at the new size).
+    std::optional<Vec3d> spacing;
+    /// Gaussian noise added to every output voxel, σ in the volume's values (0: none), drawn
+    /// from `noise_seed`: an acquisition's own noise realisation.
+    double noise_sigma = 0.0;
+    std::uint32_t noise_seed = 1;
 };
 
 /// The motion "rx,ry,rz,tx,ty,tz" (degrees, mm; mesh/damage.h parse_pose_spec) about a pivot:
 /// p' = R (p - pivot) + pivot + t.
 [[nodiscard]] Rigid motion_about(const Rigid& pose, const Vec3d& pivot);
 
-/// The edited volume on the input's grid: each output voxel at x takes the eroded input at
+/// The edited volume on the input's grid (or the grid of `edit.spacing`): each output voxel at
+/// x takes the eroded input at
 /// p = moved_from_original⁻¹ · x (trilinear; outside the input: the input's smallest value).
 /// Erosion is partial-volume correct: the weight of a ball falls linearly from 1 to 0 over
 /// one voxel (the mean spacing) across its surface, value ← value + w · (min(value, target) − value).

@@ -128,6 +128,49 @@ TEST(Comparison, ALargePartWithoutExaminedSurfaceIsNotReachedEvenAwayFromBorders
     EXPECT_EQ(classify_comparison(flat(), in.view()).holes, 1u);
 }
 
+// An open tube (two scans' fields of view end at its rims): 24 vertices round, 41 rings of unit
+// height, about unit edges.
+Mesh tube() {
+    constexpr int kRound = 24, kRings = 41;
+    const double r = kRound / (2.0 * 3.14159265358979);
+    Mesh m;
+    for (int z = 0; z < kRings; ++z)
+        for (int k = 0; k < kRound; ++k) {
+            const double a = 2.0 * 3.14159265358979 * k / kRound;
+            m.positions.emplace_back(float(r * std::cos(a)), float(r * std::sin(a)), float(z));
+            m.normals.emplace_back(float(std::cos(a)), float(std::sin(a)), 0.0f);
+        }
+    auto id = [&](int z, int k) { return static_cast<std::uint32_t>(z * kRound + k % kRound); };
+    for (int z = 0; z + 1 < kRings; ++z)
+        for (int k = 0; k < kRound; ++k) {
+            m.triangles.push_back({id(z, k), id(z, k + 1), id(z + 1, k + 1)});
+            m.triangles.push_back({id(z, k), id(z + 1, k + 1), id(z + 1, k)});
+        }
+    return m;
+}
+
+TEST(Comparison, TheStripBetweenTwoFieldsOfViewIsNotAHole) {
+    // The examined scan's field of view ends 8 rings before the reference's: the strip has a
+    // fifth of its area in the one-edge band of the reference's rim, but half its rim on it.
+    const Mesh m = tube();
+    const std::size_t n = m.vertex_count();
+    std::vector<std::uint8_t> seen(n, 1);
+    std::vector<float> missing(n, 0.0f), distance(n, 0.0f);
+    for (std::size_t v = 0; v < n; ++v)
+        if (m.positions[v].z() <= 8.0f) missing[v] = 1.0f;
+    const ComparisonInputs in{.seen = &seen, .missing = &missing, .distance = &distance};
+    const Comparison strip = classify_comparison(m, in);
+    EXPECT_EQ(strip.holes, 0u);
+    EXPECT_EQ(static_cast<CompareClass>(strip.vertex_class[4 * 24]), CompareClass::NotReached);
+    EXPECT_EQ(static_cast<CompareClass>(strip.vertex_class[20 * 24]), CompareClass::Compared);
+    // The same area gone in the middle of the tube, on one side: the scan covered around it.
+    std::fill(missing.begin(), missing.end(), 0.0f);
+    for (std::size_t v = 0; v < n; ++v)
+        if (std::abs(m.positions[v].z() - 20.0f) <= 4.0f && m.positions[v].x() > 0.0f)
+            missing[v] = 1.0f;
+    EXPECT_EQ(classify_comparison(m, in).holes, 1u);
+}
+
 TEST(Comparison, DropsADamagedStripAlongACutButKeepsADamageReachingTheCutWhole) {
     const Inputs in;
     const Mesh mesh = flat();

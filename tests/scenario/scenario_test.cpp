@@ -121,6 +121,70 @@ TEST(LoadScenario, ReportsTomlSyntaxErrorsWithTheLine) {
     expect_error("name = \"x\"\n[reference\nphantom = 1\n", {"bad.toml", "line 2"});
 }
 
+// A partial scan and two fields of view (issue 24): keep_side cuts a surface along a plane,
+// the reference's before the examined is derived, the examined's before its pose.
+TEST(LoadScenario, KeepSideCutsTheScansAndIsRefusedWhereItCannotApply) {
+    std::string partial = kValid;
+    partial.replace(partial.find("[examined]"), 10,
+                    "keep_side = [-8.0, 0.0, 0.0, 1.0, 0.0, 0.0]\n[examined]\n"
+                    "keep_side = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0]");
+    partial.replace(partial.find("scheme = \"uv\"\nresolution = 40\n"), 30, "");
+    const Scenario sc = load_scenario(write_scenario("partial", partial), {});
+    ASSERT_TRUE(sc.reference.cut && sc.examined.cut);
+    const ScenarioMeshes m = build_scenario_meshes(sc);
+    // The sphere of radius 10: the reference keeps x ≥ -8, the examined x ≥ 0 (in the
+    // reference's frame, before its pose).
+    for (const auto& p : m.reference.positions) EXPECT_GE(p.x(), -8.0f);
+    const Rigid back = m.true_reference_from_examined;
+    for (const auto& p : m.examined.positions) EXPECT_GE((back * p.cast<double>()).x(), -1e-4);
+    EXPECT_LT(m.examined.vertex_count(), m.reference.vertex_count() * 6 / 10);
+    ASSERT_EQ(m.truth.size(), m.reference.vertex_count());
+    bool noted = false;
+    for (const auto& n : m.notes) noted |= n.find("examined: a partial scan") != std::string::npos;
+    EXPECT_TRUE(noted);
+
+    std::string zero = kValid;
+    zero.replace(zero.find("[examined]"), 10, "[examined]\nkeep_side = [0, 0, 0, 0, 0, 0]");
+    expect_error(zero, {"keep_side", "normal", "must not be zero"});
+    std::string missing = kValid;
+    missing.replace(missing.find("[examined]"), 10,
+                    "[examined]\nkeep_side = [100.0, 0.0, 0.0, 1.0, 0.0, 0.0]");
+    EXPECT_THROW((void)build_scenario_meshes(load_scenario(write_scenario("miss", missing), {})),
+                 InputError);
+}
+
+// The CT pair generator's keys (volume_noise, volume_noise_seed, voxel_size) need a volume
+// reference and sane values.
+TEST(LoadScenario, AcquisitionKeysNeedAVolumeAndSaneValues) {
+    std::string noise = kValid;
+    noise.replace(noise.find("[examined]"), 10, "[examined]\nvolume_noise = 20.0");
+    expect_error(noise, {"volume_noise", "needs a volume reference"});
+    std::string voxel = kValid;
+    voxel.replace(voxel.find("[examined]"), 10, "[examined]\nvoxel_size = [0.8, 0.8, 0.8]");
+    expect_error(voxel, {"voxel_size", "needs a volume reference"});
+    const std::string volume = R"(
+name = "ct"
+[reference]
+mesh = "head.mha"
+iso = 500.0
+volume_noise = 20.0
+[examined]
+voxel_size = [0.8, 0.0, 0.8]
+)";
+    expect_error(volume, {"voxel_size", "every size must be > 0"});
+    std::string negative = volume;
+    negative.replace(negative.find("volume_noise = 20.0"), 19, "volume_noise = -1.0");
+    expect_error(negative, {"volume_noise", "must be ≥ 0"});
+    std::string good = volume;
+    good.replace(good.find("[0.8, 0.0, 0.8]"), 15, "[0.8, 0.9, 1.0]\nvolume_noise_seed = 9");
+    const Scenario sc = load_scenario(write_scenario("good", good), {});
+    EXPECT_EQ(sc.reference.acquisition.noise, 20.0);
+    ASSERT_TRUE(sc.examined.acquisition.voxel_size.has_value());
+    EXPECT_EQ(*sc.examined.acquisition.voxel_size, Vec3d(0.8, 0.9, 1.0));
+    EXPECT_EQ(sc.examined.acquisition.noise_seed, 9u);
+    EXPECT_TRUE(sc.resample_volume);
+}
+
 TEST(LoadScenario, MissingFileIsAnIoError) {
     EXPECT_THROW((void)load_scenario("/nonexistent/scenario.toml", {}), IoError);
 }
