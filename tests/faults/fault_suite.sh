@@ -8,12 +8,9 @@
 # Faults are placed with GLINT_FAULT (mesh/fault_injection.h), not raced with a clock.
 #   fault_suite.sh GLINT WORKDIR CASE     CASE: stages | disk_full | writers | address_space
 set -euo pipefail
-glint=$1
-work=$2/faults_$3
-case_name=$3
-rm -rf "$work"
+source "$(dirname "$0")/../lib/runs.sh"
+run_test_setup "$1" "$2" faults "$3"
 mkdir -p "$work/in"
-fail() { echo "FAIL [$case_name]: $*"; exit 1; }
 
 "$glint" --quiet phantom condyle --scheme ico --resolution 3 -o "$work/in/ref.ply" >/dev/null
 "$glint" --quiet phantom condyle --scheme ico --resolution 4 --pose 2,1,0,0.3,0,0 \
@@ -43,14 +40,6 @@ no_leftovers() {
 # The stderr lines glint wrote about the end of the run (warnings aside).
 end_lines() { grep -c '^glint: ' "$1" || true; }
 
-# Waits (up to 30 s) until a run has made its staging folder for TARGET: it is past its checks.
-wait_for_staging() {
-    for _ in $(seq 300); do
-        compgen -G "$1.partial-*" >/dev/null && return 0
-        sleep 0.1
-    done
-    fail "no staging folder for $1 appeared"
-}
 
 run_fault() {  # run_fault FAULT TARGET [sweep args…]: sets $code, stderr in $work/err.txt
     local fault=$1 target=$2

@@ -8,24 +8,13 @@
 #           from .preinit_array): exit 130 and one line, no work begun.
 #   signals_test.sh GLINT WORKDIR CASE
 set -euo pipefail
-glint=$1
-work=$2/signals_$3
-case_name=$3
-rm -rf "$work"
-mkdir -p "$work"
-fail() { echo "FAIL [$case_name]: $*"; exit 1; }
+source "$(dirname "$0")/../lib/runs.sh"
+run_test_setup "$1" "$2" signals "$3"
 "$glint" --quiet phantom condyle --scheme ico --resolution 4 -o "$work/ref.ply" >/dev/null
 # A long sweep run in place of a subshell, so that `$!` of `(long_sweep …) &` is glint's pid.
 long_sweep() {
     exec "$glint" --quiet sweep "$work/ref.ply" "$work/ref.ply" --azimuth-step 2 \
         --elevations -60,-30,0,30,60 --size 128 --no-exr -o "$work/atlas"
-}
-wait_for_staging() {
-    for _ in $(seq 300); do
-        compgen -G "$work/atlas.partial-*" >/dev/null && return 0
-        sleep 0.1
-    done
-    fail "no staging folder appeared"
 }
 finish() {  # finish PID: waits, checks exit 130, one line, nothing left; prints the line
     set +e
@@ -43,7 +32,7 @@ case "$case_name" in
     repeat)
         (long_sweep 2>"$work/err.txt") &
         pid=$!
-        wait_for_staging
+        wait_for_staging "$work/atlas"
         kill -TERM "$pid"
         kill -TERM "$pid"
         finish "$pid"
@@ -52,7 +41,7 @@ case "$case_name" in
     insist)
         (GLINT_FAULT="view#2:stall" long_sweep 2>"$work/err.txt") &
         pid=$!
-        wait_for_staging
+        wait_for_staging "$work/atlas"
         sleep 0.5
         kill -TERM "$pid"
         sleep 1.2
