@@ -79,6 +79,7 @@
     const fit = REPORT.fit, rows = [];
     const mode = (REPORT.analysis && REPORT.analysis.registration && REPORT.analysis.registration.mode) || fit.mode;
     rows.push(["mode", FIT_MODES[mode] || String(mode)]);
+    if (fit.reference_from_examined) rows.push(["moves", "the examined surface onto the reference (reference_from_examined)"]);
     if (fit.path) rows.push(["fit file", fit.path]);
     if (fit.rotation_deg !== undefined)
       rows.push(["rotation", fmt(fit.rotation_deg, 4) + " ° about (" + fit.rotation_axis.map((x) => fmt(x, 3)).join(", ") + ")"]);
