@@ -231,6 +231,7 @@ PAGE_WORDS = """(() => {
     fit: fit ? Object.fromEntries(rows('#fit-table tr').map((tr) => [tr.cells[0].textContent, tr.cells[1].textContent])) : null,
     labels: rows('#region-labels .region-label').map((d) => d.getAttribute('data-region')),
     evidence: rows('#regions tr.evidence').map((tr) => ({ id: tr.getAttribute('data-evidence'), text: tr.textContent })),
+    cells: rows('#regions tr.region').map((tr) => [...tr.cells].map((td) => td.textContent)),
   };
 })()"""
 
@@ -283,6 +284,12 @@ def check_page_words(words, report, atlas_dir):
     ids = [str(r["id"]) for r in z0["regions"]]
     if words["labels"] != ids:
         problems.append(f"region labels {words['labels']}, report.json regions {ids}")
+    # A region without a depth or volume (missing surface: null in report.json) shows "—".
+    for r, cells in zip(z0["regions"], words["cells"]):
+        for value, cell, name in ((r["peak_depth"], cells[3], "peak depth"), (r["volume"], cells[4], "volume")):
+            if (value is None) != (cell == "—") or (value is not None and abs(page_number(cell) - value) >
+                                                      5e-3 * abs(value) + 1e-9):
+                problems.append(f"region {r['id']}: {name} cell {cell!r}, report.json {value}")
     evidence = {e["id"]: e["text"] for e in words["evidence"]}
     for r in z0["regions"]:
         view = f"z0_az{r['best_view_azimuth_deg']:05.1f}_el{r['best_view_elevation_deg']:+05.1f}"
