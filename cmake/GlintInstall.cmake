@@ -5,6 +5,7 @@
 #   share/doc/glint/README.md                  how to use it
 #   share/glint/scenarios/                     the shipped scenarios (tools/demo runs one)
 #   share/glint/workflows/cohort/              the Snakemake cohort workflow
+#   share/glint/report/html/glint.css          the page style cohort.html shares with report.html
 #   share/glint/slicer/execution-model.xsd     the schema glint --xml is tested against
 #   lib/glint/slicer/glint                     link to bin/glint: the folder to add to 3D Slicer's
 #                                              module paths (Slicer runs every program there)
@@ -23,6 +24,10 @@ install(FILES ${PROJECT_SOURCE_DIR}/tools/slicer/execution-model.xsd DESTINATION
         COMPONENT glint)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/workflows/ DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/workflows
         COMPONENT glint PATTERN ".snakemake" EXCLUDE PATTERN "__pycache__" EXCLUDE)
+# The page style report.html inlines at build time, for the cohort summary's cohort.html: two
+# folders above workflows/cohort/, as in the sources (workflows/cohort/summary_html.py).
+install(FILES ${PROJECT_SOURCE_DIR}/report/html/glint.css DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/report/html
+        COMPONENT glint)
 # note: a relative link, so it resolves under any prefix (and inside the .deb).
 install(CODE "
   set(slicer_dir \"\$ENV{DESTDIR}\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/glint/slicer\")

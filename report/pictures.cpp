@@ -367,7 +367,8 @@ PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
         write_file_atomically(folder.file("mosaic_z" + std::to_string(z) + ".png"),
                               out.mosaics.back());
     }
-    write_file_atomically(folder.file("atlas.png"), writer.atlas_overview());
+    out.atlas = writer.atlas_overview();
+    write_file_atomically(folder.file("atlas.png"), out.atlas);
     return out;
 }
 

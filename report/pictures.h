@@ -50,6 +50,7 @@ struct ShapeScale {
 struct PictureOutput {
     std::map<int, std::string> best_views;  ///< PNG bytes of the regions' best views, by view index
     std::vector<std::string> mosaics;       ///< PNG bytes of mosaic_z<k>.png, per zoom
+    std::string atlas;                      ///< PNG bytes of atlas.png (empty: none drawn)
 };
 
 /// Best views kept for the report page, at most (the largest regions' first).

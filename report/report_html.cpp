@@ -365,6 +365,11 @@ ReportPageData report_page_data(const Mesh& reference_in, const AnalysisResult& 
         data["fields"] = fields_json(shown, result, scale);
     }
     if (examined) data["live"] = live_json(*examined, result);
+    // Views by their index as their files are named (views/<name>.png): the region table
+    // names each region's best view.
+    json view_names = json::array();
+    for (const auto& v : result.sweep.plan.views) view_names.push_back(view_file_stem(v.view));
+    data["view_names"] = std::move(view_names);
     data["shape_scale"] = {
         {"limit", scale.limit}, {"source", scale.source}, {"floor", scale.floor}};
     const auto knots = detail::diverging_knots();
@@ -383,6 +388,9 @@ std::string report_html(ReportPageData page, const std::string& report_json,
     for (const auto& m : pictures.mosaics) images["mosaics"].push_back(data_uri(m));
     for (const auto& [view, png] : pictures.best_views)
         images["best_views"][std::to_string(view)] = data_uri(png);
+    // note: atlas.png inline rather than linked beside the page: a page mailed or copied alone
+    // still shows it, and it costs ~0.1–0.3 MB whatever the mesh size (a fixed-size picture).
+    if (!pictures.atlas.empty()) images["atlas"] = data_uri(pictures.atlas);
     data["images"] = std::move(images);
     std::string title = "glint report";
     for (const auto& in : data["report"]["inputs"])
@@ -394,7 +402,10 @@ std::string report_html(ReportPageData page, const std::string& report_json,
                                                    {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
                                                    {"DATA_JSON", script_safe(data.dump())},
                                                    {"LIVE_JS", asset("live.js")},
+                                                   {"EVIDENCE_JS", asset("evidence.js")},
+                                                   {"OVERLAYS_JS", asset("overlays.js")},
                                                    {"REPORT_JS", asset("report.js")},
+                                                   {"GLINT_CSS", asset("glint.css")},
                                                    {"REPORT_CSS", asset("report.css")}});
 }
 

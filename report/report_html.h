@@ -1,24 +1,33 @@
 // report.html: one self-contained page per run, opened from disk without a server and
 // without network access.
 //
+//   banner        the verdict in one sentence ("2 regions: 1 dent, 1 bump") and every warning
+//                 of report.json by severity (report/html/evidence.js);
 //   atlas in 3D   three.js (Debian's libjs-three, r111) and its OrbitControls, inlined: rotate,
-//                 zoom, click a vertex to read every field there; the field and its colour
-//                 range are selectable among the atlas scalars (signed distance, normal
-//                 deviation per zoom, regions, seen / observations);
+//                 zoom, click a vertex to read every field there (a ring marks it, of a fixed
+//                 size on screen); the field and its colour range are selectable among the
+//                 atlas scalars (signed distance, normal deviation per zoom, regions, seen /
+//                 observations); each region outlined on the surface and labelled with its id
+//                 (report/html/overlays.js);
 //   live          the method itself on the reader's GPU (WebGL2, report/html/live.js): both
 //                 surfaces, the examined one fitted, rendered as normal-colour frames into
 //                 float targets at any view and zoom, s×s sub-samples averaged per pixel,
 //                 and their difference (angle, the paper's RGB difference, signed depth);
-//   regions       the table of report.json; a click on a row flies the camera to the region
-//                 and shows its best view (the per-view picture, report/pictures.h);
-//   evidence      thresholds and floors with their rules, coverage, the fit and its evidence,
-//                 units, inputs, warnings; the mosaics.
+//   regions       the table of report.json, units in its headings, each region's evidence
+//                 sentence and best view by name; a click on a row flies the camera to the
+//                 region and shows its best view (the per-view picture, report/pictures.h);
+//   evidence      atlas.png; thresholds and floors with their rules, coverage, the fit (mode,
+//                 rotation °, translation and its length, RMS in the unit, iterations), units,
+//                 inputs; the mosaics.
+//
+// The style is report/html/glint.css, which the cohort summary's cohort.html inlines too, and
+// report.css for what only this page has.
 //
 // The page's template, script and the libraries are embedded in the binary at build time
 // (cmake/GlintEmbed.cmake; sources in report/html/). The meshes go in as base64
 // little-endian typed arrays (float32 positions, int16 normals scaled by 32767, uint32
 // indices, float32 per-vertex fields), pictures as base64 PNG data URIs: only the regions'
-// best views and the mosaics, so the size stays bounded (about 0.9 MB of libraries + 56 bytes
+// best views, the mosaics and atlas.png (a fixed-size picture), so the size stays bounded (about 0.9 MB of libraries + 56 bytes
 // per reference vertex + 16 per reference triangle for one zoom, + 24 per examined vertex and
 // 16 per examined triangle for the live view, plus the pictures). A surface of more than
 // kReportPageTriangles is shown decimated (mesh/decimate.h): the triangles touching a region

@@ -27,7 +27,7 @@
   const fields = DATA.fields.map((f) => Object.assign({}, f, { data: new Float32Array(bytes(f.values).buffer) }));
   const byName = {};
   fields.forEach((f) => { byName[f.name] = f; });
-  const state = { field: fields[0], low: 0, high: 1, greyUnseen: true, zoom: 0, marker: null, flying: null };
+  const state = { field: fields[0], low: 0, high: 1, greyUnseen: true, zoom: 0, flying: null };
 
   function fmt(v, digits) {
     if (v === null || v === undefined || Number.isNaN(v)) return "—";
@@ -101,8 +101,11 @@
   }
   const colours = new Float32Array(positions.length);
   geometry.setAttribute("color", new THREE.BufferAttribute(colours, 3));
-  const litMaterial = new THREE.MeshLambertMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide });
-  const flatMaterial = new THREE.MeshBasicMaterial({ vertexColors: THREE.VertexColors, side: THREE.DoubleSide });
+  // Pushed back a little in depth: the region outlines lie on the surface (overlays.js).
+  const surfaceOptions = { vertexColors: THREE.VertexColors, side: THREE.DoubleSide, polygonOffset: true,
+                           polygonOffsetFactor: 1, polygonOffsetUnits: 1 };
+  const litMaterial = new THREE.MeshLambertMaterial(surfaceOptions);
+  const flatMaterial = new THREE.MeshBasicMaterial(surfaceOptions);
   const mesh = new THREE.Mesh(geometry, litMaterial);
   scene.add(mesh);
   scene.add(new THREE.AmbientLight(0xffffff, 0.32));
@@ -116,7 +119,11 @@
   controls.screenSpacePanning = true;
   controls.target.copy(center);
   let renderPending = false;
-  function renderNow() { renderer.render(scene, camera); }
+  let overlays = null;  // outlines, region labels, pick marker (overlays.js)
+  function renderNow() {
+    if (overlays) overlays.update();
+    renderer.render(scene, camera);
+  }
   function requestRender() {
     if (renderPending) return;
     renderPending = true;
@@ -248,12 +255,7 @@
       row(f.label, Number.isNaN(x) ? "unseen" : fmt(x, 4) + (f.unit ? " " + f.unit : ""));
     });
     box.appendChild(t);
-    if (!state.marker) {
-      state.marker = new THREE.Mesh(new THREE.SphereBufferGeometry(radius * 0.012, 12, 8),
-                                    new THREE.MeshBasicMaterial({ color: 0xffff00 }));
-      scene.add(state.marker);
-    }
-    state.marker.position.copy(p);
+    overlays.placeMarker(p);
     requestRender();
   }
   let downAt = null;
@@ -291,104 +293,70 @@
     if (uri) {
       img.src = uri;
       img.style.display = "block";
-      cap.textContent = "region " + r.id + ": best view " + r.best_view + " (azimuth " + fmt(r.best_view_azimuth_deg) +
+      cap.textContent = "region " + r.id + ": best view " + viewName(r.best_view) + " (azimuth " + fmt(r.best_view_azimuth_deg) +
         "°, elevation " + fmt(r.best_view_elevation_deg) + "°), views/ holds every view";
     } else {
       img.style.display = "none";
       cap.textContent = "region " + r.id + ": no picture of its best view is embedded (only the strongest regions' are)";
     }
   }
+  // The view's name as its files are named (views/<name>.png), and its direction.
+  function viewName(index) {
+    const name = (DATA.view_names || [])[index];
+    return name === undefined ? "view " + index : name;
+  }
+  function selectRegion(r, row) {
+    document.querySelectorAll("#regions tbody tr").forEach((x) => x.classList.remove("selected"));
+    row.classList.add("selected");
+    // in the live view: the region's best view, as the sweep took it
+    if (live && live.shown && r.best_view >= 0) live.jumpToView(r.best_view);
+    else state.lastFlight = flyToRegion(r);
+  }
+  // Under each region's numbers: why it is a region (decision's evidence sentence) and the view
+  // that saw it best, with a button that goes there.
+  function evidenceRow(r, row, columns) {
+    const tr = el("tr", { class: "evidence", "data-evidence": r.id });
+    const td = el("td", { colspan: columns });
+    td.appendChild(el("span", { class: "evidence-text" }, r.evidence ? r.evidence : "no evidence recorded"));
+    if (r.best_view >= 0) {
+      td.appendChild(el("br"));
+      td.appendChild(document.createTextNode("best view "));
+      td.appendChild(el("span", { class: "viewname" }, viewName(r.best_view)));
+      td.appendChild(document.createTextNode(" (azimuth " + fmt(r.best_view_azimuth_deg) + "°, elevation " +
+                                             fmt(r.best_view_elevation_deg) + "°)"));
+      const go = el("button", { type: "button", class: "go-best-view" }, "go there");
+      go.addEventListener("click", (e) => { e.stopPropagation(); selectRegion(r, row); });
+      td.appendChild(go);
+    }
+    tr.appendChild(td);
+    return tr;
+  }
   function buildRegions() {
     const z = state.zoom, head = document.querySelector("#regions thead"), body = document.querySelector("#regions tbody");
-    const metric = REPORT.metric.name, mu = REPORT.metric.unit;
+    const metric = REPORT.metric.name, mu = REPORT.metric.unit === "deg" ? "°" : REPORT.metric.unit;
     head.innerHTML = "";
     body.innerHTML = "";
-    const cols = ["id", "kind", "area " + UNIT + "²", "peak depth " + UNIT, "volume " + UNIT + "³",
-                  "max " + metric + " " + mu, "vertices"];
+    const cols = ["id", "kind", "area (" + UNIT + "²)", "peak depth (" + UNIT + ")", "volume (" + UNIT + "³)",
+                  "max " + metric + " (" + mu + ")", "vertices"];
     const tr = el("tr");
     cols.forEach((c) => tr.appendChild(el("th", {}, c)));
     head.appendChild(tr);
     const regions = regionsOf(z);
     if (!regions.length) { const r = el("tr"); r.appendChild(el("td", { colspan: 7 }, "no region at this zoom")); body.appendChild(r); }
     regions.forEach((r) => {
-      const row = el("tr", { "data-region": r.id });
+      const row = el("tr", { "data-region": r.id, class: "region" });
       const kind = r.kind === "missing surface" ? "missing" : r.kind;
-      [r.id, r.kind, fmt(r.area), fmt(r.peak_depth), fmt(r.volume), fmt(r["max_" + metric + "_" + mu]), r.vertices]
+      // (a missing-surface region has no depth or volume: null in report.json, "—" here)
+      [r.id, r.kind, fmt(r.area), fmt(r.peak_depth), fmt(r.volume), fmt(r["max_" + metric + "_" + REPORT.metric.unit]), r.vertices]
         .forEach((v, i) => row.appendChild(el("td", i === 1 ? { class: kind } : {}, String(v))));
-      row.addEventListener("click", () => {
-        document.querySelectorAll("#regions tbody tr").forEach((x) => x.classList.remove("selected"));
-        row.classList.add("selected");
-        // in the live view: the region's best view, as the sweep took it
-        if (live && live.shown && r.best_view >= 0) live.jumpToView(r.best_view);
-        else state.lastFlight = flyToRegion(r);
-      });
+      row.addEventListener("click", () => selectRegion(r, row));
       body.appendChild(row);
+      body.appendChild(evidenceRow(r, row, cols.length));
     });
     if (regions.length) showBestView(regions[0]);
   }
 
-  // ---- evidence ------------------------------------------------------------------------------
-  function kvTable(pairs) {
-    const t = el("table", { class: "kv" });
-    pairs.forEach(([k, v]) => { const tr = el("tr"); tr.appendChild(el("td", {}, k)); tr.appendChild(el("td", {}, v)); t.appendChild(tr); });
-    return t;
-  }
-  function jsonDetails(summary, obj) {
-    const d = el("details");
-    d.appendChild(el("summary", {}, summary));
-    d.appendChild(el("pre", { class: "json" }, JSON.stringify(obj, null, 2)));
-    return d;
-  }
-  function floorText(f, unit) {
-    if (!f) return "—";
-    return fmt(f.value, 4) + " " + unit + (f.given ? " (given)" : "") + " — " + f.rule + (f.note ? " — " + f.note : "");
-  }
-  function buildEvidence() {
-    const floors = $("floors"), mu = REPORT.metric.unit;
-    REPORT.zooms.forEach((z, k) => {
-      floors.appendChild(el("h3", {}, "zoom " + k + ": footprint " + fmt(z.footprint) + " " + UNIT + "/px"));
-      floors.appendChild(kvTable([
-        ["rule", z.rule_text],
-        ["normal floor", floorText(z.normal_floor, mu)],
-        ["shape floor", z.shape_floor ? floorText(z.shape_floor, UNIT) : "— (normal rule)"],
-        ["coverage", fmt(100 * z.coverage) + " % of the surface seen; unseen " + fmt(z.unseen.area) + " " + UNIT + "² in " +
-          z.unseen.patches + " patch(es)"],
-        ["regions", z.regions.length + " (" + z.damaged_vertices + " damaged vertices, " + z.dropped_small_groups +
-          " small group(s) dropped)"],
-        ["colour range of the pictures", "±" + fmt(DATA.shape_scale.limit) + " " + UNIT + " (" + DATA.shape_scale.source + ")"],
-      ]));
-      (z.warnings || []).forEach((w) => floors.appendChild(el("p", { class: "warning" }, w)));
-    });
-    const fit = $("fit");
-    if (!REPORT.fit) fit.textContent = "no fit recorded";
-    else {
-      const pairs = [];
-      Object.keys(REPORT.fit).forEach((k) => {
-        const v = REPORT.fit[k];
-        if (v === null || typeof v !== "object") pairs.push([k, typeof v === "number" ? fmt(v, 5) : String(v)]);
-        else if (!Array.isArray(v) && k !== "options") Object.keys(v).forEach((k2) => {
-          const x = v[k2];
-          if (x === null || typeof x !== "object") pairs.push([k + "." + k2, typeof x === "number" ? fmt(x, 5) : String(x)]);
-        });
-      });
-      fit.appendChild(kvTable(pairs));
-      fit.appendChild(jsonDetails("the fit as report.json holds it (with the options that reproduce it)", REPORT.fit));
-    }
-    const run = $("run");
-    run.appendChild(kvTable([
-      ["units", REPORT.units.note],
-      ["metric", REPORT.metric.description],
-      ["device", REPORT.device.name + " (" + REPORT.device.backend + ")"],
-      ["command", REPORT.command_line || "—"],
-      ["total time", fmt(REPORT.timings_s.total) + " s"],
-    ].concat(REPORT.inputs.map((i) => [i.role, (i.path || i.description || "") + (i.sha256 ? "  sha256 " + i.sha256 : "")]))));
-    (REPORT.warnings || []).forEach((w) => run.appendChild(el("p", { class: "warning" }, w)));
-    run.appendChild(jsonDetails("report.json", REPORT));
-    DATA.images.mosaics.forEach((uri, k) => {
-      $("mosaics").appendChild(el("h3", {}, "zoom " + k));
-      $("mosaics").appendChild(el("img", { src: uri, alt: "mosaic of zoom " + k }));
-    });
-  }
+  let evidence = null;  // the banner, fit, floors, run and pictures (evidence.js)
 
   // ---- modes: the atlas, or the live view (live.js) ----------------------------------------------
   let live = null;
@@ -417,7 +385,12 @@
     fields.forEach((f) => $("field").appendChild(el("option", { value: f.name }, f.label)));
     REPORT.zooms.forEach((z, k) => $("zoom").appendChild(el("option", { value: k }, "zoom " + k)));
     $("field").addEventListener("change", () => selectField($("field").value));
-    $("zoom").addEventListener("change", () => { state.zoom = Number($("zoom").value); buildRegions(); recolour(); });
+    $("zoom").addEventListener("change", () => {
+      state.zoom = Number($("zoom").value);
+      buildRegions();
+      overlays.setZoom(state.zoom);
+      recolour();
+    });
     const readRange = () => { state.low = Number($("range-low").value); state.high = Number($("range-high").value); recolour(); };
     $("range-low").addEventListener("change", readRange);
     $("range-high").addEventListener("change", readRange);
@@ -432,7 +405,10 @@
       " · " + z0.regions.length + " region(s) at zoom 0 · coverage " + fmt(100 * z0.coverage) + " %";
     selectField(shapeField.name);
     buildRegions();
-    buildEvidence();
+    evidence = window.glintEvidence({ REPORT: REPORT, DATA: DATA, UNIT: UNIT, $: $, el: el, fmt: fmt });
+    overlays = window.glintOverlays({ THREE: THREE, scene: scene, camera: camera, renderer: renderer, positions: positions,
+                                      indices: indices, byName: byName, REPORT: REPORT, $: $, el: el, radius: radius });
+    overlays.setZoom(state.zoom);
     try {
       initLive();
     } catch (e) {
@@ -494,11 +470,13 @@
   // The unlit mesh's pixels (a pixel's colour is then the interpolated vertex colour).
   function readCanvas() {
     mesh.material = flatMaterial;
+    overlays.setVisible(false);
     renderNow();
     const gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
     const px = new Uint8Array(w * h * 4);
     gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
     mesh.material = litMaterial;
+    overlays.setVisible(true);
     renderNow();
     return { w: w, h: h, px: px };
   }
@@ -554,7 +532,8 @@
   // view; there (triangles large, colours strong) a pixel shows the colour its surface point
   // must have, and picking it gives its vertex; the live view draws its panes and its numbers
   // are the frames' (live.js selftest), or without WebGL2 it says why; no error happened on
-  // the page.
+  // the page; every region has an outline and a label, hidden from behind, and the pick marker
+  // keeps its size on screen (overlays.js selftest).
   window.glintSelftest = async function () {
     const verdict = { ok: false, checks: {}, errors: [] };
     try {
@@ -563,6 +542,10 @@
       verdict.checks.canvas = checkCanvas(readCanvas());
       verdict.checks.region_click = await checkRegionClick();
       checkColourAndPick(readCanvas(), verdict);
+      verdict.checks.overlays = overlays.selftest({
+        regions: regionsOf(state.zoom), center: center, facingOf: regionFacing, render: renderNow,
+        setCamera: (target, position) => { controls.target.copy(target); camera.position.copy(position); controls.update(); } });
+      resetView();
       if (live.available) {
         showMode("live");
         verdict.checks.live = await live.selftest();
@@ -576,7 +559,7 @@
       window.glintErrors.push("selftest: " + (e && e.stack ? e.stack : e));
     }
     verdict.errors = window.glintErrors.slice();
-    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 5 &&
+    verdict.ok = verdict.errors.length === 0 && Object.keys(verdict.checks).length >= 6 &&
                  Object.values(verdict.checks).every((c) => c.ok);
     $("selftest-verdict").textContent = JSON.stringify(verdict);
     return verdict;

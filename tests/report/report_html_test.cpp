@@ -7,6 +7,7 @@
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
 
+#include <OpenImageIO/strutil.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -179,6 +180,27 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
             << "region " << r.id;
     EXPECT_FALSE(fs::exists(dir / "atlas" / "views" / "z0_az000.0_el-30.0.png"))
         << "--no-views writes no view";
+    // atlas.png inline, byte for byte the file beside the page (the page may travel alone).
+    const std::string atlas_uri = data["images"]["atlas"].get<std::string>();
+    const std::string png_prefix = "data:image/png;base64,";
+    ASSERT_EQ(atlas_uri.rfind(png_prefix, 0), 0u);
+    EXPECT_EQ(atlas_uri.substr(png_prefix.size()),
+              OIIO::Strutil::base64_encode(read_text(dir / "atlas" / "atlas.png")));
+    // Each view named as its files are (views/<name>.png): the region table shows the best one.
+    ASSERT_EQ(data["view_names"].size(), result.sweep.plan.views.size());
+    for (const auto& r : result.decisions[0].regions.regions)
+        EXPECT_EQ(
+            data["view_names"][static_cast<std::size_t>(r.best_view)].get<std::string>(),
+            view_file_stem(result.sweep.plan.views[static_cast<std::size_t>(r.best_view)].view));
+    EXPECT_EQ(data["view_names"][0].get<std::string>(), "z0_az000.0_el-30.0");
+    // The page style is glint.css whole, the one cohort.html inlines too
+    // (workflows/cohort/summary_html.py), and the page's scripts are all inline.
+    const std::string style =
+        read_text(fs::path(GLINT_TEST_DATA_DIR) / ".." / ".." / "report" / "html" / "glint.css");
+    ASSERT_GT(style.size(), 100u);
+    EXPECT_NE(html.find(style), std::string::npos) << "glint.css inlined";
+    EXPECT_NE(html.find("window.glintEvidence"), std::string::npos) << "evidence.js inlined";
+    EXPECT_NE(html.find("window.glintOverlays"), std::string::npos) << "overlays.js inlined";
     // Bounded: the libraries (~0.9 MB) plus the data, nothing per view beyond the best ones.
     EXPECT_LT(html.size(), 4'000'000u);
 

@@ -71,6 +71,14 @@ grep -q "1 region(s)" sweep.txt || fail "the installed glint did not find the de
 [ -f demo/condyle-erosion/report.json ] || fail "the demo scenario wrote no report"
 xml=$("$prefix/lib/glint/slicer/glint" --xml)
 [[ "$xml" == *"<executable>"* ]] || fail "the Slicer module link printed no description"
+# The cohort summary inlines glint's page style: the installed copy, not the sources'.
+python3 -c "
+import os, sys
+sys.path.insert(0, '$prefix/share/glint/workflows/cohort')
+import summary_html
+assert os.path.realpath(summary_html.STYLE_PATH).startswith(os.path.realpath('$prefix')), summary_html.STYLE_PATH
+assert '.table-scroll' in summary_html.shared_style()
+print('cohort page style:', summary_html.STYLE_PATH)" || fail "the installed cohort summary finds no glint.css"
 [ "$python" = none ] && { echo "ok: installed glint ran (no Python module built)"; exit 0; }
 PYTHONPATH=$prefix/lib/python3/dist-packages "$python" -c "
 import glint, sys

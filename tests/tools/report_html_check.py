@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Opens a glint report.html in headless Chromium over the DevTools protocol and checks it.
 
-  report_html_check.py CHROMIUM ATLAS_DIR WORKDIR
+  report_html_check.py CHROMIUM ATLAS_DIR WORKDIR [--words-only]
 
 ATLAS_DIR holds report.html, report.json, regions.csv and atlas.ply of one sweep. The page is
 loaded from disk (file://…/report.html#selftest); its self-test writes a JSON verdict into
@@ -13,11 +13,22 @@ loaded from disk (file://…/report.html#selftest); its self-test writes a JSON 
   - the screenshot's 3D view is blank;
   - the known vertex's value differs from atlas.ply's shape change (`scalar_shape_change_<unit>`), or its expected colour from
     the diverging map computed here (ColorBrewer RdBu, 9 classes, reversed);
-  - the region table does not list report.json's regions.
+  - the region table does not list report.json's regions;
+  - the banner's verdict is not the sentence report.json's zoom 0 makes ("2 regions: 1 dent,
+    1 bump"), or its warnings are not report.json's (the run's, then the renderer's), each with a
+    severity;
+  - atlas.png is not shown inline at its width, or a region lacks its label, its evidence
+    sentence or its best view's name;
+  - the fit table lacks the mode, or (for a fit made here) the rotation in °, the translation
+    and its length in the unit, the RMS in the unit, the iterations, as report.json holds them;
+  - the self-test found a region without an outline, a label not dimmed from behind, or a pick
+    marker whose size on screen changed when the camera moved twice as far.
+With --words-only the page is opened without its self-test and only the words are checked.
 WebGL runs on SwiftShader (--use-angle=swiftshader --enable-unsafe-swiftshader): no GPU needed.
 """
 import base64
 import json
+import math
 import os
 import re
 import shutil
@@ -193,8 +204,130 @@ def check_verdict(verdict, atlas_dir):
     return problems
 
 
+def plural(n, word):
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def expected_verdict(zoom):
+    """The banner's sentence for report.json's zoom 0, made here from the numbers."""
+    regions = zoom["regions"]
+    if regions:
+        kinds = list(dict.fromkeys(r["kind"] for r in regions))
+        return plural(len(regions), "region") + ": " + ", ".join(
+            plural(sum(r["kind"] == k for r in regions), k) for k in kinds)
+    if any("no regions are reported" in w for w in zoom.get("warnings", [])):
+        return "no regions: no quiet scale, see warnings"
+    return "no damage found above the floors"
+
+
+PAGE_WORDS = """(() => {
+  const rows = (sel) => [...document.querySelectorAll(sel)];
+  const atlas = document.getElementById('atlas-picture');
+  const fit = document.getElementById('fit-table');
+  return {
+    verdict: document.getElementById('verdict').textContent,
+    warnings: rows('#warnings li').map((li) => ({ text: li.textContent, severity: li.className })),
+    atlas: { complete: atlas.complete, natural_width: atlas.naturalWidth, src: atlas.src.slice(0, 22) },
+    fit: fit ? Object.fromEntries(rows('#fit-table tr').map((tr) => [tr.cells[0].textContent, tr.cells[1].textContent])) : null,
+    labels: rows('#region-labels .region-label').map((d) => d.getAttribute('data-region')),
+    evidence: rows('#regions tr.evidence').map((tr) => ({ id: tr.getAttribute('data-evidence'), text: tr.textContent })),
+    cells: rows('#regions tr.region').map((tr) => [...tr.cells].map((td) => td.textContent)),
+  };
+})()"""
+
+
+def page_number(text):
+    return float(text.replace("\u2212", "-"))
+
+
+def check_fit_words(fit, report):
+    """The fit table: rotation in °, translation as a vector and a length in the unit, RMS in the
+    unit, the mode and the iterations, each the number report.json holds."""
+    unit, f, problems = report["unit"] or "units", report["fit"], []
+    mode = report["analysis"]["registration"]["mode"]
+    if not fit or not fit.get("mode", "").startswith({"file": "given", "truth": "given"}.get(mode, mode)):
+        return [f"fit table {fit} does not name the mode {mode!r}"]
+    if "translation" not in f:
+        return problems
+    m = re.fullmatch(rf"\((.+)\) {re.escape(unit)}, length (\S+) {re.escape(unit)}", fit.get("translation", ""))
+    length = math.hypot(*f["translation"])
+    if not m or abs(page_number(m.group(2)) - length) > 5e-3 * max(length, 1e-9) + 1e-12:
+        problems.append(f"fit translation {fit.get('translation')!r}, report.json {f['translation']} {unit}")
+    m = re.fullmatch(rf"(\S+) {re.escape(unit)}", fit.get("RMS distance", ""))
+    if not m or abs(page_number(m.group(1)) - f["rms"]) > 5e-3 * f["rms"] + 1e-12:
+        problems.append(f"fit RMS {fit.get('RMS distance')!r}, report.json {f['rms']} {unit}")
+    m = re.match(r"(\S+) ° about \(", fit.get("rotation", ""))
+    if not m or abs(page_number(m.group(1)) - f["rotation_deg"]) > 5e-3 * abs(f["rotation_deg"]) + 1e-9:
+        problems.append(f"fit rotation {fit.get('rotation')!r}, report.json {f['rotation_deg']}°")
+    if fit.get("iterations") != str(f["iterations"]):
+        problems.append(f"fit iterations {fit.get('iterations')!r}, report.json {f['iterations']}")
+    return problems
+
+
+def check_page_words(words, report, atlas_dir):
+    """The banner, atlas.png, the fit, the regions' labels and evidence against report.json."""
+    problems = []
+    z0 = report["zooms"][0]
+    if words["verdict"] != expected_verdict(z0):
+        problems.append(f"banner says {words['verdict']!r}, report.json makes it {expected_verdict(z0)!r}")
+    warnings = report["warnings"] + ["renderer: " + w for w in report["device"]["warnings"]]
+    if [w["text"] for w in words["warnings"]] != warnings:
+        problems.append(f"banner warnings {words['warnings']}, report.json {warnings}")
+    if any(w["severity"] not in ("severe", "caution", "info") for w in words["warnings"]):
+        problems.append(f"a banner warning without a severity: {words['warnings']}")
+    with open(os.path.join(atlas_dir, "atlas.png"), "rb") as f:
+        width = struct.unpack(">I", f.read(24)[16:20])[0]
+    a = words["atlas"]
+    if not (a["complete"] and a["natural_width"] == width and a["src"] == "data:image/png;base64,"):
+        problems.append(f"atlas picture {a}, atlas.png is {width} px wide")
+    problems += check_fit_words(words["fit"], report) if report["fit"] else []
+    ids = [str(r["id"]) for r in z0["regions"]]
+    if words["labels"] != ids:
+        problems.append(f"region labels {words['labels']}, report.json regions {ids}")
+    # A region without a depth or volume (missing surface: null in report.json) shows "—".
+    for r, cells in zip(z0["regions"], words["cells"]):
+        for value, cell, name in ((r["peak_depth"], cells[3], "peak depth"), (r["volume"], cells[4], "volume")):
+            if (value is None) != (cell == "—") or (value is not None and abs(page_number(cell) - value) >
+                                                      5e-3 * abs(value) + 1e-9):
+                problems.append(f"region {r['id']}: {name} cell {cell!r}, report.json {value}")
+    evidence = {e["id"]: e["text"] for e in words["evidence"]}
+    for r in z0["regions"]:
+        view = f"z0_az{r['best_view_azimuth_deg']:05.1f}_el{r['best_view_elevation_deg']:+05.1f}"
+        text = evidence.get(str(r["id"]), "")
+        if r["evidence"] not in text or f"best view {view}" not in text:
+            problems.append(f"region {r['id']}: evidence row {text!r} lacks {r['evidence']!r} or view {view}")
+    return problems
+
+
+def check_overlays(verdict, report):
+    """Every region has an outline and a label; the marker scaled with the camera's distance."""
+    o, problems = verdict["checks"].get("overlays", {}), []
+    ids = [r["id"] for r in report["zooms"][0]["regions"]]
+    if [r["id"] for r in o.get("regions", [])] != ids or not all(r["segments"] >= 3 and r["label"] for r in o["regions"]):
+        problems.append(f"outlines and labels {o.get('regions')}, regions {ids}")
+    m = o.get("marker", {})
+    if ids and not (m.get("ok") and abs(m["ratio"] - 2) < 0.05):
+        problems.append(f"pick marker did not keep its size on screen: {m}")
+    if ids and not o.get("occlusion", {}).get("ok"):
+        problems.append(f"region label not dimmed behind the surface: {o.get('occlusion')}")
+    return problems
+
+
+def load_page_words(dt, html_path):
+    """Without the self-test: the page's words once it has built them."""
+    dt.call("Page.navigate", url="file://" + html_path)
+    deadline = time.time() + TIMEOUT_S
+    while time.time() < deadline:
+        time.sleep(0.5)
+        if dt.evaluate("(document.getElementById('verdict') || {}).textContent || ''") and \
+                dt.evaluate("document.getElementById('atlas-picture').complete"):
+            return dt.evaluate(PAGE_WORDS)
+    raise SystemExit("FAIL: the page wrote no verdict within %d s" % TIMEOUT_S)
+
+
 def main():
     chromium, atlas_dir, workdir = sys.argv[1], os.path.abspath(sys.argv[2]), sys.argv[3]
+    words_only = "--words-only" in sys.argv[4:]
     html_path = os.path.join(atlas_dir, "report.html")
     with open(html_path, encoding="utf-8") as f:
         html = f.read()
@@ -210,6 +343,15 @@ def main():
         dt = DevTools(ws_url)
         for domain in ("Runtime", "Log", "Page", "Network"):
             dt.call(domain + ".enable")
+        with open(os.path.join(atlas_dir, "report.json")) as f:
+            report = json.load(f)
+        if words_only:
+            words = load_page_words(dt, html_path)
+            print("page:", json.dumps(words, indent=1, ensure_ascii=False))
+            problems += check_page_words(words, report, atlas_dir)
+            dt.call("Runtime.evaluate", expression="0")
+            problems += console_problems(dt.events)
+            return finish(problems)
         dt.call("Page.navigate", url="file://" + html_path + "#selftest")
         deadline, text = time.time() + TIMEOUT_S, ""
         while not text and time.time() < deadline:
@@ -220,8 +362,8 @@ def main():
         verdict = json.loads(text)
         print("verdict:", json.dumps(verdict, indent=1))
         problems += check_verdict(verdict, atlas_dir)
-        with open(os.path.join(atlas_dir, "report.json")) as f:
-            report = json.load(f)
+        problems += check_overlays(verdict, report)
+        problems += check_page_words(dt.evaluate(PAGE_WORDS), report, atlas_dir)
         rows = dt.evaluate("document.querySelectorAll('#regions tbody tr[data-region]').length")
         if rows != len(report["zooms"][0]["regions"]) or rows == 0:
             problems.append(f"region table has {rows} rows, report.json {len(report['zooms'][0]['regions'])} regions")
@@ -236,10 +378,14 @@ def main():
             proc.kill()
             proc.wait()
         shutil.rmtree(profile, ignore_errors=True)
+    return finish(problems)
+
+
+def finish(problems):
     if problems:
         print("FAIL:\n  " + "\n  ".join(problems))
         return 1
-    print("ok: report.html passes its self-test in headless Chromium")
+    print("ok: report.html passes its checks in headless Chromium")
     return 0
 
 

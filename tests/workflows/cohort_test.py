@@ -6,8 +6,10 @@ import csv
 import json
 import os
 import pathlib
+import shutil
 import subprocess
 import sys
+import time
 
 import pytest
 
@@ -17,6 +19,7 @@ WORKFLOW = SOURCE / "workflows" / "cohort"
 sys.path.insert(0, str(WORKFLOW))
 import cohort  # noqa: E402
 import summary  # noqa: E402
+import summary_html  # noqa: E402
 
 DENT = "dent:center=2,-1,8.8 radius=3 depth=0.6"    # on the condyle's top
 BUMP = "bump:center=-5,0,7 radius=2.5 depth=0.5"    # on its side, 7 mm from the dent
@@ -208,3 +211,81 @@ def test_a_pair_glint_refuses_gets_its_reason_in_the_table(tmp_path, cohort_run)
     assert (tmp_path / "out" / "pairs" / "X" / "0_to_1" / "error.txt").read_text().strip() == refused["error"]
     assert "glint refused the input of 1 of 2 pair(s)" in done.stderr
     assert 'href="logs/X/0_to_1.log"' in (tmp_path / "out" / "cohort.html").read_text()
+
+
+def made_up_rows():
+    """Table rows as cohort.py makes them: three pairs swept, one refused, wide enough text to
+    need more than 800 px."""
+    swept = dict.fromkeys(cohort.TABLE_COLUMNS, 0)
+    swept.update(regions=2, dents=1, bumps=1, area=41.23, volume_lost=3.456, volume_gained=2.01, max_depth=0.58,
+                 max_height=0.39, coverage=0.987, fit_converged=True, fit_rms=0.0123, fit_inlier_fraction=0.99,
+                 fit_overlap=0.998, fit_rotation_deg=12.5, fit_termination="rotation and translation steps below "
+                 "tolerance", unit="mm", error="")
+    rows = [dict(swept, subject=s, before="0", after="1", report=f"pairs/{s}/0_to_1/report.json") for s in "ABC"]
+    rows[1].update(regions=0, dents=0, bumps=0)
+    refused = dict.fromkeys(cohort.TABLE_COLUMNS)
+    refused.update(subject="X", before="0", after="1", report="", error='glint: error: mesh "cut.ply": no vertices')
+    return rows + [refused]
+
+
+def test_cohort_page_has_the_report_style_units_and_a_banner(tmp_path):
+    rows = made_up_rows()
+    summary.write_html(rows, cohort.TABLE_COLUMNS, tmp_path / "cohort.html", "cohort.png")
+    page = (tmp_path / "cohort.html").read_text()
+    # One style: report.html's glint.css (the one the build embeds), inlined whole.
+    assert summary_html.STYLE_PATH == (SOURCE / "report" / "html" / "glint.css").resolve()
+    assert summary_html.STYLE_PATH.read_text() in page
+    for heading in ("area (mm²)", "volume lost (mm³)", "max depth (mm)", "fit rms (mm)", "fit rotation (°)",
+                    "coverage (fraction)"):
+        assert f">{heading}</th>" in page, heading
+    assert '<div class="table-scroll"><table id="cohort" class="data">' in page
+    assert '<p id="verdict">4 pairs: 2 with regions, 1 without, 1 refused</p>' in page
+    assert '<li class="severe">X 0 → 1: glint refused the input: glint: error: mesh &quot;cut.ply&quot;' in page
+    assert 'href="pairs/A/0_to_1/report.html"' in page and 'href="logs/X/0_to_1.log"' in page
+
+
+def test_header_labels_show_a_unit_the_column_name_carries():
+    assert summary_html.header_label("area_mm2", "mm") == "area (mm²)"
+    assert summary_html.header_label("volume_lost_mm3", "mm") == "volume lost (mm³)"
+    assert summary_html.header_label("max_depth_mm", "mm") == "max depth (mm)"
+    assert summary_html.header_label("fit_rotation_deg", "") == "fit rotation (°)"
+    assert summary_html.header_label("dents", "mm") == "dents"
+
+
+def test_cohort_table_scrolls_in_its_box_not_the_page(tmp_path):
+    """In headless Chromium at 800 px: the page is no wider than the window, the table's box
+    scrolls sideways, and the header row sticks."""
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    if not chromium:
+        pytest.skip("no chromium (Debian package chromium)")
+    websocket = pytest.importorskip("websocket", reason="Debian package python3-websocket")  # noqa: F841
+    sys.path.insert(0, str(SOURCE / "tests" / "tools"))
+    from report_html_check import DevTools, start_chromium
+
+    summary.write_html(made_up_rows(), cohort.TABLE_COLUMNS, tmp_path / "cohort.html", "cohort.png")
+    profile = tmp_path / "profile"
+    profile.mkdir()
+    proc, url = start_chromium(chromium, str(profile))
+    try:
+        dt = DevTools(url)
+        dt.call("Page.enable")
+        dt.call("Emulation.setDeviceMetricsOverride", width=800, height=700, deviceScaleFactor=1, mobile=False)
+        dt.call("Page.navigate", url=(tmp_path / "cohort.html").as_uri())
+        measure = """(() => { const d = document.documentElement, box = document.querySelector('.table-scroll');
+            if (document.readyState !== 'complete' || !box) return null;
+            return {page: [d.scrollWidth, d.clientWidth], box: [box.scrollWidth, box.clientWidth],
+                    overflow: getComputedStyle(box).overflowX,
+                    sticky: getComputedStyle(document.querySelector('#cohort th')).position}; })()"""
+        got = None
+        for _ in range(100):
+            got = dt.evaluate(measure)
+            if got:
+                break
+            time.sleep(0.1)
+    finally:
+        proc.kill()
+        proc.wait()
+    assert got, "the page did not load"
+    assert got["page"][0] <= got["page"][1], got
+    assert got["box"][0] > got["box"][1], got  # wider than the window: it scrolls in its box
+    assert got["overflow"] == "auto" and got["sticky"] == "sticky", got

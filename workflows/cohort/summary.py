@@ -1,6 +1,6 @@
 """The cohort summary: cohort.png (matplotlib, Debian's python3-matplotlib) and cohort.html
-(the table with links to each pair's files). Both are written to a temporary name first."""
-import html
+(the table with links to each pair's files; made by summary_html.py). Both are written to a
+temporary name first."""
 import pathlib
 
 # One colour convention with every glint picture, atlas file and report.html: loss blue, gain
@@ -38,39 +38,8 @@ def write_png(rows, png_path):
     tmp.replace(png_path)
 
 
-def _cell(value):
-    if isinstance(value, float):
-        return f"{value:.4g}"
-    return html.escape("" if value is None else str(value))
-
-
 def write_html(rows, columns, html_path, png_name):
-    """The table, the figure, and per pair links to its report, regions and atlas (to glint's
-    log, for a pair it refused)."""
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in columns if c not in ("report", "error"))
-    head += "<th>files</th><th>error</th>"
-    body = []
-    for r in rows:
-        cells = "".join(f"<td>{_cell(r[c])}</td>" for c in columns if c not in ("report", "error"))
-        if r.get("error"):
-            log = f"logs/{html.escape(r['subject'])}/{html.escape(r['before'])}_to_{html.escape(r['after'])}.log"
-            links = f'<a href="{log}">glint log</a>'
-        else:
-            folder = pathlib.PurePosixPath(r["report"]).parent
-            links = " ".join(f'<a href="{folder}/{name}">{name}</a>' for name in ("report.json", "regions.csv", "atlas.vtp"))
-        body.append(f"<tr>{cells}<td>{links}</td><td style=\"text-align:left\">{_cell(r.get('error'))}</td></tr>")
-    text = f"""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>glint cohort</title>
-<style>body{{font-family:sans-serif}} table{{border-collapse:collapse}} td,th{{border:1px solid #999;padding:2px 6px;text-align:right}}</style>
-</head><body>
-<h1>glint cohort</h1>
-<p>{len(rows)} pair(s) of consecutive time points, each swept by <code>glint sweep --register</code> (zoom 0).</p>
-<img src="{html.escape(png_name)}" alt="volume and regions per pair">
-<table><tr>{head}</tr>
-{chr(10).join(body)}
-</table></body></html>
-"""
-    html_path = pathlib.Path(html_path)
-    tmp = html_path.with_name(html_path.name + ".tmp")
-    tmp.write_text(text)
-    tmp.replace(html_path)
+    """cohort.html, in report.html's style (summary_html.py)."""
+    import summary_html  # beside this file, as the Snakefile imports this one
+
+    summary_html.write_html(rows, columns, html_path, png_name)
