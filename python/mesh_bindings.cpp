@@ -176,7 +176,8 @@ pair (R, t) of a 3×3 matrix and a translation, applied as R·p + t (Fit.matrix 
 mesh into the reference's frame). This mesh is left as it is: its arrays are read-only views
 that others may hold, so glint returns a new mesh where Open3D moves in place. Normals are
 recomputed; a mirror (negative determinant) reverses the triangles so they stay
-counter-clockwise seen from outside. A singular matrix is refused.)")
+counter-clockwise seen from outside. A singular matrix is refused. The new mesh has no load
+report and its source says it was transformed (report.json must not name the file as the input).)")
         .def(py::pickle([](const py::object& self) { return mesh_state(self); },
                         [](const py::tuple& state) { return mesh_from_state(state); }));
 }

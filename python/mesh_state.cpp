@@ -94,6 +94,11 @@ std::shared_ptr<MeshHandle> transformed(const MeshHandle& mesh, py::handle trans
     if (det < 0)
         for (auto& t : out->mesh.triangles) std::swap(t[1], t[2]);
     compute_vertex_normals(out->mesh);  // normals follow any affine map once recomputed
+    // No longer the file it was loaded from: report.json must not record that file as the
+    // input.
+    out->source = mesh.source + ", transformed";
+    out->report.reset();
+    out->surface.reset();
     return out;
 }
 

@@ -236,6 +236,13 @@ def test_transform_returns_a_new_mesh_and_leaves_this_one():
     assert_same_mesh(mesh.transform((r, t)), moved)
 
 
+def test_a_moved_file_is_no_longer_that_file(test_data):
+    loaded = glint.load(test_data / "cube.obj")
+    moved = loaded.transform(np.eye(4))
+    assert moved.report is None and moved.source == f"{loaded.source}, transformed"
+    assert loaded.copy().report == loaded.report
+
+
 def test_a_mirror_keeps_the_triangles_facing_outward():
     mirrored = tetra().transform(np.diag([-1.0, 1.0, 1.0, 1.0]))
     # The corner at the origin still points away from the body, now at -x mirrored: (+, -, -).
