@@ -3,6 +3,7 @@
 #include "analysis/landmarks.h"
 #include "mesh/components.h"
 #include "mesh/error.h"
+#include "mesh/front_end.h"
 #include "registration/closest_point.h"
 #include "registration/fit_io.h"
 #include "registration/landmarks.h"
@@ -97,7 +98,8 @@ void FitOptions::validate() const {
         throw e.prefixed("registration");
     }
     if (mode == FitMode::File && fit_file.empty())
-        throw OptionError("registration.mode", "file", "needs a fit file (--fit FILE)");
+        throw OptionError("registration.mode", "file",
+                          "needs a fit file (" + spell_option("fit", "FILE") + ")");
     if (mode != FitMode::File && !fit_file.empty())
         throw OptionError("registration.fit", "\"" + fit_file.string() + "\"",
                           "a fit file is given but the fit mode is " + to_string(mode));
@@ -108,9 +110,9 @@ void FitOptions::validate() const {
                           "landmarks and an initial pose \"" + init_file.string() +
                               "\" both set the starting pose: give one of them");
     if ((!landmarks_file.empty() || !init_file.empty()) && mode != FitMode::Register)
-        throw OptionError(
-            "registration.mode", to_string(mode),
-            "landmarks and an initial pose start a registration (mode register, --register)");
+        throw OptionError("registration.mode", to_string(mode),
+                          "landmarks and an initial pose start a registration (mode register, " +
+                              spell_flag("register") + ")");
 }
 
 FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options,
@@ -122,8 +124,9 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
         case FitMode::Identity:
             out.json =
                 R"({"mode": "identity", "note": "the meshes were taken as already aligned"})";
-            out.warnings.push_back(
-                "no fit requested (--fit or --register): the meshes are taken as already aligned");
+            out.warnings.push_back("no fit requested (" + spell_option("fit", "FILE") + " or " +
+                                   spell_flag("register") +
+                                   "): the meshes are taken as already aligned");
             return out;
         case FitMode::Truth: {
             out.reference_from_examined = options.truth;

@@ -1,6 +1,7 @@
 #include "analysis/units.h"
 
 #include "mesh/error.h"
+#include "mesh/front_end.h"
 #include "mesh/units.h"
 
 #include <algorithm>
@@ -45,8 +46,8 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined,
         for (const auto& [role, u] :
              {std::pair{"reference", ref_unit}, std::pair{"examined", exa_unit}})
             if (!u.empty() && u != stated)
-                r.warnings.push_back(std::string("the ") + role + " file states unit " + u +
-                                     "; --unit " + stated + " was taken instead");
+                r.warnings.push_back(std::string("the ") + role + " file states unit " + u + "; " +
+                                     spell_option("unit", stated) + " was taken instead");
     } else if (!ref_unit.empty() && !exa_unit.empty() && ref_unit != exa_unit) {
         r.unit = ref_unit;
         r.examined_scale = *metres_per_unit(exa_unit) / *metres_per_unit(ref_unit);
@@ -77,15 +78,17 @@ UnitResolution resolve_units(const Mesh& reference, const Mesh& examined,
             (lo > 0 ? ratio_text(r.reference_size, r.examined_size) : "one is empty") + ")";
         if (!(hi / lo <= kMaxAllowedScaleRatio))
             throw InputError(what + ", expected within " +
-                             std::to_string(static_cast<int>(kMaxScaleRatio)) +
-                             "× (--allow-scale-mismatch allows up to 10^6×): convert one mesh "
+                             std::to_string(static_cast<int>(kMaxScaleRatio)) + "× (" +
+                             spell_flag("allow_scale_mismatch") +
+                             " allows up to 10^6×): convert one mesh "
                              "into the other's unit");
         if (!options.allow_scale_mismatch)
             throw InputError(
                 what + ", expected within " + std::to_string(static_cast<int>(kMaxScaleRatio)) +
                 "×: are they in different units (mm and m)? convert one into the other's unit, "
-                "or give --allow-scale-mismatch to run anyway");
-        r.warnings.push_back(what + "; allowed by --allow-scale-mismatch");
+                "or give " +
+                spell_flag("allow_scale_mismatch") + " to run anyway");
+        r.warnings.push_back(what + "; allowed by " + spell_flag("allow_scale_mismatch"));
     }
     return r;
 }

@@ -138,14 +138,25 @@ void write_ply(const Mesh& mesh, const fs::path& path, const WriteOptions& optio
     });
 }
 
+bool is_writable_mesh_path(const fs::path& path) {
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* known : {".ply", ".vtk", ".vtp", ".stl", ".obj", ".off"})
+        if (ext == known) return true;
+    return false;
+}
+
 void write_mesh(const Mesh& mesh, const fs::path& path, const WriteOptions& options) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".ply") return write_ply(mesh, path, options);
     if (ext == ".vtk") return write_vtk(mesh, path, options);
     if (ext == ".vtp") return write_vtp(mesh, path, options);
+    if (ext == ".stl") return write_stl(mesh, path);
+    if (ext == ".obj") return write_obj(mesh, path);
+    if (ext == ".off") return write_off(mesh, path);
     throw InputError("cannot write \"" + path.string() + "\": unknown extension \"" +
-                     path.extension().string() + "\", expected .ply, .vtk or .vtp");
+                     path.extension().string() + "\", expected " + kWritableMeshExtensions);
 }
 
 }  // namespace glint

@@ -11,6 +11,8 @@
 //        section: mesh/write_vtk.cpp), for ParaView, 3D Slicer and CloudCompare. VTK's
 //        legacy ASCII reader cannot parse NaN: NaN is written as WriteOptions::vtk_legacy_nan.
 //   VTP  VTK XML PolyData, binary (base64) arrays: exact values, NaN kept (ParaView, Slicer).
+//   STL (binary), OBJ, OFF: positions and triangles only, for tools that read nothing else
+//        (slicers, printers, CAD); the unit in the comment glint's reader looks for.
 // Files are written to a temporary name in the same folder and renamed into place.
 #pragma once
 
@@ -19,6 +21,12 @@
 #include <filesystem>
 
 namespace glint {
+
+/// The extensions write_mesh knows, for messages and front ends' help.
+inline constexpr const char* kWritableMeshExtensions = ".ply, .vtk, .vtp, .stl, .obj or .off";
+
+/// Whether write_mesh writes `path` (by its extension, any case).
+[[nodiscard]] bool is_writable_mesh_path(const std::filesystem::path& path);
 
 struct WriteOptions {
     bool write_normals = true;
@@ -51,7 +59,20 @@ void write_vtk(const Mesh& mesh, const std::filesystem::path& path,
 void write_vtp(const Mesh& mesh, const std::filesystem::path& path,
                const WriteOptions& options = {});
 
-/// Writes by extension (.ply, .vtk, .vtp); \throw InputError for another extension.
+/// Binary STL: one facet per triangle with its face normal; the unit in the 80-byte header
+/// ("glint binary STL, unit mm"). Per-vertex arrays are not written. \throw IoError.
+void write_stl(const Mesh& mesh, const std::filesystem::path& path);
+
+/// Wavefront OBJ, ASCII: `v` and `f` lines (positions exact: %.9g), "# unit mm" when known.
+/// \throw IoError.
+void write_obj(const Mesh& mesh, const std::filesystem::path& path);
+
+/// OFF, ASCII: positions and triangles, "# unit mm" after the OFF line when known.
+/// \throw IoError.
+void write_off(const Mesh& mesh, const std::filesystem::path& path);
+
+/// Writes by extension (.ply, .vtk, .vtp with every array; .stl, .obj, .off geometry only);
+/// \throw InputError for another extension.
 void write_mesh(const Mesh& mesh, const std::filesystem::path& path,
                 const WriteOptions& options = {});
 

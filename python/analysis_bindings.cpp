@@ -63,7 +63,7 @@ FitMode fit_mode(bool do_register, const std::optional<std::filesystem::path>& f
     return do_register ? FitMode::Register : FitMode::Identity;
 }
 
-FitHandle register_pair(py::handle reference, py::handle examined,
+FitHandle register_pair(const MeshLike& reference, const MeshLike& examined,
                         const std::optional<std::filesystem::path>& output,
                         const py::kwargs& kwargs) {
     Keywords k;
@@ -74,16 +74,21 @@ FitHandle register_pair(py::handle reference, py::handle examined,
     k.analysis.units.validate();
     const auto ref = mesh_argument(reference, k.surface, "reference");
     const auto exa = mesh_argument(examined, k.surface, "examined");
-    return run_interruptible_value([&] {
+    std::vector<std::string> unit_warnings;
+    FitHandle f = run_interruptible_value([&] {
         // As glint register: sizes checked first, files in two stated units fitted in the
         // reference's.
         const UnitResolution units = resolve_units(ref->mesh, exa->mesh, k.analysis.units);
+        unit_warnings = units.warnings;
         Mesh moved = exa->mesh;
         scale_to_analysis_unit(moved, units);
-        FitHandle f{fit_examined(ref->mesh, moved, fit), units.unit};
-        if (output) write_file_atomically(*output, f.outcome.json);
-        return f;
+        FitHandle fitted{fit_examined(ref->mesh, moved, fit), units.unit};
+        if (output) write_file_atomically(*output, fitted.outcome.json);
+        return fitted;
     });
+    unit_warnings.insert(unit_warnings.end(), f.outcome.warnings.begin(), f.outcome.warnings.end());
+    warn(unit_warnings);
+    return f;
 }
 
 // The input as report.json records it: the file it came from, or what made it.
@@ -99,7 +104,7 @@ RunInput run_input(const char* role, const MeshHandle& h) {
     return in;
 }
 
-AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_register,
+AnalysisHandle analyse_pair(const MeshLike& reference, const MeshLike& examined, bool do_register,
                             const std::optional<std::filesystem::path>& fit_file,
                             const std::optional<std::filesystem::path>& output,
                             const py::kwargs& kwargs) {
@@ -118,7 +123,7 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
     record.add(run_input("reference", *ref));
     record.add(run_input("examined", *exa));
     if (fit_file) record.add_file("fit", *fit_file);
-    return run_interruptible_value([&] {
+    AnalysisHandle analysis = run_interruptible_value([&] {
         Inspection inspection = inspect(ref->mesh, exa->mesh, options, record);
         AnalysisHandle a;
         a.result = std::move(inspection.analysis);
@@ -131,6 +136,8 @@ AnalysisHandle analyse_pair(py::handle reference, py::handle examined, bool do_r
         a.fit = FitHandle{a.result.fit, a.result.unit};
         return a;
     });
+    warn(analysis.result.warnings);  // they stay in Analysis.warnings and report.json too
+    return analysis;
 }
 
 void bind_fit(py::module_& m) {
@@ -276,7 +283,10 @@ void bind_analysis(py::module_& m) {
         "register", &register_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
         py::arg("output") = py::none(),
         ("Fits the examined surface onto the reference (robust ICP, as glint register).\n\n"
-         "reference, examined: glint.Mesh or paths. output: also write fit.json there.\n"
+         "reference, examined: glint.Mesh, paths, (vertices, triangles) arrays or meshes of "
+         "Open3D, trimesh or PyVista. output: also write fit.json there.\n"
+         "Warnings (an assumed unit, …) are issued as glint.GlintWarning and kept in "
+         "fit.warnings.\n"
          "Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).\n\n"
          "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
          keyword_docs(kSurfaceKeywords | kFitGroup | kUnitGroup))
@@ -285,8 +295,10 @@ void bind_analysis(py::module_& m) {
           py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
           ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or "
            "register=False for meshes already aligned), signed distance, sweep, decision and, with "
-           "output=, the folder glint sweep writes.\nReturns glint.Analysis. Ctrl-C stops it "
-           "(KeyboardInterrupt; nothing half-written).\n\n"
+           "output=, the folder glint sweep writes.\nreference, examined: glint.Mesh, paths, "
+           "(vertices, triangles) arrays or meshes of Open3D, trimesh or PyVista.\n"
+           "Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written). "
+           "Warnings are issued as glint.GlintWarning and kept in Analysis.warnings.\n\n"
            "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
            keyword_docs(kAllKeywords))
               .c_str());

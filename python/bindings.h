@@ -40,9 +40,17 @@ pybind11::array readonly_view(const T* data, std::size_t rows, std::size_t cols,
     return view;
 }
 
-/// A mesh argument: a glint.Mesh as it is, or a path (str, os.PathLike) loaded as glint.load
-/// does (a volume with surface.iso). Loads with the GIL released.
-[[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(pybind11::handle value,
+/// A mesh argument as Python passes it; converted by mesh_argument (its type caster only
+/// gives help() the types it takes).
+struct MeshLike {
+    pybind11::object value;
+};
+
+/// A mesh argument: a glint.Mesh as it is; a path (str, os.PathLike) loaded as glint.load
+/// does (a volume with surface.iso; loads with the GIL released, issues its load warnings); a
+/// (V, F) pair of arrays or a mesh of Open3D, trimesh or PyVista (python/convert.h).
+/// \throw pybind11::type_error for anything else, InputError for arrays that are no mesh.
+[[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(const MeshLike& value,
                                                         const SurfaceOptions& surface,
                                                         const char* role);
 
@@ -50,3 +58,24 @@ void bind_mesh(pybind11::module_& m);
 void bind_analysis(pybind11::module_& m);
 
 }  // namespace glint::python
+
+namespace pybind11::detail {
+
+/// Takes any object (mesh_argument checks it); names the accepted types in signatures.
+template <>
+struct type_caster<glint::python::MeshLike> {
+    PYBIND11_TYPE_CASTER(glint::python::MeshLike,
+                         const_name("glint.Mesh | str | os.PathLike | "
+                                    "tuple[numpy.ndarray, numpy.ndarray] | "
+                                    "open3d.geometry.TriangleMesh | trimesh.Trimesh | "
+                                    "pyvista.PolyData"));
+    bool load(handle source, bool /*convert*/) {
+        value.value = reinterpret_borrow<object>(source);
+        return true;
+    }
+    static handle cast(const glint::python::MeshLike& mesh, return_value_policy, handle) {
+        return mesh.value.inc_ref();
+    }
+};
+
+}  // namespace pybind11::detail

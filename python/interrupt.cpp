@@ -2,13 +2,17 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "python/keywords.h"
 
 #include <atomic>
 #include <condition_variable>
 #include <csignal>
 #include <exception>
 #include <mutex>
+#include <set>
+#include <string>
 #include <thread>
+#include <vector>
 
 namespace py = pybind11;
 
@@ -22,6 +26,7 @@ PyObject* g_error = nullptr;
 PyObject* g_input_error = nullptr;
 PyObject* g_io_error = nullptr;
 PyObject* g_device_error = nullptr;
+PyObject* g_warning = nullptr;
 
 PyObject* new_exception(py::module_& m, const char* name, py::tuple bases, const char* doc) {
     const std::string qualified = std::string("glint.") + name;
@@ -48,6 +53,9 @@ void register_exceptions(py::module_& m) {
     g_device_error =
         new_exception(m, "DeviceError", py::make_tuple(error, py::handle(PyExc_RuntimeError)),
                       "No usable render device, or a device call failed (glint exit code 3).");
+    g_warning = new_exception(m, "GlintWarning", py::make_tuple(py::handle(PyExc_UserWarning)),
+                              "What a glint call warns of (an assumed unit, a fit taken as "
+                              "given, a repaired input): issued with warnings.warn.");
     // note: Cancelled derives from glint::Error, so it is caught first; it becomes Python's
     // own KeyboardInterrupt, as a Ctrl-C anywhere else in Python does.
     py::register_exception_translator([](std::exception_ptr p) {
@@ -55,6 +63,11 @@ void register_exceptions(py::module_& m) {
             if (p) std::rethrow_exception(p);
         } catch (const Cancelled& e) {
             PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+        } catch (const OptionError& e) {
+            // The library names an option by its scenario key (sweep.size); Python by its
+            // keyword (size).
+            const std::string keyword = keyword_of_option(e.key());
+            PyErr_SetString(g_input_error, keyword.empty() ? e.what() : e.named(keyword).c_str());
         } catch (const InputError& e) {
             PyErr_SetString(g_input_error, e.what());
         } catch (const IoError& e) {
@@ -65,6 +78,13 @@ void register_exceptions(py::module_& m) {
             PyErr_SetString(g_error, e.what());
         }
     });
+}
+
+void warn(const std::vector<std::string>& messages) {
+    std::set<std::string> issued;  // one call's warnings may repeat (an input's, the run's)
+    for (const std::string& message : messages)
+        if (issued.insert(message).second && PyErr_WarnEx(g_warning, message.c_str(), 1) != 0)
+            throw py::error_already_set();  // a filter turned the warning into an error
 }
 
 void run_interruptible(const std::function<void()>& work) {

@@ -19,7 +19,9 @@
 #include <chrono>
 #include <functional>
 #include <optional>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace glint::python {
 
@@ -39,7 +41,12 @@ auto run_interruptible_value(Work&& work) -> decltype(work()) {
     return std::move(*result);
 }
 
-/// glint's exception types (module.cpp registers them): glint.Error and its subclasses.
+/// glint's exception types (module.cpp registers them): glint.Error and its subclasses, and
+/// glint.GlintWarning (a UserWarning).
 void register_exceptions(pybind11::module_& m);
+
+/// Issues each message once as warnings.warn(message, glint.GlintWarning), attributed to the
+/// Python caller. \throw pybind11::error_already_set when a warnings filter raises.
+void warn(const std::vector<std::string>& messages);
 
 }  // namespace glint::python

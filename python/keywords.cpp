@@ -118,6 +118,25 @@ const char* kind_name(OptionKind k) {
     return "?";
 }
 
+// A default as Python writes it: True, 'cauchy', [-60, -30, 0], None (the registry's text
+// is the command line's: true, cauchy, -60,-30,0, "").
+std::string python_default(OptionKind kind, const std::string& text) {
+    if (text.empty()) return "None";
+    switch (kind) {
+        case OptionKind::Flag: return text == "true" ? "True" : "False";
+        case OptionKind::Numbers: {
+            std::string list = "[";
+            for (char c : text) list += c == ',' ? std::string(", ") : std::string(1, c);
+            return list + "]";
+        }
+        case OptionKind::Choice:
+        case OptionKind::Text:
+        case OptionKind::Region:
+        case OptionKind::Path: return "'" + text + "'";
+        default: return text;
+    }
+}
+
 // Calls `visit(info, default text)` for each registry keyword of `groups`, in table order.
 template <class Visit>
 void for_each_registry_keyword(unsigned groups, Visit visit) {
@@ -183,7 +202,7 @@ std::string keyword_docs(unsigned groups) {
             doc += "    " + std::string(k.name) + ": " + k.expected + " — " + k.help + "\n";
     for_each_registry_keyword(groups, [&](const OptionInfo& info, const std::string& def) {
         doc += "    " + std::string(info.name) + ": " + kind_name(info.kind) + " = " +
-               (def.empty() ? "None" : def) +
+               python_default(info.kind, def) +
                (info.unit.empty() ? "" : " [" + std::string(info.unit) + "]") + " — " +
                std::string(info.help) + "; " + describe_expected(info) + "\n";
     });
@@ -240,6 +259,14 @@ void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups,
             throw InputError(function + ": " + name + ": " + e.what());
         }
     }
+}
+
+std::string keyword_of_option(const std::string& path) {
+    for (const auto& f : analysis_option_table())
+        if (f.info.path() == path) return std::string(f.info.name);
+    for (const auto& f : export_option_table())
+        if (f.info.path() == path) return std::string(f.info.name);
+    return "";
 }
 
 std::string options_json(const Keywords& k) { return to_json(k.analysis, k.exports); }

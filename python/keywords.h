@@ -49,6 +49,9 @@ void apply_keywords(Keywords& into, const pybind11::kwargs& kwargs, unsigned gro
 /// The keywords of `groups`, one per line with its type, default, unit and help (docstrings).
 [[nodiscard]] std::string keyword_docs(unsigned groups);
 
+/// The keyword of the registry option at `path` ("sweep.size" → "size"); "" when none is.
+[[nodiscard]] std::string keyword_of_option(const std::string& path);
+
 /// The resolved options as the JSON --print-options prints (glint.options()).
 [[nodiscard]] std::string options_json(const Keywords& keywords);
 

@@ -2,10 +2,10 @@
 #include "python/bindings.h"
 
 #include "mesh/error.h"
-#include "mesh/normals.h"
+#include "mesh/output_guard.h"
 #include "mesh/units.h"
-#include "mesh/validate.h"
 #include "mesh/write.h"
+#include "python/convert.h"
 #include "python/interrupt.h"
 #include "python/keywords.h"
 #include "volume/load.h"
@@ -69,58 +69,18 @@ std::shared_ptr<MeshHandle> load(const std::filesystem::path& path, const Surfac
 
 // glint.Mesh(positions, triangles, unit=None): copies of the arrays, checked as a loaded
 // mesh is, with vertex normals.
-std::shared_ptr<MeshHandle> from_arrays(
-    const py::array_t<float, py::array::c_style | py::array::forcecast>& positions,
-    const py::object& triangle_object, const std::optional<std::string>& unit) {
-    // Issue 23 item 15: float indices were truncated (1.7 became vertex 1) by a forced cast.
-    const py::array triangle_array = py::array::ensure(triangle_object);
-    if (!triangle_array)
-        throw InputError("glint.Mesh: triangles must be an M×3 array of vertex indices");
-    const char kind = triangle_array.dtype().kind();
-    if (kind != 'i' && kind != 'u')
-        throw InputError(
-            "glint.Mesh: triangles must be an array of integers (vertex indices), "
-            "found dtype " +
-            py::cast<std::string>(py::str(triangle_array.dtype())));
-    const auto triangles =
-        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(
-            triangle_array);
-    if (!triangles)
-        throw InputError("glint.Mesh: triangles do not fit 64-bit integers, found dtype " +
-                         py::cast<std::string>(py::str(triangle_array.dtype())));
-    if (positions.ndim() != 2 || positions.shape(1) != 3)
-        throw InputError("glint.Mesh: positions must be an N×3 array, found shape " +
-                         py::cast<std::string>(py::repr(positions.attr("shape"))));
-    if (triangles.ndim() != 2 || triangles.shape(1) != 3)
-        throw InputError("glint.Mesh: triangles must be an M×3 array, found shape " +
-                         py::cast<std::string>(py::repr(triangles.attr("shape"))));
+std::shared_ptr<MeshHandle> from_arrays(const py::object& positions, const py::object& triangles,
+                                        const std::optional<std::string>& unit) {
     auto handle = std::make_shared<MeshHandle>();
-    Mesh& mesh = handle->mesh;
-    const auto p = positions.unchecked<2>();
-    mesh.positions.resize(static_cast<std::size_t>(p.shape(0)));
-    for (py::ssize_t i = 0; i < p.shape(0); ++i)
-        mesh.positions[static_cast<std::size_t>(i)] = Vec3f(p(i, 0), p(i, 1), p(i, 2));
-    const auto t = triangles.unchecked<2>();
-    mesh.triangles.resize(static_cast<std::size_t>(t.shape(0)));
-    for (py::ssize_t i = 0; i < t.shape(0); ++i)
-        for (py::ssize_t c = 0; c < 3; ++c) {
-            const std::int64_t v = t(i, c);
-            if (v < 0 || v >= p.shape(0))
-                throw InputError("glint.Mesh: triangle " + std::to_string(i) + " uses vertex " +
-                                 std::to_string(v) + ", mesh has " + std::to_string(p.shape(0)) +
-                                 " vertices");
-            mesh.triangles[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
-                static_cast<std::uint32_t>(v);
-        }
+    handle->mesh = mesh_from_arrays(
+        positions, triangles, {"glint.Mesh", "glint.Mesh: positions", "glint.Mesh: triangles"});
     // Issue 23 item 15: unit='parsec' was kept; a unit is one glint can convert, or none.
     if (unit && canonical_unit(*unit).empty())
         throw InputError("glint.Mesh: unit '" + *unit +
                          "' is no length unit glint knows, expected "
                          "one of " +
                          known_units() + " (or None)");
-    mesh.unit = unit ? canonical_unit(*unit) : "";
-    check_mesh(mesh, "glint.Mesh");
-    compute_vertex_normals(mesh);
+    handle->mesh.unit = unit ? canonical_unit(*unit) : "";
     handle->source = "arrays";
     return handle;
 }
@@ -129,32 +89,11 @@ py::object optional_string(const std::string& s) {
     return s.empty() ? py::object(py::none()) : py::object(py::str(s));
 }
 
-}  // namespace
+using MeshClass = py::class_<MeshHandle, std::shared_ptr<MeshHandle>>;
 
-std::shared_ptr<MeshHandle> mesh_argument(py::handle value, const SurfaceOptions& surface,
-                                          const char* role) {
-    if (py::isinstance<MeshHandle>(value)) return py::cast<std::shared_ptr<MeshHandle>>(value);
-    std::filesystem::path path;
-    try {
-        path = py::cast<std::filesystem::path>(value);
-    } catch (const py::cast_error&) {
-        throw py::type_error(std::string(role) + " must be a glint.Mesh or a path, not " +
-                             py::cast<std::string>(py::str(value.get_type().attr("__name__"))));
-    }
-    return load(path, surface);
-}
-
-void bind_mesh(py::module_& m) {
-    py::class_<MeshHandle, std::shared_ptr<MeshHandle>> mesh(m, "Mesh", R"(A triangle mesh.
-
-Arrays are read-only numpy views into the mesh (no copy); they keep the mesh alive. Copy
-them (numpy.array(mesh.positions)) to change them.)");
-    mesh.def(
-            py::init(&from_arrays), py::arg("positions"), py::arg("triangles"),
-            py::arg("unit") = py::none(),
-            "A mesh from an N×3 array of positions and an M×3 array of vertex ids (counter-clockwise seen from "
-            "outside); copied, checked as a loaded mesh is, vertex normals computed.")
-        .def_property_readonly(
+// The per-vertex arrays: read-only numpy views that keep the mesh alive.
+void bind_mesh_arrays(MeshClass& mesh) {
+    mesh.def_property_readonly(
             "positions",
             [](py::object self) {
                 const Mesh& x = self.cast<MeshHandle&>().mesh;
@@ -202,8 +141,116 @@ them (numpy.array(mesh.positions)) to change them.)");
                     d[py::str(f.name)] = readonly_view(f.values.data(), f.values.size(), 1, self);
                 return d;
             },
-            "named per-vertex float32 fields (a dict of numpy views)")
-        .def_property_readonly(
+            "named per-vertex float32 fields (a dict of numpy views)");
+}
+
+// Copies, moves, pickling and the other libraries' meshes (python/convert.h).
+void bind_mesh_conversions(MeshClass& mesh) {
+    mesh.def_static("from_numpy", &from_arrays, py::arg("positions"), py::arg("triangles"),
+                    py::arg("unit") = py::none(),
+                    "The same as glint.Mesh(positions, triangles, unit).")
+        .def("to_numpy", &to_numpy,
+             "(positions, triangles) as new writable arrays: N×3 float64 and M×3 int64 (numpy's "
+             "defaults; float32 positions convert exactly). glint.Mesh(*mesh.to_numpy()) is the "
+             "same mesh.")
+        .def("to_open3d", &to_open3d,
+             "An open3d.geometry.TriangleMesh with vertex normals (and colours). ImportError "
+             "when open3d is missing (Debian: python3-open3d).")
+        .def("to_pyvista", &to_pyvista,
+             "A pyvista.PolyData with point data Normals, colors, label and every scalar. "
+             "ImportError when pyvista is missing.")
+        .def("to_trimesh", &to_trimesh,
+             "A trimesh.Trimesh (process=False: vertices and faces as they are) with vertex "
+             "normals, colours and units. ImportError when trimesh is missing.")
+        .def(
+            "copy", [](const MeshHandle& h) { return std::make_shared<MeshHandle>(h); },
+            "A new mesh with copies of every array.")
+        .def("__copy__", [](const MeshHandle& h) { return std::make_shared<MeshHandle>(h); })
+        .def(
+            "__deepcopy__",
+            [](const MeshHandle& h, const py::dict&) { return std::make_shared<MeshHandle>(h); },
+            py::arg("memo"))
+        .def("transform", &transformed, py::arg("transform"),
+             R"(A new mesh moved by `transform`: a 4×4 affine matrix (last row 0 0 0 1) or a
+pair (R, t) of a 3×3 matrix and a translation, applied as R·p + t (Fit.matrix moves an examined
+mesh into the reference's frame). This mesh is left as it is: its arrays are read-only views
+that others may hold, so glint returns a new mesh where Open3D moves in place. Normals are
+recomputed; a mirror (negative determinant) reverses the triangles so they stay
+counter-clockwise seen from outside. A singular matrix is refused. The new mesh has no load
+report and its source says it was transformed (report.json must not name the file as the input).)")
+        .def(py::pickle([](const py::object& self) { return mesh_state(self); },
+                        [](const py::tuple& state) { return mesh_from_state(state); }));
+}
+
+}  // namespace
+
+std::shared_ptr<MeshHandle> mesh_argument(const MeshLike& argument, const SurfaceOptions& surface,
+                                          const char* role) {
+    const py::handle value = argument.value;
+    if (py::isinstance<MeshHandle>(value)) return py::cast<std::shared_ptr<MeshHandle>>(value);
+    if (py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__")) {
+        auto loaded = load(py::cast<std::filesystem::path>(value), surface);
+        if (loaded->report) warn(loaded->report->warnings);
+        return loaded;
+    }
+    if (auto converted = converted_mesh(value, role)) return *converted;
+    throw py::type_error(std::string(role) +
+                         " must be a glint.Mesh, a path, a (vertices, triangles) pair of arrays "
+                         "or a mesh with vertices and triangles (Open3D, trimesh, PyVista), "
+                         "not " +
+                         py::cast<std::string>(py::str(value.get_type().attr("__name__"))));
+}
+
+namespace {
+
+// glint.as_mesh() and glint.load().
+void bind_mesh_functions(py::module_& m) {
+    m.def(
+        "as_mesh",
+        [](const MeshLike& value, const py::kwargs& kwargs) {
+            Keywords k;
+            apply_keywords(k, kwargs, kSurfaceKeywords, "as_mesh");
+            return mesh_argument(value, k.surface, "mesh");
+        },
+        py::arg("mesh"),
+        "The glint.Mesh that glint.analyse and glint.register make of their arguments: a "
+        "glint.Mesh as it is, a path loaded (keywords as glint.load's), a (vertices, "
+        "triangles) pair of arrays, or an Open3D (legacy or tensor), trimesh or PyVista mesh "
+        "converted (copied and checked). Convert once to reuse a mesh in many calls.");
+    m.def(
+        "load",
+        [](const std::filesystem::path& path, py::kwargs kwargs) {
+            Keywords k;
+            apply_keywords(k, kwargs, kSurfaceKeywords, "load");
+            auto loaded = load(path, k.surface);
+            if (loaded->report) warn(loaded->report->warnings);
+            return loaded;
+        },
+        py::arg("path"),
+        ("Loads a mesh file (PLY, STL, OBJ, OFF, glTF, VTK) or extracts the iso-surface of a volume (MetaImage, "
+         "NIfTI, NRRD, DICOM folder; iso= required). Keywords: " +
+         keyword_names(kSurfaceKeywords) +
+         " (as glint surface's flags). Raises glint.InputError, glint.IoError.")
+            .c_str());
+}
+
+}  // namespace
+
+void bind_mesh(py::module_& m) {
+    MeshClass mesh(m, "Mesh", R"(A triangle mesh.
+
+Arrays are read-only numpy views into the mesh (no copy); they keep the mesh alive. Copy
+them (numpy.array(mesh.positions), mesh.to_numpy()) to change them; copy() and transform()
+give new meshes. Meshes pickle (without their load report). Every glint function that takes a
+mesh also takes a path, a (vertices, triangles) pair of arrays or a mesh of Open3D, trimesh or
+PyVista.)");
+    mesh.def(
+        py::init(&from_arrays), py::arg("positions"), py::arg("triangles"),
+        py::arg("unit") = py::none(),
+        "A mesh from an N×3 array of positions and an M×3 array of vertex ids (counter-clockwise seen from "
+        "outside); copied, checked as a loaded mesh is, vertex normals computed.");
+    bind_mesh_arrays(mesh);
+    mesh.def_property_readonly(
             "unit", [](const MeshHandle& h) { return optional_string(h.mesh.unit); },
             "length unit the file states (\"mm\", …), or None")
         .def_property_readonly(
@@ -226,28 +273,23 @@ them (numpy.array(mesh.positions)) to change them.)");
         .def(
             "save",
             [](const MeshHandle& h, const std::filesystem::path& path) {
+                // As the command line's -o: never over an input, complete or absent.
+                refuse_output_over_inputs(path);
                 run_interruptible([&] { write_mesh(h.mesh, path); });
             },
             py::arg("path"),
-            "Writes the mesh (.ply, .vtk or .vtp by extension) with its colours and scalars.")
-        .def("__repr__", [](const MeshHandle& h) {
-            return "<glint.Mesh " + std::to_string(h.mesh.vertex_count()) + " vertices, " +
-                   std::to_string(h.mesh.triangle_count()) + " triangles from " + h.source + ">";
-        });
+            ("Writes the mesh by extension: " + std::string(kWritableMeshExtensions) +
+             ". PLY, VTK and VTP keep colours, labels and scalars; STL, OBJ and OFF hold the "
+             "geometry (and the unit in a comment). Written to a temporary name and renamed, "
+             "never over a file this process read.")
+                .c_str());
+    bind_mesh_conversions(mesh);
+    mesh.def("__repr__", [](const MeshHandle& h) {
+        return "<glint.Mesh " + std::to_string(h.mesh.vertex_count()) + " vertices, " +
+               std::to_string(h.mesh.triangle_count()) + " triangles from " + h.source + ">";
+    });
 
-    m.def(
-        "load",
-        [](const std::filesystem::path& path, py::kwargs kwargs) {
-            Keywords k;
-            apply_keywords(k, kwargs, kSurfaceKeywords, "load");
-            return load(path, k.surface);
-        },
-        py::arg("path"),
-        ("Loads a mesh file (PLY, STL, OBJ, OFF, glTF, VTK) or extracts the iso-surface of a volume (MetaImage, "
-         "NIfTI, NRRD, DICOM folder; iso= required). Keywords: " +
-         keyword_names(kSurfaceKeywords) +
-         " (as glint surface's flags). Raises glint.InputError, glint.IoError.")
-            .c_str());
+    bind_mesh_functions(m);
 }
 
 }  // namespace glint::python

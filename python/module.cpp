@@ -1,6 +1,7 @@
 // import glint: the Python face of the glint library (python/README in the repository's
 // README, section "Python").
 #include "mesh/cancel.h"
+#include "mesh/front_end.h"
 #include "mesh/version.h"
 #include "python/bindings.h"
 #include "python/interrupt.h"
@@ -14,6 +15,8 @@ namespace py = pybind11;
 PYBIND11_MODULE(glint, m) {
     m.doc() = "glint: damage on 3D surfaces by light-reflection analysis (load, register, analyse)";
     m.attr("__version__") = glint::kVersion;
+    // The library's messages name options as keywords (force=True), not as flags (--force).
+    glint::set_front_end(glint::FrontEnd::Python);
     glint::python::register_exceptions(m);
     glint::python::bind_mesh(m);
     glint::python::bind_analysis(m);

@@ -2,6 +2,7 @@
 
 #include "analysis/option_fields.h"
 #include "mesh/error.h"
+#include "mesh/front_end.h"
 #include "report/orientation.h"
 
 #include <filesystem>
@@ -45,8 +46,9 @@ void ExportOptions::validate() const {
     (void)resolve_orientation(PatientSpace::Unknown, up);
     std::error_code ec;
     if (!output.empty() && !replace_existing && std::filesystem::exists(output, ec))
-        throw InputError("output folder \"" + output.string() +
-                         "\" exists; give --force to replace it (the new "
+        throw InputError("output folder \"" + output.string() + "\" exists; give " +
+                         spell_flag("force") +
+                         " to replace it (the new "
                          "results replace it only when the run completes)");
 }
 

@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
+#include "mesh/front_end.h"
 #include "mesh/output_guard.h"
 
 #include <fcntl.h>
@@ -98,8 +99,8 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
     if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
         throw InputError("output \"" + target_.string() + "\" exists and is not a folder");
     if (!replace_existing && fs::exists(target_, ec))
-        throw InputError("output folder \"" + target_.string() +
-                         "\" exists; give --force to replace it");
+        throw InputError("output folder \"" + target_.string() + "\" exists; give " +
+                         spell_flag("force") + " to replace it");
     remove_leftovers(target_);
     wrapper_ = make_wrapper(target_);
     track_staged(wrapper_);  // removed by the watchdog when a step never comes back
@@ -144,7 +145,8 @@ void OutputFolder::commit_new() {
     if (err == EEXIST)
         throw InputError("output folder \"" + target_.string() +
                          "\" appeared during the run (another run or program made it); kept as "
-                         "found, expected it absent (give --force to replace it)");
+                         "found, expected it absent (give " +
+                         spell_flag("force") + " to replace it)");
     if (err != 0)
         throw IoError("cannot move results into \"" + target_.string() +
                       "\": " + std::strerror(err));

@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
+#include "mesh/front_end.h"
 #include "scanner/backproject.h"
 #include "scanner/gpu_sweep.h"
 
@@ -151,8 +152,8 @@ void require_overlap(const std::vector<ViewSummary>& views) {
     if (compared == 0)
         throw InputError(
             "sweep: the reference and the fitted examined surface do not overlap in any of the " +
-            std::to_string(views.size()) +
-            " views (no pixel shows both); check the fit (--fit, --register, landmarks)");
+            std::to_string(views.size()) + " views (no pixel shows both); check the fit (" +
+            spell_option("fit", "FILE") + ", " + spell_flag("register") + ", landmarks)");
 }
 
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,

@@ -54,11 +54,10 @@ void run(RegisterArgs& a) {
     fit.validate();
     a.options.units.validate();
     if (!a.apply.empty()) {
-        std::string ext = fs::path(a.apply).extension().string();
-        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        if (ext != ".ply" && ext != ".vtk" && ext != ".vtp")
-            throw InputError("--apply \"" + a.apply + "\": unknown extension \"" + ext +
-                             "\", expected .ply, .vtk or .vtp (nothing was written)");
+        if (!is_writable_mesh_path(a.apply))
+            throw InputError("--apply \"" + a.apply + "\": unknown extension \"" +
+                             fs::path(a.apply).extension().string() + "\", expected " +
+                             kWritableMeshExtensions + " (nothing was written)");
         if (fs::path(a.apply) == fs::path(a.output))
             throw InputError("--apply \"" + a.apply + "\" is the -o file; expected two files");
     }

@@ -1,6 +1,7 @@
 #include "volume/load.h"
 
 #include "mesh/error.h"
+#include "mesh/front_end.h"
 
 #include <cstdio>
 
@@ -26,8 +27,8 @@ LoadedSurface load_surface(const std::filesystem::path& path, const SurfaceOptio
         char text[96];
         std::snprintf(text, sizeof text, "%.6g … %.6g", static_cast<double>(range[0]),
                       static_cast<double>(range[1]));
-        throw InputError("volume \"" + path.string() +
-                         "\": a volume needs --iso VALUE (scenario key iso) to give a " +
+        throw InputError("volume \"" + path.string() + "\": a volume needs " +
+                         spell_option("iso", "VALUE") + " (scenario key iso) to give a " +
                          "surface; its data range is " + text);
     }
     ExtractedSurface s = extract_surface(volume, surface);

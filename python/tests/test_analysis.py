@@ -127,7 +127,7 @@ def test_analyse_from_a_fit_file(dent_pair, tmp_path):
 def test_existing_output_is_refused_then_replaced_with_force(dent_pair, tmp_path):
     ref = dent_pair[0]
     (tmp_path / "atlas").mkdir()
-    with pytest.raises(glint.InputError, match="exists; give --force"):
+    with pytest.raises(glint.InputError, match="exists; give force=True to replace it"):
         glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", **SMALL_SWEEP)
     glint.analyse(ref, ref, register=False, output=tmp_path / "atlas", force=True, **SMALL_SWEEP)
     assert (tmp_path / "atlas" / "report.json").is_file()

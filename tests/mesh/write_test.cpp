@@ -209,7 +209,7 @@ TEST(WriteMesh, ChoosesTheFormatByExtension) {
     write_mesh(in, out_dir() / "by_ext.vtk");
     EXPECT_EQ(load_mesh(out_dir() / "by_ext.PLY").report.format, "ply-binary-le");
     EXPECT_EQ(load_mesh(out_dir() / "by_ext.vtk").report.format, "vtk-ascii");
-    EXPECT_THROW(write_mesh(in, out_dir() / "by_ext.stl"), InputError);
+    EXPECT_THROW(write_mesh(in, out_dir() / "by_ext.xyz"), InputError);
 }
 
 TEST(WriteMesh, RefusesToOverwriteALoadedInput) {

@@ -127,6 +127,18 @@ for o in analysis:
         want = "auto"
     check(default == want, f"Slicer default of {name}: {default!r}, expected {want!r}")
 
+def python_literal(o):
+    """The registry's default text as help(glint.analyse) writes it: a Python literal."""
+    text, kind = o["default"], o["kind"]
+    if kind == "flag":
+        return "True" if text == "true" else "False"
+    if kind == "numbers":
+        return "[" + ", ".join(text.split(",")) + "]"
+    if kind in ("choice", "text", "region", "path"):
+        return repr(text)
+    return text
+
+
 python_defaults = None
 if PYPATH:
     sys.path.insert(0, PYPATH)
@@ -143,7 +155,7 @@ if PYPATH:
         line = next((l for l in doc.splitlines() if l.strip().startswith(o["name"] + ":")), None)
         check(line is not None, f"help(glint.analyse) does not document {o['name']}")
         if line and o["default"]:
-            check(f"= {o['default']}" in line, f"help(glint.analyse) gives {o['name']} no default: {line}")
+            check(f"= {python_literal(o)}" in line, f"help(glint.analyse) gives {o['name']} no default: {line}")
         if line and o["unit"]:
             check(f"[{o['unit']}]" in line, f"help(glint.analyse) gives {o['name']} no unit: {line}")
 
