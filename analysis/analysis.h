@@ -78,9 +78,13 @@ inline constexpr std::size_t kKeptIndexTriangles = 1'000'000;
 /// Progress of a long analysis, and the sweep's views as they are compared; every member may
 /// be empty.
 struct AnalysisObserver {
-    /// "fit", "distance", "sweep", "decide" (report/inspect.h adds "export" and "pictures").
+    /// "fit", "distance", "sweep", "decide" (report/inspect.h adds the exports' stages).
     std::function<void(std::string_view stage)> stage;
+    /// The sweep's views compared so far, of `total`.
     std::function<void(std::size_t done, std::size_t total)> views;
+    /// Items done within the stage last announced, of `total`, for stages that count theirs
+    /// (the exports: files written, pictures drawn); the sweep's views come through `views`.
+    std::function<void(std::size_t done, std::size_t total)> items;
     /// Each view's deviation map while it is valid (per-view exports); on the GPU path the map
     /// is empty (scanner/sweep.h ViewObserver).
     ViewObserver view;

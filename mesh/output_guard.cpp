@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -88,6 +89,26 @@ bool ends_with(const std::string& s, const std::string& suffix) {
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+// The folder `output` goes into, as the user wrote it ("." for a bare file name); a trailing
+// separator ("atlas/") names the folder itself, whose parent is meant.
+fs::path folder_of(const fs::path& output) {
+    fs::path p = output;
+    if (!p.has_filename()) p = p.parent_path();
+    const fs::path parent = p.parent_path();
+    return parent.empty() ? fs::path(".") : parent;
+}
+
+bool is_writable_folder(const fs::path& folder) {
+    // note: W_OK and X_OK: a file is made in a folder one may write and enter.
+    return ::access(folder.c_str(), W_OK | X_OK) == 0;
+}
+
+[[noreturn]] void refuse_folder(const fs::path& output, const std::string& found,
+                                const std::string& expected) {
+    throw InputError("output \"" + output.string() + "\": " + found + "; expected " + expected +
+                     " (nothing was written)");
+}
+
 }  // namespace
 
 void protect_input(const fs::path& path) {
@@ -133,8 +154,41 @@ void refuse_output_over_inputs(const fs::path& output, std::span<const fs::path>
     for (const fs::path& input : registered) check_one(output, out, input);
 }
 
-void guard_outputs(std::initializer_list<fs::path> outputs,
-                   std::initializer_list<fs::path> inputs) {
+void check_output_folder(const fs::path& output, OutputParent parent) {
+    if (output.empty()) return;
+    const fs::path folder = folder_of(output);
+    std::error_code ec;
+    const fs::file_status status = fs::status(folder, ec);
+    if (fs::is_directory(status)) {
+        if (!is_writable_folder(folder))
+            refuse_folder(output, "folder \"" + folder.string() + "\" is not writable",
+                          "a folder this user may write into");
+        return;
+    }
+    if (fs::exists(status))
+        refuse_folder(output, "\"" + folder.string() + "\" is a file, not a folder",
+                      "a folder to write into");
+    if (parent == OutputParent::MustExist)
+        refuse_folder(output, "folder \"" + folder.string() + "\" does not exist",
+                      "an existing folder to write into (make it first)");
+    // The command makes the missing folders: the nearest one that exists must take them.
+    fs::path existing = fs::absolute(folder, ec).lexically_normal();
+    while (existing.has_relative_path() && !fs::exists(existing, ec))
+        existing = existing.parent_path();
+    if (!fs::is_directory(existing, ec))
+        refuse_folder(output,
+                      "folder \"" + folder.string() + "\" cannot be made: \"" + existing.string() +
+                          "\" is a file, not a folder",
+                      "a folder to write into");
+    if (!is_writable_folder(existing))
+        refuse_folder(output,
+                      "folder \"" + folder.string() + "\" cannot be made: \"" + existing.string() +
+                          "\" is not writable",
+                      "a folder this user may write into");
+}
+
+void guard_outputs(std::initializer_list<fs::path> outputs, std::initializer_list<fs::path> inputs,
+                   OutputParent parent) {
     std::vector<fs::path> all;
     for (const fs::path& input : inputs)
         if (!input.empty())
@@ -142,6 +196,7 @@ void guard_outputs(std::initializer_list<fs::path> outputs,
     for (const fs::path& output : outputs)
         if (!output.empty())
             for (const fs::path& f : output_files(output)) refuse_output_over_inputs(f, all);
+    for (const fs::path& output : outputs) check_output_folder(output, parent);
     for (const fs::path& input : all) protect_input(input);
 }
 

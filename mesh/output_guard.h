@@ -32,9 +32,23 @@ void protect_input(const std::filesystem::path& path);
 void refuse_output_over_inputs(const std::filesystem::path& output,
                                std::span<const std::filesystem::path> inputs = {});
 
-/// The front ends' check before any work: registers every input (with its input_files) and
-/// refuses every output (with its output_files) that is, contains or lies inside one.
+/// Whether the folder an output goes into must exist, or may be made by the command (glint run
+/// makes its -o folder).
+enum class OutputParent { MustExist, MayBeCreated };
+
+/// \throw InputError (exit 2), one line naming the output, the folder, what was found and what
+/// was expected, when the folder `output` goes into is missing (unless `parent` allows it to be
+/// made and the nearest folder that exists is writable), is no folder, or is not writable.
+/// An empty path is skipped.
+void check_output_folder(const std::filesystem::path& output,
+                         OutputParent parent = OutputParent::MustExist);
+
+/// The front ends' check before any work: registers every input (with its input_files),
+/// refuses every output (with its output_files) that is, contains or lies inside one, and
+/// checks each output's folder (check_output_folder), so a run that could not write its
+/// results stops before it loads.
 void guard_outputs(std::initializer_list<std::filesystem::path> outputs,
-                   std::initializer_list<std::filesystem::path> inputs);
+                   std::initializer_list<std::filesystem::path> inputs,
+                   OutputParent parent = OutputParent::MustExist);
 
 }  // namespace glint

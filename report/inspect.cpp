@@ -91,7 +91,7 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     if (folder) {
         try {
             out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
-                                      options.exports, record, out.report_json, observer.stage);
+                                      options.exports, record, out.report_json, observer);
         } catch (const IoError& e) {  // the folder the user named, not the staging folder
             throw naming_target(e, folder->staging(), folder->target());
         }

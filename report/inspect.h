@@ -41,8 +41,9 @@ struct Inspection {
     double total_seconds = 0.0;  ///< the whole inspection, exports included
 };
 
-/// Analyses the pair and writes the outputs. `observer.stage` also hears "export" and
-/// "pictures" (before the pictures, after the other files).
+/// Analyses the pair and writes the outputs. `observer` also hears "export" (report.json's
+/// text, the inputs' checksums) and, with an output folder, write_outputs' stages and items
+/// (report/report.h).
 /// \throw as analyse(); InputError an output folder that exists and may not be replaced;
 /// IoError writing; Cancelled (nothing half-written is left).
 [[nodiscard]] Inspection inspect(const Mesh& reference, Mesh examined,

@@ -139,7 +139,8 @@ class PictureWriter {
         }
     }
 
-    void write_views(const OutputFolder& folder, PictureOutput& out);
+    void write_views(const OutputFolder& folder, PictureOutput& out,
+                     const AnalysisObserver& observer);
     std::string mosaic(std::size_t z);
     std::string atlas_overview() {
         const std::string name = reference_name_.empty() ? "the reference" : reference_name_;
@@ -200,7 +201,8 @@ ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, c
     return sheet;
 }
 
-void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) {
+void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
+                                const AnalysisObserver& observer) {
     const auto& plan = result_.sweep.plan;
     std::vector<int> wanted;
     for (const auto& pv : plan.views)
@@ -232,6 +234,7 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out) 
         },
         [&](std::size_t slot, std::size_t k) {
             if (!kept[slot].empty()) out.best_views[wanted[k]] = std::move(kept[slot]);
+            if (observer.items) observer.items(k + 1, wanted.size());
         });
 }
 
@@ -356,17 +359,22 @@ std::string view_file_stem(const View& v) {
 
 PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                              const AnalysisResult& result, const ExportOptions& options,
-                             const Orientation& orientation, const std::string& reference_name) {
+                             const Orientation& orientation, const std::string& reference_name,
+                             const AnalysisObserver& observer) {
     PictureOutput out;
     if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size())
         return out;
     PictureWriter writer(reference, result, options, orientation, reference_name);
-    writer.write_views(folder, out);
-    for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+    writer.write_views(folder, out, observer);
+    if (observer.stage) observer.stage("mosaics");
+    const std::size_t zooms = result.sweep.zooms.size();
+    for (std::size_t z = 0; z < zooms; ++z) {
         out.mosaics.push_back(writer.mosaic(z));
         write_file_atomically(folder.file("mosaic_z" + std::to_string(z) + ".png"),
                               out.mosaics.back());
+        if (observer.items) observer.items(z + 1, zooms);
     }
+    if (observer.stage) observer.stage("atlas.png");
     out.atlas = writer.atlas_overview();
     write_file_atomically(folder.file("atlas.png"), out.atlas);
     return out;

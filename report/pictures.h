@@ -57,12 +57,15 @@ struct PictureOutput {
 inline constexpr std::size_t kMaxBestViews = 24;
 
 /// Writes the pictures above into the folder, drawn with `orientation`'s up up and its
-/// directions' names; `reference_name` (the file name, or "") titles atlas.png.
+/// directions' names; `reference_name` (the file name, or "") titles atlas.png. `observer`
+/// hears items for each per-view picture (in the stage its caller announced), then the stages
+/// "mosaics" (items: each zoom) and "atlas.png".
 /// \throw IoError, DeviceError (rendering).
 [[nodiscard]] PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                                            const AnalysisResult& result,
                                            const ExportOptions& options,
                                            const Orientation& orientation,
-                                           const std::string& reference_name = {});
+                                           const std::string& reference_name = {},
+                                           const AnalysisObserver& observer = {});
 
 }  // namespace glint

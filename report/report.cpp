@@ -369,8 +369,10 @@ namespace {
 
 // The atlas mesh (a copy of the reference with every scalar) lives only while its files are
 // written, unless it is kept.
+// `written` is told after each file (the caller counts them for its progress).
 std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& reference,
-                                      const AnalysisResult& result, const ExportOptions& exports) {
+                                      const AnalysisResult& result, const ExportOptions& exports,
+                                      const std::function<void()>& written) {
     Mesh atlas = make_atlas_mesh(reference, result);
     for (const auto& [given, values] : exports.extra_scalars) {
         GLINT_ASSERT(values.size() == reference.vertex_count(),
@@ -392,9 +394,18 @@ std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& re
     if (atlas.find_scalar(shape_change_field(result.unit)))
         viewers.quality_scalar = shape_change_field(result.unit);
     const AtlasFiles& files = exports.atlas_files;
-    if (files.ply) write_ply(atlas, folder.file("atlas.ply"), viewers);
-    if (files.vtk) write_vtk(atlas, folder.file("atlas.vtk"), viewers);
-    if (files.vtp) write_vtp(atlas, folder.file("atlas.vtp"), viewers);
+    if (files.ply) {
+        write_ply(atlas, folder.file("atlas.ply"), viewers);
+        written();
+    }
+    if (files.vtk) {
+        write_vtk(atlas, folder.file("atlas.vtk"), viewers);
+        written();
+    }
+    if (files.vtp) {
+        write_vtp(atlas, folder.file("atlas.vtp"), viewers);
+        written();
+    }
     if (!exports.keep_atlas) return std::nullopt;
     return atlas;
 }
@@ -404,8 +415,10 @@ std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& re
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
                                   const AnalysisResult& result, const LiveSurface* examined,
                                   const ExportOptions& exports, const RunRecord& record,
-                                  const std::string& json_text,
-                                  const std::function<void(std::string_view stage)>& stage) {
+                                  const std::string& json_text, const AnalysisObserver& observer) {
+    const auto stage = [&](std::string_view name) {
+        if (observer.stage) observer.stage(name);
+    };
     // The atlas files and the report page's data are serial work (number formatting and
     // writing; the decimation of a large mesh for the page): at 2M triangles 0.9 s each, done
     // side by side. The pictures (on every worker) come after, so the picture renderer's BVH
@@ -416,17 +429,29 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     // 614 instead of 453 MB resident under the pictures).
     auto page_data = std::async(std::launch::async,
                                 [&] { return report_page_data(reference, result, examined); });
-    std::optional<Mesh> atlas = write_atlas_files(folder, reference, result, exports);
+    stage("atlas files");
+    const AtlasFiles& kinds = exports.atlas_files;
+    const std::size_t files = std::size_t{kinds.ply} + kinds.vtk + kinds.vtp + 2;
+    std::size_t done = 0;
+    const auto written = [&] {
+        if (observer.items) observer.items(++done, files);
+    };
+    std::optional<Mesh> atlas = write_atlas_files(folder, reference, result, exports, written);
     write_file_atomically(folder.file("regions.csv"), regions_csv(result));
+    written();
     write_file_atomically(folder.file("report.json"), json_text);
+    written();
+    stage("report page");
     ReportPageData page = page_data.get();
-    if (stage) stage("pictures");
+    stage("pictures");
     std::string reference_name;
     for (const auto& in : record.inputs)
         if (in.role == "reference" && !in.path.empty())
             reference_name = in.path.filename().string();
-    const PictureOutput pictures = write_pictures(folder, reference, result, exports,
-                                                  run_orientation(record, exports), reference_name);
+    const PictureOutput pictures =
+        write_pictures(folder, reference, result, exports, run_orientation(record, exports),
+                       reference_name, observer);
+    stage("report.html");
     write_file_atomically(folder.file("report.html"),
                           report_html(std::move(page), json_text, pictures));
     return atlas;

@@ -40,13 +40,15 @@ namespace glint {
 
 /// Writes atlas.ply, atlas.vtk, atlas.vtp (those ExportOptions::atlas_files names), regions.csv,
 /// report.json (`report_json`'s text), the pictures and report.html into the folder; the page's
-/// live view gets `examined` (null: the page says it has none). `stage` (when set) is called
-/// with "pictures" before the pictures are drawn, after the other files.
-/// Returns the atlas mesh when ExportOptions::keep_atlas.
+/// live view gets `examined` (null: the page says it has none). `observer` hears the stages in
+/// their order: "atlas files" (items: each of the atlas files, regions.csv and report.json),
+/// "report page" (waiting for the page's data), "pictures" (items: each per-view picture; also
+/// where the caller may hand back memory), "mosaics" (items: each zoom), "atlas.png",
+/// "report.html". Returns the atlas mesh when ExportOptions::keep_atlas.
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
                                   const AnalysisResult& result, const LiveSurface* examined,
                                   const ExportOptions& exports, const RunRecord& record,
                                   const std::string& report_json,
-                                  const std::function<void(std::string_view stage)>& stage = {});
+                                  const AnalysisObserver& observer = {});
 
 }  // namespace glint

@@ -25,10 +25,18 @@ RunInput load_run_input(const std::string& role, const fs::path& path,
 }
 
 std::pair<RunInput, RunInput> load_run_pair(const fs::path& reference, const fs::path& examined,
-                                            const SurfaceOptions& surface) {
-    if (is_volume_path(reference) || is_volume_path(examined))
-        return {load_run_input("reference", reference, surface),
-                load_run_input("examined", examined, surface)};
+                                            const SurfaceOptions& surface,
+                                            const std::function<void(std::string_view)>& loaded) {
+    const auto tell = [&](std::string_view role) {
+        if (loaded) loaded(role);
+    };
+    if (is_volume_path(reference) || is_volume_path(examined)) {
+        RunInput ref = load_run_input("reference", reference, surface);
+        tell("reference");
+        RunInput exa = load_run_input("examined", examined, surface);
+        tell("examined");
+        return {std::move(ref), std::move(exa)};
+    }
     RunInput exa;
     std::exception_ptr exa_error;
     std::thread other([&] {
@@ -41,12 +49,17 @@ std::pair<RunInput, RunInput> load_run_pair(const fs::path& reference, const fs:
     RunInput ref;
     try {
         ref = load_run_input("reference", reference, surface);
+        // note: the examined file may have been read first; the reference is told first
+        // anyway (its error wins too), so the count lags, never runs ahead. Inside the try: a
+        // listener that throws (a cancelled run) still joins the other thread.
+        tell("reference");
     } catch (...) {
         other.join();
         throw;
     }
     other.join();
     if (exa_error) std::rethrow_exception(exa_error);
+    tell("examined");
     return {std::move(ref), std::move(exa)};
 }
 

@@ -8,7 +8,9 @@
 #include "volume/surface.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -40,10 +42,12 @@ struct RunInput {
 
 /// The reference and examined inputs of a pair. Two mesh files are read at once, on two
 /// threads; volumes one after the other (ITK's and VTK's readers are not known to be safe side
-/// by side). The reference's error is thrown first, as when read in turn.
-[[nodiscard]] std::pair<RunInput, RunInput> load_run_pair(const std::filesystem::path& reference,
-                                                          const std::filesystem::path& examined,
-                                                          const SurfaceOptions& surface);
+/// by side). The reference's error is thrown first, as when read in turn. `loaded` (when set)
+/// is told each role once its input is read, on the calling thread: "reference", then
+/// "examined" (progress).
+[[nodiscard]] std::pair<RunInput, RunInput> load_run_pair(
+    const std::filesystem::path& reference, const std::filesystem::path& examined,
+    const SurfaceOptions& surface, const std::function<void(std::string_view role)>& loaded = {});
 
 /// A mesh made or loaded elsewhere (a phantom, a Python array) as the input `role`; `path`
 /// when it came from a file.

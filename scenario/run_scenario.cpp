@@ -189,6 +189,7 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
         out.skip_reason = "input not found: " + missing;
         return out;
     }
+    if (run.observer.stage) run.observer.stage("load");
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
     out.reference_vertices = meshes.reference.vertex_count();
 
@@ -221,10 +222,8 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
              meshes.examined.vertex_count(), meshes.examined.triangle_count()});
         add_truth_scalars(meshes, e);
     }
-    AnalysisObserver observer;
-    observer.views = run.progress;
     const Inspection inspection =
-        inspect(meshes.reference, meshes.examined, options, record, observer);
+        inspect(meshes.reference, meshes.examined, options, record, run.observer);
     const AnalysisResult& result = inspection.analysis;
     out.fit_mode = to_string(result.fit.mode);
     if (meshes.has_truth_pose)

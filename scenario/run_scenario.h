@@ -1,6 +1,7 @@
 // Running a scenario end to end (fit, sweep, atlas) and scoring it against its ground truth.
 #pragma once
 
+#include "analysis/analysis.h"
 #include "scanner/sweep.h"
 #include "scenario/evaluate.h"
 #include "scenario/pair_truth.h"
@@ -18,7 +19,9 @@ struct ScenarioRunOptions {
     std::filesystem::path
         output_root;           ///< atlas folder = output_root / scenario name; empty = no export
     bool write_views = false;  ///< per-view PNG/EXR (mosaics, atlas and report always)
-    std::function<void(std::size_t done, std::size_t total)> progress;
+    /// Hears "load" (the scenario's surfaces read or made), then inspect()'s stages, items and
+    /// views (report/inspect.h); its `view` and `fitted` members too.
+    AnalysisObserver observer;
     std::string command_line;  ///< recorded in report.json
     bool replace_existing =
         false;         ///< an existing atlas folder of a scenario is replaced (--force)

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
@@ -23,7 +24,7 @@ inline constexpr int kExitInterrupted = 130;  ///< SIGINT / SIGTERM (128 + SIGIN
 
 /// Flags every subcommand shares (set on the top-level app, read by commands).
 struct GlobalFlags {
-    bool quiet = false;        ///< no progress bars or chatter on stderr
+    bool quiet = false;        ///< no progress or chatter on stderr; results still go to stdout
     bool json = false;         ///< machine-readable JSON on stdout instead of tables
     std::string command_line;  ///< argv joined by spaces (recorded in reports)
 };
@@ -38,6 +39,13 @@ inline void print_warnings(const std::vector<std::string>& warnings,
     for (const auto& w : warnings)
         std::fprintf(stderr, "warning: %s%s%s\n", prefix.c_str(), prefix.empty() ? "" : ": ",
                      w.c_str());
+}
+
+/// An output path as --json prints it: absolute and normalised, so a script that started glint
+/// elsewhere finds it; "" stays "" (no output).
+inline std::string absolute_output(const std::filesystem::path& path) {
+    if (path.empty()) return {};
+    return std::filesystem::absolute(path).lexically_normal().string();
 }
 
 /// Thrown by a command whose run completed but whose checks failed (exit 1).

@@ -9,6 +9,8 @@
 #include "tools/command.h"
 #include "tools/option_flags.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -45,8 +47,10 @@ void run(const CalibrateArgs& a) {
                   sc.name + (sc.description.empty() ? "" : ": " + sc.description));
     write_file_atomically(a.output, to_json(c));
     if (global_flags().json) {
-        std::cout << to_json(c);
-    } else if (!global_flags().quiet) {
+        nlohmann::json j = nlohmann::json::parse(to_json(c));
+        j["output"] = absolute_output(a.output);
+        std::cout << j.dump(2) << '\n';
+    } else {
         const std::string unit = !analysis.units.unit.empty()
                                      ? canonical_unit(analysis.units.unit)
                                      : canonical_unit(meshes.reference.unit);

@@ -53,9 +53,9 @@ void run(const CompareArgs& a) {
     const nlohmann::json j = {
         {"compared_pixels", d.compared},      {"reference_only", d.reference_only},
         {"examined_only", d.examined_only},   {"max_angle_deg", d.max_angle_deg},
-        {"mean_angle_deg", d.mean_angle_deg}, {"output", a.output}};
+        {"mean_angle_deg", d.mean_angle_deg}, {"output", absolute_output(a.output)}};
     if (global_flags().json) std::cout << j.dump(2) << '\n';
-    else if (!global_flags().quiet)
+    else
         std::cout << "compared " << d.compared << " pixels: max " << d.max_angle_deg << "°, mean "
                   << d.mean_angle_deg << "°; silhouette: " << d.reference_only
                   << " reference only, " << d.examined_only << " examined only; wrote " << a.output

@@ -82,8 +82,13 @@ void run(const PhantomArgs& a) {
     files.add(sidecar_path, sidecar.dump(2) + "\n");
     files.commit();
     if (global_flags().json) {
-        std::cout << sidecar.dump(2) << '\n';
-    } else if (!global_flags().quiet) {
+        // The sidecar's content and where both files are (the sidecar names the mesh only by
+        // its file name: the pair may be moved together).
+        nlohmann::json printed = sidecar;
+        printed["output"] = absolute_output(a.output);
+        printed["sidecar"] = absolute_output(sidecar_path);
+        std::cout << printed.dump(2) << '\n';
+    } else {
         std::cout << "wrote " << a.output << " (" << v.vertices << " vertices, " << v.triangles
                   << " triangles, " << damaged << " damaged vertices) and " << sidecar_path << '\n';
     }

@@ -14,6 +14,8 @@
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -68,9 +70,8 @@ void run(RegisterArgs& a) {
     // Sizes checked before the fit; files in two stated units are fitted in the reference's.
     const UnitResolution units = resolve_units(ref.mesh, exa.mesh, a.options.units);
     scale_to_analysis_unit(exa.mesh, units);
-    if (!global_flags().quiet)
-        for (const auto& w : units.warnings)
-            std::fprintf(stderr, "glint: warning: %s\n", w.c_str());
+    // Warnings with --quiet too (tools/command.h print_warnings): no chatter.
+    print_warnings(units.warnings);
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
     FileSet files;  // fit.json and the fitted mesh appear together or not at all
@@ -81,8 +82,12 @@ void run(RegisterArgs& a) {
         files.add(a.apply, [&](const fs::path& temp) { write_mesh(moved, temp); });
     }
     files.commit();
-    if (global_flags().json) std::cout << outcome.json;
-    else if (!global_flags().quiet) print_result(r, a.output, units.unit);
+    if (global_flags().json) {
+        nlohmann::json j = nlohmann::json::parse(outcome.json);
+        j["output"] = absolute_output(a.output);
+        if (!a.apply.empty()) j["applied"] = absolute_output(a.apply);
+        std::cout << j.dump(2) << '\n';
+    } else print_result(r, a.output, units.unit);
     if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);
 }
 

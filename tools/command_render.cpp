@@ -178,7 +178,8 @@ void run(const RenderArgs& a) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (global_flags().json) {
-        nlohmann::json report = {{"backend", to_string(info.backend)},
+        nlohmann::json report = {{"output", absolute_output(a.output)},
+                                 {"backend", to_string(info.backend)},
                                  {"device", info.device_name},
                                  {"triangles", info.triangle_count},
                                  {"seconds", seconds},
@@ -186,8 +187,9 @@ void run(const RenderArgs& a) {
                                  {"load_warnings", loaded.report.warnings},
                                  {"frames", written}};
         std::cout << report.dump(2) << '\n';
-    } else if (!global_flags().quiet) {
-        for (const auto& w : info.warnings) std::cerr << "glint: note: " << w << '\n';
+    } else {
+        if (!global_flags().quiet)
+            for (const auto& w : info.warnings) std::cerr << "glint: note: " << w << '\n';
         for (const auto& f : written) {
             std::cout << "wrote " << f["path"].get<std::string>() << " (az "
                       << f["azimuth_deg"].get<double>() << "°, el "

@@ -94,7 +94,7 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
                         {"threshold_deg", o.threshold_deg},
                         {"fit", o.fit_mode},
                         {"seconds", o.seconds},
-                        {"output", o.output.string()}};
+                        {"output", absolute_output(o.output)}};
     if (o.score)
         j["score"] = {
             {"precision", o.score->precision},
@@ -146,13 +146,13 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
     for (const auto& sc : scenarios)
         guard_outputs({fs::path(a.output) / sc.name, fs::path(a.output) / "eval.json",
                        fs::path(a.output) / "eval.csv"},
-                      {sc.file, sc.reference.mesh, sc.examined.mesh});
+                      {sc.file, sc.reference.mesh, sc.examined.mesh}, OutputParent::MayBeCreated);
     std::error_code ec;
     fs::create_directories(a.output, ec);
     if (ec) throw IoError("output folder \"" + a.output + "\": " + ec.message());
     std::vector<ScenarioOutcome> outcomes;
     for (const auto& sc : scenarios) {
-        ProgressBar bar(sc.name, 1);
+        StageProgress progress(sc.name);
         ScenarioRunOptions options;
         options.output_root = a.output;
         options.write_views = a.views;
@@ -160,10 +160,7 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         options.unit = a.units.units.unit;
         options.allow_scale_mismatch = a.units.units.allow_scale_mismatch;
         options.command_line = global_flags().command_line;
-        options.progress = [&](std::size_t done, std::size_t total) {
-            bar.set_total(total);
-            bar.update(done);
-        };
+        progress.listen(options.observer);
         ScenarioOutcome o;
         try {
             o = run_scenario(sc, options);
@@ -182,9 +179,9 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
                 else first_error = std::make_exception_ptr(IoError(where + e.what()));
             }
         }
-        bar.finish();
+        progress.finish();
         print_warnings(o.warnings, o.name);
-        if (!global_flags().quiet && !global_flags().json && !score_table) {
+        if (!global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
             else
                 std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n",
@@ -297,8 +294,7 @@ void eval_command(const RunArgs& a) {
     write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
     write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());
     if (global_flags().json) std::cout << all.dump(2) << '\n';
-    else if (!global_flags().quiet)
-        std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
+    else std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
     check(outcomes);
 }
 

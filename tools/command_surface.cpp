@@ -24,7 +24,7 @@ struct SurfaceArgs {
 nlohmann::json to_json(const SurfaceReport& r, const std::string& volume,
                        const std::string& output) {
     return {{"volume", volume},
-            {"output", output},
+            {"output", absolute_output(output)},
             {"voxels", r.voxels},
             {"cropped_voxels", r.cropped},
             {"spacing_mm", {r.spacing.x(), r.spacing.y(), r.spacing.z()}},
@@ -50,7 +50,6 @@ void run(const SurfaceArgs& a) {
         std::cout << to_json(s.report, a.volume, a.output).dump(2) << '\n';
         return;
     }
-    if (global_flags().quiet) return;
     std::printf("%s\n", describe(s.report).c_str());
     for (const auto& note : s.report.notes) std::printf("  %s\n", note.c_str());
     if (!a.output.empty()) std::printf("wrote %s (mm)\n", a.output.c_str());

@@ -15,10 +15,11 @@
 #include "tools/surface_flags.h"
 #include "volume/load.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <optional>
 #include <string>
 #include <utility>
 
@@ -115,7 +116,11 @@ void run(SweepArgs& a) {
     const FitOptions& fit = options.analysis.fit;
     guard_outputs({a.output}, {a.reference, a.examined, fit.fit_file, fit.landmarks_file,
                                fit.init_file, a.calibration});
-    auto [ref, exa] = load_run_pair(a.reference, a.examined, a.surface);
+    StageProgress progress;
+    progress.stage("load");
+    auto [ref, exa] = load_run_pair(
+        a.reference, a.examined, a.surface,
+        [&, n = std::size_t{0}](std::string_view) mutable { progress.items(++n, 2); });
     RunRecord record{.command_line = global_flags().command_line};
     record.add(ref);
     record.add(exa);
@@ -123,18 +128,19 @@ void run(SweepArgs& a) {
         record.add_file("fit", options.analysis.fit.fit_file);
     if (!a.calibration.empty()) record.add_file("calibration", a.calibration);
 
-    std::optional<ProgressBar> bar;
     AnalysisObserver observer;
     observer.stage = [](std::string_view) { give_back_free_memory(); };
-    observer.views = [&](std::size_t done, std::size_t total) {
-        if (!bar) bar.emplace("sweep", total);
-        bar->update(done);
-    };
+    progress.listen(observer);
     const Inspection result = inspect(ref.mesh, std::move(exa.mesh), options, record, observer);
-    if (bar) bar->finish();
+    progress.finish();
     print_warnings(result.analysis.warnings);
-    if (global_flags().json) std::cout << result.report_json;
-    else if (!global_flags().quiet) print_summary(result);
+    if (global_flags().json) {
+        // report.json's content and where it was written (the folder is not in the file: a
+        // folder may be moved).
+        nlohmann::json j = nlohmann::json::parse(result.report_json);
+        j["output"] = absolute_output(result.output);
+        std::cout << j.dump(2) << '\n';
+    } else print_summary(result);
 }
 
 void setup(CLI::App& app) {

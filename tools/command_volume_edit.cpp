@@ -9,8 +9,11 @@
 #include "tools/command.h"
 #include "volume/edit.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -76,8 +79,12 @@ void run(const EditArgs& a) {
     write_volume(out, a.output);
     const std::string truth = a.output + ".json";
     write_file_atomically(truth, edit_json(edit));
-    if (!global_flags().quiet)
-        std::printf("wrote %s and %s (ground truth)\n", a.output.c_str(), truth.c_str());
+    if (global_flags().json)
+        std::cout << nlohmann::json{{"output", absolute_output(a.output)},
+                                    {"truth", absolute_output(truth)}}
+                         .dump(2)
+                  << '\n';
+    else std::printf("wrote %s and %s (ground truth)\n", a.output.c_str(), truth.c_str());
 }
 
 void setup(CLI::App& app) {

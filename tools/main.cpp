@@ -172,7 +172,8 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     app.fallthrough();
     auto& flags = global_flags();
-    app.add_flag("-q,--quiet", flags.quiet, "No progress bars or chatter on stderr");
+    app.add_flag("-q,--quiet", flags.quiet,
+                 "No progress or chatter on stderr (results and warnings are still printed)");
     app.add_flag("--json", flags.json,
                  "Machine-readable JSON on stdout (errors too: {\"error\": …})");
     // note: a global option (fallthrough lets it follow any subcommand); it sets the budget

@@ -5,6 +5,7 @@
 #include "mesh/file_set.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -45,6 +46,60 @@ TEST(OutputGuard, RefusesAnOutputThatIsContainsOrLiesInsideAnInput) {
     EXPECT_NE(refusal(dir / "dcm" / "out.ply", {dir / "dcm"}).find("lies inside the input"),
               std::string::npos);
     EXPECT_EQ(refusal(dir / "out", {dir / "d" / "ref.ply"}), "");
+}
+
+std::string folder_refusal(const fs::path& output, OutputParent parent) {
+    try {
+        check_output_folder(output, parent);
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return {};
+}
+
+TEST(OutputGuard, RefusesAMissingFolderNamingOutputFolderFoundAndExpected) {
+    const fs::path dir = base("missing_folder");
+    const fs::path out = dir / "missing_dir" / "x.ply";
+    const std::string why = folder_refusal(out, OutputParent::MustExist);
+    EXPECT_EQ(why, "output \"" + out.string() + "\": folder \"" + (dir / "missing_dir").string() +
+                       "\" does not exist; expected an existing folder to write into (make it "
+                       "first) (nothing was written)");
+    EXPECT_EQ(folder_refusal(dir / "x.ply", OutputParent::MustExist), "");
+    EXPECT_EQ(folder_refusal(dir / "atlas" / "", OutputParent::MustExist), "");  // "atlas/"
+    EXPECT_FALSE(fs::exists(dir / "missing_dir"));
+}
+
+TEST(OutputGuard, AFolderTheCommandMakesNeedsAWritableFolderAboveIt) {
+    const fs::path dir = base("made_folder");
+    EXPECT_EQ(folder_refusal(dir / "a" / "b" / "x", OutputParent::MayBeCreated), "");
+    EXPECT_FALSE(fs::exists(dir / "a"));  // checked, not made
+    write_file_atomically(dir / "f", "x");
+    EXPECT_NE(folder_refusal(dir / "f" / "a" / "x", OutputParent::MayBeCreated)
+                  .find("cannot be made: \"" + (dir / "f").string() + "\" is a file, not a folder"),
+              std::string::npos);
+    EXPECT_NE(folder_refusal(dir / "f" / "x", OutputParent::MustExist)
+                  .find("\"" + (dir / "f").string() + "\" is a file, not a folder"),
+              std::string::npos);
+}
+
+TEST(OutputGuard, RefusesAFolderThatIsNotWritable) {
+    if (::geteuid() == 0) GTEST_SKIP() << "root may write into any folder";
+    const fs::path dir = base("read_only");
+    fs::create_directories(dir / "ro");
+    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
+    const std::string why = folder_refusal(dir / "ro" / "x.ply", OutputParent::MustExist);
+    const std::string made = folder_refusal(dir / "ro" / "new" / "x", OutputParent::MayBeCreated);
+    fs::permissions(dir / "ro", fs::perms::owner_all);
+    EXPECT_NE(why.find("folder \"" + (dir / "ro").string() + "\" is not writable"),
+              std::string::npos);
+    EXPECT_NE(made.find("\" is not writable"), std::string::npos);
+}
+
+TEST(OutputGuard, GuardOutputsChecksEachOutputsFolder) {
+    const fs::path dir = base("guard_folders");
+    EXPECT_NE(refusal(dir / "missing_dir" / "x.ply", {}).find("does not exist"), std::string::npos);
+    EXPECT_THROW(guard_outputs({dir / "ok.ply", dir / "no" / "x.json"}, {}), InputError);
+    EXPECT_NO_THROW(guard_outputs({dir / "no" / "x"}, {}, OutputParent::MayBeCreated));
 }
 
 TEST(OutputGuard, FollowsSymbolicLinksAndHardLinks) {

@@ -11,6 +11,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -59,6 +64,44 @@ TEST(Inspect, BuildsOneBvhPerSurface) {
     EXPECT_EQ(bvhs() - before, 2u) << "reference and examined, once each";
     EXPECT_TRUE(std::filesystem::exists(dir / "atlas.png"));  // the pictures ran on the shared one
     EXPECT_EQ(run.analysis.reference_index, nullptr) << "released once the outputs are written";
+}
+
+// Every stage of a run is announced, exports included, and each export that counts its items
+// counts them up to its total after its stage began (issue 26: the exports used to be silent
+// behind a finished sweep).
+TEST(Inspect, AnnouncesEveryStageAndCountsTheExports) {
+    const test::DentedPair& p = test::dented_pair();
+    InspectOptions o;
+    o.analysis.fit.mode = FitMode::Identity;
+    o.analysis.sweep.plan.azimuth_step_deg = 90;
+    o.analysis.sweep.plan.elevations_deg = {0, 45};
+    o.analysis.sweep.plan.size = 32;
+    o.analysis.sweep.render.backend = Backend::Embree;
+    o.exports.output = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "inspect_stages";
+    o.exports.replace_existing = true;
+    std::vector<std::string> stages;
+    std::map<std::string, std::pair<std::size_t, std::size_t>> last;  // stage → (done, total)
+    std::size_t views = 0;
+    AnalysisObserver observer;
+    observer.stage = [&](std::string_view s) { stages.emplace_back(s); };
+    observer.views = [&](std::size_t done, std::size_t) { views = done; };
+    observer.items = [&](std::size_t done, std::size_t total) {
+        ASSERT_FALSE(stages.empty());
+        ASSERT_LE(done, total);
+        last[stages.back()] = {done, total};
+    };
+    const Inspection run = inspect(p.reference, p.examined, o, {}, observer);
+    const std::vector<std::string> expected{"fit",     "distance",    "sweep",       "decide",
+                                            "export",  "atlas files", "report page", "pictures",
+                                            "mosaics", "atlas.png",   "report.html"};
+    EXPECT_EQ(stages, expected);
+    const std::size_t planned = run.analysis.sweep.plan.views.size();
+    EXPECT_EQ(views, planned);
+    const AtlasFiles& f = o.exports.atlas_files;
+    const std::size_t files = std::size_t{f.ply} + f.vtk + f.vtp + 2;  // + regions.csv, report.json
+    EXPECT_EQ(last["atlas files"], std::make_pair(files, files));
+    EXPECT_EQ(last["pictures"], std::make_pair(planned, planned)) << "one per per-view picture";
+    EXPECT_EQ(last["mosaics"], std::make_pair(std::size_t{1}, std::size_t{1})) << "one per zoom";
 }
 
 }  // namespace

@@ -80,12 +80,12 @@ def test_table_numbers_are_the_reports(cohort_run):
         assert int(row["regions"]) == len(regions)
         assert int(row["dents"]) == sum(r["kind"] == "dent" for r in regions)
         assert int(row["bumps"]) == sum(r["kind"] == "bump" for r in regions)
-        assert float(row["area"]) == pytest.approx(sum(r["area"] for r in regions))
-        assert float(row["volume_lost"]) == pytest.approx(-sum(min(r["volume"], 0) for r in regions))
-        assert float(row["volume_gained"]) == pytest.approx(sum(max(r["volume"], 0) for r in regions))
-        assert float(row["max_depth"]) == pytest.approx(-min([r["peak_depth"] for r in regions] + [0]))
+        assert float(row["area_mm2"]) == pytest.approx(sum(r["area"] for r in regions))
+        assert float(row["volume_lost_mm3"]) == pytest.approx(-sum(min(r["volume"], 0) for r in regions))
+        assert float(row["volume_gained_mm3"]) == pytest.approx(sum(max(r["volume"], 0) for r in regions))
+        assert float(row["max_depth_mm"]) == pytest.approx(-min([r["peak_depth"] for r in regions] + [0]))
         assert float(row["coverage"]) == pytest.approx(report["zooms"][0]["coverage"])
-        assert float(row["fit_rms"]) == pytest.approx(report["fit"]["rms"])
+        assert float(row["fit_rms_mm"]) == pytest.approx(report["fit"]["rms"])
         assert row["fit_converged"] == "True" and row["unit"] == "mm"
 
 
@@ -93,16 +93,46 @@ def test_table_finds_the_damage_that_was_made(cohort_run):
     a01, a12, b, c = table(cohort_run[0])
     # A 0→1: the 0.6 mm dent appeared.
     assert (a01["regions"], a01["dents"]) == ("1", "1")
-    assert 0.4 < float(a01["max_depth"]) < 0.7 and float(a01["volume_lost"]) > 0
+    assert 0.4 < float(a01["max_depth_mm"]) < 0.7 and float(a01["volume_lost_mm3"]) > 0
     # A 1→2: the dent was already there; only the 0.5 mm bump is new.
     assert (a12["regions"], a12["bumps"], a12["dents"]) == ("1", "1", "0")
-    assert 0.3 < float(a12["max_height"]) < 0.6 and float(a12["volume_gained"]) > 0
+    assert 0.3 < float(a12["max_height_mm"]) < 0.6 and float(a12["volume_gained_mm3"]) > 0
     # B: nothing changed.
-    assert b["regions"] == "0" and float(b["volume_lost"]) == 0 and float(b["volume_gained"]) == 0
+    assert b["regions"] == "0" and float(b["volume_lost_mm3"]) == 0 and float(b["volume_gained_mm3"]) == 0
     # C: the bump lies outside the analysed region.
     assert (c["regions"], c["dents"], c["bumps"]) == ("1", "1", "0")
     for row in (a01, a12, b, c):
-        assert float(row["fit_rms"]) < 0.05 and float(row["coverage"]) > 0.9
+        assert float(row["fit_rms_mm"]) < 0.05 and float(row["coverage"]) > 0.9
+
+
+def test_length_columns_carry_the_reports_unit(cohort_run):
+    with (cohort_run[0] / "cohort.csv").open(newline="") as f:
+        header = next(csv.reader(f))
+    assert [c for c in header if c.split("_")[-1] in ("mm", "mm2", "mm3")] == [
+        "area_mm2", "volume_lost_mm3", "volume_gained_mm3", "max_depth_mm", "max_height_mm", "fit_rms_mm"]
+    # cohort.json keeps the plain names (the summary reads them) and each row's unit.
+    assert {"area", "volume_lost", "unit"} <= json.loads((cohort_run[0] / "cohort.json").read_text())[0].keys()
+
+
+def _row(subject, unit, error=""):
+    row = dict.fromkeys(cohort.TABLE_COLUMNS, 1.0)
+    row.update(subject=subject, before="0", after="1", unit=unit, error=error)
+    return row
+
+
+def test_a_cohort_in_another_unit_gets_that_unit(tmp_path):
+    rows = [_row("A", "um"), _row("B", None, error="glint: error: refused")]
+    cohort.write_table(rows, tmp_path / "c.csv", tmp_path / "c.json")
+    header = (tmp_path / "c.csv").read_text().splitlines()[0].split(",")
+    assert {"area_um2", "volume_lost_um3", "max_depth_um", "fit_rms_um"} <= set(header)
+    cohort.write_table([_row("A", "")], tmp_path / "d.csv", tmp_path / "d.json")
+    assert "area_units2" in (tmp_path / "d.csv").read_text().splitlines()[0].split(",")
+
+
+def test_pairs_in_different_units_are_refused_naming_them(tmp_path):
+    with pytest.raises(cohort.UnitError, match=r"A 0→1 in mm, B 0→1 in um\); expected one unit"):
+        cohort.write_table([_row("A", "mm"), _row("B", "um")], tmp_path / "c.csv", tmp_path / "c.json")
+    assert not (tmp_path / "c.csv").exists() and not (tmp_path / "c.json").exists()
 
 
 def test_summary_files(cohort_run):

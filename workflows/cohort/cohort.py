@@ -165,6 +165,41 @@ TABLE_COLUMNS = ("subject", "before", "after", "regions", "dents", "bumps", "mis
                  "fit_inlier_fraction", "fit_overlap", "fit_rotation_deg", "fit_termination", "unit", "report",
                  "error")
 ERROR_FILE = "error.txt"  # in a pair's folder when glint refused its input (the Snakefile writes it)
+# The columns that hold a length, by power: cohort.csv's header names their unit (area_mm2,
+# volume_lost_mm3, max_depth_mm), the way glint's regions.csv does. cohort.json keeps the plain
+# names and the `unit` of each row.
+LENGTH_COLUMNS = {"area": 2, "volume_lost": 3, "volume_gained": 3, "max_depth": 1, "max_height": 1, "fit_rms": 1}
+
+
+class UnitError(ValueError):
+    """Pairs whose lengths are in different units: one table column cannot hold them."""
+
+
+def unit_suffix(unit, power=1):
+    """"_mm", "_mm2", "_mm3"; "_units" when glint knew no unit (glint's mesh/units.h unit_suffix)."""
+    return "_" + (unit or "units") + (str(power) if power > 1 else "")
+
+
+def table_unit(rows):
+    """The one unit of the cohort's lengths, from each pair's report.json ("" when glint knew none).
+    A refused pair has none and does not count. Pairs in different units raise UnitError: a column
+    that mixed them would add millimetres to micrometres in every statistic made from it, and one
+    column per unit would leave each row's numbers scattered over columns."""
+    first = {}
+    for r in rows:
+        if not r.get("error"):
+            first.setdefault(r["unit"] or "", f"{r['subject']} {r['before']}→{r['after']}")
+    if len(first) > 1:
+        found = ", ".join(f"{pair} in {unit or 'no stated unit'}" for unit, pair in first.items())
+        raise UnitError(f"cohort.csv: the pairs' lengths are in different units ({found}); expected one unit "
+                        "for the whole cohort: give every scan in one unit (or state it with `unit:` in the "
+                        "config when the files state none)")
+    return next(iter(first), "")
+
+
+def table_header(unit):
+    """cohort.csv's column names: TABLE_COLUMNS, lengths suffixed with their unit."""
+    return [c + unit_suffix(unit, LENGTH_COLUMNS[c]) if c in LENGTH_COLUMNS else c for c in TABLE_COLUMNS]
 
 
 def pair_row(pair_id, pair, report):
@@ -203,13 +238,15 @@ def error_row(pair, message):
 
 
 def write_table(rows, csv_path, json_path):
-    """cohort.csv and cohort.json (written to temporary names, then renamed)."""
+    """cohort.csv and cohort.json (written to temporary names, then renamed). Raises UnitError
+    (before writing anything) when the pairs' units differ."""
+    header = table_header(table_unit(rows))
     csv_path, json_path = pathlib.Path(csv_path), pathlib.Path(json_path)
     tmp = csv_path.with_name(csv_path.name + ".tmp")
     with tmp.open("w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=TABLE_COLUMNS)
-        writer.writeheader()
-        writer.writerows(rows)
+        writer = csv.writer(f)
+        writer.writerow(header)
+        writer.writerows([row[c] for c in TABLE_COLUMNS] for row in rows)
     tmp.replace(csv_path)
     tmp = json_path.with_name(json_path.name + ".tmp")
     tmp.write_text(json.dumps(rows, indent=2) + "\n")
