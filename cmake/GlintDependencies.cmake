@@ -43,6 +43,10 @@ foreach(oiio_target OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
     endif()
   endif()
 endforeach()
+# FreeType draws the pictures' text (report/detail/text.cpp): OpenImageIO 2.4's render_text
+# decodes UTF-8 wrongly ("°" became "0"). libopenimageio-dev already depends on the package.
+find_package(Freetype QUIET)
+glint_require(FREETYPE_FOUND libfreetype-dev)
 find_package(assimp QUIET)
 glint_require(assimp_FOUND libassimp-dev)
 find_package(meshoptimizer QUIET)

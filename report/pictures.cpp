@@ -6,8 +6,11 @@
 #include "render/renderer.h"
 #include "report/detail/atlas_overview.h"
 #include "report/detail/canvas.h"
+#include "report/detail/footer.h"
+#include "report/detail/labels.h"
 #include "report/detail/legend.h"
 #include "report/detail/picture_batches.h"
+#include "report/detail/scale_bar.h"
 #include "report/detail/surface_paint.h"
 #include "scanner/metric.h"
 
@@ -65,21 +68,15 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .unit = u,
                             .roi = result.sweep.plan.options.roi.has_value()};
     char b[160];
-    std::snprintf(b, sizeof b, "normal floor %.3g %s (%s, %s rule)", d.normal.value,
-                  d.scale.radius > 0 ? "deg" : std::string(m.unit).c_str(),
+    std::snprintf(b, sizeof b, "normal floor %.3g%s (%s, %s rule)", d.normal.value,
+                  detail::picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit).c_str(),
                   to_string(d.normal.source).c_str(), to_string(d.rule).c_str());
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%, compared %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
                   100.0 * result.sweep.zooms[z].coverage.fraction, 100.0 * d.comparison.fraction);
     c.lines.emplace_back(b);
-    for (const auto& r : d.regions.regions) {
-        std::snprintf(b, sizeof b, "%d  %s  %s %s, %s %s^2", r.id,
-                      r.kind == RegionKind::MissingSurface ? "missing" : to_string(r.kind).c_str(),
-                      detail::format_number(r.peak_depth, true).c_str(), u.c_str(),
-                      detail::format_number(r.area).c_str(), u.c_str());
-        c.regions.emplace_back(b);
-    }
+    for (const auto& r : d.regions.regions) c.regions.push_back(detail::region_legend_line(r, u));
     return c;
 }
 
@@ -90,16 +87,18 @@ View resized(const View& v, int size) {
     const double s = static_cast<double>(size) / std::max(v.camera.width, v.camera.height);
     r.camera.width = std::max(1, static_cast<int>(std::lround(v.camera.width * s)));
     r.camera.height = std::max(1, static_cast<int>(std::lround(v.camera.height * s)));
+    // (the same extent over more or fewer pixels: the scale bar reads the footprint)
+    r.footprint = v.footprint / s;
     return r;
 }
 
 class PictureWriter {
   public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options,
-                  Orientation orientation, std::string reference_name)
+                  Orientation orientation, PictureCaption caption)
         : reference_(reference),
           result_(result),
-          reference_name_(std::move(reference_name)),
+          caption_(std::move(caption)),
           options_(options),
           orientation_(std::move(orientation)),
           scale_(shape_scale(result)),
@@ -143,7 +142,12 @@ class PictureWriter {
                      const AnalysisObserver& observer);
     std::string mosaic(std::size_t z);
     std::string atlas_overview() {
-        const std::string name = reference_name_.empty() ? "the reference" : reference_name_;
+        const std::string name =
+            caption_.reference_name.empty() ? "the reference" : caption_.reference_name;
+        const detail::FooterInput footer{
+            .reference_name = caption_.reference_name,
+            .examined_name = caption_.examined_name,
+            .date = caption_.date.empty() ? detail::utc_date_now() : caption_.date};
         return detail::atlas_overview_png(renderer_,
                                           {.mesh = &reference_,
                                            .fields = &zooms_[0].fields,
@@ -154,7 +158,8 @@ class PictureWriter {
                                            .coverage = result_.sweep.zooms[0].coverage.fraction,
                                            .name = name,
                                            .unit = unit_or_units(result_),
-                                           .orientation = &orientation_});
+                                           .orientation = &orientation_,
+                                           .footer = detail::footer_lines(result_, footer)});
     }
 
   private:
@@ -163,7 +168,7 @@ class PictureWriter {
 
     const Mesh& reference_;
     const AnalysisResult& result_;
-    std::string reference_name_;
+    PictureCaption caption_;
     const ExportOptions& options_;
     Orientation orientation_;
     ShapeScale scale_;
@@ -189,15 +194,17 @@ ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, c
             ? std::string()
             : " from " + orientation_.name(shown.camera.world_from_camera.linear().col(2));
     char title[240];
-    std::snprintf(title, sizeof title,
-                  "view %d%s: azimuth %.0f deg, elevation %+.0f deg, zoom %d (%s %s/px)", v.index,
-                  from.c_str(), v.azimuth_deg, v.elevation_deg, v.zoom_index,
+    std::snprintf(title, sizeof title, "view %d%s: azimuth %s, elevation %s, zoom %d (%s %s/px)",
+                  v.index, from.c_str(), detail::format_degrees(v.azimuth_deg).c_str(),
+                  detail::format_degrees(v.elevation_deg, true).c_str(), v.zoom_index,
                   detail::format_number(v.footprint).c_str(), unit_or_units(result_).c_str());
     ImageBuf sheet = blank;
-    detail::draw_title(sheet, title);
+    detail::draw_title(sheet, detail::with_minus_sign(title));
     IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, painted.image);
-    detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, painted.anchors, 14,
-                                30);
+    const std::string unit = unit_or_units(result_);
+    detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, frame.height,
+                                painted.anchors, 14, 30, {detail::view_scale_bar_box(shown, unit)});
+    detail::draw_view_scale_bar(sheet, 0, detail::kTitleHeight, shown, unit);
     return sheet;
 }
 
@@ -274,24 +281,28 @@ std::string PictureWriter::mosaic(std::size_t z) {
             const int y =
                 detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - tile.height) / 2;
             IBA::paste(sheet, x, y, 0, 0, painted[slot].image);
-            detail::draw_region_numbers(sheet, x, y, tile.width, painted[slot].anchors, 10, 4);
+            detail::draw_region_numbers(sheet, x, y, tile.width, tile.height, painted[slot].anchors,
+                                        10, 4);
             if (!rotary) {
                 char label[48];
-                std::snprintf(label, sizeof label, "%.0f/%+.0f", pv.view.azimuth_deg,
-                              pv.view.elevation_deg);
+                std::snprintf(label, sizeof label, "%s/%s",
+                              detail::format_degrees(pv.view.azimuth_deg).c_str(),
+                              detail::format_degrees(pv.view.elevation_deg, true).c_str());
                 detail::draw_text(sheet, x + 3, y + 11, label, 10, detail::kText);
             }
         });
     if (rotary) {
         for (int c = 0; c < plan.columns; ++c) {
             char b[32];
-            std::snprintf(b, sizeof b, "az %.0f", c * plan.options.azimuth_step_deg);
+            std::snprintf(b, sizeof b, "az %s",
+                          detail::format_degrees(c * plan.options.azimuth_step_deg).c_str());
             detail::draw_text(sheet, kRowLabel + c * (t + kGap) + t / 2, detail::kTitleHeight + 13,
                               b, 11, detail::kText, IBA::TextAlignX::Center);
         }
         for (std::size_t r = 0; r < plan.options.elevations_deg.size(); ++r) {
             char b[32];
-            std::snprintf(b, sizeof b, "el %+.0f", plan.options.elevations_deg[r]);
+            std::snprintf(b, sizeof b, "el %s",
+                          detail::format_degrees(plan.options.elevations_deg[r], true).c_str());
             detail::draw_text(
                 sheet, 4,
                 detail::kTitleHeight + kColLabel + static_cast<int>(r) * (t + kGap) + t / 2 + 4, b,
@@ -359,12 +370,12 @@ std::string view_file_stem(const View& v) {
 
 PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                              const AnalysisResult& result, const ExportOptions& options,
-                             const Orientation& orientation, const std::string& reference_name,
+                             const Orientation& orientation, const PictureCaption& caption,
                              const AnalysisObserver& observer) {
     PictureOutput out;
     if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size())
         return out;
-    PictureWriter writer(reference, result, options, orientation, reference_name);
+    PictureWriter writer(reference, result, options, orientation, caption);
     writer.write_views(folder, out, observer);
     if (observer.stage) observer.stage("mosaics");
     const std::size_t zooms = result.sweep.zooms.size();

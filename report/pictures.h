@@ -8,6 +8,12 @@
 //   mosaic_z<k>.png              every view of zoom k, azimuth across, elevation down
 //   atlas.png                    the atlas (zoom 0) from six directions along the axes
 //
+// Every view panel, close-up and per-view picture carries a scale bar in the mesh unit
+// (report/detail/scale_bar.h); atlas.png a footer naming both inputs, the date, the fit and the
+// floors with their sources (report/detail/footer.h), so a picture cited alone says what it
+// shows. Text is UTF-8 ("°", "²", "−"); region numbers keep off each other and off captions
+// (report/detail/labels.h); a missing-surface region is given its area, no depth.
+//
 // Every picture draws the orientation's up up (report/orientation.h): superior for a surface
 // in a patient space, else +z or what --up says; the sweep's views are only rolled for it.
 //
@@ -56,16 +62,23 @@ struct PictureOutput {
 /// Best views kept for the report page, at most (the largest regions' first).
 inline constexpr std::size_t kMaxBestViews = 24;
 
+/// What atlas.png's title and footer name (the footer also holds the fit and the floors).
+struct PictureCaption {
+    std::string reference_name;  ///< the file name, or "" ("the reference")
+    std::string examined_name;   ///< the file name, or ""
+    std::string date;            ///< of the run; "" → the time the pictures are drawn (UTC)
+};
+
 /// Writes the pictures above into the folder, drawn with `orientation`'s up up and its
-/// directions' names; `reference_name` (the file name, or "") titles atlas.png. `observer`
-/// hears items for each per-view picture (in the stage its caller announced), then the stages
-/// "mosaics" (items: each zoom) and "atlas.png".
+/// directions' names; `caption` titles atlas.png and fills its footer. `observer` hears items
+/// for each per-view picture (in the stage its caller announced), then the stages "mosaics"
+/// (items: each zoom) and "atlas.png".
 /// \throw IoError, DeviceError (rendering).
 [[nodiscard]] PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                                            const AnalysisResult& result,
                                            const ExportOptions& options,
                                            const Orientation& orientation,
-                                           const std::string& reference_name = {},
+                                           const PictureCaption& caption = {},
                                            const AnalysisObserver& observer = {});
 
 }  // namespace glint

@@ -59,6 +59,14 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         {"centroid", vec_json(r.centroid)},
         {"evidence", r.evidence},
         {"best_view", r.best_view}};
+    if (r.kind == RegionKind::MissingSurface) {
+        // The examined scan holds no surface there: a depth or volume would measure to
+        // nothing, so none is given (its area and kind are what is known).
+        j["peak_depth"] = nullptr;
+        j["mean_depth"] = nullptr;
+        j["volume"] = nullptr;
+        j["depth_note"] = std::string(kMissingSurfaceNote);
+    }
     if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {
         const auto& v = plan.views[static_cast<std::size_t>(r.best_view)].view;
         j["best_view_azimuth_deg"] = v.azimuth_deg;
@@ -444,13 +452,15 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     stage("report page");
     ReportPageData page = page_data.get();
     stage("pictures");
-    std::string reference_name;
-    for (const auto& in : record.inputs)
-        if (in.role == "reference" && !in.path.empty())
-            reference_name = in.path.filename().string();
-    const PictureOutput pictures =
-        write_pictures(folder, reference, result, exports, run_orientation(record, exports),
-                       reference_name, observer);
+    PictureCaption caption;
+    for (const auto& in : record.inputs) {
+        // a file's name; a generated surface's description ("phantom sphere ico 4")
+        const std::string name = in.path.empty() ? in.description : in.path.filename().string();
+        if (in.role == "reference") caption.reference_name = name;
+        if (in.role == "examined") caption.examined_name = name;
+    }
+    const PictureOutput pictures = write_pictures(
+        folder, reference, result, exports, run_orientation(record, exports), caption, observer);
     stage("report.html");
     write_file_atomically(folder.file("report.html"),
                           report_html(std::move(page), json_text, pictures));

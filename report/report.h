@@ -27,6 +27,11 @@
 
 namespace glint {
 
+/// Why a "missing surface" region has no depth or volume (report.json's depth_note; its
+/// peak_depth, mean_depth and volume are null): the examined scan holds no surface there.
+inline constexpr std::string_view kMissingSurfaceNote =
+    "no examined surface there: no depth or volume to measure";
+
 /// SHA-256 of a file as lowercase hex. \throw IoError.
 [[nodiscard]] std::string sha256_file(const std::filesystem::path& path);
 

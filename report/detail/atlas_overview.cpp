@@ -1,6 +1,9 @@
 #include "report/detail/atlas_overview.h"
 
 #include "render/view.h"
+#include "report/detail/footer.h"
+#include "report/detail/labels.h"
+#include "report/detail/scale_bar.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,31 +67,39 @@ std::vector<View> direction_views(const Mesh& mesh, const Orientation& o) {
     return views;
 }
 
-// "from anterior (az 270, el +0 deg)"; the panel from up also says "(top)" when up is stated.
+// "from anterior (az 270°, el +0°)"; the panel from up also says "(top)" when up is stated.
 std::string panel_caption(const Orientation& o, const View& v) {
     const Vec3d from = v.camera.world_from_camera.linear().col(2);
     const bool top = o.up_known && from.dot(o.up) > 0.999;
     const bool bottom = o.up_known && from.dot(o.up) < -0.999;
     char label[120];
-    std::snprintf(label, sizeof label, "from %s%s (az %.0f, el %+.0f deg)", o.name(from).c_str(),
+    std::snprintf(label, sizeof label, "from %s%s (az %s, el %s)", o.name(from).c_str(),
                   top      ? " (top)"
                   : bottom ? " (bottom)"
                            : "",
-                  v.azimuth_deg, v.elevation_deg);
-    return label;
+                  format_degrees(v.azimuth_deg).c_str(),
+                  format_degrees(v.elevation_deg, true).c_str());
+    return with_minus_sign(label);
 }
+
+constexpr int kCaptionFont = 13;
+
+// A line of text on a panel, in the panel's pixels.
+struct PanelText {
+    std::string text;
+    int x = 0;
+    int y = 0;  ///< baseline
+    IBA::TextAlignX align = IBA::TextAlignX::Left;
+};
 
 // The direction names at the panel's edges, as a radiologist's viewer puts them: what lies
 // up, left and right in the picture.
-void draw_edge_letters(ImageBuf& sheet, int x, int y, int size, const Orientation& o,
-                       const View& v) {
+std::vector<PanelText> edge_letters(int size, const Orientation& o, const View& v) {
     const auto& axes = v.camera.world_from_camera.linear();
-    draw_text(sheet, x + size / 2, y + 16, o.letter(axes.col(1)), 13, kDimText,
-              IBA::TextAlignX::Center, 2);
-    draw_text(sheet, x + 6, y + size / 2 + 5, o.letter(-axes.col(0)), 13, kDimText,
-              IBA::TextAlignX::Left, 2);
-    draw_text(sheet, x + size - 6, y + size / 2 + 5, o.letter(axes.col(0)), 13, kDimText,
-              IBA::TextAlignX::Right, 2);
+    return {
+        {with_minus_sign(o.letter(axes.col(1))), size / 2, 16, IBA::TextAlignX::Center},
+        {with_minus_sign(o.letter(-axes.col(0))), 6, size / 2 + 5, IBA::TextAlignX::Left},
+        {with_minus_sign(o.letter(axes.col(0))), size - 6, size / 2 + 5, IBA::TextAlignX::Right}};
 }
 
 // The direction a region faces: the mean of its vertices' normals; when they cancel out (a
@@ -122,15 +133,29 @@ View close_up_view(const Mesh& mesh, const SurfaceFields& fields, const FramingS
     return make_view(FramingSphere{r.centroid, radius}, spec);
 }
 
-// A painted panel with its label at the top left (close-ups) or the bottom left (the six
-// directions, whose top edge names the up direction).
-void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const std::string& label,
-           int min_pixels, bool label_below = false) {
+// A painted panel pasted at (x, y) with its caption at the top left (close-ups) or the bottom
+// left (the six directions, whose top edge names the up direction), shortened to fit; its
+// scale bar at the bottom right; `letters` at its edges; and the region numbers placed off
+// all of them.
+void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const View& view,
+           const std::string& caption, const std::string& unit, bool caption_below,
+           const std::vector<PanelText>& letters = {}) {
+    const int w = painted.image.spec().width, h = painted.image.spec().height;
     IBA::paste(sheet, x, y, 0, 0, painted.image);
-    draw_region_numbers(sheet, x, y, painted.image.spec().width, painted.anchors, 13,
-                        static_cast<std::size_t>(min_pixels));
-    const int label_y = label_below ? y + painted.image.spec().height - 8 : y + 18;
-    draw_text(sheet, x + 8, label_y, label, 13, kText, IBA::TextAlignX::Left, 2);
+    const PixelBox bar = view_scale_bar_box(view, unit);
+    // the caption stops short of the scale bar when both share the bottom edge
+    const int caption_room = (caption_below ? bar.x0 : w) - 16;
+    std::vector<PanelText> texts = letters;
+    texts.push_back({fit_text(caption, kCaptionFont, caption_room), 8, caption_below ? h - 8 : 18,
+                     IBA::TextAlignX::Left});
+    std::vector<PixelBox> reserved{bar};
+    for (const auto& t : texts)
+        reserved.push_back(text_box(t.text, kCaptionFont, t.x, t.y, t.align));
+    draw_region_numbers(sheet, x, y, w, h, painted.anchors, 13, 20, reserved);
+    for (const auto& t : texts)
+        draw_text(sheet, x + t.x, y + t.y, t.text, kCaptionFont,
+                  &t == &texts.back() ? kText : kDimText, t.align, 2);
+    draw_view_scale_bar(sheet, x, y, view, unit);
 }
 
 }  // namespace
@@ -153,21 +178,25 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
     renderer.render_views(views, [&](std::size_t k, const Frame& frame) {
         const int x = static_cast<int>(k % 3) * kPanel;
         const int y = kTitleHeight + static_cast<int>(k / 3) * kPanel;
-        place(sheet, x, y, paint_surface(*in.mesh, frame, views[k], *in.fields, style),
-              panel_caption(o, views[k]), 20, true);
-        draw_edge_letters(sheet, x, y, kPanel, o, views[k]);
+        place(sheet, x, y, paint_surface(*in.mesh, frame, views[k], *in.fields, style), views[k],
+              panel_caption(o, views[k]), in.unit, true, edge_letters(kPanel, o, views[k]));
     });
     const int y0 = kTitleHeight + 2 * kPanel + 6;
     renderer.render_views(close, [&](std::size_t k, const Frame& frame) {
         const Region& r = (*in.regions)[k];
         char label[120];
-        std::snprintf(label, sizeof label, "close-up %d: %s %+.3g %s", r.id,
-                      to_string(r.kind).c_str(), r.peak_depth, in.unit.c_str());
+        if (r.kind == RegionKind::MissingSurface)  // no depth: the examined scan has none there
+            std::snprintf(label, sizeof label, "close-up %d: missing surface", r.id);
+        else
+            std::snprintf(label, sizeof label, "close-up %d: %s %s %s", r.id,
+                          to_string(r.kind).c_str(), format_number(r.peak_depth, true).c_str(),
+                          in.unit.c_str());
         const int x = static_cast<int>(k) * kCloseUp;
-        place(sheet, x, y0, paint_surface(*in.mesh, frame, close[k], *in.fields, style), label, 20);
+        place(sheet, x, y0, paint_surface(*in.mesh, frame, close[k], *in.fields, style), close[k],
+              label, in.unit, false);
         draw_box(sheet, x, y0, x + kCloseUp - 1, y0 + kCloseUp - 1, kDimText, false);
     });
-    return encode_png(sheet);
+    return encode_png(in.footer.empty() ? sheet : with_footer(sheet, in.footer));
 }
 
 }  // namespace glint::detail

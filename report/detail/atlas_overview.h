@@ -30,6 +30,8 @@ struct OverviewInput {
     std::string unit;
     /// Which way is up and what directions are called; null: +z up, axes named by axis.
     const Orientation* orientation = nullptr;
+    /// Lines below the picture (report/detail/footer.h); none: no footer.
+    std::vector<std::string> footer;
 };
 
 /// Close-ups shown, at most (the largest regions).

@@ -5,6 +5,7 @@
 #include <OpenImageIO/filesystem.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -31,17 +32,6 @@ constexpr std::array<float, 27> kRdBu = {
     214 / 255.f, 96 / 255.f,  77 / 255.f,   // #d6604d
     178 / 255.f, 24 / 255.f,  43 / 255.f,   // #b2182b
 };
-
-// note: DejaVu comes with fonts-dejavu-core (tools/setup installs it); OIIO searches
-// /usr/share/fonts only one level deep, so the full path is given.
-const std::string& font() {
-    static const std::string path = [] {
-        for (const char* c : {"/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"})
-            if (fs::exists(c)) return std::string(c);
-        return std::string();
-    }();
-    return path;
-}
 
 }  // namespace
 
@@ -99,33 +89,6 @@ ImageBuf canvas(int width, int height, Rgb colour) {
     return buf;
 }
 
-bool has_font() { return !font().empty(); }
-
-void draw_text(ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour,
-               IBA::TextAlignX align, int shadow) {
-    if (font().empty() || text.empty()) return;
-    // note: OpenImageIO 2.4's render_text aborts (an assertion in its pixel iterator) on text
-    // that reaches below the image; text that does not fit whole is not drawn.
-    const ROI box = IBA::text_size(text, size, font());
-    if (box.defined()) {
-        const int left = align == IBA::TextAlignX::Center  ? x - box.width() / 2
-                         : align == IBA::TextAlignX::Right ? x - box.width()
-                                                           : x;
-        const ROI image = dst.roi();
-        if (left + box.xbegin - shadow < image.xbegin || left + box.xend + shadow > image.xend ||
-            y + box.ybegin - shadow < image.ybegin || y + box.yend + shadow > image.yend)
-            return;
-    }
-    IBA::render_text(dst, x, y, text, size, font(), colour, align, IBA::TextAlignY::Baseline,
-                     shadow);
-}
-
-int text_width(std::string_view text, int size) {
-    if (font().empty()) return static_cast<int>(text.size()) * size * 6 / 10;
-    const ROI r = IBA::text_size(text, size, font());
-    return r.defined() ? r.width() : static_cast<int>(text.size()) * size * 6 / 10;
-}
-
 void draw_box(ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, bool fill) {
     IBA::render_box(dst, x0, y0, x1, y1, colour, fill);
 }
@@ -161,7 +124,29 @@ std::string format_number(double value, bool sign) {
     char buf[48];
     const double shown = std::abs(value) < 5e-13 ? 0.0 : value;
     std::snprintf(buf, sizeof buf, sign && shown != 0.0 ? "%+.3g" : "%.3g", shown);
-    return buf;
+    return with_minus_sign(buf);
+}
+
+std::string with_minus_sign(std::string text) {
+    // U+2212 MINUS SIGN: a hyphen reads as a dash next to a word.
+    for (std::size_t at = text.find('-'); at != std::string::npos; at = text.find('-', at + 3))
+        if (at == 0 || text[at - 1] == ' ' || text[at - 1] == '(' ||
+            (at >= 2 && text[at - 1] == 'e' &&
+             std::isdigit(static_cast<unsigned char>(text[at - 2]))))
+            text.replace(at, 1, "\u2212");
+    return text;
+}
+
+std::string picture_unit_suffix(std::string_view unit) {
+    if (unit == "deg") return "\u00b0";
+    return unit.empty() ? std::string() : " " + std::string(unit);
+}
+
+std::string format_degrees(double angle_deg, bool sign) {
+    char buf[48];
+    const double shown = std::abs(angle_deg) < 0.5 ? 0.0 : angle_deg;
+    std::snprintf(buf, sizeof buf, sign ? "%+.0f\u00b0" : "%.0f\u00b0", shown);
+    return with_minus_sign(buf);
 }
 
 }  // namespace glint::detail

@@ -1,7 +1,8 @@
 // Drawing for glint's pictures on OpenImageIO images (private to report/): text in DejaVu
 // Sans, the diverging colour map of the signed shape change, boxes, PNG encoding. Everything
-// is ImageBufAlgo (render_text, render_box, color_map, fill); only what OIIO lacks is written
-// by hand elsewhere (shading, hatching, region contours: report/detail/surface_paint.h).
+// but the text is ImageBufAlgo (render_box, color_map, fill); the text is FreeType's
+// (report/detail/text.cpp: OIIO 2.4's render_text mangles UTF-8); only what OIIO lacks is
+// written by hand elsewhere (shading, hatching, region contours: report/detail/surface_paint.h).
 #pragma once
 
 #include <OpenImageIO/imagebuf.h>
@@ -71,16 +72,27 @@ class DivergingTable {
 /// Whether the DejaVu font was found (text is decoration: without it pictures are unlabelled).
 [[nodiscard]] bool has_font();
 
-/// Text with its baseline-left (or the alignment given) at (x, y); `shadow` > 0 draws a dark
-/// halo of that radius so the text reads on any colour. ASCII only: OpenImageIO 2.4's
-/// render_text keeps 7 bits of each code point ("°" is drawn as "0", "±" as "1").
+/// Whether the font draws `c` (not its missing-glyph box).
+[[nodiscard]] bool font_has_glyph(char32_t c);
+
+/// The code points of UTF-8 text; a byte that starts no valid sequence becomes U+FFFD.
+[[nodiscard]] std::u32string decode_utf8(std::string_view text);
+
+/// UTF-8 text ("°", "²", "−", "×", "±") with its baseline-left (or the alignment given) at
+/// (x, y), drawn with FreeType (report/detail/text.cpp); `shadow` > 0 draws a dark halo of that
+/// radius so the text reads on any colour. Text that does not fit the image whole is not drawn.
 void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size,
                Rgb colour = kText,
                OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left,
                int shadow = 0);
 
-/// Width in pixels of `text` at `size` (an estimate when no font is found).
+/// Width in pixels of `text`'s ink at `size` (an estimate when no font is found).
 [[nodiscard]] int text_width(std::string_view text, int size);
+
+/// `text` if it is at most `max_width` pixels wide at `size`; else its longest start cut at a
+/// space that fits with "…" appended (a parenthesis cut away whole), or "" when not even one
+/// word fits.
+[[nodiscard]] std::string fit_text(const std::string& text, int size, int max_width);
 
 /// A box from (x0, y0) to (x1, y1) inclusive, filled or outlined.
 void draw_box(OIIO::ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, bool fill);
@@ -92,7 +104,18 @@ void draw_tag(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size
 /// \throw IoError with OIIO's message.
 [[nodiscard]] std::string encode_png(const OIIO::ImageBuf& image);
 
-/// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set.
+/// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set; negative
+/// numbers carry a minus sign (U+2212), not a hyphen.
 [[nodiscard]] std::string format_number(double value, bool sign = false);
+
+/// A unit as pictures write it: "deg" as "°" (no space before it), others after a space.
+[[nodiscard]] std::string picture_unit_suffix(std::string_view unit);
+
+/// An angle in whole degrees with the degree sign: "30°", "+30°", "−15°".
+[[nodiscard]] std::string format_degrees(double angle_deg, bool sign = false);
+
+/// `text` with each hyphen that stands for minus (at the start, after a space, "(" or an
+/// exponent's "e" after a digit) written as U+2212.
+[[nodiscard]] std::string with_minus_sign(std::string text);
 
 }  // namespace glint::detail

@@ -1,5 +1,7 @@
 #include "report/detail/legend.h"
 
+#include "report/detail/surface_paint.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -16,7 +18,7 @@ constexpr int kLine = 18;  // px per text line
 constexpr int kBarWidth = 20;
 constexpr int kMinBar = 120;
 constexpr int kMaxBar = 260;
-constexpr int kSwatches = 3 * kLine + 14;
+constexpr int kSwatches = 4 * kLine + 20;
 
 // The bar, high values at the top: pixel row of value v.
 int bar_row(double v, double limit, int top, int height) {
@@ -76,9 +78,21 @@ void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
     draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);
     draw_tag(dst, x + s + 14, y2 + s / 2, "1", kFont - 2);
     draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kFont);
+    // An open surface seen from behind: its normals face away, so the light leaves it dark.
+    const int y3 = y2 + kLine + 6;
+    draw_box(dst, x, y3, x + s, y3 + s, back_face_colour(), true);
+    draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kFont);
 }
 
 }  // namespace
+
+std::string region_legend_line(const Region& r, const std::string& unit) {
+    const std::string area = format_number(r.area) + " " + unit + "\u00b2";
+    if (r.kind == RegionKind::MissingSurface)
+        return std::to_string(r.id) + "  missing surface, " + area;
+    return std::to_string(r.id) + "  " + to_string(r.kind) + "  " +
+           format_number(r.peak_depth, true) + " " + unit + ", " + area;
+}
 
 int legend_min_height(const LegendContent& c) {
     // (two lines each for the range and the shape floor when they wrap)
@@ -103,11 +117,11 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     draw_swatches(dst, x0, cy, c.roi);
     cy += kSwatches + kLine;
     std::vector<std::string> lines = c.lines;
-    lines.insert(lines.begin(), "range +/-" + format_number(c.limit) + " " + c.unit +
+    lines.insert(lines.begin(), "range \u00b1" + format_number(c.limit) + " " + c.unit +
                                     (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
     if (c.shape_floor > 0)
         lines.insert(lines.begin() + 1,
-                     "shape floor +/-" + format_number(c.shape_floor) + " " + c.unit +
+                     "shape floor \u00b1" + format_number(c.shape_floor) + " " + c.unit +
                          (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
     for (const auto& l : lines) {
         // A line too wide for the panel goes on two, its parenthesis on the second.
@@ -126,8 +140,11 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     cy += 4;
     for (std::size_t i = 0; i < c.regions.size(); ++i) {
         if (cy + 2 * kLine > y + height && i + 1 < c.regions.size()) {
+            // Regions come largest first: what is cut is the smaller ones, listed in full
+            // where there is room for them.
             draw_text(dst, x0, cy,
-                      "... " + std::to_string(c.regions.size() - i) + " more (regions.csv)",
+                      "+ " + std::to_string(c.regions.size() - i) +
+                          " smaller: all in report.html, regions.csv",
                       kFont - 1);
             break;
         }

@@ -3,12 +3,17 @@
 // and region outlines, the thresholds and floors, and the regions by number.
 #pragma once
 
+#include "decision/regions.h"
 #include "report/detail/canvas.h"
 
 #include <string>
 #include <vector>
 
 namespace glint::detail {
+
+/// A region's line in the legend: "3  dent  −0.41 mm, 12.3 mm²"; a missing-surface region
+/// has no depth to give (report.json's depth is null): "5  missing surface, 2.1 mm²".
+[[nodiscard]] std::string region_legend_line(const Region& region, const std::string& unit);
 
 struct LegendContent {
     double limit = 1.0;        ///< colour range ±limit, mesh units

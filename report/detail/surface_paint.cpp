@@ -165,6 +165,11 @@ std::vector<RegionAnchor> anchors_of(const Frame& frame, const std::vector<std::
 
 }  // namespace
 
+Rgb back_face_colour() {
+    const Rgb c = DivergingTable::get()(0.0f, 1.0);
+    return {c[0] * kAmbientShade, c[1] * kAmbientShade, c[2] * kAmbientShade};
+}
+
 PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& view,
                              const SurfaceFields& fields, const PaintStyle& style) {
     const std::size_t nv = mesh.vertex_count();
@@ -197,7 +202,7 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
         if (edge[p]) base = kOutline;
         // Lambert with an ambient part: the form stays visible where the light grazes.
         const float lambert = std::max(0.0f, normal_in_camera(frame, view, p).dot(light));
-        const float shade = edge[p] ? 1.0f : 0.32f + 0.68f * lambert;
+        const float shade = edge[p] ? 1.0f : kAmbientShade + (1.0f - kAmbientShade) * lambert;
         for (int k = 0; k < 3; ++k)
             c[k] = to_byte(cover * base[k] * shade + (1.0f - cover) * style.background[k]);
     }
@@ -207,22 +212,6 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
                          rgb.data());
     out.anchors = anchors_of(frame, px.region);
     return out;
-}
-
-void draw_region_numbers(ImageBuf& dst, int x0, int y0, int width,
-                         const std::vector<RegionAnchor>& anchors, int font_size,
-                         std::size_t min_pixels) {
-    for (const auto& a : anchors) {
-        if (a.pixels < min_pixels) continue;
-        const std::string text = std::to_string(a.id);
-        const int half = (text_width(text, font_size) + font_size / 2 + 2) / 2 + 3;
-        // Beside the region (right, else left), so the number hides none of its colours;
-        // inside it only when it fills the picture's width.
-        int x = a.max_x + half;
-        if (x + half > width) x = a.min_x - half;
-        if (x - half < 0) x = a.x;
-        draw_tag(dst, x0 + x, y0 + a.y, text, font_size);
-    }
 }
 
 }  // namespace glint::detail

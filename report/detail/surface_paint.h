@@ -26,6 +26,13 @@
 
 namespace glint::detail {
 
+/// The shade of a surface the light does not reach: the back of an open surface (its normals
+/// face away from the viewer) is drawn this dark, which the legend shows.
+inline constexpr float kAmbientShade = 0.32f;
+
+/// The colour of an unchanged surface seen from behind: the legend's swatch.
+[[nodiscard]] Rgb back_face_colour();
+
 /// Per-vertex fields a picture shows (each one value per reference vertex).
 struct SurfaceFields {
     std::span<const float> distance;       ///< signed shape change, mesh units (NaN = unknown)
@@ -60,12 +67,5 @@ struct PaintStyle {
 /// \pre fields sized as the mesh's vertices; frame from a renderer of `mesh`.
 [[nodiscard]] PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& view,
                                            const SurfaceFields& fields, const PaintStyle& style);
-
-/// Draws each anchor with at least `min_pixels` pixels as a numbered tag beside its region's
-/// bounding box (right, else left; on the anchor when neither fits the picture's `width`), for
-/// a picture pasted at (x0, y0).
-void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width,
-                         const std::vector<RegionAnchor>& anchors, int font_size,
-                         std::size_t min_pixels);
 
 }  // namespace glint::detail

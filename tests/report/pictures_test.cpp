@@ -9,6 +9,7 @@
 #include "render/renderer.h"
 #include "report/detail/canvas.h"
 #include "report/detail/legend.h"
+#include "report/detail/scale_bar.h"
 #include "report/detail/surface_paint.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -116,6 +117,39 @@ TEST(SurfacePaint, RegionsAreOutlinedAndAnchoredInside) {
     EXPECT_LE(dark, 3);
     const Rgb inside = pixel(s.painted.image, a.x, a.y);
     EXPECT_GT(inside[0] + inside[1] + inside[2], 0.9f) << "the region's inside keeps its colour";
+}
+
+// The back of an open surface (a square facing +z, seen from below) is drawn dark, in the
+// colour of the legend's swatch for it.
+TEST(Legend, ShowsTheDarkBackOfAnOpenSurfaceAsPictured) {
+    Mesh square;
+    square.positions = {{-5, -5, 0}, {5, -5, 0}, {5, 5, 0}, {-5, 5, 0}};
+    square.triangles = {{0, 1, 2}, {0, 2, 3}};
+    square.normals.assign(4, Vec3f(0, 0, 1));
+    square.unit = "mm";
+    const View below = make_view(square, ViewSpec{.azimuth_deg = 0,
+                                                  .elevation_deg = -90,
+                                                  .width = 64,
+                                                  .height = 64,
+                                                  .up = Vec3d(0, 1, 0)});
+    Renderer renderer(square, RenderOptions{.backend = Backend::Embree});
+    const std::vector<float> distance(4, 0.0f);
+    const std::vector<std::int32_t> region(4, 0);
+    const std::vector<std::uint8_t> seen(4, 1);
+    const auto painted =
+        detail::paint_surface(square, renderer.render(below), below, {distance, region, seen}, {});
+    const Rgb swatch = pixel(detail::canvas(1, 1, detail::back_face_colour()), 0, 0);
+    EXPECT_EQ(pixel(painted.image, 32, 32), swatch);
+    EXPECT_LT(swatch[0], 0.4f) << "dark";
+    // The legend holds a block of that colour (its swatch, 14 × 14 pixels).
+    detail::LegendContent legend;
+    legend.unit = "mm";
+    const OIIO::ImageBuf sheet = detail::framed_sheet(10, 10, "", legend);
+    int block = 0;
+    for (int y = 0; y < sheet.spec().height; ++y)
+        for (int x = 0; x < sheet.spec().width; ++x)
+            if (pixel(sheet, x, y) == swatch) ++block;
+    EXPECT_GE(block, 12 * 12);
 }
 
 TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
@@ -250,13 +284,19 @@ TEST(Pictures, ASweepWritesAtlasMosaicAndViewsWithTheDentInBlue) {
         ASSERT_TRUE(img.read()) << f << ": " << img.geterror();
         // The dent shows blue: pixels clearly bluer than red (the legend's bar has some too,
         // so the picture must hold more than the bar's lower half).
-        int blue = 0;
+        // Every panel, close-up and view carries a scale bar in its own colour.
+        const Rgb bar_colour = pixel(detail::canvas(1, 1, detail::kScaleBarColour), 0, 0);
+        int blue = 0, scale_bar = 0;
         for (int y = 0; y < img.spec().height; ++y)
             for (int x = 0; x < img.spec().width - detail::kLegendWidth; ++x) {
                 const Rgb c = pixel(img, x, y);
                 if (c[2] > c[0] + 0.15f) ++blue;
+                if (c == bar_colour) ++scale_bar;
             }
         EXPECT_GT(blue, 20) << f;
+        if (f != "mosaic_z0.png") {
+            EXPECT_GT(scale_bar, 4 * 10) << f;
+        }
     }
 }
 

@@ -109,6 +109,20 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
               ref.vertex_count() / 2);
     EXPECT_EQ(r["views"].size(), 16u);
     EXPECT_GT(r["timings_s"]["sweep_total"].get<double>(), 0.0);
+    EXPECT_LT(z["regions"][0]["peak_depth"].get<double>(), 0.0);
+    EXPECT_LT(z["regions"][0]["volume"].get<double>(), 0.0);
+    EXPECT_FALSE(z["regions"][0].contains("depth_note"));
+
+    // The same region as "missing surface": its area and kind, no depth or volume.
+    AnalysisResult missing = result.analysis;
+    missing.decisions[0].regions.regions[0].kind = RegionKind::MissingSurface;
+    const nlohmann::json m = nlohmann::json::parse(report_json(ref, missing, options, record));
+    const auto& region = m["zooms"][0]["regions"][0];
+    EXPECT_EQ(region["kind"], "missing surface");
+    EXPECT_GT(region["area"].get<double>(), 0.0);
+    for (const char* key : {"peak_depth", "mean_depth", "volume"})
+        EXPECT_TRUE(region[key].is_null()) << key;
+    EXPECT_EQ(region["depth_note"], std::string(kMissingSurfaceNote));
 }
 
 // --atlas-formats / ExportOptions::atlas_files: a list of the three names, each at most once.

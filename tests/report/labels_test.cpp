@@ -1,0 +1,86 @@
+// Region numbers placed without collisions (report/detail/labels.h): off each other, off
+// captions, edge letters and the scale bar, inside the picture, with a leader line when moved.
+#include "report/detail/labels.h"
+
+#include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+detail::RegionAnchor anchor(std::int32_t id, int x, int y, int half, std::size_t pixels) {
+    return {.id = id,
+            .x = x,
+            .y = y,
+            .pixels = pixels,
+            .min_x = x - half,
+            .min_y = y - half,
+            .max_x = x + half,
+            .max_y = y + half};
+}
+
+// Three small regions side by side and one more below them: each one's first choice (right of
+// its box) is where its neighbour's number or region is, and a caption covers the spot right
+// of the third.
+TEST(Labels, CollidingNumbersAreSpreadOffEachOtherAndOffReservedBoxes) {
+    const std::vector<detail::RegionAnchor> anchors{
+        anchor(1, 100, 100, 4, 90), anchor(2, 112, 100, 4, 80), anchor(3, 124, 100, 4, 70),
+        anchor(4, 112, 110, 4, 60), anchor(5, 300, 300, 2, 3)};  // 5: too small to number
+    const detail::PixelBox caption{130, 90, 240, 112};
+    const std::vector<detail::PixelBox> reserved{caption};
+    const auto placed = detail::place_labels(anchors, 320, 320, 13, 20, reserved);
+    ASSERT_EQ(placed.size(), 4u);
+    EXPECT_EQ(placed[0].id, 1) << "largest region first";
+    for (std::size_t i = 0; i < placed.size(); ++i) {
+        EXPECT_TRUE(placed[i].box.inside(320, 320)) << placed[i].id;
+        EXPECT_FALSE(placed[i].box.overlaps(caption)) << placed[i].id;
+        for (std::size_t j = i + 1; j < placed.size(); ++j)
+            EXPECT_FALSE(placed[i].box.overlaps(placed[j].box))
+                << placed[i].id << " and " << placed[j].id;
+    }
+}
+
+// Everything beside the region is taken (a caption around it): its number moves further out
+// and a leader line joins it to the region's anchor.
+TEST(Labels, ANumberMovedAwayGetsALeaderToItsRegion) {
+    const detail::PixelBox around{60, 60, 140, 140};
+    const auto placed =
+        detail::place_labels({anchor(3, 100, 100, 4, 90)}, 320, 320, 13, 20, {around});
+    ASSERT_EQ(placed.size(), 1u);
+    EXPECT_FALSE(placed[0].box.overlaps(around));
+    EXPECT_TRUE(placed[0].has_leader);
+    EXPECT_EQ(placed[0].anchor_x, 100);
+    EXPECT_EQ(placed[0].anchor_y, 100);
+    // The nearest free ring: within a few tag heights of the blocked box.
+    EXPECT_LT(std::max(placed[0].box.x0 - around.x1, around.x0 - placed[0].box.x1), 40);
+}
+
+TEST(Labels, ANumberNearTheEdgeStaysInsideThePicture) {
+    const auto placed = detail::place_labels({anchor(7, 3, 3, 2, 50), anchor(8, 316, 316, 2, 50)},
+                                             320, 320, 13, 20, {});
+    ASSERT_EQ(placed.size(), 2u);
+    for (const auto& l : placed) EXPECT_TRUE(l.box.inside(320, 320)) << l.id;
+    EXPECT_FALSE(placed[0].has_leader);
+}
+
+TEST(Labels, TextBoxesCoverWhatIsDrawn) {
+    const auto left = detail::text_box("from anterior", 13, 8, 300);
+    EXPECT_LE(left.x0, 8);
+    EXPECT_GE(left.x1, 8 + detail::text_width("from anterior", 13));
+    EXPECT_LE(left.y0, 300 - 10);
+    EXPECT_GE(left.y1, 300);
+    const auto right = detail::text_box("R", 13, 314, 165, OIIO::ImageBufAlgo::TextAlignX::Right);
+    EXPECT_GE(right.x1, 314);
+    EXPECT_LE(right.x0, 314 - detail::text_width("R", 13));
+}
+
+TEST(Text, TitlesTooWideAreCutAtAWordWithAnEllipsis) {
+    const std::string title = "from anterior-superior-left (az 270\u00b0, el +30\u00b0)";
+    EXPECT_EQ(detail::fit_text(title, 13, 2000), title);
+    const std::string cut = detail::fit_text(title, 13, detail::text_width(title, 13) - 5);
+    EXPECT_EQ(cut, "from anterior-superior-left\u2026") << "the parenthesis goes whole";
+    EXPECT_LE(detail::text_width(cut, 13), detail::text_width(title, 13) - 5);
+    EXPECT_EQ(detail::fit_text(title, 13, 5), "");
+}
+
+}  // namespace
+}  // namespace glint
