@@ -359,14 +359,20 @@ std::string regions_csv(const AnalysisResult& result) {
                 az = plan.views[static_cast<std::size_t>(r.best_view)].view.azimuth_deg;
                 el = plan.views[static_cast<std::size_t>(r.best_view)].view.elevation_deg;
             }
+            // A missing-surface region has no depth and no volume (the examined scan holds no
+            // surface there): empty cells, as report.json's nulls.
+            char depths[120] = ",,";
+            if (r.kind != RegionKind::MissingSurface)
+                std::snprintf(depths, sizeof depths, "%.6g,%.6g,%.6g", r.peak_depth, r.mean_depth,
+                              r.volume);
             char row[700];
             std::snprintf(
                 row, sizeof row,
-                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n",
-                z, plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
-                peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, r.peak_depth,
-                r.mean_depth, r.volume, r.missing_fraction, r.centroid.x(), r.centroid.y(),
-                r.centroid.z(), r.best_view, az, el);
+                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%s,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
+                plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
+                peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, depths,
+                r.missing_fraction, r.centroid.x(), r.centroid.y(), r.centroid.z(), r.best_view, az,
+                el);
             csv << row;
         }
     }

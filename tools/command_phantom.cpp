@@ -109,8 +109,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--damage", args.damages,
                     "Damage spec, repeatable (see README: dent:center=x,y,z;radius=R;depth=D)");
     cmd->add_option("--pose", args.pose, "Rigid pose 'rx,ry,rz,tx,ty,tz' (degrees, mesh units)");
-    cmd->add_option("-o,--output", args.output,
-                    "Output mesh (.ply or .vtk); a .json sidecar is written beside it")
+    cmd->add_option(
+           "-o,--output", args.output,
+           "Output mesh (.ply, .vtk, .vtp, .stl, .obj, .off); a .json sidecar is written beside it")
         ->required();
     cmd->callback([] { run(args); });
 }

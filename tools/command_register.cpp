@@ -113,7 +113,8 @@ void setup(CLI::App& app) {
            "Renamed: --fit-roi")
         ->group("");
     cmd->add_option("-o,--output", a.output, "fit.json")->required();
-    cmd->add_option("--apply", a.apply, "Also write the fitted examined mesh (.ply or .vtk)");
+    cmd->add_option("--apply", a.apply,
+                    "Also write the fitted examined mesh (.ply, .vtk, .vtp, .stl, .obj, .off)");
     cmd->callback([] { run(a); });
 }
 

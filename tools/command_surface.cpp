@@ -63,7 +63,8 @@ void setup(CLI::App& app) {
                     "Volume: .mhd/.raw, .mha, .nii, .nii.gz, .nrrd, .nhdr or a DICOM series folder")
         ->required();
     add_surface_flags(*cmd, a.options, "--roi");
-    cmd->add_option("-o,--output", a.output, "Surface mesh to write (.ply, .stl, .obj, .vtk)");
+    cmd->add_option("-o,--output", a.output,
+                    "Surface mesh to write (.ply, .vtk, .vtp, .stl, .obj, .off)");
     cmd->callback([] { run(a); });
 }
 

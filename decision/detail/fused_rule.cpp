@@ -4,6 +4,7 @@
 
 #include "mesh/components.h"
 #include "mesh/error.h"
+#include "mesh/units.h"
 
 #include <algorithm>
 #include <cmath>
@@ -287,15 +288,16 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
     }
     const MetricDescriptor& m = describe(e.metric);
     for (auto& r : regions.regions) {
-        char text[256];
+        char text[400];
         if (r.kind == RegionKind::Dent && r.missing_fraction > 0.5)
             std::snprintf(text, sizeof text,
                           "surface gone: no examined surface on %.0f%% of it, a hole the examined "
-                          "scan covers around; the reference stood up to %.3g above the hole's "
+                          "scan covers around; the reference stood up to %s above the hole's "
                           "rim (a loss); %s %.2f%s ≥ floor %.2f%s",
-                          100.0 * r.missing_fraction, -r.peak_depth, std::string(m.name).c_str(),
-                          r.max_value, std::string(m.symbol).c_str(), normal.value,
-                          std::string(m.symbol).c_str());
+                          100.0 * r.missing_fraction,
+                          with_unit(-r.peak_depth, e.unit, 1, "%.3g").c_str(),
+                          std::string(m.name).c_str(), r.max_value, std::string(m.symbol).c_str(),
+                          normal.value, std::string(m.symbol).c_str());
         else if (r.kind == RegionKind::MissingSurface)
             std::snprintf(
                 text, sizeof text, "no examined surface on %.0f%% of it; %s %.2f%s ≥ floor %.2f%s",
@@ -304,10 +306,11 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
         else
             std::snprintf(
                 text, sizeof text,
-                "shape change %+.3g beyond tessellation (floor %.3g) and %s %.2f%s (floor %.2f%s)",
-                static_cast<double>(peak[static_cast<std::size_t>(r.id)]), shape.value,
-                std::string(m.name).c_str(), r.max_value, std::string(m.symbol).c_str(),
-                normal.value, std::string(m.symbol).c_str());
+                "shape change %s beyond tessellation (floor %s) and %s %.2f%s (floor %.2f%s)",
+                with_unit(peak[static_cast<std::size_t>(r.id)], e.unit, 1, "%+.3g").c_str(),
+                with_unit(shape.value, e.unit, 1, "%.3g").c_str(), std::string(m.name).c_str(),
+                r.max_value, std::string(m.symbol).c_str(), normal.value,
+                std::string(m.symbol).c_str());
         r.evidence = text;
     }
 }

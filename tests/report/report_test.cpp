@@ -8,6 +8,7 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/phantom.h"
+#include "mesh/units.h"
 #include "mesh/write.h"
 
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <numeric>
+#include <sstream>
 #include <string>
 
 namespace glint {
@@ -123,6 +125,37 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     for (const char* key : {"peak_depth", "mean_depth", "volume"})
         EXPECT_TRUE(region[key].is_null()) << key;
     EXPECT_EQ(region["depth_note"], std::string(kMissingSurfaceNote));
+
+    // regions.csv says the same: the dent's depths and volume as numbers, the missing surface's
+    // cells empty (peak_depth, mean_depth, volume are the 10th to 12th columns).
+    const auto cells = [](const std::string& csv) {
+        std::istringstream lines(csv);
+        std::string header, row;
+        std::getline(lines, header);
+        std::getline(lines, row);
+        std::vector<std::string> out;
+        std::istringstream fields(row);
+        for (std::string f; std::getline(fields, f, ',');) out.push_back(f);
+        return std::make_pair(header, out);
+    };
+    const auto [header, dent_row] = cells(regions_csv(result.analysis));
+    const std::string& unit = result.analysis.unit;
+    EXPECT_NE(header.find(",peak_depth" + unit_suffix(unit) + ",mean_depth" + unit_suffix(unit) +
+                          ",volume" + unit_suffix(unit, 3) + ","),
+              std::string::npos)
+        << header;
+    ASSERT_GE(dent_row.size(), 12u);
+    EXPECT_LT(std::stod(dent_row[9]), 0.0);
+    EXPECT_LT(std::stod(dent_row[11]), 0.0);
+    const auto missing_row = cells(regions_csv(missing)).second;
+    ASSERT_GE(missing_row.size(), 12u);
+    EXPECT_EQ(missing_row[3], "missing surface");
+    for (std::size_t c : {9u, 10u, 11u}) EXPECT_TRUE(missing_row[c].empty()) << c;
+    // The evidence sentence names the unit of its lengths.
+    EXPECT_NE(z["regions"][0]["evidence"].get<std::string>().find(
+                  " " + (unit.empty() ? std::string("units") : unit)),
+              std::string::npos)
+        << z["regions"][0]["evidence"];
 }
 
 // --atlas-formats / ExportOptions::atlas_files: a list of the three names, each at most once.
