@@ -279,29 +279,40 @@ void bind_analysis_class(py::module_& m) {
 void bind_analysis(py::module_& m) {
     bind_fit(m);
     bind_analysis_class(m);
+    // The three functions take their option keywords as **kwargs (the registry checks them), so
+    // pybind11's signature would say "**kwargs". Their docstrings begin with the signature in
+    // CPython's text-signature form instead ("name(...)\n--\n\n"): help() and
+    // inspect.signature() then list every keyword with its default.
+    py::options signatures;
+    signatures.disable_function_signatures();
     m.def(
         "register", &register_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
         py::arg("output") = py::none(),
-        ("Fits the examined surface onto the reference (robust ICP, as glint register).\n\n"
-         "reference, examined: glint.Mesh, paths, (vertices, triangles) arrays or meshes of "
-         "Open3D, trimesh or PyVista. output: also write fit.json there.\n"
+        ("register(reference, examined, *, output=None, " +
+         keyword_signature(kSurfaceKeywords | kFitGroup | kUnitGroup) +
+         ")\n--\n\n"
+         "Fits the examined surface onto the reference (robust ICP, as glint register).\n\n"
+         "reference, examined: " GLINT_MESH_LIKE_TYPES "\noutput: also write fit.json there.\n"
          "Warnings (an assumed unit, …) are issued as glint.GlintWarning and kept in "
          "fit.warnings.\n"
          "Returns glint.Fit (a fit that did not converge is a result: fit.converged is False).\n\n"
          "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
          keyword_docs(kSurfaceKeywords | kFitGroup | kUnitGroup))
             .c_str());
-    m.def("analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
-          py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
-          ("The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or "
-           "register=False for meshes already aligned), signed distance, sweep, decision and, with "
-           "output=, the folder glint sweep writes.\nreference, examined: glint.Mesh, paths, "
-           "(vertices, triangles) arrays or meshes of Open3D, trimesh or PyVista.\n"
-           "Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written). "
-           "Warnings are issued as glint.GlintWarning and kept in Analysis.warnings.\n\n"
-           "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
-           keyword_docs(kAllKeywords))
-              .c_str());
+    m.def(
+        "analyse", &analyse_pair, py::arg("reference"), py::arg("examined"), py::kw_only(),
+        py::arg("register") = true, py::arg("fit") = py::none(), py::arg("output") = py::none(),
+        ("analyse(reference, examined, *, register=True, fit=None, output=None, " +
+         keyword_signature(kAllKeywords) +
+         ")\n--\n\n"
+         "The whole analysis (as glint sweep): fit (register=True, or fit='fit.json', or "
+         "register=False for meshes already aligned), signed distance, sweep, decision and, with "
+         "output=, the folder glint sweep writes.\nreference, examined: " GLINT_MESH_LIKE_TYPES "\n"
+         "Returns glint.Analysis. Ctrl-C stops it (KeyboardInterrupt; nothing half-written). "
+         "Warnings are issued as glint.GlintWarning and kept in Analysis.warnings.\n\n"
+         "Keywords (name: type = default [unit] — meaning; accepted values):\n" +
+         keyword_docs(kAllKeywords))
+            .c_str());
     m.def(
         "options",
         [](bool do_register, const std::optional<std::filesystem::path>& fit_file,
@@ -315,7 +326,10 @@ void bind_analysis(py::module_& m) {
             return json_loads(options_json(k));
         },
         py::kw_only(), py::arg("register") = true, py::arg("fit") = py::none(),
-        ("The options analyse() would run with, resolved from these keywords, as a dict laid out "
+        ("options(*, register=True, fit=None, " +
+         keyword_signature(kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword) +
+         ")\n--\n\n"
+         "The options analyse() would run with, resolved from these keywords, as a dict laid out "
          "as a scenario file's sections (glint sweep --print-options prints the same).\n\n"
          "Keywords:\n" +
          keyword_docs(kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword))

@@ -57,6 +57,11 @@ struct MeshLike {
 void bind_mesh(pybind11::module_& m);
 void bind_analysis(pybind11::module_& m);
 
+/// The types a mesh argument takes, as signatures and docstrings name them.
+#define GLINT_MESH_LIKE_TYPES                                                 \
+    "glint.Mesh | str | os.PathLike | tuple[numpy.ndarray, numpy.ndarray] | " \
+    "open3d.geometry.TriangleMesh | trimesh.Trimesh | pyvista.PolyData"
+
 }  // namespace glint::python
 
 namespace pybind11::detail {
@@ -64,11 +69,7 @@ namespace pybind11::detail {
 /// Takes any object (mesh_argument checks it); names the accepted types in signatures.
 template <>
 struct type_caster<glint::python::MeshLike> {
-    PYBIND11_TYPE_CASTER(glint::python::MeshLike,
-                         const_name("glint.Mesh | str | os.PathLike | "
-                                    "tuple[numpy.ndarray, numpy.ndarray] | "
-                                    "open3d.geometry.TriangleMesh | trimesh.Trimesh | "
-                                    "pyvista.PolyData"));
+    PYBIND11_TYPE_CASTER(glint::python::MeshLike, const_name(GLINT_MESH_LIKE_TYPES));
     bool load(handle source, bool /*convert*/) {
         value.value = reinterpret_borrow<object>(source);
         return true;

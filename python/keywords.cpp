@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <regex>
 #include <vector>
 
 namespace py = pybind11;
@@ -211,6 +212,32 @@ std::string keyword_docs(unsigned groups) {
             "    force: bool = False — replace an existing output folder (only once the new "
             "results are complete)\n";
     return doc;
+}
+
+namespace {
+
+// `text` when it reads as a Python literal inspect.signature accepts, else None (an infinite or
+// otherwise unusual default stays the library's).
+std::string literal_or_none(const std::string& text) {
+    static const std::regex literal(
+        R"(None|True|False|'[^'\\]*'|-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?|\[[-0-9., eE+]*\])");
+    return std::regex_match(text, literal) ? text : "None";
+}
+
+}  // namespace
+
+std::string keyword_signature(unsigned groups) {
+    std::vector<std::string> parts;
+    if ((groups & kSurfaceKeywords) != 0)
+        for (const auto& k : surface_keywords()) parts.push_back(std::string(k.name) + "=None");
+    for_each_registry_keyword(groups, [&](const OptionInfo& info, const std::string& def) {
+        parts.push_back(std::string(info.name) + "=" +
+                        literal_or_none(python_default(info.kind, def)));
+    });
+    if ((groups & kForceKeyword) != 0) parts.emplace_back("force=False");
+    std::string out;
+    for (const auto& p : parts) out += (out.empty() ? "" : ", ") + p;
+    return out;
 }
 
 void apply_keywords(Keywords& into, const py::kwargs& kwargs, unsigned groups,

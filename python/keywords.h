@@ -49,6 +49,10 @@ void apply_keywords(Keywords& into, const pybind11::kwargs& kwargs, unsigned gro
 /// The keywords of `groups`, one per line with its type, default, unit and help (docstrings).
 [[nodiscard]] std::string keyword_docs(unsigned groups);
 
+/// The keywords of `groups` as the keyword part of a Python signature ("size=512, …, force=False"),
+/// each with its default as a literal (None where the default is not one: the library's).
+[[nodiscard]] std::string keyword_signature(unsigned groups);
+
 /// The keyword of the registry option at `path` ("sweep.size" → "size"); "" when none is.
 [[nodiscard]] std::string keyword_of_option(const std::string& path);
 

@@ -3,6 +3,7 @@
 #include "mesh/error.h"
 #include "registration/detail/coarse.h"
 #include "registration/detail/icp_core.h"
+#include "registration/detail/rotation_search.h"
 
 #include <tbb/parallel_for.h>
 #include <Eigen/Eigenvalues>
@@ -49,6 +50,34 @@ std::vector<CoarseHypothesis> hypotheses(const std::vector<Sample>& reference,
         out.push_back({h, name.str(), 0.0});
     }
     return out;
+}
+
+// When the kept hypothesis lays too little of the examined surface onto the reference (a
+// partial scan whose principal axes are not the whole's), the rotation search
+// (registration/detail/rotation_search.h) runs; its best fit replaces the kept one when it lays
+// clearly more of the surface on the reference.
+void search_if_partial(const ClosestPointIndex& reference, const std::vector<Sample>& quick_samples,
+                       const RegistrationOptions& quick, double diagonal, std::uint32_t seed,
+                       CoarseAlignment& out) {
+    const Overlap kept =
+        overlap_at(quick_samples, out.reference_from_examined, reference, quick, diagonal);
+    if (kept.share >= kSearchBelowOverlap) return;
+    auto found = rotation_search(reference, sample_surface(reference.mesh(), 4000, seed + 2),
+                                 quick_samples, quick, diagonal);
+    for (const auto& h : found) out.hypotheses.push_back(h);
+    if (found.empty()) return;
+    const Overlap best = overlap_at(quick_samples, found.front().reference_from_examined, reference,
+                                    quick, diagonal);
+    std::ostringstream why;
+    if (best.share > kept.share + 0.05) {
+        why << found.front().name << " (the principal axes laid " << kept.share
+            << " of the examined surface on the reference: a partial scan?)";
+        out.reference_from_examined = found.front().reference_from_examined;
+        out.description = why.str();
+    } else {
+        why << " (a rotation search found no better pose: best overlap " << best.share << ")";
+        out.description += why.str();
+    }
 }
 
 }  // namespace
@@ -112,6 +141,7 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const Mesh& exa
         out.description +=
             " (" + std::to_string(tied) +
             " hypotheses fit about equally, the shape may be symmetric: kept the smallest rotation)";
+    search_if_partial(reference, quick_samples, quick, diagonal, o.seed, out);
     return out;
 }
 

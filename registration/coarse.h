@@ -5,7 +5,9 @@
 // flips. Each is refined by a short robust ICP on a few samples and scored by its robust
 // residual spread, penalised by the share of the surface that matched. A symmetric shape
 // scores several hypotheses about equally; then the one that turns the examined mesh least
-// is kept, and the description says so.
+// is kept, and the description says so. When the kept hypothesis lays under 90 % of the
+// examined surface on the reference (a partial scan, whose principal axes are not the
+// whole's), poses over all orientations are tried too (registration/detail/rotation_search.h).
 #pragma once
 
 #include "mesh/geometry.h"

@@ -1,7 +1,9 @@
 // Rigid registration of an examined mesh onto a reference mesh.
 //
 //   coarse (optional): centroid + principal axes, every proper sign hypothesis and the
-//                      identity, each scored after a short robust ICP; or landmarks
+//                      identity, each scored after a short robust ICP; when the kept one
+//                      lays under 90 % of the examined surface on the reference (a partial
+//                      scan), a rotation search over all orientations; or landmarks
 //   fine:             point-to-plane ICP, 6 DoF (angle-axis + translation), solved with
 //                     Ceres under a robust loss whose scale comes from the residuals' MAD
 //                     and is annealed from wide to tight; pairs whose normals disagree are

@@ -2,7 +2,10 @@
 each, copies, moves, pickles, every format glint writes, and messages in Python's words."""
 import copy
 import importlib.util
+import inspect
 import pickle
+import pydoc
+import re
 import sys
 import types
 import warnings
@@ -342,10 +345,31 @@ def test_load_warnings_are_python_warnings_and_stay_in_the_report(tmp_path):
 
 def test_help_shows_the_types_of_the_mesh_arguments_and_every_keyword():
     doc = glint.analyse.__doc__
-    assert "reference: glint.Mesh | str | os.PathLike | tuple[numpy.ndarray, numpy.ndarray]" in doc
-    assert "handle" not in doc.splitlines()[0]
+    assert "reference, examined: glint.Mesh | str | os.PathLike | tuple[numpy.ndarray, numpy.ndarray]" in doc
+    assert "handle" not in doc
     assert "size: int = " in doc and "[px]" in doc and "force: bool = False" in doc
     assert "examined: glint.Mesh | str" in glint.register.__doc__
+
+
+@pytest.mark.parametrize("function", ["analyse", "register", "options"])
+def test_the_signature_lists_every_keyword_with_its_default(function):
+    # help(), IDEs and inspect read the signature, not **kwargs: every keyword the docstring
+    # documents is a keyword-only parameter with the default the docstring states.
+    fn = getattr(glint, function)
+    signature = inspect.signature(fn)
+    params = signature.parameters
+    assert all(p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY) for p in params.values())
+    documented = re.findall(r"^    (\w+): ", fn.__doc__, flags=re.M)
+    assert documented and set(documented) <= set(params), set(documented) - set(params)
+    for name in documented:
+        line = re.search(rf"^    {name}: [^=—]*(?:= (.*?))?(?: \[[^\]]*\])? — ", fn.__doc__, flags=re.M)
+        if line and line.group(1) and line.group(1) != "None":
+            assert repr(params[name].default).replace('"', "'") == line.group(1), name
+    if function == "analyse":
+        assert params["size"].default == 512 or isinstance(params["size"].default, int)
+        assert params["loss"].default == "cauchy"
+        assert params["register"].default is True and params["force"].default is False
+        assert "analyse(reference, examined, *, register=True" in pydoc.render_doc(fn, renderer=pydoc.plaintext)
 
 
 def test_a_rule_between_options_names_the_keyword():
