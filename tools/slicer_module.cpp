@@ -81,7 +81,17 @@ SlicerGroup inputs_group() {
               .label = "Largest surface only (volumes)",
               .description = "Keep only the largest connected part of a volume's surface (drops "
                              "noise islands and loose fragments).",
-              .default_value = "false"}}};
+              .default_value = "false"},
+             {.tag = "point",
+              .name = "seed",
+              .longflag = "seed",
+              .channel = "input",
+              .label = "Surface seed (volumes)",
+              .description = "Keep only the part of a volume's surface nearest this point (the "
+                             "first point of a point list), e.g. the mandible rather than the "
+                             "skull. Not with Largest surface only; ignored for models.",
+              .coordinate_system = "lps",
+              .multiple = "false"}}};
 }
 
 SlicerGroup outputs_group() {
@@ -288,6 +298,7 @@ SlicerGroup results_group() {
 void write_parameter(std::ostringstream& x, const SlicerParameter& p) {
     x << "    <" << p.tag;
     if (!p.type.empty()) x << " type=\"" << p.type << '"';
+    if (!p.multiple.empty()) x << " multiple=\"" << p.multiple << '"';
     if (!p.coordinate_system.empty()) x << " coordinateSystem=\"" << p.coordinate_system << '"';
     if (!p.file_extensions.empty()) x << " fileExtensions=\"" << p.file_extensions << '"';
     x << ">\n      <name>" << p.name << "</name>\n";

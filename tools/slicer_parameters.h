@@ -26,6 +26,8 @@ struct SlicerParameter {
     std::string
         file_extensions;  ///< the fileExtensions attribute; the first is what Slicer writes/reads
     std::string coordinate_system;  ///< point, pointfile, region: "lps" (tools/slicer_markups.h)
+    std::string
+        multiple;  ///< the multiple attribute ("false": Slicer passes one point); empty: none
     std::vector<std::string> elements;                 ///< enumerations
     std::optional<std::array<double, 3>> constraints;  ///< minimum, maximum, step
 };

@@ -256,6 +256,18 @@ RunInput load_surface_input(const SurfaceInput& in, const SlicerCall& c) {
             surface.iso = v[0];
         }
         surface.largest = c.booleans.at("largest");
+        const auto seed = c.values.find("seed");
+        if (seed != c.values.end()) {
+            if (surface.largest)
+                throw InputError(
+                    "Slicer module: --largest and --seed both given, expected one "
+                    "(the largest part of the surface, or the part nearest the seed)");
+            const auto v = parse_number_list(seed->second, "Slicer module: --seed");
+            if (v.size() != 3)
+                throw InputError("Slicer module: --seed \"" + seed->second +
+                                 "\": expected x,y,z (a point, mm)");
+            surface.seed = Vec3d(v[0], v[1], v[2]);
+        }
     }
     RunInput loaded = load_run_input(in.role, in.path, surface);
     into_lps(loaded);

@@ -320,12 +320,15 @@ def test_roi_restricts_the_analysis(description, ras_pair, tmp_path):
 CENTRE = np.array([10.0, -20.0, 30.0])  # LPS, mm
 RADII = np.array([8.0, 6.0, 5.0])
 DENT = CENTRE + [8.0, 0.0, 0.0]  # on the surface, +x (left); 1.3 mm deep
+PEBBLE = CENTRE + [-8.5, 7.0, 3.0]  # a loose 1.5 mm ball beside the ellipsoid (right, posterior)
 
 
 def field(points, dent):
-    """Grey values of an ellipsoid (1000 inside, 0 outside) with an optional spherical bite, as
-    a smooth function of an approximate signed distance so the iso-surface at 500 is exact."""
+    """Grey values of an ellipsoid (1000 inside, 0 outside) with an optional spherical bite and a
+    loose pebble, as a smooth function of an approximate signed distance so the iso-surface at
+    500 is exact."""
     d = (np.linalg.norm((points - CENTRE) / RADII, axis=-1) - 1.0) * 5.0
+    d = np.minimum(d, np.linalg.norm(points - PEBBLE, axis=-1) - 1.5)
     if dent:
         bite = CENTRE + [8.0 + 1.2, 0.0, 0.0]
         d = np.maximum(d, 2.5 - np.linalg.norm(points - bite, axis=-1))
@@ -336,8 +339,8 @@ def write_nrrd(path, dent, space="left-posterior-superior"):
     """A volume as Slicer's NRRD writer stores it: short voxels, gzip, space directions with
     flipped axes and a non-zero origin. `space` RAS stores the same object in RAS numbers."""
     directions = np.diag([-0.5, -0.5, 0.6])  # columns: the physical step of i, j, k (LPS)
-    size = (44, 36, 26)
-    origin = CENTRE + [11.0, 9.0, -7.5]
+    size = (48, 40, 26)
+    origin = CENTRE + [12.0, 10.0, -7.5]
     index = np.stack(np.meshgrid(*[np.arange(n) for n in size], indexing="ij"), axis=-1)
     voxels = field(origin + index @ directions.T, dent)
     if space == "right-anterior-superior":
@@ -385,6 +388,17 @@ def test_volume_iso_is_passed(description, volume_pair, tmp_path):
     done = subprocess.run(small(command), capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr
     assert int(return_values(tmp_path / "r.params")["regionCount"]) == 1
+
+
+def test_volume_seed_point_keeps_the_part_nearest_it(description, volume_pair, tmp_path):
+    # A point just above the pebble, as Slicer passes it for coordinateSystem="lps" (the
+    # volume's own frame), keeps the pebble alone and drops the ellipsoid with its dent.
+    seed = ",".join(f"{x:g}" for x in PEBBLE + [0.0, 0.0, 1.4])
+    values, outputs = run_call(description, tmp_path, volume_pair, {"seed": seed})
+    points = vtp_array(outputs["atlas"], "Points").reshape(-1, 3)
+    # (the pebble's surface, 1.5 mm give or take a voxel; the ellipsoid is more than 3 mm away)
+    assert len(points) > 20 and np.linalg.norm(points - PEBBLE, axis=1).max() < 2.3
+    assert int(values["regionCount"]) == 0
 
 
 # --- landmarks as markups point lists ------------------------------------------------------------
@@ -444,20 +458,26 @@ def bad_calls(tmp_path, model_pair, volume_pair):
         "unpaired landmarks": ({**volume_pair, "referenceLandmarks": few, "examinedLandmarks": good},
                                {}, {}, "3 reference landmarks and 4 examined landmarks"),
         "no surface at the iso value": ({**volume_pair}, {}, {"--iso": "5000"}, "5000"),
+        "largest and seed": ({**volume_pair}, {"seed": "10,-20,35"}, {"--iso": "500", "+": "--largest"},
+                             "--largest and --seed both given"),
         "model and volume": ({**volume_pair, "referenceModel": model_pair["referenceModel"]}, {}, {},
                              "both --referenceModel and --referenceVolume"),
     }
 
 
 @pytest.mark.parametrize("case", ["zero radius", "rotated roi", "malformed markups json", "malformed markups line",
-                                  "unpaired landmarks", "no surface at the iso value", "model and volume"])
+                                  "unpaired landmarks", "no surface at the iso value", "largest and seed",
+                                  "model and volume"])
 def test_bad_input_is_one_line(description, ras_pair, volume_pair, tmp_path, case):
     inputs, markups, replace, expected = bad_calls(tmp_path, ras_pair, volume_pair)[case]
     outputs = node_files(description, tmp_path / "out", output_names(description))
     (tmp_path / "out").mkdir()
     command = slicer_command(description, inputs, outputs, tmp_path / "r.params", markups)
     for flag, value in replace.items():
-        command[command.index(flag) + 1] = value
+        if flag == "+":  # a boolean the user ticked
+            command.insert(1, value)
+        else:
+            command[command.index(flag) + 1] = value
     done = subprocess.run(small(command), capture_output=True, text=True, timeout=120)
     assert done.returncode == 2, (done.stdout, done.stderr)
     assert len(done.stderr.splitlines()) == 1 and expected in done.stderr, done.stderr
