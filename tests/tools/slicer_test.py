@@ -335,12 +335,15 @@ def field(points, dent):
     return np.round(1000.0 / (1.0 + np.exp(d / 0.3))).astype("<i2")
 
 
-def write_nrrd(path, dent, space="left-posterior-superior"):
+def write_nrrd(path, dent, space="left-posterior-superior", tilt_deg=0.0):
     """A volume as Slicer's NRRD writer stores it: short voxels, gzip, space directions with
-    flipped axes and a non-zero origin. `space` RAS stores the same object in RAS numbers."""
-    directions = np.diag([-0.5, -0.5, 0.6])  # columns: the physical step of i, j, k (LPS)
-    size = (48, 40, 26)
-    origin = CENTRE + [12.0, 10.0, -7.5]
+    flipped axes (tilted about z by tilt_deg: an oblique scan) and a non-zero origin. `space`
+    RAS stores the same object in RAS numbers."""
+    c, s = np.cos(np.radians(tilt_deg)), np.sin(np.radians(tilt_deg))
+    tilt = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    directions = tilt @ np.diag([-0.5, -0.5, 0.6])  # columns: the physical step of i, j, k (LPS)
+    size = (52, 44, 26)
+    origin = CENTRE + tilt @ [13.0, 11.0, -7.5]
     index = np.stack(np.meshgrid(*[np.arange(n) for n in size], indexing="ij"), axis=-1)
     voxels = field(origin + index @ directions.T, dent)
     if space == "right-anterior-superior":
@@ -361,8 +364,9 @@ def volume_pair(description, tmp_path_factory):
     folder = tmp_path_factory.mktemp("volumes")
     inputs = node_files(description, folder, ["referenceVolume", "examinedVolume"])
     write_nrrd(inputs["referenceVolume"], dent=False)
-    # The examined one in RAS numbers: the reader must turn it into the same LPS object.
-    write_nrrd(inputs["examinedVolume"], dent=True, space="right-anterior-superior")
+    # The examined one on an oblique grid, in RAS numbers: the reader must turn it into the same
+    # LPS object.
+    write_nrrd(inputs["examinedVolume"], dent=True, space="right-anterior-superior", tilt_deg=8.0)
     return inputs
 
 
