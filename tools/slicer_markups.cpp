@@ -126,7 +126,15 @@ bool is_slicer_region(const std::string& text) {
 
 Roi parse_slicer_region(const std::string& text) {
     const std::string where = "ROI \"" + text + "\"";
-    const std::vector<double> v = parse_number_list(text, where);
+    std::vector<double> v = parse_number_list(text, where);
+    // Slicer appends the ROI's axes (x0,y0,z0,x1,…, row by row) only when they differ from the
+    // identity by more than 1e-3 (vtkMRMLMarkupsROINode::GetObjectToNodeMatrixRotated).
+    const auto is_identity = [&v] {
+        for (std::size_t k = 0; k < 9; ++k)
+            if (std::fabs(v[6 + k] - (k % 4 == 0 ? 1.0 : 0.0)) > 1e-3) return false;
+        return true;
+    };
+    if (v.size() == 15 && is_identity()) v.resize(6);
     if (v.size() == 15)
         throw InputError(where +
                          ": the ROI is rotated, expected an axis-aligned ROI (reset its "

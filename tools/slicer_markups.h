@@ -22,7 +22,7 @@ namespace glint::cli {
 /// An ROI as Slicer passes a <region>: "cx,cy,cz,rx,ry,rz" (centre and half sizes, mm), as a
 /// box ROI.
 /// \throw InputError not six numbers, a radius that is not positive, or a rotated ROI (Slicer
-/// then appends nine axis components: glint's regions are axis-aligned).
+/// then appends nine axis components: glint's regions are axis-aligned; identity axes pass).
 [[nodiscard]] Roi parse_slicer_region(const std::string& text);
 
 /// Whether `text` is a Slicer region ("cx,cy,…" numbers) rather than glint's own region text
