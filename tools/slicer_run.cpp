@@ -363,6 +363,10 @@ void run_slicer_module(int argc, char** argv) {
     RunRecord record{.command_line = global_flags().command_line};
     record.add(ref);
     record.add(exa);
+    for (const std::string side : {"reference", "examined"})
+        if (call.values.count(side + "Landmarks") != 0)
+            record.add_file("landmarks", call.values.at(side + "Landmarks"),
+                            "markups point list, the " + side + " side of the landmark pairs");
     AnalysisObserver observer;
     observer.stage = [&](std::string_view s) {
         give_back_free_memory();

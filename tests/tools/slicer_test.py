@@ -250,12 +250,17 @@ def vtp_array(path, name):
     return np.frombuffer(raw[4:4 + int(np.frombuffer(raw[:4], "<u4")[0])], "<f4")
 
 
-def report_regions(page):
-    """The regions of zoom 0 in report.html (the page's own data, as its script reads them)."""
+def report_data(page):
+    """report.json as report.html carries it (the page's own data, as its script reads them)."""
     html = page.read_text()
     assert html.startswith("<!DOCTYPE html>") or "<html" in html[:500]
     data = re.search(r'<script id="glint-data" type="application/json">(.*?)</script>', html, re.S)
-    return json.loads(data.group(1))["report"]["zooms"][0]["regions"]
+    return json.loads(data.group(1))["report"]
+
+
+def report_regions(page):
+    """The regions of zoom 0 in report.html."""
+    return report_data(page)["zooms"][0]["regions"]
 
 
 def test_missing_input_is_one_line_and_writes_nothing(description, tmp_path):
@@ -437,6 +442,9 @@ def test_landmarks_from_markups_files_start_the_fit(description, volume_pair, tm
     write_fcsv(inputs["examinedLandmarks"], LANDMARKS)
     values, outputs = run_call(description, tmp_path, inputs)
     assert float(values["fitRotationDeg"]) < 1.0 and int(values["regionCount"]) == 1
+    recorded = report_data(outputs["report"])["inputs"]  # provenance names both point files
+    assert sorted(pathlib.Path(i["path"]).name for i in recorded if i["role"] == "landmarks") == \
+        sorted(inputs[n].name for n in ("examinedLandmarks", "referenceLandmarks"))
     centroid = np.array(report_regions(outputs["report"])[0]["centroid"])
     assert np.linalg.norm(centroid - DENT) < 1.0, centroid
 
