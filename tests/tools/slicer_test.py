@@ -97,17 +97,16 @@ def test_rules_the_schema_cannot_state(description):
     assert by_name["report"].get("fileExtensions") == ".html"
     assert by_name["atlasPicture"].get("fileExtensions") == ".png"
     assert by_name["referenceVolume"].get("fileExtensions").startswith(".nrrd")
-    for name in ("roi", "fitRoi", "referenceLandmarks", "examinedLandmarks"):
-        # Slicer's default for an unstated system is not the same in its docs and its code: say it.
+    for name in ("roi", "fitRoi", "referenceLandmarks", "examinedLandmarks", "seed"):
+        # Left out, Slicer logs "Invalid coordinateSystemFlag value" and falls back to LPS: say it.
         assert by_name[name].get("coordinateSystem") == "lps", name
     assert by_name["roi"].tag == "region" and by_name["referenceLandmarks"].tag == "pointfile"
 
 
-def slicer_command(root, inputs, outputs, params_file, markups=None, unchecked=()):
+def slicer_command(root, inputs, outputs, params_file, markups=None):
     """The argument list Slicer runs for this description: inputs/outputs map a parameter
     name to the file Slicer wrote / will read, markups a point or region parameter to the text
-    Slicer writes for its node (unselected optional nodes are left out); booleans named in
-    unchecked are the ones the user turned off."""
+    Slicer writes for its node (unselected optional nodes are left out)."""
     markups = markups or {}
     params = parameters(root)
     command = [GLINT]
@@ -120,7 +119,7 @@ def slicer_command(root, inputs, outputs, params_file, markups=None, unchecked=(
         flag = "--" + flag.lstrip("-")
         name, value = text(p, "name"), text(p, "default")
         if p.tag == "boolean":
-            command += [flag] if value == "true" and name not in unchecked else []
+            command += [flag] if value == "true" else []
         elif p.tag in MARKUPS:
             command += [flag, markups[name]] if name in markups else []
         elif p.tag in SIMPLE:
@@ -283,10 +282,10 @@ def test_bad_value_is_refused_naming_the_flag(description, tmp_path):
 
 
 # --- ROI markups: Slicer's sign convention ------------------------------------------------------
-def run_call(description, folder, inputs, markups=None, unchecked=(), outputs=None):
+def run_call(description, folder, inputs, markups=None, outputs=None):
     outputs = outputs or node_files(description, folder, ["atlas", "report", "regions"])
     returned = folder / "r.params"
-    command = small(slicer_command(description, inputs, outputs, returned, markups, unchecked))
+    command = small(slicer_command(description, inputs, outputs, returned, markups))
     done = subprocess.run(command, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, (command, done.stdout, done.stderr)
     return return_values(returned), outputs
@@ -376,9 +375,8 @@ def volume_pair(description, tmp_path_factory):
 
 
 def test_volume_pair_finds_the_dent(description, volume_pair, tmp_path):
-    assert temp_name(tmp_path, parameters(description)[1]).suffix == ".nrrd"  # Slicer's first extension
-    command_inputs = dict(volume_pair)
-    values, outputs = run_call(description, tmp_path, command_inputs, markups={}, unchecked=(),
+    assert volume_pair["referenceVolume"].suffix == ".nrrd"  # Slicer writes a volume node with its first extension
+    values, outputs = run_call(description, tmp_path, volume_pair,
                                outputs=node_files(description, tmp_path, output_names(description)))
     assert int(values["regionCount"]) == 1 and -1.6 < float(values["peakDepth"]) < -0.9
     assert float(values["fitRotationDeg"]) < 1.0  # the same object: nothing to move
