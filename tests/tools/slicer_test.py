@@ -387,6 +387,18 @@ def test_volume_pair_finds_the_dent(description, volume_pair, tmp_path):
     assert len(rows) == 2 and ",dent," in rows[1]
 
 
+def test_volume_pair_from_nifti(description, volume_pair, tmp_path):
+    # A volume node written as NIfTI (Slicer's .nii goes through ITK, as glint volume-edit's does:
+    # RAS in the file's sform, LPS in memory) lands where its NRRD twin does.
+    nifti = tmp_path / "slicer_referenceVolume.nii"
+    subprocess.run([GLINT, "--quiet", "volume-edit", str(volume_pair["referenceVolume"]), "-o", str(nifti)],
+                   check=True)
+    values, outputs = run_call(description, tmp_path, {**volume_pair, "referenceVolume": nifti})
+    assert int(values["regionCount"]) == 1 and float(values["fitRotationDeg"]) < 1.0
+    centroid = np.array(report_regions(outputs["report"])[0]["centroid"])
+    assert np.linalg.norm(centroid - DENT) < 1.0, centroid
+
+
 def test_volume_iso_is_passed(description, volume_pair, tmp_path):
     # iso 900 lies inside the smooth edge: a slightly smaller surface, the same dent.
     command = slicer_command(description, volume_pair, node_files(description, tmp_path, ["atlas"]),
