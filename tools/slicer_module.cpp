@@ -17,6 +17,7 @@
 #include <cstring>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace glint::cli {
 
@@ -28,30 +29,79 @@ std::string number(double v) {
     return b;
 }
 
-SlicerGroup surfaces_group() {
+// Slicer writes a model node with the first of these and a volume node as .nrrd (its first).
+constexpr const char* kModelFiles = ".vtk,.ply,.stl,.obj";
+constexpr const char* kVolumeFiles = ".nrrd,.nii,.nii.gz,.mha";
+
+SlicerParameter input_node(const char* tag, const char* name, const char* label,
+                           std::string description) {
+    const bool model = std::string(tag) == "geometry";
+    return {.tag = tag,
+            .name = name,
+            .longflag = name,
+            .channel = "input",
+            .label = label,
+            .description = std::move(description),
+            .type = model ? "model" : "scalar",
+            .file_extensions = model ? kModelFiles : kVolumeFiles};
+}
+
+// Each surface is a model or a volume (its iso-surface): flagged, not index, parameters, since
+// Slicer refuses to run a module whose index node is not selected.
+SlicerGroup inputs_group() {
+    constexpr const char* kEither = " Give the model or the volume, not both.";
+    return {"Inputs",
+            "The surface before (reference) and the surface examined, each a model or a scalar "
+            "volume (CT, CBCT) whose iso-surface is used; the atlas is the reference coloured by "
+            "damage.",
+            false,
+            {input_node("geometry", "referenceModel", "Reference model",
+                        std::string("The surface before (the reference): the atlas is drawn on "
+                                    "it.") +
+                            kEither),
+             input_node("image", "referenceVolume", "Reference volume",
+                        std::string("The reference as a scalar volume: its surface at the iso "
+                                    "value.") +
+                            kEither),
+             input_node("geometry", "examinedModel", "Examined model",
+                        std::string("The surface examined, fitted onto the reference.") + kEither),
+             input_node("image", "examinedVolume", "Examined volume",
+                        std::string("The examined surface as a scalar volume.") + kEither),
+             {.tag = "double",
+              .name = "iso",
+              .longflag = "iso",
+              .label = "Iso value (volumes)",
+              .description = "The value of the surface in a volume, in its units (CT bone: about "
+                             "300 HU; CBCT grey values vary: read one off the volume in Slicer's "
+                             "Data Probe). Ignored for models.",
+              .default_value = "300"},
+             {.tag = "boolean",
+              .name = "largest",
+              .longflag = "largest",
+              .label = "Largest surface only (volumes)",
+              .description = "Keep only the largest connected part of a volume's surface (drops "
+                             "noise islands and loose fragments).",
+              .default_value = "false"},
+             {.tag = "point",
+              .name = "seed",
+              .longflag = "seed",
+              .channel = "input",
+              .label = "Surface seed (volumes)",
+              .description = "Keep only the part of a volume's surface nearest this point (the "
+                             "first point of a point list), e.g. the mandible rather than the "
+                             "skull. Not with Largest surface only; ignored for models.",
+              .coordinate_system = "lps",
+              .multiple = "false"}}};
+}
+
+SlicerGroup outputs_group() {
     return {
-        "Surfaces",
-        "The surface before (reference) and the surface examined; the atlas is the reference coloured by damage.",
+        "Outputs",
+        "What the run returns to Slicer.",
         false,
         {{.tag = "geometry",
-          .name = "reference",
-          .index = 0,
-          .channel = "input",
-          .label = "Reference model",
-          .description = "The surface before (the reference): the atlas is drawn on it.",
-          .type = "model",
-          .file_extensions = ".vtk,.ply,.stl,.obj"},
-         {.tag = "geometry",
-          .name = "examined",
-          .index = 1,
-          .channel = "input",
-          .label = "Examined model",
-          .description = "The surface examined, fitted onto the reference.",
-          .type = "model",
-          .file_extensions = ".vtk,.ply,.stl,.obj"},
-         {.tag = "geometry",
           .name = "atlas",
-          .index = 2,
+          .index = 0,
           .channel = "output",
           .label = "Damage atlas",
           .description =
@@ -59,9 +109,27 @@ SlicerGroup surfaces_group() {
               "to the examined surface in the run's unit, negative = loss), then "
               "shape_tolerance_mm, per zoom seen_z0 (1 seen, 0 unseen), angle_mean_deg_z0 and "
               "angle_max_deg_z0 (normal deviation, 0 where unseen), missing_fraction_z0, "
-              "pixels_z0, region_id_z0 (README: the atlas fields).",
+              "pixels_z0, region_id_z0 (README: the atlas fields). In the reference's space "
+              "(LPS, as Slicer writes models and volumes).",
           .type = "model",
           .file_extensions = ".vtp"},
+         {.tag = "image",
+          .name = "atlasPicture",
+          .longflag = "atlasPicture",
+          .channel = "output",
+          .label = "Atlas picture",
+          .description = "atlas.png: the surface from six sides and close-ups of every region, "
+                         "numbered, with a legend and scale bar (loads as a colour volume).",
+          .type = "vector",
+          .file_extensions = ".png"},
+         {.tag = "file",
+          .name = "report",
+          .longflag = "report",
+          .channel = "output",
+          .label = "Report page",
+          .description = "report.html: one self-contained page with the fit, the floors, every "
+                         "region and the pictures; open it in a web browser.",
+          .file_extensions = ".html"},
          {.tag = "table",
           .name = "regions",
           .longflag = "regions",
@@ -142,8 +210,16 @@ SlicerParameter registry_parameter(const OptionInfo& info, const OptionValue& cu
             p.channel = "input";
             p.file_extensions = ".json";
             break;
-        case OptionKind::Text:
         case OptionKind::Region:
+            // note: an ROI markup; Slicer passes "cx,cy,cz,rx,ry,rz" (tools/slicer_markups.h).
+            p.tag = "region";
+            p.channel = "input";
+            p.coordinate_system = "lps";
+            p.description = std::string(info.help.substr(0, info.help.find(": sphere:"))) +
+                            ": an ROI (axis-aligned: its box is the region). glint's command "
+                            "line also takes sphere:, box: and mask: text.";
+            break;
+        case OptionKind::Text:
             p.tag = "string";
             p.default_value = shown;
             break;
@@ -161,6 +237,22 @@ SlicerGroup registry_group(std::string label, std::string description, bool adva
     return g;
 }
 
+// Landmarks as two point lists, paired in order (the n-th reference point with the n-th
+// examined one): Slicer writes each markups node to a file in LPS.
+SlicerParameter landmarks_parameter(const std::string& side) {
+    return {.tag = "pointfile",
+            .name = side + "Landmarks",
+            .longflag = side + "Landmarks",
+            .channel = "input",
+            .label = (side == "reference" ? "Reference" : "Examined") + std::string(" landmarks"),
+            .description = "Registration: start from landmarks, a point list on the " + side +
+                           " surface paired in order with the " +
+                           (side == "reference" ? "examined" : "reference") +
+                           " list (at least 3 pairs; give both lists).",
+            .file_extensions = ".mrk.json,.fcsv",
+            .coordinate_system = "lps"};
+}
+
 SlicerGroup fit_group() {
     return registry_group(
         "Fit", "How the examined surface is brought into the reference's frame.", false, kFitGroup,
@@ -170,7 +262,9 @@ SlicerGroup fit_group() {
           .label = "Register",
           .description =
               "Fit the examined surface onto the reference (robust ICP); off: they are already aligned.",
-          .default_value = "true"}});
+          .default_value = "true"},
+         landmarks_parameter("reference"),
+         landmarks_parameter("examined")});
 }
 
 SlicerGroup results_group() {
@@ -204,6 +298,8 @@ SlicerGroup results_group() {
 void write_parameter(std::ostringstream& x, const SlicerParameter& p) {
     x << "    <" << p.tag;
     if (!p.type.empty()) x << " type=\"" << p.type << '"';
+    if (!p.multiple.empty()) x << " multiple=\"" << p.multiple << '"';
+    if (!p.coordinate_system.empty()) x << " coordinateSystem=\"" << p.coordinate_system << '"';
     if (!p.file_extensions.empty()) x << " fileExtensions=\"" << p.file_extensions << '"';
     x << ">\n      <name>" << p.name << "</name>\n";
     if (!p.longflag.empty()) x << "      <longflag>" << p.longflag << "</longflag>\n";
@@ -227,7 +323,9 @@ void write_parameter(std::ostringstream& x, const SlicerParameter& p) {
 const std::vector<SlicerGroup>& slicer_groups() {
     static const std::vector<SlicerGroup> groups = [] {
         return std::vector<SlicerGroup>{
-            surfaces_group(), fit_group(),
+            inputs_group(),
+            outputs_group(),
+            fit_group(),
             registry_group("Sweep", "The virtual rotary scanner: views, image size, metric.", false,
                            kSweepGroup),
             registry_group("Decision",
@@ -248,7 +346,8 @@ std::string slicer_xml() {
       << "  <description>Finds damage on a surface by light-reflection analysis: fits the examined model onto the "
          "reference, sweeps a virtual camera around both, compares normal-colour frames view by view and folds the "
          "differences onto the reference as a per-vertex damage atlas with regions (dents, bumps, missing "
-         "surface).</description>\n"
+         "surface). Each surface is a model or a scalar volume (its iso-surface); returns the atlas model, "
+         "atlas.png, report.html and the regions table.</description>\n"
       << "  <version>" << kVersion << "</version>\n"
       << "  <license>see the glint repository</license>\n"
       << "  <contributor>glint developers</contributor>\n"

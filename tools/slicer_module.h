@@ -4,7 +4,10 @@
 // reading the XML description it prints; it builds the module's panel from it and, on Apply,
 // runs the program with the parameters as flags followed by the index (positional)
 // parameters, its input nodes written to temporary files and outputs read back from the
-// paths it passed. For an executable module it adds --returnparameterfile FILE when the
+// paths it passed. Markups are passed as text (an ROI "cx,cy,cz,rx,ry,rz") or written to
+// files (point lists), in the coordinate system each parameter declares (tools/slicer_markups.h).
+// glint's only index parameter is the atlas: the reference and examined surfaces are each a
+// model or a volume flag, and Slicer refuses to run a module whose index node is not selected. For an executable module it adds --returnparameterfile FILE when the
 // description has return parameters (output-channel parameters without flag or index; the
 // program writes "name = value" lines there), and it reads progress from the program's
 // stdout as <filter-progress>0.5</filter-progress> lines (--processinformationaddress is

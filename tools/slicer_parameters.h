@@ -14,7 +14,7 @@ namespace glint::cli {
 /// parameter with neither is a return parameter (written to --returnparameterfile).
 struct SlicerParameter {
     std::string
-        tag;  ///< integer, double, boolean, string, string-enumeration, double-vector, geometry, table, image
+        tag;  ///< integer, double, boolean, string, string-enumeration, double-vector, geometry, table, image, file, region, pointfile
     std::string name;      ///< unique; also the key in the return parameter file
     std::string longflag;  ///< without dashes; empty for index and return parameters
     int index = -1;        ///< position among the index parameters; -1: not one
@@ -25,6 +25,9 @@ struct SlicerParameter {
     std::string type;  ///< the type attribute (geometry "model", image "vector"); empty: none
     std::string
         file_extensions;  ///< the fileExtensions attribute; the first is what Slicer writes/reads
+    std::string coordinate_system;  ///< point, pointfile, region: "lps" (tools/slicer_markups.h)
+    std::string
+        multiple;  ///< the multiple attribute ("false": Slicer passes one point); empty: none
     std::vector<std::string> elements;                 ///< enumerations
     std::optional<std::array<double, 3>> constraints;  ///< minimum, maximum, step
 };

@@ -7,6 +7,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "mesh/parse.h"
 #include "mesh/roi.h"
 #include "registration/icp.h"
 #include "render/context.h"
@@ -16,9 +17,13 @@
 #include "tools/command.h"
 #include "tools/memory.h"
 #include "tools/option_flags.h"
+#include "tools/slicer_markups.h"
 #include "tools/slicer_module.h"
 #include "tools/slicer_parameters.h"
 #include "volume/load.h"
+#include "volume/volume.h"
+
+#include <nlohmann/json.hpp>
 
 #include <CLI/CLI.hpp>
 
@@ -75,8 +80,11 @@ SlicerCall parse(int argc, char** argv) {
                 app.add_flag("--" + p.longflag, call.booleans[p.name], p.description);
             else app.add_option("--" + p.longflag, call.values[p.name], p.description);
         }
-    app.add_option("ARGS", call.positional, "reference, examined, atlas (the index parameters)")
-        ->expected(0, positional_count);
+    // note: glint's calls before the inputs became flags passed reference, examined, atlas as
+    // arguments; that form is still read (scripts), Slicer's is the atlas alone.
+    app.add_option("ARGS", call.positional,
+                   "atlas (the index parameter), or reference, examined, atlas")
+        ->expected(0, positional_count + 2);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -86,10 +94,11 @@ SlicerCall parse(int argc, char** argv) {
     // Only the flags given stay (CLI11 leaves an empty string for the others).
     for (auto it = call.values.begin(); it != call.values.end();)
         it = app.get_option("--" + it->first)->count() == 0 ? call.values.erase(it) : std::next(it);
-    if (!call.xml && static_cast<int>(call.positional.size()) != positional_count)
-        throw InputError("Slicer module: expected " + std::to_string(positional_count) +
-                         " index arguments (reference, examined, atlas), found " +
-                         std::to_string(call.positional.size()));
+    if (!call.xml && call.positional.size() != 1 && call.positional.size() != 3)
+        throw InputError(
+            "Slicer module: expected the atlas path as the last argument (or "
+            "reference, examined, atlas), found " +
+            std::to_string(call.positional.size()) + " arguments");
     return call;
 }
 
@@ -125,6 +134,8 @@ InspectOptions options_from(const SlicerCall& c) {
                 text.clear();
             if (f.info.kind == OptionKind::Choice && f.info.may_be_unset && text == "auto")
                 text.clear();
+            if (f.info.kind == OptionKind::Region && is_slicer_region(text))
+                text = to_string(parse_slicer_region(text));
             set_option(o, f, parse_option_text(f.info, text));
         } catch (const OptionError& e) {
             throw InputError("Slicer module: " + e.named("--" + name));
@@ -180,15 +191,115 @@ class SlicerProgress {
     std::chrono::steady_clock::time_point start_;
 };
 
-// The results folder of the run, beside the atlas Slicer asked for; removed once the files
-// Slicer reads are moved out of it (or when the run fails).
+// The results folder of the run and the landmarks file made from markups, beside the atlas
+// Slicer asked for; removed once the files Slicer reads are moved out (or when the run fails).
 struct ScratchFolder {
     fs::path path;
+    fs::path landmarks() const { return path.string() + ".landmarks.json"; }
     ~ScratchFolder() {
         std::error_code ignored;
         fs::remove_all(path, ignored);
+        fs::remove(landmarks(), ignored);
     }
 };
+
+// One surface of the call: a model or a volume, from the flags (Slicer) or the arguments.
+struct SurfaceInput {
+    std::string role;
+    fs::path path;
+    bool is_volume = false;
+};
+
+SurfaceInput surface_input(const SlicerCall& c, const std::string& role, std::size_t argument) {
+    const std::string model = role + "Model", volume = role + "Volume";
+    const bool has_model = c.values.count(model) != 0, has_volume = c.values.count(volume) != 0;
+    if (c.positional.size() == 3) {
+        if (has_model || has_volume)
+            throw InputError("Slicer module: the " + role + " is given as an argument and as --" +
+                             (has_model ? model : volume) + ", expected one");
+        const fs::path path = c.positional[argument];
+        return {role, path, is_volume_path(path)};
+    }
+    if (has_model == has_volume)
+        throw InputError(
+            "Slicer module: " +
+            (has_model ? "both --" + model + " and --" + volume + " given" : "no " + role) +
+            ", expected one of --" + model + " (a model) or --" + volume + " (a volume)");
+    const fs::path path = c.values.at(has_model ? model : volume);
+    if (has_volume && !is_volume_path(path))
+        throw InputError("Slicer module: --" + volume + " \"" + path.string() +
+                         "\" is no volume file, expected .nrrd, .nii, .nii.gz, .mha or .mhd");
+    return {role, path, is_volume_path(path)};
+}
+
+// Slicer writes models and volumes in LPS; a mesh that states RAS (SPACE=RAS) is turned into
+// LPS (x and y negated: a half turn about z, so the winding stays) so that the ROIs, the
+// landmarks and the atlas Slicer reads back share one space.
+void into_lps(RunInput& input) {
+    if (input.record.space != "RAS") return;
+    for (auto& p : input.mesh.positions) p = Vec3f(-p.x(), -p.y(), p.z());
+    for (auto& n : input.mesh.normals) n = Vec3f(-n.x(), -n.y(), n.z());
+    input.record.space = "LPS";
+    input.warnings.push_back(input.record.path.string() +
+                             ": states SPACE=RAS, turned into LPS (Slicer's space)");
+}
+
+RunInput load_surface_input(const SurfaceInput& in, const SlicerCall& c) {
+    SurfaceOptions surface;
+    if (in.is_volume) {
+        const auto iso = c.values.find("iso");
+        if (iso != c.values.end()) {
+            const auto v = parse_number_list(iso->second, "Slicer module: --iso");
+            if (v.size() != 1)
+                throw InputError("Slicer module: --iso \"" + iso->second +
+                                 "\": expected one number (the surface's value)");
+            surface.iso = v[0];
+        }
+        surface.largest = c.booleans.at("largest");
+        const auto seed = c.values.find("seed");
+        if (seed != c.values.end()) {
+            if (surface.largest)
+                throw InputError(
+                    "Slicer module: --largest and --seed both given, expected one "
+                    "(the largest part of the surface, or the part nearest the seed)");
+            const auto v = parse_number_list(seed->second, "Slicer module: --seed");
+            if (v.size() != 3)
+                throw InputError("Slicer module: --seed \"" + seed->second +
+                                 "\": expected x,y,z (a point, mm)");
+            surface.seed = Vec3d(v[0], v[1], v[2]);
+        }
+    }
+    RunInput loaded = load_run_input(in.role, in.path, surface);
+    into_lps(loaded);
+    return loaded;
+}
+
+// The two landmark point lists (markups, paired in order) as a landmarks file
+// (registration/landmarks.h): the registration starts from their fit.
+void landmarks_from_markups(const SlicerCall& c, FitOptions& fit, const fs::path& file) {
+    const bool has_reference = c.values.count("referenceLandmarks") != 0;
+    const bool has_examined = c.values.count("examinedLandmarks") != 0;
+    if (!has_reference && !has_examined) return;
+    if (has_reference != has_examined)
+        throw InputError(std::string("Slicer module: --") +
+                         (has_reference ? "referenceLandmarks" : "examinedLandmarks") +
+                         " given alone, expected both landmark lists (paired in order)");
+    if (!fit.landmarks_file.empty())
+        throw InputError("Slicer module: landmarks given as markups and as --landmarks \"" +
+                         fit.landmarks_file.string() + "\", expected one");
+    const auto reference = read_markups_points(c.values.at("referenceLandmarks"));
+    const auto examined = read_markups_points(c.values.at("examinedLandmarks"));
+    if (reference.size() != examined.size())
+        throw InputError("Slicer module: " + std::to_string(reference.size()) +
+                         " reference landmarks and " + std::to_string(examined.size()) +
+                         " examined landmarks, expected as many of each (paired in order)");
+    nlohmann::json pairs = nlohmann::json::array();
+    for (std::size_t i = 0; i < reference.size(); ++i)
+        pairs.push_back({{"examined", {examined[i].x(), examined[i].y(), examined[i].z()}},
+                         {"reference", {reference[i].x(), reference[i].y(), reference[i].z()}}});
+    write_file_atomically(file, nlohmann::json{{"pairs", pairs}}.dump(1));
+    fit.landmarks_file = file;
+}
 
 std::string return_parameters(const AnalysisResult& r) {
     std::size_t count = 0;
@@ -238,17 +349,24 @@ void run_slicer_module(int argc, char** argv) {
         print_options(options.analysis, options.exports);
         return;
     }
-    const fs::path atlas = call.positional[2];
+    const fs::path atlas = call.positional.back();
+    const SurfaceInput ref_in = surface_input(call, "reference", 0);
+    const SurfaceInput exa_in = surface_input(call, "examined", 1);
     ScratchFolder scratch{atlas.parent_path() / (".glint-slicer-" + std::to_string(::getpid()) +
                                                  "-" + atlas.filename().string())};
     options.exports.output = scratch.path;
+    landmarks_from_markups(call, options.analysis.fit, scratch.landmarks());
     options.validate();
     SlicerProgress progress;
-    const RunInput ref = load_run_input("reference", call.positional[0], {});
-    RunInput exa = load_run_input("examined", call.positional[1], {});
+    const RunInput ref = load_surface_input(ref_in, call);
+    RunInput exa = load_surface_input(exa_in, call);
     RunRecord record{.command_line = global_flags().command_line};
     record.add(ref);
     record.add(exa);
+    for (const std::string side : {"reference", "examined"})
+        if (call.values.count(side + "Landmarks") != 0)
+            record.add_file("landmarks", call.values.at(side + "Landmarks"),
+                            "markups point list, the " + side + " side of the landmark pairs");
     AnalysisObserver observer;
     observer.stage = [&](std::string_view s) {
         give_back_free_memory();
@@ -257,10 +375,11 @@ void run_slicer_module(int argc, char** argv) {
     observer.views = [&](std::size_t done, std::size_t total) { progress.views(done, total); };
     const Inspection result = inspect(ref.mesh, std::move(exa.mesh), options, record, observer);
     deliver(result.output, "atlas.vtp", atlas.string());
-    if (call.values.count("regions") != 0)
-        deliver(result.output, "regions.csv", call.values.at("regions"));
-    if (call.values.count("mosaic") != 0)
-        deliver(result.output, "mosaic_z0.png", call.values.at("mosaic"));
+    for (const auto& [parameter, file] :
+         {std::pair{"regions", "regions.csv"}, std::pair{"mosaic", "mosaic_z0.png"},
+          std::pair{"atlasPicture", "atlas.png"}, std::pair{"report", "report.html"}})
+        if (call.values.count(parameter) != 0)
+            deliver(result.output, file, call.values.at(parameter));
     if (!call.return_file.empty())
         write_file_atomically(call.return_file, return_parameters(result.analysis));
     progress.finish();
