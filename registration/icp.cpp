@@ -76,9 +76,7 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     std::optional<ClosestPointIndex> exa_index;
     if (o.symmetric) exa_index.emplace(ClosestPointIndex::borrowing(exam));
     const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
-    // The fit reads the examined surface away from its open borders, whose rows curl
-    // (detail::kFitBorderRows).
-    const auto samples = detail::sample_away_from_borders(exam, o.samples, o.seed);
+    const auto samples = detail::sample_surface(exam, o.samples, o.seed);
     const auto ref_samples =
         o.symmetric ? detail::sample_surface(ref_index.mesh(), o.samples / 2, o.seed + 1)
                     : std::vector<detail::Sample>{};

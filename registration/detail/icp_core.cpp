@@ -1,6 +1,5 @@
 #include "registration/detail/icp_core.h"
 
-#include "mesh/components.h"
 #include "mesh/normals.h"
 
 #include <ceres/ceres.h>
@@ -51,34 +50,6 @@ std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t se
         out.push_back(s);
     }
     return out;
-}
-
-std::vector<Sample> sample_away_from_borders(const Mesh& mesh, int count, std::uint32_t seed) {
-    std::vector<std::uint8_t> near = border_vertices(mesh);
-    if (std::find(near.begin(), near.end(), std::uint8_t{1}) == near.end())
-        return sample_surface(mesh, count, seed);
-    // Grow the border by rows of triangles: a triangle touching a marked vertex marks its own.
-    std::vector<std::uint8_t> drop(mesh.triangles.size(), 0);
-    for (int row = 0; row < kFitBorderRows; ++row) {
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-            for (auto v : mesh.triangles[t]) drop[t] |= near[v];
-        for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-            if (drop[t])
-                for (auto v : mesh.triangles[t]) near[v] = 1;
-    }
-    const auto areas = triangle_areas(mesh);
-    double total = 0.0, kept = 0.0;
-    Mesh inner;
-    inner.positions = mesh.positions;
-    inner.normals = mesh.normals;
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-        total += areas[t];
-        if (drop[t]) continue;
-        kept += areas[t];
-        inner.triangles.push_back(mesh.triangles[t]);
-    }
-    return kept >= 0.5 * total ? sample_surface(inner, count, seed)
-                               : sample_surface(mesh, count, seed);
 }
 
 double median_abs(std::vector<double> v) {

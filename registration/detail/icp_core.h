@@ -25,18 +25,6 @@ struct Sample {
 /// `count` area-uniform samples with interpolated normals (deterministic for a seed).
 [[nodiscard]] std::vector<Sample> sample_surface(const Mesh& mesh, int count, std::uint32_t seed);
 
-/// Rows of triangles next to an open border a fit leaves out: a range scan's ragged edge and a
-/// marching-cubes cut curl over 1–3 rows (decision/comparison.h's band is 4 edges). note: 3 —
-/// measured on the bunny's range scans onto bun_zipper.ply: bun000's error against its
-/// ground-truth pose falls from 0.059° to 0.040° (2 rows) and 0.026° (5 rows).
-inline constexpr int kFitBorderRows = 3;
-
-/// `count` area-uniform samples as sample_surface, drawn away from the mesh's open borders
-/// (kFitBorderRows rows of triangles left out), unless that would leave out more than half of
-/// its area (a thin strip, a small patch): then over the whole mesh.
-[[nodiscard]] std::vector<Sample> sample_away_from_borders(const Mesh& mesh, int count,
-                                                           std::uint32_t seed);
-
 /// `mesh` itself when it has vertex normals, else a copy in `storage` with angle-weighted ones
 /// (as ClosestPointIndex computes them).
 [[nodiscard]] const Mesh& with_vertex_normals(const Mesh& mesh, std::optional<Mesh>& storage);
