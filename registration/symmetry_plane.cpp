@@ -172,8 +172,12 @@ std::string to_string(const SymmetryPlane& plane) {
 SymmetryPlane plane_from_mirror(const Eigen::Affine3d& mirror, const Vec3d& at) {
     const Eigen::Matrix3d l = mirror.linear();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (l + l.transpose()));
-    // Eigenvalues ascending: the first is the one nearest −1.
-    const Vec3d normal = eig.eigenvectors().col(0);
+    // Eigenvalues ascending: the first is the one nearest −1. Its sign is free: the largest
+    // component is made positive, so a plane near x = 0 reads as normal +x.
+    Vec3d normal = eig.eigenvectors().col(0);
+    Eigen::Index axis = 0;
+    normal.cwiseAbs().maxCoeff(&axis);
+    if (normal[axis] < 0) normal = -normal;
     return plane_through(0.5 * (at + mirror * at), normal);
 }
 
