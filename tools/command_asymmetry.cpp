@@ -24,6 +24,7 @@
 #include <numbers>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace glint::cli {
 namespace {
@@ -116,6 +117,13 @@ void print_findings(const nlohmann::json& a, std::size_t regions, const std::str
     for (const auto& f : a["findings"]) std::printf("  %s\n", f["text"].get<std::string>().c_str());
 }
 
+// The analysis warns that no fit was asked for; here the mirror is made in place, so that is
+// no warning (report.json's fit says "identity").
+std::vector<std::string> without_fit_warning(std::vector<std::string> warnings) {
+    std::erase_if(warnings, [](const std::string& w) { return w.starts_with("no fit requested"); });
+    return warnings;
+}
+
 void run(AsymmetryArgs& a) {
     AnalysisOptions& analysis = a.options.analysis;
     AsymmetryOptions options;
@@ -135,9 +143,9 @@ void run(AsymmetryArgs& a) {
     progress.stage("symmetry plane");
     AsymmetryPlane plane = prepare_asymmetry(input.mesh, options);
     const std::string& unit = input.mesh.unit;
-    print_warnings(input.warnings);
     if (plane.mirror.triangles.empty()) {
         progress.finish();
+        print_warnings(input.warnings);
         if (global_flags().json)
             std::cout << nlohmann::json{{"plane", plane_json(plane.plane, unit)}}.dump(2) << '\n';
         else print_plane(plane.plane, unit);
@@ -166,7 +174,7 @@ void run(AsymmetryArgs& a) {
     const Inspection result =
         inspect(input.mesh, std::move(mirror.mesh), a.options, record, observer);
     progress.finish();
-    print_warnings(result.analysis.warnings);
+    print_warnings(without_fit_warning(result.analysis.warnings));
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::parse(result.report_json);
         j["output"] = absolute_output(result.output);
