@@ -166,6 +166,7 @@ TEST(SymmetryPlane, ChiralShapeHasNoPlausiblePlane) {
     const SymmetryPlaneResult r = estimate_symmetry_plane(chiral_shape());
     EXPECT_FALSE(r.plausible) << r.verdict;
     EXPECT_NE(r.verdict.find("no plausible symmetry plane"), std::string::npos) << r.verdict;
+    std::printf("chiral: %s\n", r.verdict.c_str());
 }
 
 TEST(SymmetryPlane, GivenPlaneIsCheckedNotMoved) {
