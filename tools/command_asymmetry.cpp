@@ -150,8 +150,9 @@ void run(AsymmetryArgs& a) {
             std::cout << nlohmann::json{{"plane", plane_json(plane.plane, unit)}}.dump(2) << '\n';
         else print_plane(plane.plane, unit);
         throw CheckFailed("\"" + a.mesh + "\": " + plane.plane.verdict +
-                          "; no asymmetry is reported (--plane gives one by hand); nothing "
-                          "was written");
+                          "; no asymmetry is reported and nothing was written (the best plane "
+                          "found, given by hand, runs anyway: --plane \"" +
+                          to_string(plane.plane.plane) + "\")");
     }
     RunRecord record{.command_line = global_flags().command_line};
     record.add(input);
