@@ -146,8 +146,11 @@ void run(AsymmetryArgs& a) {
     if (plane.mirror.triangles.empty()) {
         progress.finish();
         print_warnings(input.warnings);
+        // The result (the plane and its verdict) before the check fails (tools/main.cpp).
         if (global_flags().json)
-            std::cout << nlohmann::json{{"plane", plane_json(plane.plane, unit)}}.dump(2) << '\n';
+            std::cout
+                << nlohmann::json{{"asymmetry", {{"plane", plane_json(plane.plane, unit)}}}}.dump(2)
+                << '\n';
         else print_plane(plane.plane, unit);
         throw CheckFailed("\"" + a.mesh + "\": " + plane.plane.verdict +
                           "; no asymmetry is reported and nothing was written (the best plane "
