@@ -50,6 +50,10 @@ AsymmetryFinding finding_of(const Region& r, const Region* mirror, const Symmetr
     f.area = r.area;
     f.volume = -r.volume;
     f.centroid = r.centroid;
+    if (r.kind == RegionKind::MissingSurface) {
+        f.mirror_missing = true;
+        f.depth = f.volume = std::numeric_limits<double>::quiet_NaN();
+    }
     return f;
 }
 
@@ -119,6 +123,10 @@ AsymmetryFindings pair_findings(const SymmetryPlane& plane, const AnalysisResult
 
 std::string describe(const AsymmetryFinding& f, const std::string& side_name,
                      const std::string& other_name, const std::string& unit) {
+    if (f.mirror_missing)
+        return side_name + ": no mirrored " + other_name +
+               " surface to compare with (missing, or outside the scan), area " +
+               with_unit(f.area, unit, 2, "%.3g") + " (region " + std::to_string(f.region) + ")";
     return side_name + ": " + with_unit(std::abs(f.depth), unit, 1, "%.3g") +
            (f.depth < 0 ? " less" : " more") + " than the mirrored " + other_name + ", area " +
            with_unit(f.area, unit, 2, "%.3g") + ", volume " +

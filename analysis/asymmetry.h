@@ -55,6 +55,9 @@ struct AsymmetryFinding {
     double area = 0.0;               ///< mesh units²
     double volume = 0.0;  ///< this side minus the mirrored other, mesh units³ (neg = less)
     Vec3d centroid{0, 0, 0};
+    /// The mirror has no surface there (the other side is missing or outside the scan): no
+    /// depth or volume (NaN), "no mirrored surface" in words.
+    bool mirror_missing = false;
 };
 
 /// How symmetric the surface is outside the findings: |asymmetry field| of the vertices in no

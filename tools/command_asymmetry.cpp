@@ -81,6 +81,7 @@ nlohmann::json asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryF
         findings.push_back({{"side", side},
                             {"text", describe(x, side + " side", other + " side", unit)},
                             {"less", x.depth < 0},
+                            {"mirror_missing", x.mirror_missing},
                             {"depth", x.depth},
                             {"area", x.area},
                             {"volume", x.volume},
@@ -95,7 +96,10 @@ nlohmann::json asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryF
             {"caveat", std::string(kOneScanCaveat)},
             {"field",
              "asymmetry: this side minus the mirrored other side along the outward "
-             "normal (negative: less)"}};
+             "normal (negative: less)"},
+            {"regions_note",
+             "regions, regions.csv and the pictures show the mirror against the surface: a "
+             "bump there is where the mirrored other side stands out, i.e. this side has less"}};
 }
 
 void print_plane(const SymmetryPlaneResult& r, const std::string& u) {

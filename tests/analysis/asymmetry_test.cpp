@@ -108,6 +108,44 @@ TEST(Asymmetry, OneSidedDentOfAShapeIsOneFindingOnItsSide) {
         << describe(f, "+x side", "-x side", "mm");
 }
 
+// Pairing alone, on regions made by hand: a bump of the mirror at +x (the surface has less
+// there) and a dent of the mirror at its mirror image are one finding, shown at +x; a region
+// where the mirror has no surface stands alone and has no depth.
+TEST(Asymmetry, PairsOppositeRegionsAtMirrorImagesIntoOneFinding) {
+    AnalysisResult r;
+    r.distance = {0.3f, -0.3f, 0.0f, 0.01f};
+    ZoomDecision d;
+    d.regions.region_of_vertex = {1, 2, 3, 0};
+    d.regions.regions = {
+        Region{.id = 1,
+               .area = 4,
+               .peak_depth = 0.3,
+               .volume = 1.0,
+               .centroid = {5, 1, 0},
+               .kind = RegionKind::Bump},
+        Region{.id = 2,
+               .area = 4,
+               .peak_depth = -0.3,
+               .volume = -1.0,
+               .centroid = {-5.2, 1, 0},
+               .kind = RegionKind::Dent},
+        Region{.id = 3, .area = 2, .centroid = {0.5, 8, 3}, .kind = RegionKind::MissingSurface}};
+    r.decisions.push_back(d);
+    const AsymmetryFindings f = pair_findings(parse_plane_spec("x=0"), r);
+    ASSERT_EQ(f.findings.size(), 2u);
+    EXPECT_EQ(f.findings[0].region, 1);
+    EXPECT_EQ(f.findings[0].mirror_region, 2);
+    EXPECT_EQ(f.findings[0].side, Vec3d::UnitX());
+    EXPECT_DOUBLE_EQ(f.findings[0].depth, -0.3);
+    EXPECT_DOUBLE_EQ(f.findings[0].volume, -1.0);
+    EXPECT_TRUE(f.findings[1].mirror_missing);
+    EXPECT_TRUE(std::isnan(f.findings[1].depth));
+    EXPECT_NE(describe(f.findings[1], "+x side", "-x side", "mm").find("no mirrored -x side"),
+              std::string::npos);
+    EXPECT_FLOAT_EQ(f.field[0], -0.3f);    // the surface minus its mirror: less
+    EXPECT_NEAR(f.floor.max, 0.01, 1e-6);  // only the vertex in no region
+}
+
 TEST(Asymmetry, SymmetricShapeHasNoFindingAndAQuietFloor) {
     const Mesh m = one_plane_shape();
     const MirrorRun r = run_asymmetry(m);
