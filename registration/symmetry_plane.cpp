@@ -247,7 +247,13 @@ SymmetryPlaneResult check_symmetry_plane(const Mesh& mesh, const SymmetryPlane& 
     r.size = bounds(mesh).diagonal();
     r.source = "given";
     r.plane = plane;
-    take_fit(r, fit_mirror(mesh, plane, centroid, o, nullptr, false).fit);
+    const MirrorFit f = fit_mirror(mesh, plane, centroid, o, nullptr, false);
+    take_fit(r, f.fit);
+    r.hypotheses.push_back({.name = "the plane the fit from the given one implies",
+                            .plane = f.plane,
+                            .rms = f.fit.rms,
+                            .overlap = f.fit.overlap,
+                            .converged = f.fit.converged});
     judge(r, o);
     return r;
 }

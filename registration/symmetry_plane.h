@@ -117,7 +117,9 @@ struct SymmetryPlaneResult {
                                                           const SymmetryPlaneOptions& options = {});
 
 /// How symmetric the surface is about a given plane: one robust fit of its reflection,
-/// reported the same way (source "given"); the plane itself is kept as given.
+/// reported the same way (source "given"); the plane itself is kept as given. The residual is
+/// the fit's, which may move the reflection: the plane that fit implies is the one hypothesis,
+/// to compare with the given one.
 [[nodiscard]] SymmetryPlaneResult check_symmetry_plane(const Mesh& mesh, const SymmetryPlane& plane,
                                                        const SymmetryPlaneOptions& options = {});
 

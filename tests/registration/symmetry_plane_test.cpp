@@ -176,6 +176,13 @@ TEST(SymmetryPlane, GivenPlaneIsCheckedNotMoved) {
     EXPECT_EQ(r.source, "given");
     EXPECT_EQ(r.plane.normal, x0.normal);
     EXPECT_TRUE(r.plausible) << r.verdict;
+    // A plane given 2° off is kept as given; the fit from it says where the plane lies.
+    const SymmetryPlane off =
+        plane_through({0, 0, 0}, {1, std::tan(2.0 * std::numbers::pi / 180), 0});
+    const SymmetryPlaneResult o = check_symmetry_plane(m, off);
+    EXPECT_EQ(o.plane.normal, off.normal);
+    ASSERT_EQ(o.hypotheses.size(), 1u);
+    EXPECT_LT(angle_deg(o.hypotheses[0].plane.normal, Vec3d::UnitX()), 0.2);
 }
 
 // jaw_smooth.obj is mirror-symmetric in x within tessellation (its mirrored vertices lie on
