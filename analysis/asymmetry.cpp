@@ -75,6 +75,46 @@ SymmetryFloor floor_of(const std::vector<float>& field, const std::vector<std::i
     return f;
 }
 
+// How irregularly the surface bends over each region: the spread (standard deviation) of the
+// umbrella curvature (the mean of a vertex's edges along its normal over their mean squared
+// length) over the region's vertices, by region id. A smooth surface bends evenly; a dent, a
+// bump or a flattening on it turns its curvature over within the region.
+std::vector<double> region_roughness(const Mesh& mesh, const RegionResult& rr) {
+    std::vector<double> out(rr.regions.size() + 1, 0.0);
+    if (!mesh.has_normals() || rr.region_of_vertex.size() != mesh.vertex_count()) return out;
+    const std::size_t n = mesh.vertex_count();
+    std::vector<Vec3d> sum(n, Vec3d::Zero());
+    std::vector<double> length2(n, 0.0);
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const auto a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
+            const Vec3d d = (mesh.positions[b] - mesh.positions[a]).cast<double>();
+            sum[a] += d;
+            sum[b] -= d;
+            length2[a] += d.squaredNorm();
+            length2[b] += d.squaredNorm();
+        }
+    struct Moments {
+        double sum = 0.0, sum2 = 0.0, count = 0.0;
+    };
+    std::vector<Moments> m(out.size());
+    for (std::size_t v = 0; v < n; ++v) {
+        const auto r = rr.region_of_vertex[v];
+        if (r <= 0 || std::size_t(r) >= out.size() || !(length2[v] > 0)) continue;
+        const double k = sum[v].dot(mesh.normals[v].cast<double>()) / length2[v];
+        Moments& a = m[std::size_t(r)];
+        a.sum += k;
+        a.sum2 += k * k;
+        a.count += 1.0;
+    }
+    for (std::size_t r = 1; r < out.size(); ++r) {
+        const Moments& a = m[r];
+        if (a.count > 1)
+            out[r] = std::sqrt(std::max(0.0, a.sum2 / a.count - std::pow(a.sum / a.count, 2)));
+    }
+    return out;
+}
+
 }  // namespace
 
 AsymmetryPlane prepare_asymmetry(const Mesh& mesh, const AsymmetryOptions& options) {
@@ -90,8 +130,8 @@ AsymmetryPlane prepare_asymmetry(const Mesh& mesh, const AsymmetryOptions& optio
     return out;
 }
 
-AsymmetryFindings pair_findings(const SymmetryPlane& plane, const AnalysisResult& result,
-                                std::size_t zoom) {
+AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
+                                const AnalysisResult& result, std::size_t zoom) {
     AsymmetryFindings out;
     out.field.resize(result.distance.size());
     for (std::size_t v = 0; v < result.distance.size(); ++v) out.field[v] = -result.distance[v];
@@ -101,6 +141,7 @@ AsymmetryFindings pair_findings(const SymmetryPlane& plane, const AnalysisResult
     }
     const RegionResult& rr = result.decisions[zoom].regions;
     const std::vector<Region>& regions = rr.regions;
+    const std::vector<double> rough = region_roughness(mesh, rr);
     std::vector<std::uint8_t> paired(regions.size(), 0);
     for (std::size_t i = 0; i < regions.size(); ++i) {
         if (paired[i]) continue;
@@ -111,11 +152,19 @@ AsymmetryFindings pair_findings(const SymmetryPlane& plane, const AnalysisResult
             continue;
         }
         paired[std::size_t(j)] = 1;
-        // Reported where the surface has less than the mirrored other side.
-        const bool i_less = sign_of(regions[i]) < 0;
-        const Region& shown = i_less ? regions[i] : regions[std::size_t(j)];
-        const Region& image = i_less ? regions[std::size_t(j)] : regions[i];
-        out.findings.push_back(finding_of(shown, &image, plane));
+        // Shown on the side that bends less evenly there, when clearly so; else where the
+        // surface has less than the mirrored other side.
+        const double ri = rough[std::size_t(regions[i].id)];
+        const double rj = rough[std::size_t(regions[std::size_t(j)].id)];
+        const bool by_shape = std::max(ri, rj) > kRoughnessRatio * std::min(ri, rj);
+        const bool show_i = by_shape ? ri > rj : sign_of(regions[i]) < 0;
+        const Region& shown = show_i ? regions[i] : regions[std::size_t(j)];
+        const Region& image = show_i ? regions[std::size_t(j)] : regions[i];
+        AsymmetryFinding f = finding_of(shown, &image, plane);
+        f.roughness = show_i ? ri : rj;
+        f.mirror_roughness = show_i ? rj : ri;
+        f.side_by_shape = by_shape;
+        out.findings.push_back(f);
     }
     out.floor = floor_of(out.field, rr.region_of_vertex);
     return out;

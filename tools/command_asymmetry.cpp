@@ -78,16 +78,21 @@ nlohmann::json asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryF
     nlohmann::json findings = nlohmann::json::array();
     for (const auto& x : f.findings) {
         const std::string side = o.name(x.side), other = o.name(-x.side);
-        findings.push_back({{"side", side},
-                            {"text", describe(x, side + " side", other + " side", unit)},
-                            {"less", x.depth < 0},
-                            {"mirror_missing", x.mirror_missing},
-                            {"depth", x.depth},
-                            {"area", x.area},
-                            {"volume", x.volume},
-                            {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
-                            {"region", x.region},
-                            {"mirror_region", x.mirror_region}});
+        findings.push_back(
+            {{"side", side},
+             {"text", describe(x, side + " side", other + " side", unit)},
+             {"less", x.depth < 0},
+             {"mirror_missing", x.mirror_missing},
+             {"side_chosen_by", x.side_by_shape ? "the side whose surface bends less evenly there"
+                                                : "the side with less"},
+             {"roughness", x.roughness},
+             {"mirror_roughness", x.mirror_roughness},
+             {"depth", x.depth},
+             {"area", x.area},
+             {"volume", x.volume},
+             {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
+             {"region", x.region},
+             {"mirror_region", x.mirror_region}});
     }
     return {{"plane", plane_json(plane, unit)},
             {"symmetry_floor",
@@ -170,7 +175,7 @@ void run(AsymmetryArgs& a) {
         resolve_orientation(parse_space(input.record.space), a.options.exports.up);
     nlohmann::json report;
     a.options.addition = [&](const AnalysisResult& r) {
-        AsymmetryFindings f = pair_findings(plane.plane.plane, r);
+        AsymmetryFindings f = pair_findings(input.mesh, plane.plane.plane, r);
         report = asymmetry_json(plane.plane, f, orientation, r.unit);
         return ReportAddition{.scalars = {{"asymmetry{unit}", std::move(f.field)}},
                               .key = "asymmetry",

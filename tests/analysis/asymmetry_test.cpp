@@ -54,7 +54,7 @@ MirrorRun run_asymmetry(const Mesh& mesh) {
     EXPECT_TRUE(r.plane.plane.plausible) << r.plane.plane.verdict;
     if (r.plane.mirror.triangles.empty()) return r;
     r.analysis = analyse(mesh, r.plane.mirror, sweep_options());
-    r.findings = pair_findings(r.plane.plane.plane, r.analysis);
+    r.findings = pair_findings(mesh, r.plane.plane.plane, r.analysis);
     return r;
 }
 
@@ -131,7 +131,7 @@ TEST(Asymmetry, PairsOppositeRegionsAtMirrorImagesIntoOneFinding) {
                .kind = RegionKind::Dent},
         Region{.id = 3, .area = 2, .centroid = {0.5, 8, 3}, .kind = RegionKind::MissingSurface}};
     r.decisions.push_back(d);
-    const AsymmetryFindings f = pair_findings(parse_plane_spec("x=0"), r);
+    const AsymmetryFindings f = pair_findings(Mesh{}, parse_plane_spec("x=0"), r);
     ASSERT_EQ(f.findings.size(), 2u);
     EXPECT_EQ(f.findings[0].region, 1);
     EXPECT_EQ(f.findings[0].mirror_region, 2);
@@ -190,7 +190,9 @@ void expect_right_loss(const Mesh& m, const Rigid& moved, const char* what) {
     EXPECT_LT(f.depth, 0.0) << what;
     const double f1 = f1_of(m, r.analysis.decisions[0].regions, f.region);
     EXPECT_GE(f1, 0.9) << what;
-    std::printf("%s: %s, F1 %.3f\n", what, describe(f, "+x side", "-x side", "mm").c_str(), f1);
+    std::printf("%s: %s, F1 %.3f, roughness %.4g vs mirror %.4g\n", what,
+                describe(f, "+x side", "-x side", "mm").c_str(), f1, f.roughness,
+                f.mirror_roughness);
 }
 
 TEST_F(JawAsymmetry, DentOnTheRightCondyleIsOneFindingOnTheRight) {
@@ -211,9 +213,9 @@ TEST_F(JawAsymmetry, FlatteningOfTheRightCondyleIsOneFindingOnTheRight) {
         moved, "flattening");
 }
 
-// A bump on the right is the same asymmetry as a loss on the left: reported once, where the
-// surface has less (the left), with the bump itself as its mirror-image region.
-TEST_F(JawAsymmetry, BumpOnTheRightIsOneFindingWhoseMirrorIsTheBump) {
+// A bump on the right is the same asymmetry as a loss on the left; the bump's side bends less
+// evenly, so the finding is shown there: more than the mirrored left.
+TEST_F(JawAsymmetry, BumpOnTheRightIsOneFindingOnTheRight) {
     const Rigid moved = motion(12.0, {0.6, -1.0, 0.2}, {2, -8, 5});
     const Mesh m =
         jaw({DamageSpec{
@@ -223,12 +225,14 @@ TEST_F(JawAsymmetry, BumpOnTheRightIsOneFindingWhoseMirrorIsTheBump) {
     expect_near_x0(r.plane.plane.plane, moved, {0, -7, 43});
     ASSERT_EQ(r.findings.findings.size(), 1u);
     const AsymmetryFinding& f = r.findings.findings[0];
-    EXPECT_LT((moved.linear().transpose() * f.side).x(), -0.99) << "reported on the left";
-    ASSERT_GT(f.mirror_region, 0);
-    const double f1 = f1_of(m, r.analysis.decisions[0].regions, f.mirror_region);
+    EXPECT_GT((moved.linear().transpose() * f.side).x(), 0.99) << "on the right (+x)";
+    EXPECT_GT(f.depth, 0.0) << "more than the mirrored left";
+    EXPECT_TRUE(f.side_by_shape);
+    const double f1 = f1_of(m, r.analysis.decisions[0].regions, f.region);
     EXPECT_GE(f1, 0.9);
-    std::printf("bump: %s, F1 of its mirror region %.3f\n",
-                describe(f, "-x side", "+x side", "mm").c_str(), f1);
+    std::printf("bump: %s, F1 %.3f, roughness %.4g vs mirror %.4g\n",
+                describe(f, "+x side", "-x side", "mm").c_str(), f1, f.roughness,
+                f.mirror_roughness);
 }
 
 }  // namespace
