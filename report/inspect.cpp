@@ -8,6 +8,8 @@
 #include "report/report_html.h"
 #include "report/view_exports.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
 #include <optional>
 #include <utility>
@@ -42,6 +44,14 @@ void note_accumulation(const InspectOptions& options, const AnalysisOptions& use
         result.sweep.accumulation_note =
             "per-view EXRs hold every pixel's comparison: frames read back (without "
             "--exr compare stays on the GPU)";
+}
+
+void add_to_outputs(ReportAddition addition, ExportOptions& exports, std::string& report) {
+    for (auto& s : addition.scalars) exports.extra_scalars.push_back(std::move(s));
+    if (addition.key.empty()) return;
+    nlohmann::json j = nlohmann::json::parse(report);
+    j[addition.key] = nlohmann::json::parse(addition.json);
+    report = j.dump(2) + "\n";  // as report_json writes it
 }
 
 }  // namespace
@@ -88,10 +98,12 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     const auto t = Clock::now();
     out.analysis.total_seconds = seconds_since(t_start);
     out.report_json = report_json(reference, out.analysis, options, record);
+    ExportOptions exports = options.exports;
+    if (options.addition) add_to_outputs(options.addition(out.analysis), exports, out.report_json);
     if (folder) {
         try {
             out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
-                                      options.exports, record, out.report_json, observer);
+                                      exports, record, out.report_json, observer);
         } catch (const IoError& e) {  // the folder the user named, not the staging folder
             throw naming_target(e, folder->staging(), folder->target());
         }

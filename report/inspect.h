@@ -19,14 +19,27 @@
 #include "report/run_inputs.h"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace glint {
+
+/// What a command adds to a run's outputs once the analysis is known (glint asymmetry): atlas
+/// fields after glint's own (as ExportOptions::extra_scalars) and one object of report.json.
+struct ReportAddition {
+    std::vector<std::pair<std::string, std::vector<float>>> scalars;
+    std::string key;   ///< report.json's key for `json` ("" = none)
+    std::string json;  ///< JSON text
+};
 
 struct InspectOptions {
     AnalysisOptions analysis;
     ExportOptions exports;
+    /// Called once after the analysis, before anything is written; empty: nothing is added.
+    std::function<ReportAddition(const AnalysisResult&)> addition;
     /// Every option, before anything is loaded. \throw OptionError naming the key; InputError
     /// an output folder that exists and may not be replaced.
     void validate() const;

@@ -1,0 +1,189 @@
+#include "analysis/asymmetry.h"
+
+#include "mesh/error.h"
+#include "mesh/units.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace glint {
+
+namespace {
+
+// +1: the region's side has more than the mirrored other side (the mirror lies inside it,
+// a "dent" of the examined = mirror), −1: less.
+int sign_of(const Region& r) { return r.kind == RegionKind::Dent ? +1 : -1; }
+
+double radius_of(const Region& r) { return std::sqrt(r.area / std::numbers::pi); }
+
+// The unpaired region of the opposite sign nearest the mirror image of `r`'s centroid, within
+// twice the larger radius; -1 when none.
+int partner_of(const std::vector<Region>& regions, std::size_t i, const SymmetryPlane& plane,
+               const std::vector<std::uint8_t>& paired) {
+    const Region& r = regions[i];
+    const Vec3d image = plane.reflection() * r.centroid;
+    int best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < regions.size(); ++j) {
+        const Region& q = regions[j];
+        if (j == i || paired[j] || q.kind == RegionKind::MissingSurface || sign_of(q) == sign_of(r))
+            continue;
+        const double d = (q.centroid - image).norm();
+        if (d <= 2.0 * std::max(radius_of(r), radius_of(q)) && d < best_distance) {
+            best_distance = d;
+            best = static_cast<int>(j);
+        }
+    }
+    return best;
+}
+
+AsymmetryFinding finding_of(const Region& r, const Region* mirror, const SymmetryPlane& plane) {
+    AsymmetryFinding f;
+    f.region = r.id;
+    f.mirror_region = mirror ? mirror->id : 0;
+    f.side = plane.distance(r.centroid) >= 0 ? plane.normal : Vec3d(-plane.normal);
+    // The examined surface is the mirror: its change against the surface is minus the
+    // surface's change against its mirror.
+    f.depth = -r.peak_depth;
+    f.area = r.area;
+    f.volume = -r.volume;
+    f.centroid = r.centroid;
+    if (r.kind == RegionKind::MissingSurface) {
+        f.mirror_missing = true;
+        f.depth = f.volume = std::numeric_limits<double>::quiet_NaN();
+    }
+    return f;
+}
+
+SymmetryFloor floor_of(const std::vector<float>& field, const std::vector<std::int32_t>& region) {
+    std::vector<double> a;
+    a.reserve(field.size());
+    for (std::size_t v = 0; v < field.size(); ++v)
+        if ((region.empty() || region[v] == 0) && std::isfinite(field[v]))
+            a.push_back(std::abs(field[v]));
+    SymmetryFloor f;
+    if (a.empty()) return f;
+    double sum = 0.0;
+    for (double x : a) sum += x * x;
+    f.rms = std::sqrt(sum / double(a.size()));
+    const auto k = static_cast<std::ptrdiff_t>(0.95 * double(a.size() - 1));
+    std::nth_element(a.begin(), a.begin() + k, a.end());
+    f.p95 = a[std::size_t(k)];
+    f.max = *std::max_element(a.begin(), a.end());
+    return f;
+}
+
+// How irregularly the surface bends over each region: the spread (standard deviation) of the
+// umbrella curvature (the mean of a vertex's edges along its normal over their mean squared
+// length) over the region's vertices, by region id. A smooth surface bends evenly; a dent, a
+// bump or a flattening on it turns its curvature over within the region.
+std::vector<double> region_roughness(const Mesh& mesh, const RegionResult& rr) {
+    std::vector<double> out(rr.regions.size() + 1, 0.0);
+    if (!mesh.has_normals() || rr.region_of_vertex.size() != mesh.vertex_count()) return out;
+    const std::size_t n = mesh.vertex_count();
+    std::vector<Vec3d> sum(n, Vec3d::Zero());
+    std::vector<double> length2(n, 0.0);
+    for (const auto& t : mesh.triangles)
+        for (int k = 0; k < 3; ++k) {
+            const auto a = t[std::size_t(k)], b = t[std::size_t((k + 1) % 3)];
+            const Vec3d d = (mesh.positions[b] - mesh.positions[a]).cast<double>();
+            sum[a] += d;
+            sum[b] -= d;
+            length2[a] += d.squaredNorm();
+            length2[b] += d.squaredNorm();
+        }
+    struct Moments {
+        double sum = 0.0, sum2 = 0.0, count = 0.0;
+    };
+    std::vector<Moments> m(out.size());
+    for (std::size_t v = 0; v < n; ++v) {
+        const auto r = rr.region_of_vertex[v];
+        if (r <= 0 || std::size_t(r) >= out.size() || !(length2[v] > 0)) continue;
+        const double k = sum[v].dot(mesh.normals[v].cast<double>()) / length2[v];
+        Moments& a = m[std::size_t(r)];
+        a.sum += k;
+        a.sum2 += k * k;
+        a.count += 1.0;
+    }
+    for (std::size_t r = 1; r < out.size(); ++r) {
+        const Moments& a = m[r];
+        if (a.count > 1)
+            out[r] = std::sqrt(std::max(0.0, a.sum2 / a.count - std::pow(a.sum / a.count, 2)));
+    }
+    return out;
+}
+
+}  // namespace
+
+AsymmetryPlane prepare_asymmetry(const Mesh& mesh, const AsymmetryOptions& options) {
+    options.validate();
+    AsymmetryPlane out;
+    out.plane = options.given_plane
+                    ? check_symmetry_plane(mesh, *options.given_plane, options.plane)
+                    : estimate_symmetry_plane(mesh, options.plane);
+    // A plane given by hand is the user's decision: the surface is compared with its mirror
+    // whatever the verdict (which still says how well it fits).
+    if (out.plane.plausible || options.given_plane)
+        out.mirror = reflect_mesh(mesh, out.plane.plane);
+    return out;
+}
+
+AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
+                                const AnalysisResult& result, std::size_t zoom) {
+    AsymmetryFindings out;
+    out.field.resize(result.distance.size());
+    for (std::size_t v = 0; v < result.distance.size(); ++v) out.field[v] = -result.distance[v];
+    if (zoom >= result.decisions.size()) {
+        out.floor = floor_of(out.field, {});
+        return out;
+    }
+    const RegionResult& rr = result.decisions[zoom].regions;
+    const std::vector<Region>& regions = rr.regions;
+    const std::vector<double> rough = region_roughness(mesh, rr);
+    std::vector<std::uint8_t> paired(regions.size(), 0);
+    for (std::size_t i = 0; i < regions.size(); ++i) {
+        if (paired[i]) continue;
+        const int j = partner_of(regions, i, plane, paired);
+        paired[i] = 1;
+        if (j < 0) {
+            out.findings.push_back(finding_of(regions[i], nullptr, plane));
+            continue;
+        }
+        paired[std::size_t(j)] = 1;
+        // Shown on the side that bends less evenly there, when clearly so; else where the
+        // surface has less than the mirrored other side.
+        const double ri = rough[std::size_t(regions[i].id)];
+        const double rj = rough[std::size_t(regions[std::size_t(j)].id)];
+        const bool by_shape = std::max(ri, rj) > kRoughnessRatio * std::min(ri, rj);
+        const bool show_i = by_shape ? ri > rj : sign_of(regions[i]) < 0;
+        const Region& shown = show_i ? regions[i] : regions[std::size_t(j)];
+        const Region& image = show_i ? regions[std::size_t(j)] : regions[i];
+        AsymmetryFinding f = finding_of(shown, &image, plane);
+        f.roughness = show_i ? ri : rj;
+        f.mirror_roughness = show_i ? rj : ri;
+        f.side_by_shape = by_shape;
+        out.findings.push_back(f);
+    }
+    out.floor = floor_of(out.field, rr.region_of_vertex);
+    return out;
+}
+
+std::string describe(const AsymmetryFinding& f, const std::string& side_name,
+                     const std::string& other_name, const std::string& unit) {
+    if (f.mirror_missing)
+        return side_name + ": no mirrored " + other_name +
+               " surface to compare with (missing, or outside the scan), area " +
+               with_unit(f.area, unit, 2, "%.3g") + " (region " + std::to_string(f.region) + ")";
+    return side_name + ": " + with_unit(std::abs(f.depth), unit, 1, "%.3g") +
+           (f.depth < 0 ? " less" : " more") + " than the mirrored " + other_name + ", area " +
+           with_unit(f.area, unit, 2, "%.3g") + ", volume " +
+           with_unit(std::abs(f.volume), unit, 3, "%.3g") +
+           (f.mirror_region
+                ? " (region " + std::to_string(f.region) + ", its mirror image region " +
+                      std::to_string(f.mirror_region) + ")"
+                : " (region " + std::to_string(f.region) + ", no mirror-image region found)");
+}
+
+}  // namespace glint

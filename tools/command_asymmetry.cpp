@@ -1,0 +1,228 @@
+// glint asymmetry MESH -o OUT: left–right asymmetry of one surface (analysis/asymmetry.h): the
+// symmetry plane, then the surface swept against its own mirror image, findings side by side.
+#include "analysis/asymmetry.h"
+#include "mesh/error.h"
+#include "mesh/output_guard.h"
+#include "mesh/roi.h"
+#include "mesh/units.h"
+#include "report/inspect.h"
+#include "report/orientation.h"
+#include "report/run_inputs.h"
+#include "tools/command.h"
+#include "tools/memory.h"
+#include "tools/option_flags.h"
+#include "tools/progress.h"
+#include "tools/surface_flags.h"
+#include "volume/load.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace glint::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct AsymmetryArgs {
+    std::string mesh;
+    SurfaceOptions surface;
+    InspectOptions options;
+    std::string plane;
+    std::string output;
+    bool force = false;
+};
+
+double axis_angle_deg(const Vec3d& n, int axis) {
+    return std::acos(std::min(1.0, std::abs(n[axis]))) * 180.0 / std::numbers::pi;
+}
+
+nlohmann::json plane_json(const SymmetryPlaneResult& r, const std::string& unit) {
+    const SymmetryPlane& p = r.plane;
+    nlohmann::json hypotheses = nlohmann::json::array();
+    for (const auto& h : r.hypotheses)
+        hypotheses.push_back(
+            {{"name", h.name},
+             {"normal", {h.plane.normal.x(), h.plane.normal.y(), h.plane.normal.z()}},
+             {"offset", h.plane.offset},
+             {"rms", h.rms},
+             {"overlap", h.overlap},
+             {"converged", h.converged}});
+    return {
+        {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}},
+        {"point", {p.point().x(), p.point().y(), p.point().z()}},
+        {"offset", p.offset},
+        {"angle_to_axes_deg",
+         {axis_angle_deg(p.normal, 0), axis_angle_deg(p.normal, 1), axis_angle_deg(p.normal, 2)}},
+        {"source", r.source},
+        {"residual", r.rms},
+        {"residual_text", with_unit(r.rms, unit)},
+        {"inlier_fraction", r.inlier_fraction},
+        {"overlap", r.overlap},
+        {"converged", r.converged},
+        {"plausible", r.plausible},
+        {"verdict", r.verdict},
+        {"hypotheses", hypotheses}};
+}
+
+// report.json's "asymmetry": the plane, the floor, the findings side by side.
+nlohmann::json asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryFindings& f,
+                              const Orientation& o, const std::string& unit) {
+    nlohmann::json findings = nlohmann::json::array();
+    for (const auto& x : f.findings) {
+        const std::string side = o.name(x.side), other = o.name(-x.side);
+        findings.push_back(
+            {{"side", side},
+             {"text", describe(x, side + " side", other + " side", unit)},
+             {"less", x.depth < 0},
+             {"mirror_missing", x.mirror_missing},
+             {"side_chosen_by", x.side_by_shape ? "the side whose surface bends less evenly there"
+                                                : "the side with less"},
+             {"roughness", x.roughness},
+             {"mirror_roughness", x.mirror_roughness},
+             {"depth", x.depth},
+             {"area", x.area},
+             {"volume", x.volume},
+             {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
+             {"region", x.region},
+             {"mirror_region", x.mirror_region}});
+    }
+    return {{"plane", plane_json(plane, unit)},
+            {"symmetry_floor",
+             {{"rms", f.floor.rms}, {"p95", f.floor.p95}, {"max", f.floor.max}, {"unit", unit}}},
+            {"findings", findings},
+            {"caveat", std::string(kOneScanCaveat)},
+            {"field",
+             "asymmetry: this side minus the mirrored other side along the outward "
+             "normal (negative: less)"},
+            {"regions_note",
+             "regions, regions.csv and the pictures show the mirror against the surface: a "
+             "bump there is where the mirrored other side stands out, i.e. this side has less"}};
+}
+
+void print_plane(const SymmetryPlaneResult& r, const std::string& u) {
+    const SymmetryPlane& p = r.plane;
+    std::printf(
+        "symmetry plane (%s): normal (%.5f, %.5f, %.5f), offset %s, %.3f° from the x "
+        "axis\n  %s\n",
+        r.source.c_str(), p.normal.x(), p.normal.y(), p.normal.z(), with_unit(p.offset, u).c_str(),
+        axis_angle_deg(p.normal, 0), r.verdict.c_str());
+}
+
+void print_findings(const nlohmann::json& a, std::size_t regions, const std::string& u) {
+    const auto& fl = a["symmetry_floor"];
+    std::printf("rest of the surface: |asymmetry| RMS %s, 95%% below %s\n",
+                with_unit(fl["rms"].get<double>(), u).c_str(),
+                with_unit(fl["p95"].get<double>(), u).c_str());
+    std::printf("%zu finding(s) from %zu region(s); %s\n", a["findings"].size(), regions,
+                std::string(kOneScanCaveat).c_str());
+    for (const auto& f : a["findings"]) std::printf("  %s\n", f["text"].get<std::string>().c_str());
+}
+
+// The analysis warns that no fit was asked for; here the mirror is made in place, so that is
+// no warning (report.json's fit says "identity").
+std::vector<std::string> without_fit_warning(std::vector<std::string> warnings) {
+    std::erase_if(warnings, [](const std::string& w) { return w.starts_with("no fit requested"); });
+    return warnings;
+}
+
+void run(AsymmetryArgs& a) {
+    AnalysisOptions& analysis = a.options.analysis;
+    AsymmetryOptions options;
+    options.plane.registration = analysis.fit.registration;
+    analysis.fit = FitOptions{};  // the mirror is made in place: no fit
+    if (!a.plane.empty()) options.given_plane = parse_plane_spec(a.plane);
+    a.options.exports.output = a.output;
+    a.options.exports.replace_existing = a.force;
+    a.options.validate();
+    options.validate();
+    guard_outputs({a.output}, {a.mesh});
+    StageProgress progress;
+    progress.stage("load");
+    RunInput input = load_run_input("reference", a.mesh, a.surface);
+    if (auto& roi = options.plane.registration.roi; roi && roi->needs_mask())
+        read_roi_mask(*roi, input.mesh.vertex_count());
+    progress.stage("symmetry plane");
+    AsymmetryPlane plane = prepare_asymmetry(input.mesh, options);
+    const std::string& unit = input.mesh.unit;
+    if (plane.mirror.triangles.empty()) {
+        progress.finish();
+        print_warnings(input.warnings);
+        // The result (the plane and its verdict) before the check fails (tools/main.cpp).
+        if (global_flags().json)
+            std::cout
+                << nlohmann::json{{"asymmetry", {{"plane", plane_json(plane.plane, unit)}}}}.dump(2)
+                << '\n';
+        else print_plane(plane.plane, unit);
+        throw CheckFailed("\"" + a.mesh + "\": " + plane.plane.verdict +
+                          "; no asymmetry is reported and nothing was written (the best plane "
+                          "found, given by hand, runs anyway: --plane \"" +
+                          to_string(plane.plane.plane) + "\")");
+    }
+    RunRecord record{.command_line = global_flags().command_line};
+    record.add(input);
+    RunInput mirror = mesh_run_input("examined", std::move(plane.mirror),
+                                     "mirror image of the reference about its symmetry plane");
+    record.add(mirror);
+    const Orientation orientation =
+        resolve_orientation(parse_space(input.record.space), a.options.exports.up);
+    nlohmann::json report;
+    a.options.addition = [&](const AnalysisResult& r) {
+        AsymmetryFindings f = pair_findings(input.mesh, plane.plane.plane, r);
+        report = asymmetry_json(plane.plane, f, orientation, r.unit);
+        return ReportAddition{.scalars = {{"asymmetry{unit}", std::move(f.field)}},
+                              .key = "asymmetry",
+                              .json = report.dump()};
+    };
+    AnalysisObserver observer;
+    observer.stage = [](std::string_view) { give_back_free_memory(); };
+    progress.listen(observer);
+    const Inspection result =
+        inspect(input.mesh, std::move(mirror.mesh), a.options, record, observer);
+    progress.finish();
+    print_warnings(without_fit_warning(result.analysis.warnings));
+    if (global_flags().json) {
+        nlohmann::json j = nlohmann::json::parse(result.report_json);
+        j["output"] = absolute_output(result.output);
+        std::cout << j.dump(2) << '\n';
+        return;
+    }
+    print_plane(plane.plane, result.analysis.unit);
+    const auto& d = result.analysis.decisions;
+    print_findings(report, d.empty() ? 0 : d[0].regions.regions.size(), result.analysis.unit);
+    std::printf("atlas (field asymmetry), pictures and report in %s\n",
+                result.output.string().c_str());
+}
+
+void setup(CLI::App& app) {
+    static AsymmetryArgs a;
+    auto* cmd = app.add_subcommand(
+        "asymmetry",
+        "Left-right asymmetry of one surface: fit its symmetry plane, compare each side with "
+        "the mirror of the other");
+    cmd->add_option("MESH", a.mesh, "Mesh, or volume with --iso")->required();
+    add_surface_flags(*cmd, a.surface);
+    cmd->add_option("--plane", a.plane,
+                    "The symmetry plane by hand instead of fitted: x=C (or y=, z=), "
+                    "point=x,y,z;normal=x,y,z, or landmarks=x,y,z/x,y,z/x,y,z");
+    add_analysis_flags(*cmd, a.options.analysis,
+                       kFitGroup | kSweepGroup | kDecisionGroup | kUnitGroup);
+    add_option_flags(*cmd, a.options.exports, export_option_table(), kExportGroup);
+    cmd->add_option("-o,--output", a.output, "Output folder (written complete or not at all)")
+        ->required();
+    cmd->add_flag("--force", a.force,
+                  "Replace an existing output folder (only once the new results are complete)");
+    cmd->callback([] { run(a); });
+}
+
+const CommandRegistrar registrar(62, setup);
+
+}  // namespace
+}  // namespace glint::cli
