@@ -7,8 +7,8 @@
 namespace glint::detail {
 
 bool beyond_floor(float depth, float value, const MeasuredFloor& floor) {
-    if (std::isfinite(value) && value > floor.normal) return true;
-    return floor.depth > 0 && std::isfinite(depth) && std::abs(depth) > floor.depth;
+    if (floor.depth > 0) return std::isfinite(depth) && std::abs(depth) > floor.depth;
+    return std::isfinite(value) && value > floor.normal;
 }
 
 double view_depth_floor(const ViewMeasurement& m, double least, double k) {

@@ -25,8 +25,11 @@ struct MeasuredFloor {
 /// the noise").
 [[nodiscard]] double view_depth_floor(const ViewMeasurement& measured, double least, double k);
 
-/// Whether a compared cell measured beyond the floor: its metric above the normal floor, or
-/// (with a depth floor) its |signed depth| above it.
+/// Whether a compared cell measured beyond the floor: with a depth floor (the fused rule, whose
+/// regions rest on shape evidence) its |signed depth| above it, else its metric above the
+/// normal floor. note: not the metric under the fused rule: two tessellations of a curved
+/// surface (a tooth's cusps) differ in normal by more than the normal floor at many pixels
+/// where they differ in depth by nothing a picture can show.
 [[nodiscard]] bool beyond_floor(float depth, float value, const MeasuredFloor& floor);
 
 /// Share of the view's compared cells beyond the floor (0 when none compared).

@@ -148,12 +148,15 @@ TEST(MeasuredPixels, EachViewMeasuresItsDepthFloorFromItsMajority) {
         << "never below the zoom's shape floor";
 }
 
-TEST(MeasuredPixels, BeyondTheFloorByEitherTheMetricOrTheDepth) {
+TEST(MeasuredPixels, BeyondTheDepthFloorWhenThereIsOneElseTheMetricFloor) {
     const detail::MeasuredFloor floor{.normal = 2.0, .depth = 0.1};
-    EXPECT_TRUE(detail::beyond_floor(0.0f, 3.0f, floor));
     EXPECT_TRUE(detail::beyond_floor(-0.2f, 1.0f, floor));
     EXPECT_FALSE(detail::beyond_floor(0.05f, 1.0f, floor));
-    EXPECT_FALSE(detail::beyond_floor(-0.2f, 1.0f, {.normal = 2.0, .depth = 0.0}))
+    EXPECT_FALSE(detail::beyond_floor(0.0f, 3.0f, floor)) << "an angle alone is not shape";
+    EXPECT_FALSE(detail::beyond_floor(kNaN, 3.0f, floor));
+    const detail::MeasuredFloor normal_rule{.normal = 2.0, .depth = 0.0};
+    EXPECT_TRUE(detail::beyond_floor(0.0f, 3.0f, normal_rule));
+    EXPECT_FALSE(detail::beyond_floor(-0.2f, 1.0f, normal_rule))
         << "without a depth floor only the metric counts";
 }
 
