@@ -11,6 +11,7 @@
 #include "report/detail/measured_pixels.h"
 #include "report/detail/view_chart.h"
 #include "report/inspect.h"
+#include "report/output_folder.h"
 #include "report/pictures.h"
 
 #include <OpenImageIO/imagebuf.h>
@@ -163,6 +164,8 @@ TEST(MeasuredPixels, BeyondTheDepthFloorWhenThereIsOneElseTheMetricFloor) {
 // A sphere (radius 10) with a 0.5-deep dent facing +x, swept at elevation 0 every 90°.
 struct DentedSweep {
     fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "view_pictures";
+    Mesh ref = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     AnalysisResult result;
     int facing = -1;    ///< the view looking at the dent
     int opposite = -1;  ///< the view from the other side
@@ -170,8 +173,6 @@ struct DentedSweep {
     DentedSweep() {
         fs::remove_all(dir);
         fs::create_directories(dir);
-        const Mesh ref = make_phantom(
-            {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
         Mesh exa = ref;
         apply_damage(
             exa, {DamageSpec{
@@ -264,6 +265,72 @@ TEST(ViewPictures, TheMosaicChartsWhichViewsSawTheDentAndDrawsThem) {
             blue += is_blue(pixel(img, x, y));
     EXPECT_GT(blue, 300);
     EXPECT_LT(img.spec().width * img.spec().height, 1400 * 1000) << "opens quickly";
+}
+
+TEST(ViewPictures, WithoutMeasurementsAViewShowsTheAtlasAndTheChartSaysNotAvailable) {
+    // What a sweep that compared on the GPU leaves: no per-view pixels.
+    const DentedSweep& s = dented();
+    const fs::path target = s.dir / "atlas_only";
+    fs::remove_all(target);
+    {
+        OutputFolder folder(target);
+        (void)write_pictures(folder, s.ref, s.result, ExportOptions{}, Orientation{});
+        folder.commit();
+    }
+    const auto& view = s.result.sweep.plan.views[static_cast<std::size_t>(s.facing)].view;
+    OIIO::ImageBuf picture((target / "views" / (view_file_stem(view) + ".png")).string());
+    ASSERT_TRUE(picture.read()) << picture.geterror();
+    int blue = 0;
+    for (int y = detail::kTitleHeight; y < picture.spec().height; ++y)
+        for (int x = 0; x < picture.spec().width - detail::kLegendWidth; ++x)
+            blue += is_blue(pixel(picture, x, y));
+    EXPECT_GT(blue, 1500) << "the atlas's dent, seen from this view";
+    OIIO::ImageBuf mosaic((target / "mosaic_z0.png").string());
+    ASSERT_TRUE(mosaic.read()) << mosaic.geterror();
+    const auto& pv = s.result.sweep.plan.views[static_cast<std::size_t>(s.opposite)];
+    const auto [x, y] = detail::chart_cell_origin(pv.step, pv.ring);
+    // Hatched grey, no share: two greys along the cell's top row, none of the map's colours.
+    int grey = 0;
+    for (int i = 0; i < 20; ++i) {
+        const Rgb c = pixel(mosaic, x + i, detail::kTitleHeight + y + 2);
+        grey += std::abs(c[0] - c[2]) < 0.02f && std::abs(c[0] - c[1]) < 0.02f && c[0] > 0.25f;
+    }
+    EXPECT_EQ(grey, 20);
+}
+
+TEST(ViewPictures, AViewIsDrawnFromWhatItMeasuredNotFromTheAtlas) {
+    // The facing view "measured" a gain everywhere; the atlas holds the dent (a loss).
+    const DentedSweep& s = dented();
+    const auto& pv = s.result.sweep.plan.views[static_cast<std::size_t>(s.facing)];
+    DeviationMap gain;
+    gain.width = pv.view.camera.width;
+    gain.height = pv.view.camera.height;
+    const auto n = static_cast<std::size_t>(gain.width * gain.height);
+    gain.signed_depth.assign(n, 0.5f);
+    gain.angle_deg.assign(n, 10.0f);
+    gain.silhouette.assign(n, 0);
+    summarise(gain);
+    ViewMeasurements measured(s.result.sweep.plan);
+    measured.add(pv, gain);
+    const fs::path target = s.dir / "measured_gain";
+    fs::remove_all(target);
+    {
+        OutputFolder folder(target);
+        (void)write_pictures(folder, s.ref, s.result, ExportOptions{}, Orientation{}, {}, {},
+                             &measured);
+        folder.commit();
+    }
+    OIIO::ImageBuf picture((target / "views" / (view_file_stem(pv.view) + ".png")).string());
+    ASSERT_TRUE(picture.read()) << picture.geterror();
+    int blue = 0, red = 0;
+    for (int y = detail::kTitleHeight; y < picture.spec().height; ++y)
+        for (int x = 0; x < picture.spec().width - detail::kLegendWidth; ++x) {
+            const Rgb c = pixel(picture, x, y);
+            blue += is_blue(c);
+            red += c[0] > c[2] + 0.15f;
+        }
+    EXPECT_EQ(blue, 0) << "the atlas's dent is not what this view measured";
+    EXPECT_GT(red, 50000) << "the whole surface in view measured a gain";
 }
 
 }  // namespace
