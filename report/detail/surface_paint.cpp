@@ -183,11 +183,16 @@ Rgb vertex_colour(const PixelFields& px, const Frame& frame, std::size_t p,
 }
 
 // A covered pixel's colour from what the view measured: the signed depth (paler within the
-// floor), hatched violet with no examined surface behind, hatched as not compared otherwise.
-Rgb measured_colour(const MeasuredPixels& m, const Frame& frame, std::size_t p,
-                    const PaintStyle& style) {
+// floor), hatched violet with no examined surface behind, hatched as not compared otherwise,
+// and where the decision compares nothing (decision/comparison.h: an open border of either
+// surface, or surface the examined scan never reached: what the view sees there is another
+// part of the examined surface behind the cut, not a loss).
+Rgb measured_colour(const MeasuredPixels& m, const PixelFields& px, const Frame& frame,
+                    std::size_t p, const PaintStyle& style) {
     const auto w = static_cast<std::size_t>(frame.width);
     const auto status = static_cast<MeasuredStatus>(m.status[p]);
+    if (px.seen[p] == 2)
+        return on_stripe(p, w, style.hatch_period, false) ? kNotComparedStripe : kNotCompared;
     if (status == MeasuredStatus::ReferenceOnly)
         return on_stripe(p, w, style.hatch_period, true) ? kNothingBehindStripe : kNothingBehind;
     if (status != MeasuredStatus::Compared || std::isnan(m.depth[p]))
@@ -235,7 +240,7 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
             for (int k = 0; k < 3; ++k) c[k] = to_byte(bg[k]);
             continue;
         }
-        Rgb base = style.measured ? measured_colour(*style.measured, frame, p, style)
+        Rgb base = style.measured ? measured_colour(*style.measured, px, frame, p, style)
                                   : vertex_colour(px, frame, p, style);
         if (edge[p]) base = kOutline;
         // Lambert with an ambient part: the form stays visible where the light grazes.

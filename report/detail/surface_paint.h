@@ -60,7 +60,8 @@ struct PaintedSurface {
 /// a ViewMeasurement onto it). With it a picture shows the view's own measurement instead of
 /// the per-vertex distance: compared pixels its signed depth (pale where within the floor),
 /// reference pixels with no examined surface behind them hatched violet, examined surface
-/// beyond the reference outline green, the rest of the surface hatched as not compared.
+/// beyond the reference outline green, the rest of the surface, and surface the decision
+/// does not compare (SurfaceFields::seen 2), hatched as not compared.
 struct MeasuredPixels {
     std::vector<float> depth;          ///< signed depth along the view ray; NaN: not compared
     std::vector<std::uint8_t> status;  ///< MeasuredStatus (report/view_measurements.h)

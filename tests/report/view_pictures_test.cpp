@@ -163,7 +163,10 @@ TEST(MeasuredPixels, BeyondTheDepthFloorWhenThereIsOneElseTheMetricFloor) {
 
 // A sphere (radius 10) with a 0.5-deep dent facing +x, swept at elevation 0 every 90°.
 struct DentedSweep {
-    fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "view_pictures";
+    // (named after the test that asks first: CTest runs each test in a process of its own, side
+    // by side, and they must not share a folder)
+    fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "view_pictures" /
+                   ::testing::UnitTest::GetInstance()->current_test_info()->name();
     Mesh ref = make_phantom(
         {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
     AnalysisResult result;
