@@ -98,10 +98,9 @@ void draw_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
     }
     // Not compared: hatched the other way.
     hatched_swatch(dst, x, y, kNotCompared, kNotComparedStripe, false);
-    draw_text(
-        dst, x + s + 8, y + s - 2,
-        c.measured ? "not compared (edge, border, unscanned)" : "not compared (border, unscanned)",
-        kFont);
+    draw_text(dst, x + s + 8, y + s - 2,
+              c.measured ? "not compared (edge, border)" : "not compared (border, unscanned)",
+              kFont);
     const int y2 = y + kSwatchStep;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
