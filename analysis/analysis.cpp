@@ -83,6 +83,7 @@ void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions
                 AnalysisResult& result) {
     const SweepPlan plan =
         make_sweep_plan(reference, resolved_plan(options.sweep.plan, reference.vertex_count()));
+    if (observer.plan) observer.plan(plan);
     std::size_t done = 0;
     result.sweep = run_sweep(
         reference, fitted, plan, options.sweep,

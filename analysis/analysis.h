@@ -85,6 +85,8 @@ struct AnalysisObserver {
     /// Items done within the stage last announced, of `total`, for stages that count theirs
     /// (the exports: files written, pictures drawn); the sweep's views come through `views`.
     std::function<void(std::size_t done, std::size_t total)> items;
+    /// The sweep's plan, once made and before its first view (a per-view store sizes itself).
+    std::function<void(const SweepPlan& plan)> plan;
     /// Each view's deviation map while it is valid (per-view exports); on the GPU path the map
     /// is empty (scanner/sweep.h ViewObserver).
     ViewObserver view;

@@ -98,7 +98,7 @@ const std::vector<OptionField<ExportOptions>>& export_option_table() {
              .min = 16,
              .max = 1024,
              .label = "Mosaic tile",
-             .help = "Mosaic thumbnail size"},
+             .help = "Size of the views the mosaic draws whole (the regions' best views)"},
             [](auto& o) -> auto& { return o.mosaic_tile; }),
         F::text(
             {.name = "up",

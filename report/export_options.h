@@ -33,14 +33,16 @@ struct ExportOptions {
     /// The output folder (written complete or not at all, report/output_folder.h); empty:
     /// nothing is written.
     std::filesystem::path output;
-    bool write_views = true;  ///< per-view PNG heat maps
+    bool write_views = true;  ///< per-view PNGs of what each view measured
     /// Per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back).
     bool write_exr = false;
     AtlasFiles atlas_files;  ///< atlas.ply / atlas.vtk / atlas.vtp
     /// An existing output folder is replaced (atomically, when the run completes); false:
     /// it is refused before anything is loaded (--force).
     bool replace_existing = false;
-    int mosaic_tile = 128;  ///< mosaic thumbnail size, pixels
+    /// Size of the views the mosaic draws whole (the regions' best views, the views that
+    /// measured most), pixels.
+    int mosaic_tile = 256;
     /// Which axis the pictures draw up ("+x" … "-z", report/orientation.h); empty: superior
     /// when the reference is in a patient space, else +z.
     std::string up;

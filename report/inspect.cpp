@@ -7,6 +7,7 @@
 #include "report/report.h"
 #include "report/report_html.h"
 #include "report/view_exports.h"
+#include "report/view_measurements.h"
 
 #include <nlohmann/json.hpp>
 
@@ -74,9 +75,16 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
 
     std::optional<ViewExporter> exporter;
     if (writes_exr) exporter.emplace(*folder, used.sweep.metric, options.exports);
+    // What each view measured, kept compactly for its pictures (report/view_measurements.h).
+    std::optional<ViewMeasurements> measured;
     AnalysisObserver observed = observer;
+    observed.plan = [&](const SweepPlan& plan) {
+        if (folder) measured.emplace(plan);
+        if (observer.plan) observer.plan(plan);
+    };
     observed.view = [&](const PlannedView& v, const DeviationMap& d) {
         if (exporter && d.width > 0) exporter->add(v, d);
+        if (measured) measured->add(v, d);
         if (observer.view) observer.view(v, d);
     };
     // The page's live view keeps the fitted examined surface, decimated (report/report_html.h),
@@ -89,6 +97,11 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     Inspection out;
     out.analysis = analyse(reference, std::move(examined), used, observed);
     note_accumulation(options, used, writes_exr, out.analysis);
+    if (folder && out.analysis.sweep.on_gpu)
+        out.analysis.warnings.push_back(
+            "per-view pictures and mosaic tiles show the atlas from each view: the sweep "
+            "compared on the GPU and no per-view pixel came back (accumulate = host draws what "
+            "each view measured)");
     auto& warnings = out.analysis.warnings;
     warnings.insert(warnings.begin(), record.warnings.begin(), record.warnings.end());
 
@@ -103,7 +116,8 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     if (folder) {
         try {
             out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
-                                      exports, record, out.report_json, observer);
+                                      exports, record, out.report_json, observer,
+                                      measured ? &*measured : nullptr);
         } catch (const IoError& e) {  // the folder the user named, not the staging folder
             throw naming_target(e, folder->staging(), folder->target());
         }

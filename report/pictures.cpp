@@ -9,9 +9,11 @@
 #include "report/detail/footer.h"
 #include "report/detail/labels.h"
 #include "report/detail/legend.h"
+#include "report/detail/measured_pixels.h"
 #include "report/detail/picture_batches.h"
 #include "report/detail/scale_bar.h"
 #include "report/detail/surface_paint.h"
+#include "report/detail/view_chart.h"
 #include "scanner/metric.h"
 
 #include <algorithm>
@@ -29,11 +31,15 @@ namespace IBA = OIIO::ImageBufAlgo;
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr int kViewMin = 384;  // px: per-view pictures are at least this large …
-constexpr int kViewMax = 512;  // … and at most this (rendered at that size, never resized)
-constexpr int kRowLabel = 58;  // px: mosaic row headings
-constexpr int kColLabel = 18;  // px: mosaic column headings
-constexpr int kGap = 2;        // px between mosaic tiles
+constexpr int kViewMin = 384;         // px: per-view pictures are at least this large …
+constexpr int kViewMax = 512;         // … and at most this (rendered at that size, never resized)
+constexpr int kGap = 6;               // px between the mosaic's chart and tiles
+constexpr int kTileCaption = 18;      // px: the caption under a mosaic tile
+constexpr int kTilesPerRow = 4;       // mosaic tiles side by side, at least
+constexpr std::size_t kMaxTiles = 8;  // views drawn whole in a mosaic, at most
+// A view's depth floor is median + k·MAD of its |depth| with the shape floor's k; this one
+// when the decision gave none (decision/decision.h DecisionOptions::noise_k's default).
+constexpr double kDepthFloorK = 6.0;
 // One ray per pixel: pictures are drawn at the size they are shown (384-512 px per view), where
 // a 2×2 footprint only smooths the silhouette's steps. note: with 2×2 the 60 per-view pictures
 // of a default sweep cost 35 M rays, more than the sweep's own two meshes (2 × 16 M); at 1×1
@@ -55,6 +61,7 @@ std::string unit_or_units(const AnalysisResult& r) { return r.unit.empty() ? "un
 struct ZoomContent {
     detail::SurfaceFields fields;
     detail::LegendContent legend;
+    detail::LegendContent measured_legend;  ///< of pictures of a view's own measurement
 };
 
 detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
@@ -80,6 +87,19 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
     return c;
 }
 
+// How far two tessellations of the surface lie apart at a pixel on most of it: the 90th
+// percentile of the reference vertices' tessellation tolerance (analysis/fit.h, an upper bound
+// of their distance; 0 when there is none). note: the 90th: the tolerance is largest at sharp
+// edges (a jaw's teeth: 99th percentile 0.23 mm, a floor that pales its 0.2 mm dent; 90th
+// 0.11 mm), while the median (0.025 mm) leaves the coarser tenth of the surface beyond it.
+double tessellation_level(std::vector<float> tolerance) {
+    std::erase_if(tolerance, [](float t) { return !std::isfinite(t); });
+    if (tolerance.empty()) return 0.0;
+    const auto k = static_cast<std::ptrdiff_t>(0.9 * static_cast<double>(tolerance.size() - 1));
+    std::nth_element(tolerance.begin(), tolerance.begin() + k, tolerance.end());
+    return tolerance[static_cast<std::size_t>(k)];
+}
+
 // The same camera rendering `size` pixels across (orthographic: same world extent; perspective:
 // same field of view).
 View resized(const View& v, int size) {
@@ -95,7 +115,7 @@ View resized(const View& v, int size) {
 class PictureWriter {
   public:
     PictureWriter(const Mesh& reference, const AnalysisResult& result, const ExportOptions& options,
-                  Orientation orientation, PictureCaption caption)
+                  Orientation orientation, PictureCaption caption, const ViewMeasurements* measured)
         : reference_(reference),
           result_(result),
           caption_(std::move(caption)),
@@ -109,7 +129,8 @@ class PictureWriter {
                     FrameOptions{.supersample = kPictureSupersample,
                                  .share_mesh = true,
                                  .barycentrics = true,
-                                 .surface_index = result.reference_index}) {
+                                 .surface_index = result.reference_index}),
+          measured_(measured) {
         const std::size_t n = reference.vertex_count();
         distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
         masks_.resize(result.sweep.zooms.size());
@@ -120,21 +141,20 @@ class PictureWriter {
             shown.resize(n);
             for (std::size_t v = 0; v < n; ++v)
                 shown[v] = !seen[v] ? 0 : comparison.compared(v) ? 1 : 2;
-            const auto& region = result.decisions[z].regions.region_of_vertex;
-            zooms_.push_back({{distance_, region, shown}, legend_for(result, z, scale_)});
+            zooms_.push_back(zoom_content(z));
         }
-        // The regions' best views, largest regions first (regions are sorted by area).
-        for (std::size_t k = 0; best_.size() < kMaxBestViews; ++k) {
-            bool any = false;
-            for (const auto& d : result.decisions)
-                if (k < d.regions.regions.size()) {
-                    any = true;
-                    const int v = d.regions.regions[k].best_view;
-                    if (v >= 0 && static_cast<std::size_t>(v) < result.sweep.plan.views.size() &&
-                        best_.size() < kMaxBestViews)
-                        best_.insert(v);
-                }
-            if (!any) break;
+        find_best_views();
+        // Each view's floors, and how much of what it compared it measured beyond them.
+        const double tessellation = tessellation_level(result.tolerance);
+        for (const auto& pv : result.sweep.plan.views) {
+            const ViewMeasurement* m = measurement(pv.view.index);
+            const auto& d = result.decisions[static_cast<std::size_t>(pv.view.zoom_index)];
+            detail::MeasuredFloor f{.normal = d.normal.value};
+            if (m && d.rule == DecisionRule::Fused)
+                f.depth = detail::view_depth_floor(*m, std::max(d.shape.value, tessellation),
+                                                   d.shape.k > 0 ? d.shape.k : kDepthFloorK);
+            floors_.push_back(f);
+            share_.push_back(m ? detail::share_beyond_floor(*m, f) : kNaN);
         }
     }
 
@@ -163,8 +183,20 @@ class PictureWriter {
     }
 
   private:
+    ZoomContent zoom_content(std::size_t z) const;
+    void find_best_views();
+    const ViewMeasurement* measurement(int view) const {
+        return measured_ ? measured_->find(view) : nullptr;
+    }
+    // The view painted from its own measurement, or from the atlas when it has none.
+    detail::PaintedSurface paint_view(const PlannedView& pv, const View& shown, const Frame& frame,
+                                      detail::PaintStyle style) const;
+    std::string view_title(const PlannedView& pv, const View& shown) const;
+    std::string view_caption(const PlannedView& pv) const;
     ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
                           const ImageBuf& blank);
+    detail::ChartInput chart_input(std::size_t z) const;
+    std::vector<int> mosaic_tiles(std::size_t z) const;
 
     const Mesh& reference_;
     const AnalysisResult& result_;
@@ -174,20 +206,61 @@ class PictureWriter {
     ShapeScale scale_;
     int threads_ = 0;  ///< workers (RenderOptions::threads: 0 = the machine's)
     Renderer renderer_;
+    const ViewMeasurements* measured_ = nullptr;
     std::vector<float> distance_;
     std::vector<ZoomContent> zooms_;
     // Per zoom: 0 unseen, 1 compared, 2 seen but not compared (the pictures' fields point here).
     std::vector<std::vector<std::uint8_t>> masks_ = {};
     std::set<int> best_;
+    std::vector<detail::MeasuredFloor> floors_;  ///< per view
+    std::vector<double> share_;  ///< per view: share beyond its floors (NaN: not measured)
 };
 
-// `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
-ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
-                                     const ImageBuf& blank) {
+ZoomContent PictureWriter::zoom_content(std::size_t z) const {
+    const auto& d = result_.decisions[z];
+    ZoomContent c{.fields = {distance_, d.regions.region_of_vertex, masks_[z]},
+                  .legend = legend_for(result_, z, scale_),
+                  .measured_legend = {}};
+    c.measured_legend = c.legend;
+    c.measured_legend.measured = true;
+    auto& lines = c.measured_legend.lines;
+    lines.insert(lines.begin(), "depth along the view ray (reference − examined)");
+    if (d.rule == DecisionRule::Fused)
+        lines.insert(lines.begin() + 1, "depth floor per view: noise, tessellation");
+    return c;
+}
+
+// The regions' best views, largest regions first (regions are sorted by area).
+void PictureWriter::find_best_views() {
+    for (std::size_t k = 0; best_.size() < kMaxBestViews; ++k) {
+        bool any = false;
+        for (const auto& d : result_.decisions)
+            if (k < d.regions.regions.size()) {
+                any = true;
+                const int v = d.regions.regions[k].best_view;
+                if (v >= 0 && static_cast<std::size_t>(v) < result_.sweep.plan.views.size() &&
+                    best_.size() < kMaxBestViews)
+                    best_.insert(v);
+            }
+        if (!any) break;
+    }
+}
+
+detail::PaintedSurface PictureWriter::paint_view(const PlannedView& pv, const View& shown,
+                                                 const Frame& frame,
+                                                 detail::PaintStyle style) const {
+    const auto z = static_cast<std::size_t>(pv.view.zoom_index);
+    style.limit = scale_.limit;
+    const ViewMeasurement* m = measurement(pv.view.index);
+    if (!m) return detail::paint_surface(reference_, frame, shown, zooms_[z].fields, style);
+    const detail::MeasuredPixels px = detail::measured_pixels(
+        *m, pv.view, shown, floors_[static_cast<std::size_t>(pv.view.index)]);
+    style.measured = &px;
+    return detail::paint_surface(reference_, frame, shown, zooms_[z].fields, style);
+}
+
+std::string PictureWriter::view_title(const PlannedView& pv, const View& shown) const {
     const View& v = pv.view;
-    const auto z = static_cast<std::size_t>(v.zoom_index);
-    const auto painted =
-        detail::paint_surface(reference_, frame, shown, zooms_[z].fields, {.limit = scale_.limit});
     // In a patient space the view is also named from where it looks ("from anterior-left").
     const std::string from =
         orientation_.space == PatientSpace::Unknown
@@ -198,12 +271,41 @@ ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, c
                   v.index, from.c_str(), detail::format_degrees(v.azimuth_deg).c_str(),
                   detail::format_degrees(v.elevation_deg, true).c_str(), v.zoom_index,
                   detail::format_number(v.footprint).c_str(), unit_or_units(result_).c_str());
+    return detail::with_minus_sign(title);
+}
+
+// The line under the title: what the view measured beyond its floors, or that it has no
+// measurement.
+std::string PictureWriter::view_caption(const PlannedView& pv) const {
+    const auto i = static_cast<std::size_t>(pv.view.index);
+    if (std::isnan(share_[i])) return "the atlas from this view (compared on the GPU: no pixels)";
+    const detail::MeasuredFloor& f = floors_[i];
+    const MetricDescriptor& m = describe(result_.sweep.options.metric);
+    const std::string floors = f.depth > 0 ? "the depth floor " + detail::format_number(f.depth) +
+                                                 " " + unit_or_units(result_)
+                                           : "the normal floor " + detail::format_number(f.normal) +
+                                                 detail::picture_unit_suffix(m.unit);
+    char b[200];
+    std::snprintf(b, sizeof b, "%s %% of its pixels beyond %s",
+                  detail::format_number(100.0 * share_[i]).c_str(), floors.c_str());
+    return b;
+}
+
+// `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
+ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
+                                     const ImageBuf& blank) {
+    const auto painted = paint_view(pv, shown, frame, {});
     ImageBuf sheet = blank;
-    detail::draw_title(sheet, detail::with_minus_sign(title));
+    const std::string title = view_title(pv, shown);
+    detail::draw_title(sheet, detail::fit_text(title, 15, sheet.spec().width - 16));
     IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, painted.image);
     const std::string unit = unit_or_units(result_);
-    detail::draw_region_numbers(sheet, 0, detail::kTitleHeight, frame.width, frame.height,
-                                painted.anchors, 14, 30, {detail::view_scale_bar_box(shown, unit)});
+    const std::string caption = detail::fit_text(view_caption(pv), 12, frame.width - 12);
+    detail::draw_text(sheet, 6, detail::kTitleHeight + 16, caption, 12, detail::kText,
+                      IBA::TextAlignX::Left, 2);
+    detail::draw_region_numbers(
+        sheet, 0, detail::kTitleHeight, frame.width, frame.height, painted.anchors, 14, 30,
+        {detail::view_scale_bar_box(shown, unit), detail::text_box(caption, 12, 6, 16)});
     detail::draw_view_scale_bar(sheet, 0, detail::kTitleHeight, shown, unit);
     return sheet;
 }
@@ -215,16 +317,22 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
     for (const auto& pv : plan.views)
         if (options_.write_views || best_.count(pv.view.index)) wanted.push_back(pv.view.index);
     std::vector<View> shown;
-    std::map<std::size_t, ImageBuf> blank;  // per zoom: every view of a zoom has one size
+    // Per zoom and kind (measured or atlas): every view of a zoom has one size.
+    std::map<std::pair<std::size_t, bool>, ImageBuf> blank;
+    const auto blank_key = [&](const PlannedView& pv) {
+        return std::pair{static_cast<std::size_t>(pv.view.zoom_index),
+                         measurement(pv.view.index) != nullptr};
+    };
     for (int i : wanted) {
         const auto& pv = plan.views[static_cast<std::size_t>(i)];
         const auto z = static_cast<std::size_t>(pv.view.zoom_index);
         shown.push_back(
             upright(resized(pv.view, std::clamp(plan.sizes[z], kViewMin, kViewMax)), orientation_));
-        if (!blank.count(z))
-            blank.emplace(
-                z, detail::framed_sheet(shown.back().camera.width, shown.back().camera.height, "",
-                                        zooms_[z].legend));
+        const auto key = blank_key(pv);
+        if (!blank.count(key))
+            blank.emplace(key, detail::framed_sheet(
+                                   shown.back().camera.width, shown.back().camera.height, "",
+                                   key.second ? zooms_[z].measured_legend : zooms_[z].legend));
     }
     // Painted and encoded on every worker; the best views' PNGs kept for the report page.
     std::vector<std::string> kept(detail::batch_size(threads_));
@@ -232,7 +340,7 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
         renderer_, shown, threads_,
         [&](std::size_t slot, std::size_t k, const Frame& frame) {
             const auto& pv = plan.views[static_cast<std::size_t>(wanted[k])];
-            const ImageBuf& sheet = blank.at(static_cast<std::size_t>(pv.view.zoom_index));
+            const ImageBuf& sheet = blank.at(blank_key(pv));
             std::string png = detail::encode_png(view_picture(pv, shown[k], frame, sheet));
             if (options_.write_views)
                 write_file_atomically(
@@ -245,70 +353,115 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
         });
 }
 
-std::string PictureWriter::mosaic(std::size_t z) {
+detail::ChartInput PictureWriter::chart_input(std::size_t z) const {
     const auto& plan = result_.sweep.plan;
     const bool rotary = plan.options.kind == SweepPlanOptions::Kind::Rotary;
+    detail::ChartInput in;
+    if (rotary) {
+        in.column_title = "azimuth";
+        in.row_title = "elevation";
+        for (int c = 0; c < plan.columns; ++c)
+            in.column_labels.push_back(detail::format_degrees(c * plan.options.azimuth_step_deg));
+        for (double el : plan.options.elevations_deg)
+            in.row_labels.push_back(detail::format_degrees(el, true));
+    } else {
+        in.column_title = "view, in plan order (row start + column)";
+        in.row_title = "row start";
+        for (int c = 0; c < plan.columns; ++c) in.column_labels.push_back(std::to_string(c));
+        for (int r = 0; r < plan.rows; ++r)
+            in.row_labels.push_back(std::to_string(r * plan.columns));
+    }
+    const auto& regions = result_.decisions[z].regions.regions;
+    for (const auto& pv : plan.views) {
+        if (static_cast<std::size_t>(pv.view.zoom_index) != z) continue;
+        detail::ChartCell cell{.column = rotary ? pv.step : pv.step % plan.columns,
+                               .row = rotary ? pv.ring : pv.step / plan.columns};
+        const double share = share_[static_cast<std::size_t>(pv.view.index)];
+        cell.measured = !std::isnan(share);
+        cell.share = cell.measured ? share : 0.0;
+        for (const auto& r : regions)
+            if (r.best_view == pv.view.index) cell.best_of.push_back(r.id);
+        in.cells.push_back(std::move(cell));
+    }
+    return in;
+}
+
+// The views a mosaic draws whole: the regions' best views (largest regions first), then the
+// views that measured the largest share beyond the floor.
+std::vector<int> PictureWriter::mosaic_tiles(std::size_t z) const {
+    std::vector<int> tiles;
+    const auto add = [&](int v) {
+        if (tiles.size() < kMaxTiles && std::find(tiles.begin(), tiles.end(), v) == tiles.end())
+            tiles.push_back(v);
+    };
+    for (const auto& r : result_.decisions[z].regions.regions)
+        if (r.best_view >= 0) add(r.best_view);
+    std::vector<std::pair<double, int>> ranked;
+    for (const auto& pv : result_.sweep.plan.views) {
+        const double share = share_[static_cast<std::size_t>(pv.view.index)];
+        if (static_cast<std::size_t>(pv.view.zoom_index) == z && share > 0)
+            ranked.emplace_back(-share, pv.view.index);
+    }
+    std::sort(ranked.begin(), ranked.end());
+    for (const auto& [negative_share, v] : ranked) add(v);
+    return tiles;
+}
+
+std::string PictureWriter::mosaic(std::size_t z) {
+    const auto& plan = result_.sweep.plan;
     const int t = options_.mosaic_tile;
-    std::vector<const PlannedView*> members;
+    const ImageBuf chart = detail::view_chart(chart_input(z));
+    const std::vector<int> tiles = mosaic_tiles(z);
     std::vector<View> shown;
-    for (const auto& pv : plan.views)
-        if (static_cast<std::size_t>(pv.view.zoom_index) == z) {
-            members.push_back(&pv);
-            shown.push_back(upright(resized(pv.view, t), orientation_));
-        }
-    const int grid_w = kRowLabel + plan.columns * (t + kGap);
-    const int grid_h = kColLabel + plan.rows * (t + kGap);
+    for (int v : tiles)
+        shown.push_back(
+            upright(resized(plan.views[static_cast<std::size_t>(v)].view, t), orientation_));
+    const int per_row = std::max(kTilesPerRow, (chart.spec().width + kGap) / (t + kGap));
+    const int tile_rows = (static_cast<int>(tiles.size()) + per_row - 1) / per_row;
+    const int width = std::max(chart.spec().width, per_row * (t + kGap));
+    const int height = chart.spec().height + tile_rows * (t + kTileCaption + kGap) + kGap;
+    const bool measured =
+        std::any_of(share_.begin(), share_.end(), [](double s) { return !std::isnan(s); });
     char title[220];
     std::snprintf(title, sizeof title,
-                  "signed shape change, zoom %zu (%s %s/px): %zu views, %zu region(s)", z,
-                  detail::format_number(plan.footprints[z]).c_str(), unit_or_units(result_).c_str(),
-                  members.size(), result_.decisions[z].regions.regions.size());
-    ImageBuf sheet = detail::framed_sheet(grid_w, grid_h, title, zooms_[z].legend);
+                  "zoom %zu (%s %s/px): what each view measured beyond its floor; %zu region(s), "
+                  "%zu view(s) drawn",
+                  z, detail::format_number(plan.footprints[z]).c_str(),
+                  unit_or_units(result_).c_str(), result_.decisions[z].regions.regions.size(),
+                  tiles.size());
+    ImageBuf sheet = detail::framed_sheet(width, height, detail::fit_text(title, 15, width + 250),
+                                          measured ? zooms_[z].measured_legend : zooms_[z].legend);
+    IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, chart);
+    const int tiles_top = detail::kTitleHeight + chart.spec().height + kGap;
     std::vector<detail::PaintedSurface> painted(detail::batch_size(threads_));
+    const std::string unit = unit_or_units(result_);
     detail::render_in_batches(
         renderer_, shown, threads_,
         [&](std::size_t slot, std::size_t k, const Frame& frame) {
-            painted[slot] = detail::paint_surface(
-                reference_, frame, shown[k], zooms_[z].fields,
-                {.limit = scale_.limit, .outline_width = 1, .hatch_period = 5});
+            const auto& pv = plan.views[static_cast<std::size_t>(tiles[k])];
+            painted[slot] =
+                paint_view(pv, shown[k], frame, {.outline_width = 1, .hatch_period = 5});
         },
         [&](std::size_t slot, std::size_t k) {
-            const PlannedView& pv = *members[k];
+            const PlannedView& pv = plan.views[static_cast<std::size_t>(tiles[k])];
             const auto& tile = painted[slot].image.spec();
-            const int col = rotary ? pv.step : pv.step % plan.columns;
-            const int row = rotary ? pv.ring : pv.step / plan.columns;
-            const int x = kRowLabel + col * (t + kGap) + (t - tile.width) / 2;
-            const int y =
-                detail::kTitleHeight + kColLabel + row * (t + kGap) + (t - tile.height) / 2;
+            const int x = static_cast<int>(k) % per_row * (t + kGap);
+            const int y = tiles_top + static_cast<int>(k) / per_row * (t + kTileCaption + kGap);
             IBA::paste(sheet, x, y, 0, 0, painted[slot].image);
             detail::draw_region_numbers(sheet, x, y, tile.width, tile.height, painted[slot].anchors,
-                                        10, 4);
-            if (!rotary) {
-                char label[48];
-                std::snprintf(label, sizeof label, "%s/%s",
-                              detail::format_degrees(pv.view.azimuth_deg).c_str(),
-                              detail::format_degrees(pv.view.elevation_deg, true).c_str());
-                detail::draw_text(sheet, x + 3, y + 11, label, 10, detail::kText);
-            }
+                                        12, 8, {detail::view_scale_bar_box(shown[k], unit)});
+            detail::draw_view_scale_bar(sheet, x, y, shown[k], unit);
+            const double share = share_[static_cast<std::size_t>(pv.view.index)];
+            char caption[120];
+            std::snprintf(caption, sizeof caption, "view %d: %s, %s%s", pv.view.index,
+                          detail::format_degrees(pv.view.azimuth_deg).c_str(),
+                          detail::format_degrees(pv.view.elevation_deg, true).c_str(),
+                          std::isnan(share)
+                              ? ""
+                              : (", " + detail::format_number(100.0 * share) + " %").c_str());
+            detail::draw_text(sheet, x + 2, y + tile.height + 13,
+                              detail::fit_text(caption, 11, t - 4), 11, detail::kDimText);
         });
-    if (rotary) {
-        for (int c = 0; c < plan.columns; ++c) {
-            char b[32];
-            std::snprintf(b, sizeof b, "az %s",
-                          detail::format_degrees(c * plan.options.azimuth_step_deg).c_str());
-            detail::draw_text(sheet, kRowLabel + c * (t + kGap) + t / 2, detail::kTitleHeight + 13,
-                              b, 11, detail::kText, IBA::TextAlignX::Center);
-        }
-        for (std::size_t r = 0; r < plan.options.elevations_deg.size(); ++r) {
-            char b[32];
-            std::snprintf(b, sizeof b, "el %s",
-                          detail::format_degrees(plan.options.elevations_deg[r], true).c_str());
-            detail::draw_text(
-                sheet, 4,
-                detail::kTitleHeight + kColLabel + static_cast<int>(r) * (t + kGap) + t / 2 + 4, b,
-                11);
-        }
-    }
     return detail::encode_png(sheet);
 }
 
@@ -371,11 +524,11 @@ std::string view_file_stem(const View& v) {
 PictureOutput write_pictures(const OutputFolder& folder, const Mesh& reference,
                              const AnalysisResult& result, const ExportOptions& options,
                              const Orientation& orientation, const PictureCaption& caption,
-                             const AnalysisObserver& observer) {
+                             const AnalysisObserver& observer, const ViewMeasurements* measured) {
     PictureOutput out;
     if (result.sweep.zooms.empty() || result.decisions.size() != result.sweep.zooms.size())
         return out;
-    PictureWriter writer(reference, result, options, orientation, caption);
+    PictureWriter writer(reference, result, options, orientation, caption, measured);
     writer.write_views(folder, out, observer);
     if (observer.stage) observer.stage("mosaics");
     const std::size_t zooms = result.sweep.zooms.size();

@@ -1,12 +1,24 @@
-// Pictures people read (issue 14): every image a sweep writes shows the reference surface
-// shaded, the signed shape change on a diverging map with a symmetric scale in mesh units
-// (blue = loss, white = none, red = gain), regions outlined and numbered with the ids of
-// regions.csv / report.json, unseen parts hatched, and a legend with the unit, the floors and
-// the regions:
+// Pictures people read (issues 14, 26): every image a sweep writes shows the reference surface
+// shaded, a signed depth on a diverging map with a symmetric scale in mesh units (blue = loss,
+// white = none, red = gain), regions outlined and numbered with the ids of regions.csv /
+// report.json, and a legend with the unit, the floors and the regions:
 //
-//   views/z<k>_az<A>_el<E>.png   each view of the sweep (ExportOptions::write_views)
-//   mosaic_z<k>.png              every view of zoom k, azimuth across, elevation down
-//   atlas.png                    the atlas (zoom 0) from six directions along the axes
+//   views/z<k>_az<A>_el<E>.png   each view of the sweep (ExportOptions::write_views): what that
+//                                view measured (report/view_measurements.h): its signed depth
+//                                along the ray, paler within the zoom's floor; reference surface
+//                                with no examined surface behind it hatched violet, examined
+//                                surface beyond the reference outline green, the rest not
+//                                compared hatched; the title gives the share beyond the floor
+//   mosaic_z<k>.png              zoom k's summary: a chart of azimuth × elevation, each view's
+//                                share of compared pixels beyond the floor (the regions' best
+//                                views framed with their ids), and below it the views that saw
+//                                the regions (and those that measured most) drawn whole at
+//                                ExportOptions::mosaic_tile pixels
+//   atlas.png                    the atlas (zoom 0) from six directions along the axes, unseen
+//                                parts hatched
+//
+// Without a view's measurement (a sweep that compared on the GPU sends no pixels back) its
+// picture shows the atlas from that view and says so in its title.
 //
 // Every view panel, close-up and per-view picture carries a scale bar in the mesh unit
 // (report/detail/scale_bar.h); atlas.png a footer naming both inputs, the date, the fit and the
@@ -17,9 +29,10 @@
 // Every picture draws the orientation's up up (report/orientation.h): superior for a surface
 // in a patient space, else +z or what --up says; the sweep's views are only rolled for it.
 //
-// They are drawn after the decision (regions are known only then) from the reference alone:
-// its frames are rendered again on the CPU (Embree, render/renderer.h, one ray per pixel),
-// per-pixel values come from the frame's primitive ids (report/detail/surface_paint.h).
+// They are drawn after the decision (regions are known only then) from the reference: its
+// frames are rendered again on the CPU (Embree, render/renderer.h, one ray per pixel),
+// per-pixel values come from the frame's primitive ids (report/detail/surface_paint.h) or,
+// for a view's own measurement, from its grid (report/detail/measured_pixels.h).
 // Pictures are rendered at the size they are shown (mosaic tiles at the tile size), so nothing
 // full-size is resized.
 #pragma once
@@ -30,6 +43,7 @@
 #include "report/export_options.h"
 #include "report/orientation.h"
 #include "report/output_folder.h"
+#include "report/view_measurements.h"
 
 #include <map>
 #include <string>
@@ -70,7 +84,8 @@ struct PictureCaption {
 };
 
 /// Writes the pictures above into the folder, drawn with `orientation`'s up up and its
-/// directions' names; `caption` titles atlas.png and fills its footer. `observer` hears items
+/// directions' names; `caption` titles atlas.png and fills its footer; `measured` holds what
+/// each view measured (null, or a view missing: that view is drawn from the atlas). `observer` hears items
 /// for each per-view picture (in the stage its caller announced), then the stages "mosaics"
 /// (items: each zoom) and "atlas.png".
 /// \throw IoError, DeviceError (rendering).
@@ -79,6 +94,7 @@ struct PictureCaption {
                                            const ExportOptions& options,
                                            const Orientation& orientation,
                                            const PictureCaption& caption = {},
-                                           const AnalysisObserver& observer = {});
+                                           const AnalysisObserver& observer = {},
+                                           const ViewMeasurements* measured = nullptr);
 
 }  // namespace glint

@@ -429,7 +429,8 @@ std::optional<Mesh> write_atlas_files(const OutputFolder& folder, const Mesh& re
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
                                   const AnalysisResult& result, const LiveSurface* examined,
                                   const ExportOptions& exports, const RunRecord& record,
-                                  const std::string& json_text, const AnalysisObserver& observer) {
+                                  const std::string& json_text, const AnalysisObserver& observer,
+                                  const ViewMeasurements* measured) {
     const auto stage = [&](std::string_view name) {
         if (observer.stage) observer.stage(name);
     };
@@ -465,8 +466,9 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
         if (in.role == "reference") caption.reference_name = name;
         if (in.role == "examined") caption.examined_name = name;
     }
-    const PictureOutput pictures = write_pictures(
-        folder, reference, result, exports, run_orientation(record, exports), caption, observer);
+    const PictureOutput pictures =
+        write_pictures(folder, reference, result, exports, run_orientation(record, exports),
+                       caption, observer, measured);
     stage("report.html");
     write_file_atomically(folder.file("report.html"),
                           report_html(std::move(page), json_text, pictures));

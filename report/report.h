@@ -18,6 +18,7 @@
 #include "report/output_folder.h"
 #include "report/report_html.h"
 #include "report/run_inputs.h"
+#include "report/view_measurements.h"
 
 #include <filesystem>
 #include <functional>
@@ -49,11 +50,13 @@ inline constexpr std::string_view kMissingSurfaceNote =
 /// their order: "atlas files" (items: each of the atlas files, regions.csv and report.json),
 /// "report page" (waiting for the page's data), "pictures" (items: each per-view picture; also
 /// where the caller may hand back memory), "mosaics" (items: each zoom), "atlas.png",
-/// "report.html". Returns the atlas mesh when ExportOptions::keep_atlas.
+/// "report.html". `measured`: what each view measured, for the pictures (write_pictures).
+/// Returns the atlas mesh when ExportOptions::keep_atlas.
 std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& reference,
                                   const AnalysisResult& result, const LiveSurface* examined,
                                   const ExportOptions& exports, const RunRecord& record,
                                   const std::string& report_json,
-                                  const AnalysisObserver& observer = {});
+                                  const AnalysisObserver& observer = {},
+                                  const ViewMeasurements* measured = nullptr);
 
 }  // namespace glint

@@ -306,7 +306,7 @@ void add_common(CLI::App* cmd, RunArgs& a) {
     cmd->add_option("--data-root", a.data_root,
                     "Where scenario mesh paths not found beside the scenario are looked up "
                     "(default: $GLINT_DATA)");
-    cmd->add_flag("--views", a.views, "Also write per-view heat maps (PNG + EXR)");
+    cmd->add_flag("--views", a.views, "Also write what each view measured (PNG + EXR)");
     cmd->add_flag("--full", a.full,
                   "Folders: include scenarios tagged 'full' (longer than the CI suite)");
     cmd->add_flag(

@@ -143,7 +143,9 @@ SlicerGroup outputs_group() {
           .longflag = "mosaic",
           .channel = "output",
           .label = "View mosaic",
-          .description = "Every view's heat map, azimuth across, elevation down (mosaic_z0.png).",
+          .description =
+              "How much each view measured beyond its floor (azimuth × elevation) and the views "
+              "that saw the regions (mosaic_z0.png).",
           .type = "vector",
           .file_extensions = ".png"}}};
 }

@@ -31,6 +31,13 @@ inline constexpr Rgb kUnseenStripe{0.30f, 0.30f, 0.30f};
 /// Seen but not compared (decision/comparison.h): hatched the other way, warmer.
 inline constexpr Rgb kNotCompared{0.80f, 0.78f, 0.70f};
 inline constexpr Rgb kNotComparedStripe{0.48f, 0.45f, 0.38f};
+/// A view's reference surface with no examined surface behind it (report/view_measurements.h):
+/// violet hatching (no colour of the shape map is violet).
+inline constexpr Rgb kNothingBehind{0.70f, 0.55f, 0.76f};
+inline constexpr Rgb kNothingBehindStripe{0.42f, 0.28f, 0.48f};
+/// Examined surface where the view's reference frame has none (beyond the reference outline):
+/// green, so it is told from background and from the map's blue.
+inline constexpr Rgb kExaminedOnly{0.30f, 0.78f, 0.42f};
 
 /// The diverging map of signed shape change, low (loss, blue) → 0 (near white) → high
 /// (gain, red): ColorBrewer's RdBu with 9 classes, reversed so blue is negative. 9 knots × 3

@@ -18,7 +18,10 @@ constexpr int kLine = 18;  // px per text line
 constexpr int kBarWidth = 20;
 constexpr int kMinBar = 120;
 constexpr int kMaxBar = 260;
-constexpr int kSwatches = 4 * kLine + 20;
+constexpr int kSwatchStep = kLine + 6;  // px from one swatch row to the next
+
+// Height of the swatch rows: four; six for a view's own measurement.
+int swatches_height(const LegendContent& c) { return (c.measured ? 6 : 4) * kSwatchStep - 4; }
 
 // The bar, high values at the top: pixel row of value v.
 int bar_row(double v, double limit, int top, int height) {
@@ -51,35 +54,61 @@ void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c)
     }
 }
 
-void draw_swatches(ImageBuf& dst, int x, int y, bool roi) {
-    // Unseen: the hatching the pictures use.
+// A swatch hatched as the pictures hatch: rising stripes (or falling) every 7 px.
+void hatched_swatch(ImageBuf& dst, int x, int y, Rgb plain, Rgb stripe, bool rising) {
     const int s = kLine - 4;
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
-            const float* g = ((i + j) % 7 < 2) ? kUnseenStripe.data() : kUnseen.data();
+            const bool on = rising ? (i + j) % 7 < 2 : (i + 7 * s - j) % 7 < 2;
             if (x + i < dst.spec().width && y + j < dst.spec().height)
-                dst.setpixel(x + i, y + j, g, 3);
+                dst.setpixel(x + i, y + j, (on ? stripe : plain).data(), 3);
         }
-    draw_text(dst, x + s + 8, y + s - 2,
-              roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
+}
+
+// The rows of a view's own measurement: nothing behind, examined only, pale within the floor.
+int draw_measured_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
+    const int s = kLine - 4;
+    hatched_swatch(dst, x, y, kNothingBehind, kNothingBehindStripe, true);
+    draw_text(dst, x + s + 8, y + s - 2, "no examined surface behind it", kFont);
+    y += kSwatchStep;
+    draw_box(dst, x, y, x + s, y + s, kExaminedOnly, true);
+    draw_text(dst, x + s + 8, y + s - 2, "examined surface only", kFont);
+    y += kSwatchStep;
+    const DivergingTable& colours = DivergingTable::get();
+    const Rgb loss = colours(static_cast<float>(-c.limit), c.limit);
+    const Rgb white = colours(0.0f, c.limit);
+    Rgb pale = loss;
+    for (int k = 0; k < 3; ++k) pale[k] += kWithinFloorPale * (white[k] - pale[k]);
+    draw_box(dst, x, y, x + s / 2, y + s, loss, true);
+    draw_box(dst, x + s / 2 + 1, y, x + s, y + s, pale, true);
+    draw_text(dst, x + s + 8, y + s - 2, "paler: within the floor", kFont);
+    return y + kSwatchStep;
+}
+
+void draw_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
+    const int s = kLine - 4;
+    if (c.measured) {
+        y = draw_measured_swatches(dst, x, y, c);
+    } else {
+        // Unseen: the hatching the pictures use.
+        hatched_swatch(dst, x, y, kUnseen, kUnseenStripe, true);
+        draw_text(dst, x + s + 8, y + s - 2,
+                  c.roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
+        y += kSwatchStep;
+    }
     // Not compared: hatched the other way.
-    const int y1 = y + kLine + 6;
-    for (int j = 0; j < s; ++j)
-        for (int i = 0; i < s; ++i) {
-            const float* g =
-                ((i + 7 * s - j) % 7 < 2) ? kNotComparedStripe.data() : kNotCompared.data();
-            if (x + i < dst.spec().width && y1 + j < dst.spec().height)
-                dst.setpixel(x + i, y1 + j, g, 3);
-        }
-    draw_text(dst, x + s + 8, y1 + s - 2, "not compared (border, unscanned)", kFont);
-    const int y2 = y1 + kLine + 6;
+    hatched_swatch(dst, x, y, kNotCompared, kNotComparedStripe, false);
+    draw_text(dst, x + s + 8, y + s - 2,
+              c.measured ? "not compared (edge, border)" : "not compared (border, unscanned)",
+              kFont);
+    const int y2 = y + kSwatchStep;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
     draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);
     draw_tag(dst, x + s + 14, y2 + s / 2, "1", kFont - 2);
     draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kFont);
     // An open surface seen from behind: its normals face away, so the light leaves it dark.
-    const int y3 = y2 + kLine + 6;
+    const int y3 = y2 + kSwatchStep;
     draw_box(dst, x, y3, x + s, y3 + s, back_face_colour(), true);
     draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kFont);
 }
@@ -96,14 +125,16 @@ std::string region_legend_line(const Region& r, const std::string& unit) {
 
 int legend_min_height(const LegendContent& c) {
     // (two lines each for the range and the shape floor when they wrap)
-    return 10 + 2 * kLine + kMinBar + kLine + 12 + kSwatches +
+    return 10 + 2 * kLine + kMinBar + kLine + 12 + swatches_height(c) +
            static_cast<int>(c.lines.size() + 4) * kLine + 10;
 }
 
 void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
     const int x0 = x + 12;
     int cy = y + 10 + kFont;
-    draw_text(dst, x0, cy, "signed shape change (" + c.unit + ")", kFont + 1);
+    draw_text(dst, x0, cy,
+              (c.measured ? "signed depth, this view (" : "signed shape change (") + c.unit + ")",
+              kFont + 1);
     cy += kLine;
     draw_text(dst, x0, cy, "gain (bump)", kFont, {0.94f, 0.55f, 0.50f});
     cy += 8;
@@ -114,8 +145,8 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     cy += bar + kLine;
     draw_text(dst, x0, cy, "loss (dent)", kFont, {0.55f, 0.72f, 0.95f});
     cy += 12;
-    draw_swatches(dst, x0, cy, c.roi);
-    cy += kSwatches + kLine;
+    draw_swatches(dst, x0, cy, c);
+    cy += swatches_height(c) + kLine;
     std::vector<std::string> lines = c.lines;
     lines.insert(lines.begin(), "range \u00b1" + format_number(c.limit) + " " + c.unit +
                                     (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));

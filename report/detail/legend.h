@@ -21,6 +21,9 @@ struct LegendContent {
     double shape_floor = 0.0;  ///< marked on the bar when > 0 and inside the range
     std::string unit;          ///< length unit shown ("mm"; "units" when unknown)
     bool roi = false;          ///< the sweep analysed a part only: outside it counts as unseen
+    /// The picture shows one view's own measurement (report/view_measurements.h): the bar is
+    /// its signed depth along the view ray, and the swatches its statuses and the pale floor.
+    bool measured = false;
     std::vector<std::string> lines;    ///< thresholds and floors, one per line
     std::vector<std::string> regions;  ///< "1 dent −0.41 mm, 12.3 mm²", in id order
 };

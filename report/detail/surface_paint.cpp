@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "render/shade.h"
+#include "report/view_measurements.h"
 
 #include <algorithm>
 #include <cmath>
@@ -163,6 +164,48 @@ std::vector<RegionAnchor> anchors_of(const Frame& frame, const std::vector<std::
     return anchors;
 }
 
+// Hatching: stripes 2 px wide every `period` px, rising (up) or falling diagonals.
+bool on_stripe(std::size_t p, std::size_t width, int hatch_period, bool rising) {
+    const auto period = static_cast<std::size_t>(std::max(2, hatch_period));
+    const std::size_t x = p % width, y = p / width;
+    return rising ? (x + y) % period < 2 : (x + period * width - y % (period * width)) % period < 2;
+}
+
+// A covered pixel's colour from the per-vertex fields: the distance, or hatched unseen / not
+// compared.
+Rgb vertex_colour(const PixelFields& px, const Frame& frame, std::size_t p,
+                  const PaintStyle& style) {
+    const auto w = static_cast<std::size_t>(frame.width);
+    if (!px.seen[p]) return on_stripe(p, w, style.hatch_period, true) ? kUnseenStripe : kUnseen;
+    if (px.seen[p] == 2)
+        return on_stripe(p, w, style.hatch_period, false) ? kNotComparedStripe : kNotCompared;
+    return DivergingTable::get()(px.distance[p], style.limit);
+}
+
+// A covered pixel's colour from what the view measured: the signed depth (paler within the
+// floor), hatched violet with no examined surface behind, hatched as not compared otherwise,
+// and where the decision compares nothing (decision/comparison.h: an open border of either
+// surface, or surface the examined scan never reached: what the view sees there is another
+// part of the examined surface behind the cut, not a loss).
+Rgb measured_colour(const MeasuredPixels& m, const PixelFields& px, const Frame& frame,
+                    std::size_t p, const PaintStyle& style) {
+    const auto w = static_cast<std::size_t>(frame.width);
+    const auto status = static_cast<MeasuredStatus>(m.status[p]);
+    if (px.seen[p] == 2)
+        return on_stripe(p, w, style.hatch_period, false) ? kNotComparedStripe : kNotCompared;
+    if (status == MeasuredStatus::ReferenceOnly)
+        return on_stripe(p, w, style.hatch_period, true) ? kNothingBehindStripe : kNothingBehind;
+    if (status != MeasuredStatus::Compared || std::isnan(m.depth[p]))
+        return on_stripe(p, w, style.hatch_period, false) ? kNotComparedStripe : kNotCompared;
+    const DivergingTable& colours = DivergingTable::get();
+    Rgb c = colours(m.depth[p], style.limit);
+    if (!m.beyond[p]) {
+        const Rgb white = colours(0.0f, style.limit);
+        for (int k = 0; k < 3; ++k) c[k] += kWithinFloorPale * (white[k] - c[k]);
+    }
+    return c;
+}
+
 }  // namespace
 
 Rgb back_face_colour() {
@@ -176,29 +219,29 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
     GLINT_ASSERT(
         fields.distance.size() == nv && fields.region.size() == nv && fields.seen.size() == nv,
         "paint_surface: fields are not sized as the mesh");
-    const PixelFields px = sample_fields(mesh, frame, view, fields);
-    const DivergingTable& colours = DivergingTable::get();
     const std::size_t n = frame.pixel_count();
+    GLINT_ASSERT(!style.measured ||
+                     (style.measured->depth.size() == n && style.measured->status.size() == n &&
+                      style.measured->beyond.size() == n),
+                 "paint_surface: measured pixels are not sized as the frame");
+    const PixelFields px = sample_fields(mesh, frame, view, fields);
     std::vector<std::uint8_t> rgb(3 * n);
     const std::vector<std::uint8_t> edge = contour(frame, px.region, style.outline_width);
     const Vec3f light = ShadeOptions{}.light_in_camera.normalized().cast<float>();
-    const auto w = static_cast<std::size_t>(frame.width);
     for (std::size_t p = 0; p < n; ++p) {
         std::uint8_t* c = &rgb[3 * p];
         const float cover = std::clamp(frame.coverage[p], 0.0f, 1.0f);
         if (cover <= 0.0f) {
-            for (int k = 0; k < 3; ++k) c[k] = to_byte(style.background[k]);
+            // Examined surface outside the reference's outline: all a view sees of it.
+            const bool examined_only =
+                style.measured && style.measured->status[p] ==
+                                      static_cast<std::uint8_t>(MeasuredStatus::ExaminedOnly);
+            const Rgb& bg = examined_only ? kExaminedOnly : style.background;
+            for (int k = 0; k < 3; ++k) c[k] = to_byte(bg[k]);
             continue;
         }
-        Rgb base = colours(px.distance[p], style.limit);
-        const auto period = static_cast<std::size_t>(std::max(2, style.hatch_period));
-        if (!px.seen[p]) {
-            const bool stripe = (p % w + p / w) % period < 2;
-            base = stripe ? kUnseenStripe : kUnseen;
-        } else if (px.seen[p] == 2) {
-            const bool stripe = (p % w + period * w - p / w % (period * w)) % period < 2;
-            base = stripe ? kNotComparedStripe : kNotCompared;
-        }
+        Rgb base = style.measured ? measured_colour(*style.measured, px, frame, p, style)
+                                  : vertex_colour(px, frame, p, style);
         if (edge[p]) base = kOutline;
         // Lambert with an ambient part: the form stays visible where the light grazes.
         const float lambert = std::max(0.0f, normal_in_camera(frame, view, p).dot(light));

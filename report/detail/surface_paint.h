@@ -56,11 +56,29 @@ struct PaintedSurface {
     std::vector<RegionAnchor> anchors;  ///< regions visible, by id
 };
 
+/// What one view measured, per pixel of the frame painted (report/detail/measured_pixels.h maps
+/// a ViewMeasurement onto it). With it a picture shows the view's own measurement instead of
+/// the per-vertex distance: compared pixels its signed depth (pale where within the floor),
+/// reference pixels with no examined surface behind them hatched violet, examined surface
+/// beyond the reference outline green, the rest of the surface, and surface the decision
+/// does not compare (SurfaceFields::seen 2), hatched as not compared.
+struct MeasuredPixels {
+    std::vector<float> depth;          ///< signed depth along the view ray; NaN: not compared
+    std::vector<std::uint8_t> status;  ///< MeasuredStatus (report/view_measurements.h)
+    std::vector<std::uint8_t> beyond;  ///< 1 where the view measured beyond its floor
+};
+
+/// How much paler a compared pixel within the floor is drawn: its colour mixed this far
+/// towards the map's white.
+inline constexpr float kWithinFloorPale = 0.6f;
+
 struct PaintStyle {
     double limit = 1.0;     ///< colour range ±limit (mesh units), > 0
     int outline_width = 2;  ///< 1: the region side of the contour only; 2: both sides
     int hatch_period = 7;   ///< pixels between hatching stripes
     Rgb background = kBackground;
+    /// The view's own measurement (sized as the frame), or null: the per-vertex fields.
+    const MeasuredPixels* measured = nullptr;
 };
 
 /// Paints `frame` (rendered from `view` of `mesh`) as described above.
