@@ -1,5 +1,7 @@
 #include "report/detail/atlas_overview.h"
 
+#include "mesh/error.h"
+#include "render/frame.h"
 #include "render/view.h"
 #include "report/detail/footer.h"
 #include "report/detail/labels.h"
@@ -38,26 +40,77 @@ ViewSpec panel_spec(const Orientation& o, const Vec3d& direction, int size) {
         .up = up_hint(o, direction)};
 }
 
-// The six views at one scale: the largest half extent of the bounding box's corners across
-// them (a sphere around an elongated jaw would leave most of each panel empty).
+constexpr int kCaptionFont = 13;
+
+// A line of text on a panel, in the panel's pixels.
+struct PanelText {
+    std::string text;
+    int x = 0;
+    int y = 0;  ///< baseline
+    IBA::TextAlignX align = IBA::TextAlignX::Left;
+};
+
+// The direction names at the panel's edges, as a radiologist's viewer puts them: what lies
+// up, left and right in the picture.
+std::vector<PanelText> edge_letters(int size, const Orientation& o, const View& v) {
+    const auto& axes = v.camera.world_from_camera.linear();
+    return {
+        {with_minus_sign(o.letter(axes.col(1))), size / 2, 16, IBA::TextAlignX::Center},
+        {with_minus_sign(o.letter(-axes.col(0))), 6, size / 2 + 5, IBA::TextAlignX::Left},
+        {with_minus_sign(o.letter(axes.col(0))), size - 6, size / 2 + 5, IBA::TextAlignX::Right}};
+}
+
+// The margin each panel keeps free of the surface, pixels: left and right for the letters
+// there, top and bottom for the letter above and the caption below (the same both ways, as
+// the surface is centred).
+struct Margin {
+    int x = 0;
+    int y = 0;
+};
+
+Margin text_margin(const std::vector<View>& views, const Orientation& o) {
+    // note: 3 px between a text's box and the surface, so the two never touch.
+    constexpr int kGap = 3;
+    const PixelBox caption = text_box("from", kCaptionFont, 8, kPanel - 8);
+    Margin m{.x = 0, .y = kPanel - caption.y0 + kGap};
+    for (const View& v : views)
+        for (const PanelText& t : edge_letters(kPanel, o, v)) {
+            const PixelBox b = text_box(t.text, kCaptionFont, t.x, t.y, t.align);
+            if (t.align == IBA::TextAlignX::Center) {  // the letter above
+                m.y = std::max(m.y, b.y1 + kGap);
+            } else if (t.align == IBA::TextAlignX::Left) {
+                m.x = std::max(m.x, b.x1 + kGap);
+            } else {
+                m.x = std::max(m.x, kPanel - b.x0 + kGap);
+            }
+        }
+    return m;
+}
+
+// The six views at one scale: the bounding box's corners, seen from each direction, fit inside
+// the panels less their margins (a sphere around an elongated jaw would leave most of each
+// panel empty). The corners enclose the surface, so it keeps off the letters and captions.
 std::vector<View> direction_views(const Mesh& mesh, const Orientation& o) {
     const FramingSphere sphere = framing_sphere(mesh);
     const Bounds b = bounds(mesh);
-    double half = 0.0;
-    for (const auto& p : kPanels) {
-        const View v =
-            make_view(sphere, panel_spec(o, panel_direction(o, p.azimuth, p.elevation), kPanel));
+    std::vector<View> views;
+    for (const auto& p : kPanels)
+        views.push_back(
+            make_view(sphere, panel_spec(o, panel_direction(o, p.azimuth, p.elevation), kPanel)));
+    const Margin m = text_margin(views, o);
+    const double room_x = 0.5 * kPanel - m.x, room_y = 0.5 * kPanel - m.y;
+    GLINT_ASSERT(room_x > 0 && room_y > 0, "atlas panel margins leave no room for the surface");
+    double footprint = 1e-12;
+    for (const View& v : views) {
         const Rigid camera_from_world = v.camera.world_from_camera.inverse();
         for (int c = 0; c < 8; ++c) {
             const Vec3d corner((c & 1 ? b.max : b.min).x(), (c & 2 ? b.max : b.min).y(),
                                (c & 4 ? b.max : b.min).z());
             const Vec3d q = camera_from_world * corner;
-            half = std::max({half, std::abs(q.x()), std::abs(q.y())});
+            footprint = std::max({footprint, std::abs(q.x()) / room_x, std::abs(q.y()) / room_y});
         }
     }
-    // note: 4 % margin, so the silhouette never touches the panel's edge.
-    const double footprint = 2.0 * 1.04 * std::max(half, 1e-12) / kPanel;
-    std::vector<View> views;
+    views.clear();
     for (const auto& p : kPanels) {
         ViewSpec spec = panel_spec(o, panel_direction(o, p.azimuth, p.elevation), kPanel);
         spec.zoom = ZoomKind::Footprint;
@@ -80,26 +133,6 @@ std::string panel_caption(const Orientation& o, const View& v) {
                   format_degrees(v.azimuth_deg).c_str(),
                   format_degrees(v.elevation_deg, true).c_str());
     return with_minus_sign(label);
-}
-
-constexpr int kCaptionFont = 13;
-
-// A line of text on a panel, in the panel's pixels.
-struct PanelText {
-    std::string text;
-    int x = 0;
-    int y = 0;  ///< baseline
-    IBA::TextAlignX align = IBA::TextAlignX::Left;
-};
-
-// The direction names at the panel's edges, as a radiologist's viewer puts them: what lies
-// up, left and right in the picture.
-std::vector<PanelText> edge_letters(int size, const Orientation& o, const View& v) {
-    const auto& axes = v.camera.world_from_camera.linear();
-    return {
-        {with_minus_sign(o.letter(axes.col(1))), size / 2, 16, IBA::TextAlignX::Center},
-        {with_minus_sign(o.letter(-axes.col(0))), 6, size / 2 + 5, IBA::TextAlignX::Left},
-        {with_minus_sign(o.letter(axes.col(0))), size - 6, size / 2 + 5, IBA::TextAlignX::Right}};
 }
 
 // The direction a region faces: the mean of its vertices' normals; when they cancel out (a
@@ -133,29 +166,49 @@ View close_up_view(const Mesh& mesh, const SurfaceFields& fields, const FramingS
     return make_view(FramingSphere{r.centroid, radius}, spec);
 }
 
-// A painted panel pasted at (x, y) with its caption at the top left (close-ups) or the bottom
-// left (the six directions, whose top edge names the up direction), shortened to fit; its
-// scale bar at the bottom right; `letters` at its edges; and the region numbers placed off
-// all of them.
+// Height of the strip above a close-up that holds its title (pixels): a close-up is filled
+// with surface, so its title cannot lie on the picture.
+constexpr int kTitleStrip = 22;
+
+PixelBox moved(PixelBox b, int dx, int dy) { return {b.x0 + dx, b.y0 + dy, b.x1 + dx, b.y1 + dy}; }
+
+// Marks in the layout the sheet pixels where a frame pasted at (x, y) shows the surface.
+void record_surface(OverviewLayout* layout, const Frame& frame, int x, int y) {
+    if (layout == nullptr) return;
+    for (int r = 0; r < frame.height; ++r)
+        for (int c = 0; c < frame.width; ++c)
+            if (frame.primitive_id[static_cast<std::size_t>(r * frame.width + c)] != kNoPrimitive)
+                layout->surface[static_cast<std::size_t>((y + r) * layout->width + x + c)] = 1;
+}
+
+// A painted panel pasted at (x, y) with its caption at the bottom left (the six directions,
+// in the margin their framing keeps free) or in the strip above it (close-ups), shortened to
+// fit; its scale bar at the bottom right; `letters` at its edges; and the region numbers
+// placed off all of them.
 void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const View& view,
            const std::string& caption, const std::string& unit, bool caption_below,
-           const std::vector<PanelText>& letters = {}) {
+           const std::vector<PanelText>& letters, OverviewLayout* layout) {
     const int w = painted.image.spec().width, h = painted.image.spec().height;
     IBA::paste(sheet, x, y, 0, 0, painted.image);
     const PixelBox bar = view_scale_bar_box(view, unit);
     // the caption stops short of the scale bar when both share the bottom edge
     const int caption_room = (caption_below ? bar.x0 : w) - 16;
-    std::vector<PanelText> texts = letters;
-    texts.push_back({fit_text(caption, kCaptionFont, caption_room), 8, caption_below ? h - 8 : 18,
-                     IBA::TextAlignX::Left});
+    const PanelText title{fit_text(caption, kCaptionFont, caption_room), 8,
+                          caption_below ? h - 8 : 16 - kTitleStrip, IBA::TextAlignX::Left};
     std::vector<PixelBox> reserved{bar};
-    for (const auto& t : texts)
+    for (const auto& t : letters)
         reserved.push_back(text_box(t.text, kCaptionFont, t.x, t.y, t.align));
+    const PixelBox title_box = text_box(title.text, kCaptionFont, title.x, title.y, title.align);
+    if (caption_below) reserved.push_back(title_box);
     draw_region_numbers(sheet, x, y, w, h, painted.anchors, 13, 20, reserved);
-    for (const auto& t : texts)
-        draw_text(sheet, x + t.x, y + t.y, t.text, kCaptionFont,
-                  &t == &texts.back() ? kText : kDimText, t.align, 2);
+    for (const auto& t : letters)
+        draw_text(sheet, x + t.x, y + t.y, t.text, kCaptionFont, kDimText, t.align, 2);
+    draw_text(sheet, x + title.x, y + title.y, title.text, kCaptionFont, kText, title.align, 2);
     draw_view_scale_bar(sheet, x, y, view, unit);
+    if (layout == nullptr) return;
+    for (std::size_t i = 0; i < letters.size(); ++i)
+        layout->letters.push_back(moved(reserved[i + 1], x, y));
+    layout->captions.push_back(moved(title_box, x, y));
 }
 
 }  // namespace
@@ -167,21 +220,28 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
     const FramingSphere whole = framing_sphere(*in.mesh);
     for (std::size_t i = 0; i < in.regions->size() && close.size() < kMaxCloseUps; ++i)
         close.push_back(close_up_view(*in.mesh, *in.fields, whole, (*in.regions)[i], *in.plan, o));
-    const int close_h = close.empty() ? 0 : kCloseUp + 6;
+    const int close_h = close.empty() ? 0 : 6 + kTitleStrip + kCloseUp;
     char title[300];
     std::snprintf(
         title, sizeof title,
         "damage atlas of %s (zoom 0): signed shape change, %zu region(s), coverage %.0f %%",
         in.name.c_str(), in.regions->size(), 100.0 * in.coverage);
     ImageBuf sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, *in.legend);
+    if (in.layout != nullptr) {
+        *in.layout = OverviewLayout{.width = sheet.spec().width, .height = sheet.spec().height};
+        in.layout->surface.assign(static_cast<std::size_t>(in.layout->width * in.layout->height),
+                                  0);
+    }
     const PaintStyle style{.limit = in.limit};
     renderer.render_views(views, [&](std::size_t k, const Frame& frame) {
         const int x = static_cast<int>(k % 3) * kPanel;
         const int y = kTitleHeight + static_cast<int>(k / 3) * kPanel;
         place(sheet, x, y, paint_surface(*in.mesh, frame, views[k], *in.fields, style), views[k],
-              panel_caption(o, views[k]), in.unit, true, edge_letters(kPanel, o, views[k]));
+              panel_caption(o, views[k]), in.unit, true, edge_letters(kPanel, o, views[k]),
+              in.layout);
+        record_surface(in.layout, frame, x, y);
     });
-    const int y0 = kTitleHeight + 2 * kPanel + 6;
+    const int y0 = kTitleHeight + 2 * kPanel + 6 + kTitleStrip;  // the close-ups' pictures
     renderer.render_views(close, [&](std::size_t k, const Frame& frame) {
         const Region& r = (*in.regions)[k];
         char label[120];
@@ -193,7 +253,8 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
                           in.unit.c_str());
         const int x = static_cast<int>(k) * kCloseUp;
         place(sheet, x, y0, paint_surface(*in.mesh, frame, close[k], *in.fields, style), close[k],
-              label, in.unit, false);
+              label, in.unit, false, {}, in.layout);
+        record_surface(in.layout, frame, x, y0);
         draw_box(sheet, x, y0, x + kCloseUp - 1, y0 + kCloseUp - 1, kDimText, false);
     });
     return encode_png(in.footer.empty() ? sheet : with_footer(sheet, in.footer));
