@@ -113,3 +113,10 @@ def test_bad_plane_text_names_the_keyword():
 def test_unknown_keyword_is_a_type_error():
     with pytest.raises(TypeError, match="asymmetry"):
         glint.asymmetry(one_plane_shape(), no_such_keyword=1)
+
+
+def test_fit_roi_is_checked_and_named():
+    with pytest.raises(glint.InputError, match=r"fit_roi: ROI 'sphere:1,2'"):
+        glint.asymmetry(one_plane_shape(), fit_roi="sphere:1,2")
+    with pytest.raises(glint.InputError, match=r"ROI sphere:100,100,100,1 contains no vertex"):
+        glint.asymmetry(one_plane_shape(), fit_roi="sphere:100,100,100,1")
