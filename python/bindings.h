@@ -56,6 +56,7 @@ struct MeshLike {
 
 void bind_mesh(pybind11::module_& m);
 void bind_analysis(pybind11::module_& m);
+void bind_asymmetry(pybind11::module_& m);
 
 /// The types a mesh argument takes, as signatures and docstrings name them.
 #define GLINT_MESH_LIKE_TYPES                                                 \

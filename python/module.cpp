@@ -20,6 +20,7 @@ PYBIND11_MODULE(glint, m) {
     glint::python::register_exceptions(m);
     glint::python::bind_mesh(m);
     glint::python::bind_analysis(m);
+    glint::python::bind_asymmetry(m);
     m.def(
         "cancel", [] { glint::request_cancel(SIGINT); },
         "Asks the glint calls in progress (any thread) to stop; each then raises KeyboardInterrupt.");

@@ -1,6 +1,7 @@
 #include "registration/symmetry_plane.h"
 
 #include "mesh/error.h"
+#include "mesh/front_end.h"
 #include "mesh/geometry.h"
 #include "mesh/parse.h"
 #include "mesh/surface_index.h"
@@ -125,7 +126,10 @@ SymmetryPlane plane_through(const Vec3d& point, const Vec3d& normal) {
 }
 
 SymmetryPlane parse_plane_spec(const std::string& text) {
-    const std::string where = "--plane \"" + text + "\"";
+    // note: --plane "x=3" on the command line, plane='x=3' in Python (mesh/front_end.h).
+    const std::string where = front_end() == FrontEnd::Python
+                                  ? spell_option("plane", text)
+                                  : spell_option("plane", "\"" + text + "\"");
     const auto eq = text.find('=');
     if (text.size() >= 2 && eq == 1 && std::string("xyz").find(text[0]) != std::string::npos) {
         const std::vector<double> c = parse_number_list(text.substr(2), where);

@@ -5,6 +5,7 @@
 #include "mesh/output_guard.h"
 #include "mesh/roi.h"
 #include "mesh/units.h"
+#include "report/asymmetry_json.h"
 #include "report/inspect.h"
 #include "report/orientation.h"
 #include "report/run_inputs.h"
@@ -42,69 +43,6 @@ struct AsymmetryArgs {
 
 double axis_angle_deg(const Vec3d& n, int axis) {
     return std::acos(std::min(1.0, std::abs(n[axis]))) * 180.0 / std::numbers::pi;
-}
-
-nlohmann::json plane_json(const SymmetryPlaneResult& r, const std::string& unit) {
-    const SymmetryPlane& p = r.plane;
-    nlohmann::json hypotheses = nlohmann::json::array();
-    for (const auto& h : r.hypotheses)
-        hypotheses.push_back(
-            {{"name", h.name},
-             {"normal", {h.plane.normal.x(), h.plane.normal.y(), h.plane.normal.z()}},
-             {"offset", h.plane.offset},
-             {"rms", h.rms},
-             {"overlap", h.overlap},
-             {"converged", h.converged}});
-    return {
-        {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}},
-        {"point", {p.point().x(), p.point().y(), p.point().z()}},
-        {"offset", p.offset},
-        {"angle_to_axes_deg",
-         {axis_angle_deg(p.normal, 0), axis_angle_deg(p.normal, 1), axis_angle_deg(p.normal, 2)}},
-        {"source", r.source},
-        {"residual", r.rms},
-        {"residual_text", with_unit(r.rms, unit)},
-        {"inlier_fraction", r.inlier_fraction},
-        {"overlap", r.overlap},
-        {"converged", r.converged},
-        {"plausible", r.plausible},
-        {"verdict", r.verdict},
-        {"hypotheses", hypotheses}};
-}
-
-// report.json's "asymmetry": the plane, the floor, the findings side by side.
-nlohmann::json asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryFindings& f,
-                              const Orientation& o, const std::string& unit) {
-    nlohmann::json findings = nlohmann::json::array();
-    for (const auto& x : f.findings) {
-        const std::string side = o.name(x.side), other = o.name(-x.side);
-        findings.push_back(
-            {{"side", side},
-             {"text", describe(x, side + " side", other + " side", unit)},
-             {"less", x.depth < 0},
-             {"mirror_missing", x.mirror_missing},
-             {"side_chosen_by", x.side_by_shape ? "the side whose surface bends less evenly there"
-                                                : "the side with less"},
-             {"roughness", x.roughness},
-             {"mirror_roughness", x.mirror_roughness},
-             {"depth", x.depth},
-             {"area", x.area},
-             {"volume", x.volume},
-             {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
-             {"region", x.region},
-             {"mirror_region", x.mirror_region}});
-    }
-    return {{"plane", plane_json(plane, unit)},
-            {"symmetry_floor",
-             {{"rms", f.floor.rms}, {"p95", f.floor.p95}, {"max", f.floor.max}, {"unit", unit}}},
-            {"findings", findings},
-            {"caveat", std::string(kOneScanCaveat)},
-            {"field",
-             "asymmetry: this side minus the mirrored other side along the outward "
-             "normal (negative: less)"},
-            {"regions_note",
-             "regions, regions.csv and the pictures show the mirror against the surface: a "
-             "bump there is where the mirrored other side stands out, i.e. this side has less"}};
 }
 
 void print_plane(const SymmetryPlaneResult& r, const std::string& u) {
@@ -157,9 +95,11 @@ void run(AsymmetryArgs& a) {
         print_warnings(input.warnings);
         // The result (the plane and its verdict) before the check fails (tools/main.cpp).
         if (global_flags().json)
-            std::cout
-                << nlohmann::json{{"asymmetry", {{"plane", plane_json(plane.plane, unit)}}}}.dump(2)
-                << '\n';
+            std::cout << nlohmann::json{{"asymmetry",
+                                         {{"plane", nlohmann::json::parse(
+                                                        symmetry_plane_json(plane.plane, unit))}}}}
+                             .dump(2)
+                      << '\n';
         else print_plane(plane.plane, unit);
         throw CheckFailed("\"" + a.mesh + "\": " + plane.plane.verdict +
                           "; no asymmetry is reported and nothing was written (the best plane "
@@ -176,10 +116,11 @@ void run(AsymmetryArgs& a) {
     nlohmann::json report;
     a.options.addition = [&](const AnalysisResult& r) {
         AsymmetryFindings f = pair_findings(input.mesh, plane.plane.plane, r);
-        report = asymmetry_json(plane.plane, f, orientation, r.unit);
+        std::string text = asymmetry_json(plane.plane, f, orientation, r.unit);
+        report = nlohmann::json::parse(text);
         return ReportAddition{.scalars = {{"asymmetry{unit}", std::move(f.field)}},
                               .key = "asymmetry",
-                              .json = report.dump()};
+                              .json = std::move(text)};
     };
     AnalysisObserver observer;
     observer.stage = [](std::string_view) { give_back_free_memory(); };

@@ -1,0 +1,98 @@
+#include "report/asymmetry_json.h"
+
+#include "mesh/units.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace glint {
+namespace {
+
+double axis_angle_deg(const Vec3d& n, int axis) {
+    return std::acos(std::min(1.0, std::abs(n[axis]))) * 180.0 / std::numbers::pi;
+}
+
+nlohmann::json plane_object(const SymmetryPlaneResult& r, const std::string& unit) {
+    const SymmetryPlane& p = r.plane;
+    nlohmann::json hypotheses = nlohmann::json::array();
+    for (const auto& h : r.hypotheses)
+        hypotheses.push_back(
+            {{"name", h.name},
+             {"normal", {h.plane.normal.x(), h.plane.normal.y(), h.plane.normal.z()}},
+             {"offset", h.plane.offset},
+             {"rms", h.rms},
+             {"overlap", h.overlap},
+             {"converged", h.converged}});
+    return {
+        {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}},
+        {"point", {p.point().x(), p.point().y(), p.point().z()}},
+        {"offset", p.offset},
+        {"angle_to_axes_deg",
+         {axis_angle_deg(p.normal, 0), axis_angle_deg(p.normal, 1), axis_angle_deg(p.normal, 2)}},
+        {"source", r.source},
+        {"residual", r.rms},
+        {"residual_text", with_unit(r.rms, unit)},
+        {"inlier_fraction", r.inlier_fraction},
+        {"overlap", r.overlap},
+        {"converged", r.converged},
+        {"plausible", r.plausible},
+        {"verdict", r.verdict},
+        {"hypotheses", hypotheses}};
+}
+
+// report.json's "asymmetry": the plane, the floor, the findings side by side.
+nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const AsymmetryFindings& f,
+                                const Orientation& o, const std::string& unit) {
+    nlohmann::json findings = nlohmann::json::array();
+    for (const auto& x : f.findings) {
+        const std::string side = o.name(x.side), other = o.name(-x.side);
+        findings.push_back(
+            {{"side", side},
+             {"text", describe(x, side + " side", other + " side", unit)},
+             {"kind", finding_kind(x)},
+             {"less", x.depth < 0},
+             {"mirror_missing", x.mirror_missing},
+             {"side_chosen_by", x.side_by_shape ? "the side whose surface bends less evenly there"
+                                                : "the side with less"},
+             {"roughness", x.roughness},
+             {"mirror_roughness", x.mirror_roughness},
+             {"depth", x.depth},
+             {"area", x.area},
+             {"volume", x.volume},
+             {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
+             {"region", x.region},
+             {"mirror_region", x.mirror_region}});
+    }
+    return {{"plane", plane_object(plane, unit)},
+            {"symmetry_floor",
+             {{"rms", f.floor.rms}, {"p95", f.floor.p95}, {"max", f.floor.max}, {"unit", unit}}},
+            {"findings", findings},
+            {"caveat", std::string(kOneScanCaveat)},
+            {"field",
+             "asymmetry: this side minus the mirrored other side along the outward "
+             "normal (negative: less)"},
+            {"regions_note",
+             "regions, regions.csv and the pictures show the mirror against the surface: a "
+             "bump there is where the mirrored other side stands out, i.e. this side has less"}};
+}
+
+}  // namespace
+
+std::string finding_kind(const AsymmetryFinding& finding) {
+    if (finding.mirror_missing) return "no mirrored surface";
+    return finding.depth < 0 ? "less" : "more";
+}
+
+std::string symmetry_plane_json(const SymmetryPlaneResult& plane, const std::string& unit) {
+    return plane_object(plane, unit).dump();
+}
+
+std::string asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryFindings& findings,
+                           const Orientation& orientation, const std::string& unit) {
+    return asymmetry_object(plane, findings, orientation, unit).dump();
+}
+
+}  // namespace glint

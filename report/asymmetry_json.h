@@ -1,0 +1,28 @@
+// report.json's "asymmetry" object (glint asymmetry, glint.asymmetry()): the symmetry plane,
+// the symmetry floor and the findings side by side (analysis/asymmetry.h), one writer for both.
+#pragma once
+
+#include "analysis/asymmetry.h"
+#include "report/orientation.h"
+
+#include <string>
+
+namespace glint {
+
+/// The plane with its evidence and verdict as JSON text: normal, point, offset, angles to the
+/// axes, source, residual (mesh units, and as text with `unit`), overlap, plausible, verdict,
+/// hypotheses.
+[[nodiscard]] std::string symmetry_plane_json(const SymmetryPlaneResult& plane,
+                                              const std::string& unit);
+
+/// report.json's "asymmetry" as JSON text: "plane" (as symmetry_plane_json), "symmetry_floor",
+/// "findings" (side named by `orientation`, text, kind, depth, area, volume, …), the caveat.
+[[nodiscard]] std::string asymmetry_json(const SymmetryPlaneResult& plane,
+                                         const AsymmetryFindings& findings,
+                                         const Orientation& orientation, const std::string& unit);
+
+/// A finding in one word: "less" or "more" than the mirrored other side, or "no mirrored
+/// surface".
+[[nodiscard]] std::string finding_kind(const AsymmetryFinding& finding);
+
+}  // namespace glint
