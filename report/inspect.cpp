@@ -115,9 +115,9 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     if (options.addition) add_to_outputs(options.addition(out.analysis), exports, out.report_json);
     if (folder) {
         try {
-            out.atlas = write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr,
-                                      exports, record, out.report_json, observer,
-                                      measured ? &*measured : nullptr);
+            out.atlas =
+                write_outputs(*folder, reference, out.analysis, live ? &*live : nullptr, exports,
+                              record, out.report_json, observer, measured ? &*measured : nullptr);
         } catch (const IoError& e) {  // the folder the user named, not the staging folder
             throw naming_target(e, folder->staging(), folder->target());
         }
