@@ -31,9 +31,10 @@ namespace IBA = OIIO::ImageBufAlgo;
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-constexpr int kViewMin = 384;         // px: per-view pictures are at least this large …
-constexpr int kViewMax = 512;         // … and at most this (rendered at that size, never resized)
-constexpr int kGap = 6;               // px between the mosaic's chart and tiles
+constexpr int kViewMin = 384;    // px: per-view pictures are at least this large …
+constexpr int kViewMax = 512;    // … and at most this (rendered at that size, never resized)
+constexpr int kShareSize = 128;  // px: the small pictures that count a view's share (enough pixels)
+constexpr int kGap = 6;          // px between the mosaic's chart and tiles
 constexpr int kTileCaption = 18;      // px: the caption under a mosaic tile
 constexpr int kTilesPerRow = 4;       // mosaic tiles side by side, at least
 constexpr std::size_t kMaxTiles = 8;  // views drawn whole in a mosaic, at most
@@ -154,8 +155,9 @@ class PictureWriter {
                 f.depth = detail::view_depth_floor(*m, std::max(d.shape.value, tessellation),
                                                    d.shape.k > 0 ? d.shape.k : kDepthFloorK);
             floors_.push_back(f);
-            share_.push_back(m ? detail::share_beyond_floor(*m, f) : kNaN);
+            share_.push_back(m ? 0.0 : kNaN);  // share_on_compared_surface() counts it
         }
+        share_on_compared_surface();
     }
 
     void write_views(const OutputFolder& folder, PictureOutput& out,
@@ -185,6 +187,7 @@ class PictureWriter {
   private:
     ZoomContent zoom_content(std::size_t z) const;
     void find_best_views();
+    void share_on_compared_surface();
     const ViewMeasurement* measurement(int view) const {
         return measured_ ? measured_->find(view) : nullptr;
     }
@@ -215,6 +218,42 @@ class PictureWriter {
     std::vector<detail::MeasuredFloor> floors_;  ///< per view
     std::vector<double> share_;  ///< per view: share beyond its floors (NaN: not measured)
 };
+
+// Each measured view's share beyond its floor, counted only where the decision compares the
+// surface: a border band or unscanned surface (decision/comparison.h) is hatched in the view's
+// picture, and its pixels (a partial scan's far side seen through its cut) must not fill the
+// chart either. A small picture of each view (kShareSize px) gives each pixel's triangle; a
+// triangle counts when all its corners are compared.
+void PictureWriter::share_on_compared_surface() {
+    const auto& plan = result_.sweep.plan;
+    std::vector<View> small;
+    std::vector<std::size_t> which;
+    for (std::size_t i = 0; i < plan.views.size(); ++i) {
+        if (measurement(plan.views[i].view.index) == nullptr) continue;
+        small.push_back(resized(plan.views[i].view, kShareSize));
+        which.push_back(i);
+    }
+    if (small.empty()) return;
+    renderer_.render_views(small, [&](std::size_t k, const Frame& frame) {
+        const auto& pv = plan.views[which[k]];
+        const auto view = static_cast<std::size_t>(pv.view.index);
+        const auto& mask = masks_[static_cast<std::size_t>(pv.view.zoom_index)];
+        const auto mp =
+            detail::measured_pixels(*measurement(pv.view.index), pv.view, small[k], floors_[view]);
+        std::size_t compared = 0, beyond = 0;
+        for (std::size_t p = 0; p < frame.primitive_id.size(); ++p) {
+            const auto t = frame.primitive_id[p];
+            if (t == kNoPrimitive ||
+                mp.status[p] != static_cast<std::uint8_t>(MeasuredStatus::Compared))
+                continue;
+            const auto& tri = reference_.triangles[t];
+            if (mask[tri[0]] != 1 || mask[tri[1]] != 1 || mask[tri[2]] != 1) continue;
+            ++compared;
+            beyond += mp.beyond[p] != 0;
+        }
+        share_[view] = compared ? static_cast<double>(beyond) / static_cast<double>(compared) : 0.0;
+    });
+}
 
 ZoomContent PictureWriter::zoom_content(std::size_t z) const {
     const auto& d = result_.decisions[z];

@@ -29,16 +29,6 @@ double view_depth_floor(const ViewMeasurement& m, double least, double k) {
     return std::max(least, median + k * 1.4826 * mad);
 }
 
-double share_beyond_floor(const ViewMeasurement& m, const MeasuredFloor& floor) {
-    std::size_t compared = 0, beyond = 0;
-    for (std::size_t c = 0; c < m.status.size(); ++c) {
-        if (m.status_at(c) != MeasuredStatus::Compared) continue;
-        ++compared;
-        if (beyond_floor(m.depth_at(c), m.value_at(c), floor)) ++beyond;
-    }
-    return compared ? static_cast<double>(beyond) / static_cast<double>(compared) : 0.0;
-}
-
 MeasuredPixels measured_pixels(const ViewMeasurement& m, const View& measured_view,
                                const View& shown, const MeasuredFloor& floor) {
     const auto w = static_cast<std::size_t>(shown.camera.width);

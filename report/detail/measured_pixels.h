@@ -32,10 +32,6 @@ struct MeasuredFloor {
 /// where they differ in depth by nothing a picture can show.
 [[nodiscard]] bool beyond_floor(float depth, float value, const MeasuredFloor& floor);
 
-/// Share of the view's compared cells beyond the floor (0 when none compared).
-[[nodiscard]] double share_beyond_floor(const ViewMeasurement& measured,
-                                        const MeasuredFloor& floor);
-
 /// The measurement per pixel of a picture of `shown` (the sweep's `measured_view` resized and
 /// rolled: the same eye and axis): each picture pixel's ray projected into the sweep camera
 /// picks its grid cell (nearest). Pixels outside the sweep's image measure nothing.
