@@ -4,6 +4,7 @@
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
 #include "mesh/normals.h"
+#include "mesh/scan_view.h"
 #include "render/context.h"
 
 #include <chrono>
@@ -97,15 +98,17 @@ void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions
 // One decision per zoom from the atlas and the shape evidence; their warnings named by zoom.
 void decide_step(const Mesh& reference, const AnalysisOptions& options, AnalysisResult& result) {
     for (const auto& zoom : result.sweep.zooms) {
-        const DecisionEvidence evidence{.atlas = &zoom.atlas,
-                                        .coverage = &zoom.coverage,
-                                        .distance = &result.distance,
-                                        .tolerance = &result.tolerance,
-                                        .at_border = &result.at_border,
-                                        .facing_away = &result.facing_away,
-                                        .metric = options.sweep.metric,
-                                        .size = result.size,
-                                        .unit = result.unit};
+        const DecisionEvidence evidence{
+            .atlas = &zoom.atlas,
+            .coverage = &zoom.coverage,
+            .distance = &result.distance,
+            .tolerance = &result.tolerance,
+            .at_border = &result.at_border,
+            .facing_away = &result.facing_away,
+            .scan_view = result.scan_view ? &*result.scan_view : nullptr,
+            .metric = options.sweep.metric,
+            .size = result.size,
+            .unit = result.unit};
         result.decisions.push_back(decide(reference, evidence, options.decision));
         for (const auto& w : result.decisions.back().warnings)
             result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " +
@@ -165,6 +168,7 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.tolerance = std::move(shape.tolerance);
     result.at_border = std::move(shape.at_border);
     result.facing_away = std::move(shape.facing_away);
+    result.scan_view = one_view_scan(fitted);
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");

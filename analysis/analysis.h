@@ -19,12 +19,14 @@
 #include "analysis/units.h"
 #include "decision/decision.h"
 #include "mesh/mesh.h"
+#include "mesh/scan_view.h"
 #include "mesh/surface_index.h"
 #include "scanner/sweep.h"
 
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -51,6 +53,9 @@ struct AnalysisResult {
         at_border;  ///< per reference vertex, closest examined point on a border
     std::vector<std::uint8_t>
         facing_away;  ///< per reference vertex, closest examined triangle faces away
+    /// The fitted examined surface's view when it is a one-view scan (mesh/scan_view.h), in
+    /// the reference's frame: its dropouts at grazing incidence are not compared.
+    std::optional<ScanView> scan_view;
     SweepResult sweep;
     /// The reference's BVH the fit and the sweep shared (mesh/surface_index.h), kept for the
     /// pictures (report/) when the reference has at most kKeptIndexTriangles; null otherwise.

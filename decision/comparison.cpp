@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <queue>
 #include <sstream>
 
@@ -167,8 +168,11 @@ std::string rule_text(const Comparison& c) {
          "and under "
       << 100.0 * kMaxHoleShare
       << " % of its area is a hole the examined scan covered around: compared (a loss where the "
-         "reference stood above the hole's rim, else missing surface); a damaged group with more "
-         "than half its area not compared is dropped";
+         "reference stood above the hole's rim, else missing surface), unless the examined "
+         "surface is a one-view scan that faced most of it beyond "
+      << kGrazingDeg
+      << "° (a scanner's dropout: not reached); a damaged group with more than half its area "
+         "not compared is dropped";
     return s.str();
 }
 
@@ -222,6 +226,17 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         for (const auto u : members[g]) sum += area[u] * mesh.normals[u].cast<double>();
         return sum.norm() < kMinCapCoherence * group_area[g];
     };
+    // A gone group the examined one-view scan saw at grazing incidence over most of its area.
+    if (in.scan_view) c.scan_view = *in.scan_view;
+    const double grazing_cos = std::cos(kGrazingDeg * std::numbers::pi / 180.0);
+    const auto grazing = [&](std::size_t g) {
+        if (!in.scan_view || !mesh.has_normals()) return false;
+        double beyond = 0.0;
+        for (const auto u : members[g])
+            if (mesh.normals[u].cast<double>().dot(in.scan_view->direction) < grazing_cos)
+                beyond += area[u];
+        return beyond > 0.5 * group_area[g];
+    };
     c.hole_depth.assign(n, std::numeric_limits<float>::quiet_NaN());
     c.in_hole.assign(n, 0);
     std::vector<std::uint8_t> not_reached(n, 0);
@@ -230,8 +245,12 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         // of the reference with a sliver of its area; a strip beyond a field-of-view cut lies
         // mostly in the band of the reference's own cut. A wide strip (two fields of view 6 mm
         // apart) has little of its area in that band but a third or more of its rim on the cut.
-        if (banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
-            group_area[g] <= kMaxHoleShare * c.reference_area) {
+        const bool hole = banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
+                          group_area[g] <= kMaxHoleShare * c.reference_area;
+        if (hole && grazing(g)) {
+            ++c.dropouts;
+            c.dropout_area += group_area[g];
+        } else if (hole) {
             ++c.holes;
             c.hole_area += group_area[g];
             hole_shape(mesh, adj, group, static_cast<std::int32_t>(g), members[g], area,

@@ -15,6 +15,10 @@
 //                of the reference's area: the examined scan covered the surface around it, so
 //                the surface is really gone there (a resection, worn-away material, or a
 //                scanner's dropout). It stays compared; its kind follows the shape (below).
+//   dropout      a gone group that would be a hole, on a one-view examined scan (a range
+//                image: mesh/scan_view.h), whose reference surface faces that scan's sensor at
+//                more than kGrazingDeg for most of its area: the sensor saw it only at grazing
+//                incidence, where range scanners drop out. Not reached, not a hole.
 //   not reached  every other gone group: the examined scan did not cover it.
 //   reference border  within kBandEdges·ℓ (along the reference's edges) of a border edge of
 //                the reference: a field-of-view cut, a scan's edge, a crop.
@@ -36,8 +40,10 @@
 #pragma once
 
 #include "mesh/mesh.h"
+#include "mesh/scan_view.h"
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +76,11 @@ inline constexpr double kMaxOpenRim = 1.0 / 3.0;
 /// rim in tooth_wear_combined_c0_2_3), but are caps, while the strip round a cut bone turns
 /// round and its normals cancel. A field-of-view strip over a flat surface stays a hole.
 inline constexpr double kMinCapCoherence = 0.5;
+/// note: 60° — there a sensor's samples lie twice as far apart on the surface as facing it,
+/// and range scans drop out: the Stanford bunny's gone patches inside its scanned side face
+/// the scan's axis at 64–81° (area-weighted medians, bun090 and bun315), while the worn
+/// cusps of a crown face its occlusal view.
+inline constexpr double kGrazingDeg = 60.0;
 
 /// What the classification reads, one value per reference vertex (optional ones may be null).
 struct ComparisonInputs {
@@ -79,6 +90,9 @@ struct ComparisonInputs {
     const std::vector<std::uint8_t>* at_border = nullptr;  ///< (may be null)
     /// The closest examined triangle faces away from the vertex's normal (may be null).
     const std::vector<std::uint8_t>* facing_away = nullptr;
+    /// The examined surface is a one-view scan taken from this view, in the reference's frame
+    /// (may be null: not a one-view scan).
+    const ScanView* scan_view = nullptr;
 };
 
 struct Comparison {
@@ -96,6 +110,9 @@ struct Comparison {
     double not_reached_area = 0.0;
     std::size_t holes = 0;  ///< gone groups kept as holes (compared)
     double hole_area = 0.0;
+    std::optional<ScanView> scan_view;  ///< the examined one-view scan's, reference frame
+    std::size_t dropouts = 0;           ///< gone groups at grazing incidence: not reached
+    double dropout_area = 0.0;
     double fraction = 1.0;  ///< compared / reference area
     std::string rule;       ///< one line: the rule applied
     /// Damaged groups dropped because they lay mostly in a not-compared band (drop_border_groups).

@@ -489,7 +489,8 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                                    .missing = &evidence.atlas->missing,
                                                    .distance = evidence.distance,
                                                    .at_border = evidence.at_border,
-                                                   .facing_away = evidence.facing_away});
+                                                   .facing_away = evidence.facing_away,
+                                                   .scan_view = evidence.scan_view});
     // Floors and the histogram read the compared vertices; the mask every seen vertex the
     // examined surface reached (a group mostly in a border band is dropped: off_borders).
     Coverage compared = *evidence.coverage;

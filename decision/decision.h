@@ -124,6 +124,8 @@ struct DecisionEvidence {
         nullptr;  ///< closest examined point on a border (may be null)
     const std::vector<std::uint8_t>* facing_away =
         nullptr;  ///< closest examined triangle faces away (may be null)
+    /// The examined surface's view when it is a one-view scan, reference frame (may be null).
+    const ScanView* scan_view = nullptr;
     Metric metric = Metric::AngleDeg;
     double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
     std::string unit;   ///< the mesh unit ("mm"), for sentences; empty: "units"

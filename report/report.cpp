@@ -140,8 +140,17 @@ json scale_json(const EvidenceScale& s) {
 json comparison_json(const Comparison& c) {
     const auto share = [&](double a) { return c.reference_area > 0 ? a / c.reference_area : 0.0; };
     const auto entry = [&](double a) { return json{{"area", a}, {"share", share(a)}}; };
+    json scan = nullptr;  // the examined surface is no one-view scan
+    if (c.scan_view)
+        scan = {
+            {"direction",
+             {c.scan_view->direction.x(), c.scan_view->direction.y(), c.scan_view->direction.z()}},
+            {"cone_deg", c.scan_view->cone_deg},
+            {"grazing_deg", kGrazingDeg}};
     return {{"rule", c.rule},
             {"band", c.band},
+            {"examined_one_view_scan", scan},
+            {"dropouts", {{"count", c.dropouts}, {"area", c.dropout_area}}},
             {"median_edge", c.edge},
             {"reference_area", c.reference_area},
             {"compared_area", c.compared_area},

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 namespace glint {
 namespace {
@@ -114,6 +115,34 @@ TEST(Comparison, AHoleInsideCoveredSurfaceStaysComparedAndAWornCapIsALoss) {
     const Comparison p = classify_comparison(grid(pit), in.view());
     EXPECT_EQ(p.holes, 1u);
     EXPECT_EQ(p.hole_depth[vid(20, 20)], 0.0f);
+}
+
+TEST(Comparison, AOneViewScansDropoutAtGrazingIncidenceIsNotReachedNotAHole) {
+    // The same gone disc on the flat grid (normals +z), the examined surface a one-view scan.
+    Inputs in;
+    in.gone(20, 20, 3.0);
+    const auto classify = [&](double view_deg) {
+        const double a = view_deg * std::numbers::pi / 180.0;
+        const ScanView view{.direction = Vec3d(std::sin(a), 0.0, std::cos(a)), .cone_deg = 77.0};
+        ComparisonInputs inputs = in.view();
+        inputs.scan_view = &view;
+        return classify_comparison(flat(), inputs);
+    };
+    // Seen at 75° incidence (beyond kGrazingDeg): a scanner's dropout, not reached.
+    const Comparison grazing = classify(75.0);
+    EXPECT_EQ(grazing.holes, 0u);
+    EXPECT_EQ(grazing.dropouts, 1u);
+    EXPECT_NEAR(grazing.dropout_area, 29.0, 1e-9);  // 29 vertices of unit dual area
+    EXPECT_EQ(class_at(grazing, 20, 20), CompareClass::NotReached);
+    EXPECT_EQ(class_at(grazing, 20, 25), CompareClass::ExaminedBorder);
+    ASSERT_TRUE(grazing.scan_view.has_value());
+    // Faced at 45°: the scanner saw it well, so the surface is really gone there: a hole.
+    const Comparison facing = classify(45.0);
+    EXPECT_EQ(facing.holes, 1u);
+    EXPECT_EQ(facing.dropouts, 0u);
+    EXPECT_EQ(class_at(facing, 20, 20), CompareClass::Compared);
+    // No one-view scan: a hole, as before.
+    EXPECT_EQ(classify_comparison(flat(), in.view()).holes, 1u);
 }
 
 TEST(Comparison, ALargePartWithoutExaminedSurfaceIsNotReachedEvenAwayFromBorders) {
