@@ -81,6 +81,13 @@ void print_summary(const Inspection& inspection) {
                 "examined surface's borders\n",
                 100.0 * c.fraction, pct(c.not_reached_area), pct(c.reference_border_area),
                 pct(c.examined_border_area));
+        if (c.dropouts > 0)
+            std::printf(
+                "  the examined surface is a one-view scan (its normals within %.0f° of one "
+                "direction): %zu gone patch(es), %.1f%% of the reference, faced beyond %.0f° are "
+                "scanner dropouts, not compared\n",
+                c.scan_view ? c.scan_view->cone_deg : 0.0, c.dropouts, pct(c.dropout_area),
+                kGrazingDeg);
         for (const auto& g : d.regions.regions)
             std::printf(
                 "  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "
