@@ -58,6 +58,11 @@
     return [c.r, c.g, c.b];
   }
   function seenField(f) { return byName["seen_z" + (f.zoom >= 0 ? f.zoom : state.zoom)]; }
+  // Where the decision compared nothing (decision/comparison.h: a border band, surface the
+  // examined scan never reached, a scanner's dropout): its values mean nothing, as the
+  // pictures' hatching says. A warm grey apart from unseen grey.
+  const NOT_COMPARED = [0.80, 0.78, 0.70];  // report/detail/canvas.h kNotCompared
+  function comparedField(f) { return byName["not_compared_z" + (f.zoom >= 0 ? f.zoom : state.zoom)]; }
   // The decision field, the signed shape change ("shape_change_mm"), is the first field
   // (report/atlas_fields.h); the page opens on it.
   const shapeField = fields.find((f) => f.name.startsWith("shape_change_")) || fields[0];
@@ -69,6 +74,8 @@
     if (state.greyUnseen) {
       const s = seenField(f);
       if (s && s.data[v] < 0.5) return GREY;
+      const c = comparedField(f);
+      if (c && c.data[v] > 0.5) return NOT_COMPARED;
     }
     const t = high > low ? (x - low) / (high - low) : 0.5;
     return knotColour(f.kind === "signed" ? DATA.colormaps.diverging : DATA.colormaps.sequential, t);
@@ -397,12 +404,19 @@
     $("range-reset").addEventListener("click", () => selectField(state.field.name));
     $("grey-unseen").addEventListener("change", () => { state.greyUnseen = $("grey-unseen").checked; recolour(); });
     $("view-reset").addEventListener("click", resetView);
+    // The share the decision compared (decision/comparison.h), and a one-view scan's dropouts.
+    const comparedText = (z) => {
+      const c = z.comparison;
+      if (!c || c.compared_fraction >= 1) return "";
+      const drops = c.dropouts && c.dropouts.count ? ", " + c.dropouts.count + " scanner dropout(s) of a one-view scan" : "";
+      return " · compared " + fmt(100 * c.compared_fraction) + " % of the reference" + drops + " (warm grey: not compared)";
+    };
     const z0 = REPORT.zooms[0] || { regions: [], coverage: 0 };
     const shown = DATA.mesh.shown ? " (shown decimated to " + DATA.mesh.shown.triangles + " triangles, within " +
       fmt(DATA.mesh.shown.error, 2) + " " + UNIT + "; regions whole)" : "";
     $("subtitle").textContent = DATA.mesh.vertices + " vertices, " + DATA.mesh.triangles + " triangles" + shown +
       " · lengths in " + UNIT +
-      " · " + z0.regions.length + " region(s) at zoom 0 · coverage " + fmt(100 * z0.coverage) + " %";
+      " · " + z0.regions.length + " region(s) at zoom 0 · coverage " + fmt(100 * z0.coverage) + " %" + comparedText(z0);
     selectField(shapeField.name);
     buildRegions();
     evidence = window.glintEvidence({ REPORT: REPORT, DATA: DATA, UNIT: UNIT, $: $, el: el, fmt: fmt });
