@@ -5,6 +5,8 @@
 #include "mesh/geometry.h"
 #include "mesh/parse.h"
 #include "mesh/surface_index.h"
+#include "registration/closest_point.h"
+#include "registration/detail/icp_core.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -85,16 +87,60 @@ MirrorFit fit_mirror(const Mesh& mesh, const SymmetryPlane& plane, const Vec3d& 
     return out;
 }
 
+// How much of the surface has its mirror image on the surface, either face (see
+// SymmetryPlaneResult::mirror_share): area-uniform samples inside the fit ROI, reflected about
+// the plane, their closest surface points within the overlap distance.
+void measure_mirror_share(SymmetryPlaneResult& r, const Mesh& mesh, const SymmetryPlaneOptions& o,
+                          const std::shared_ptr<const SurfaceIndex>& index) {
+    const RegistrationOptions& g = o.registration;
+    const ClosestPointIndex surface =
+        index ? ClosestPointIndex(mesh, index) : ClosestPointIndex::borrowing(mesh);
+    std::vector<detail::Sample> samples = detail::sample_surface(mesh, g.samples, g.seed + 7);
+    if (g.roi) {
+        // A vertex mask has no point test: a sample is inside when a corner of its triangle is.
+        std::vector<std::uint8_t> inside(samples.size(), 1);
+        for (std::size_t i = 0; i < samples.size(); ++i) {
+            if (g.roi->shape != Roi::Shape::VertexMask) {
+                inside[i] = g.roi->contains_point(samples[i].point);
+                continue;
+            }
+            const Triangle& t = mesh.triangles[surface.closest(samples[i].point).triangle];
+            inside[i] =
+                g.roi->vertex_mask[t[0]] || g.roi->vertex_mask[t[1]] || g.roi->vertex_mask[t[2]];
+        }
+        std::size_t k = 0;
+        std::erase_if(samples, [&](const detail::Sample&) { return !inside[k++]; });
+    }
+    const Eigen::Affine3d s = r.plane.reflection();
+    std::vector<Vec3d> images;
+    images.reserve(samples.size());
+    for (const auto& x : samples) images.push_back(s * x.point);
+    const std::vector<ClosestPoint> near = surface.closest(images, g.overlap_distance * r.size);
+    const double cos_max = std::cos(g.max_normal_angle_deg * detail::kDeg);
+    std::size_t found = 0, opposite = 0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (!near[i].found) continue;
+        ++found;
+        if (near[i].normal.dot(s.linear() * samples[i].normal) < cos_max) ++opposite;
+    }
+    r.mirror_share = samples.empty() ? 0.0 : double(found) / double(samples.size());
+    r.mirror_share_opposite = found ? double(opposite) / double(found) : 0.0;
+}
+
 void judge(SymmetryPlaneResult& r, const SymmetryPlaneOptions& o) {
     const double relative = r.size > 0 ? r.rms / r.size : 0.0;
-    r.plausible = r.converged && relative <= o.max_relative_residual && r.overlap >= o.min_overlap;
-    char b[400];
+    const bool shared = r.overlap >= o.min_overlap || r.mirror_share >= o.min_mirror_share;
+    r.plausible = r.converged && relative <= o.max_relative_residual && shared;
+    char b[600];
     std::snprintf(b, sizeof b,
                   "%s: the mirrored surface fits the surface with residual %.3g (%.2g of its size, "
-                  "at most %.2g expected) and overlap %.1f%% (at least %.0f%% expected)%s",
+                  "at most %.2g expected) and overlap %.1f%% (at least %.0f%% expected, or at "
+                  "least %.0f%% of the surface with its mirror image on either face: %.1f%%, "
+                  "%.0f%% of that on the wall's other face)%s",
                   r.plausible ? "plausibly mirror-symmetric" : "no plausible symmetry plane", r.rms,
                   relative, o.max_relative_residual, 100.0 * r.overlap, 100.0 * o.min_overlap,
-                  r.converged ? "" : "; the fit did not converge");
+                  100.0 * o.min_mirror_share, 100.0 * r.mirror_share,
+                  100.0 * r.mirror_share_opposite, r.converged ? "" : "; the fit did not converge");
     r.verdict = b;
 }
 
@@ -203,6 +249,8 @@ void SymmetryPlaneOptions::validate() const {
         throw OptionError("max_relative_residual", max_relative_residual, "must be > 0");
     if (!(min_overlap >= 0 && min_overlap <= 1))
         throw OptionError("min_overlap", min_overlap, "must be in [0, 1]");
+    if (!(min_mirror_share >= 0 && min_mirror_share <= 1))
+        throw OptionError("min_mirror_share", min_mirror_share, "must be in [0, 1]");
 }
 
 SymmetryPlaneResult estimate_symmetry_plane(const Mesh& mesh, const SymmetryPlaneOptions& o) {
@@ -238,6 +286,7 @@ SymmetryPlaneResult estimate_symmetry_plane(const Mesh& mesh, const SymmetryPlan
         best = fit_mirror(mesh, best.plane, centroid, o, index, false);
     r.plane = best.plane;
     take_fit(r, best.fit);
+    measure_mirror_share(r, mesh, o, index);
     judge(r, o);
     return r;
 }
@@ -258,6 +307,7 @@ SymmetryPlaneResult check_symmetry_plane(const Mesh& mesh, const SymmetryPlane& 
                             .rms = f.fit.rms,
                             .overlap = f.fit.overlap,
                             .converged = f.fit.converged});
+    measure_mirror_share(r, mesh, o, nullptr);
     judge(r, o);
     return r;
 }

@@ -37,6 +37,8 @@ nlohmann::json plane_object(const SymmetryPlaneResult& r, const std::string& uni
         {"residual_text", with_unit(r.rms, unit)},
         {"inlier_fraction", r.inlier_fraction},
         {"overlap", r.overlap},
+        {"mirror_share", r.mirror_share},
+        {"mirror_share_other_face", r.mirror_share_opposite},
         {"converged", r.converged},
         {"plausible", r.plausible},
         {"verdict", r.verdict},
@@ -66,7 +68,13 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
              {"region", x.region},
              {"mirror_region", x.mirror_region}});
     }
-    return {{"plane", plane_object(plane, unit)},
+    nlohmann::json plane_json = plane_object(plane, unit);
+    // The plane's numbers are in the surface's coordinates: a volume's physical frame as its
+    // header gives it (report/orientation.h), or the mesh file's; its normal named as the sides.
+    plane_json["frame"] = o.space == PatientSpace::Unknown ? "mesh coordinates (no patient space)"
+                                                           : to_string(o.space);
+    plane_json["normal_towards"] = o.name(plane.plane.normal);
+    return {{"plane", std::move(plane_json)},
             {"symmetry_floor",
              {{"rms", f.floor.rms}, {"p95", f.floor.p95}, {"max", f.floor.max}, {"unit", unit}}},
             {"findings", findings},

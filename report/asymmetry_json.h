@@ -15,7 +15,9 @@ namespace glint {
 [[nodiscard]] std::string symmetry_plane_json(const SymmetryPlaneResult& plane,
                                               const std::string& unit);
 
-/// report.json's "asymmetry" as JSON text: "plane" (as symmetry_plane_json), "symmetry_floor",
+/// report.json's "asymmetry" as JSON text: "plane" (as symmetry_plane_json, with "frame": the
+/// patient space its numbers are in, "LPS" / "RAS", and "normal_towards": its normal named as
+/// the findings' sides are), "symmetry_floor",
 /// "findings" (side named by `orientation`, text, kind, depth, area, volume, …), the caveat.
 [[nodiscard]] std::string asymmetry_json(const SymmetryPlaneResult& plane,
                                          const AsymmetryFindings& findings,
