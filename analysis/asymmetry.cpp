@@ -170,6 +170,18 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
     return out;
 }
 
+void as_side_against_mirror(AnalysisResult& result) {
+    for (float& d : result.distance) d = -d;
+    for (auto& decision : result.decisions)
+        for (Region& r : decision.regions.regions) {
+            if (r.kind == RegionKind::MissingSurface) continue;
+            r.kind = r.kind == RegionKind::Dent ? RegionKind::Bump : RegionKind::Dent;
+            r.peak_depth = -r.peak_depth;
+            r.mean_depth = -r.mean_depth;
+            r.volume = -r.volume;
+        }
+}
+
 std::string describe(const AsymmetryFinding& f, const std::string& side_name,
                      const std::string& other_name, const std::string& unit) {
     if (f.mirror_missing)
