@@ -179,6 +179,12 @@ void as_side_against_mirror(AnalysisResult& result) {
             r.peak_depth = -r.peak_depth;
             r.mean_depth = -r.mean_depth;
             r.volume = -r.volume;
+            // the decision's sentence gives the signed change: "shape change -0.415 mm beyond …"
+            constexpr std::string_view kShape = "shape change ";
+            if (r.evidence.starts_with(kShape) && r.evidence.size() > kShape.size()) {
+                char& sign = r.evidence[kShape.size()];
+                sign = sign == '+' ? '-' : sign == '-' ? '+' : sign;
+            }
         }
 }
 

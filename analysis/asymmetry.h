@@ -101,7 +101,8 @@ struct AsymmetryFindings {
 
 /// The result of the surface analysed against its mirror, turned to say this side against the
 /// mirrored other side (the findings' terms): the signed distance, each region's depths and
-/// volume negated, dents and bumps swapped (a dent: this side has less). Missing surface stays.
+/// volume negated (and the sign in their evidence sentence), dents and bumps swapped (a dent:
+/// this side has less). Missing surface stays.
 /// \pre not yet turned (pair_findings reads the result as analyse() made it).
 void as_side_against_mirror(AnalysisResult& result);
 

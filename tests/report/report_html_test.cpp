@@ -387,6 +387,8 @@ TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
         if (r["id"].get<int>() == id) {
             found = true;
             EXPECT_EQ(r["kind"], "dent");
+            EXPECT_EQ(r["evidence"].get<std::string>().rfind("shape change -", 0), 0u)
+                << r["evidence"];
             EXPECT_NEAR(r["peak_depth"].get<double>(), f["depth"].get<double>(), 1e-9);
         } else if (r["id"].get<int>() == f["mirror_region"].get<int>()) {
             EXPECT_EQ(r["kind"], "bump") << "the mirror image of the dent";
