@@ -170,6 +170,24 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
     return out;
 }
 
+void as_side_against_mirror(AnalysisResult& result) {
+    for (float& d : result.distance) d = -d;
+    for (auto& decision : result.decisions)
+        for (Region& r : decision.regions.regions) {
+            if (r.kind == RegionKind::MissingSurface) continue;
+            r.kind = r.kind == RegionKind::Dent ? RegionKind::Bump : RegionKind::Dent;
+            r.peak_depth = -r.peak_depth;
+            r.mean_depth = -r.mean_depth;
+            r.volume = -r.volume;
+            // the decision's sentence gives the signed change: "shape change -0.415 mm beyond …"
+            constexpr std::string_view kShape = "shape change ";
+            if (r.evidence.starts_with(kShape) && r.evidence.size() > kShape.size()) {
+                char& sign = r.evidence[kShape.size()];
+                sign = sign == '+' ? '-' : sign == '-' ? '+' : sign;
+            }
+        }
+}
+
 std::string describe(const AsymmetryFinding& f, const std::string& side_name,
                      const std::string& other_name, const std::string& unit) {
     if (f.mirror_missing)

@@ -99,6 +99,13 @@ struct AsymmetryFindings {
 [[nodiscard]] AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
                                               const AnalysisResult& result, std::size_t zoom = 0);
 
+/// The result of the surface analysed against its mirror, turned to say this side against the
+/// mirrored other side (the findings' terms): the signed distance, each region's depths and
+/// volume negated (and the sign in their evidence sentence), dents and bumps swapped (a dent:
+/// this side has less). Missing surface stays.
+/// \pre not yet turned (pair_findings reads the result as analyse() made it).
+void as_side_against_mirror(AnalysisResult& result);
+
 /// "0.42 mm less than the mirrored right, area 12.3 mm², volume 1.23 mm³" for a finding on a
 /// side named `side_name`, the other side named `other_name` (e.g. from report/orientation.h).
 [[nodiscard]] std::string describe(const AsymmetryFinding& finding, const std::string& side_name,

@@ -135,7 +135,8 @@ AsymmetryHandle run_asymmetry(const MeshLike& mesh, const std::optional<std::str
             return ReportAddition{
                 .scalars = {{"asymmetry{unit}", a.findings.field}},
                 .key = "asymmetry",
-                .json = asymmetry_json(a.plane, a.findings, a.orientation, r.unit)};
+                .json = asymmetry_json(a.plane, a.findings, a.orientation, r.unit),
+                .mirror = mirror_pictures(a.plane)};
         };
         Inspection i = inspect(h->mesh, std::move(mirror.mesh), inspect_options, record);
         a.unit = i.analysis.unit;

@@ -83,11 +83,15 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
              "asymmetry: this side minus the mirrored other side along the outward "
              "normal (negative: less)"},
             {"regions_note",
-             "regions, regions.csv and the pictures show the mirror against the surface: a "
-             "bump there is where the mirrored other side stands out, i.e. this side has less"}};
+             "regions, regions.csv and the pictures give this side against the mirrored other "
+             "side, as the findings do: a dent (blue) is where this side has less"}};
 }
 
 }  // namespace
+
+MirrorPictures mirror_pictures(const SymmetryPlaneResult& plane) {
+    return {.normal = plane.plane.normal, .offset = plane.plane.offset, .residual = plane.rms};
+}
 
 std::string finding_kind(const AsymmetryFinding& finding) {
     if (finding.mirror_missing) return "no mirrored surface";

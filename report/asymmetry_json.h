@@ -3,6 +3,7 @@
 #pragma once
 
 #include "analysis/asymmetry.h"
+#include "report/mirror_pictures.h"
 #include "report/orientation.h"
 
 #include <string>
@@ -22,6 +23,9 @@ namespace glint {
 [[nodiscard]] std::string asymmetry_json(const SymmetryPlaneResult& plane,
                                          const AsymmetryFindings& findings,
                                          const Orientation& orientation, const std::string& unit);
+
+/// The plane and its residual as the pictures draw them (report/mirror_pictures.h).
+[[nodiscard]] MirrorPictures mirror_pictures(const SymmetryPlaneResult& plane);
 
 /// A finding in one word: "less" or "more" than the mirrored other side, or "no mirrored
 /// surface".

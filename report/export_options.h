@@ -3,8 +3,10 @@
 
 #include "analysis/analysis.h"
 #include "analysis/option_registry.h"
+#include "report/mirror_pictures.h"
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -54,6 +56,9 @@ struct ExportOptions {
     /// Keep the atlas mesh (the reference with every atlas field) in the result (Python's
     /// Analysis.atlas); otherwise it lives only while its files are written.
     bool keep_atlas = false;
+    /// The examined surface is the reference's mirror image (glint asymmetry): the pictures
+    /// draw this plane and speak of the sides (report/mirror_pictures.h); not an option.
+    std::optional<MirrorPictures> mirror;
 
     /// \throw OptionError; InputError when the output folder exists and may not be replaced.
     void validate() const;

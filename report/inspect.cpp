@@ -1,5 +1,6 @@
 #include "report/inspect.h"
 
+#include "analysis/asymmetry.h"
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/fault_injection.h"
@@ -110,9 +111,17 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     if (observer.stage) observer.stage("export");
     const auto t = Clock::now();
     out.analysis.total_seconds = seconds_since(t_start);
-    out.report_json = report_json(reference, out.analysis, options, record);
+    // The addition reads the analysis as it came; a mirror comparison's outputs then give
+    // this side against the mirrored other side, report.json's regions included.
+    std::optional<ReportAddition> addition;
+    if (options.addition) addition = options.addition(out.analysis);
     ExportOptions exports = options.exports;
-    if (options.addition) add_to_outputs(options.addition(out.analysis), exports, out.report_json);
+    if (addition && addition->mirror) {
+        as_side_against_mirror(out.analysis);
+        exports.mirror = addition->mirror;
+    }
+    out.report_json = report_json(reference, out.analysis, options, record);
+    if (addition) add_to_outputs(std::move(*addition), exports, out.report_json);
     if (folder) {
         try {
             out.atlas =

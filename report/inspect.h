@@ -33,6 +33,10 @@ struct ReportAddition {
     std::vector<std::pair<std::string, std::vector<float>>> scalars;
     std::string key;   ///< report.json's key for `json` ("" = none)
     std::string json;  ///< JSON text
+    /// The examined surface is the reference's mirror about this plane: every output (report.json's
+    /// regions, regions.csv, the atlas, the pictures) gives this side against the mirrored other
+    /// side (analysis/asymmetry.h as_side_against_mirror), atlas.png draws the plane.
+    std::optional<MirrorPictures> mirror;
 };
 
 struct InspectOptions {

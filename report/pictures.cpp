@@ -66,7 +66,7 @@ struct ZoomContent {
 };
 
 detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
-                                 const ShapeScale& scale) {
+                                 const ShapeScale& scale, bool mirror) {
     const auto& d = result.decisions[z];
     const MetricDescriptor& m = describe(result.sweep.options.metric);
     const std::string u = unit_or_units(result);
@@ -74,7 +74,8 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .limit_source = scale.source,
                             .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0,
                             .unit = u,
-                            .roi = result.sweep.plan.options.roi.has_value()};
+                            .roi = result.sweep.plan.options.roi.has_value(),
+                            .mirror = mirror};
     char b[160];
     std::snprintf(b, sizeof b, "normal floor %.3g%s (%s, %s rule)", d.normal.value,
                   detail::picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit).c_str(),
@@ -84,7 +85,8 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),
                   100.0 * result.sweep.zooms[z].coverage.fraction, 100.0 * d.comparison.fraction);
     c.lines.emplace_back(b);
-    for (const auto& r : d.regions.regions) c.regions.push_back(detail::region_legend_line(r, u));
+    for (const auto& r : d.regions.regions)
+        c.regions.push_back(detail::region_legend_line(r, u, mirror));
     return c;
 }
 
@@ -170,18 +172,19 @@ class PictureWriter {
             .reference_name = caption_.reference_name,
             .examined_name = caption_.examined_name,
             .date = caption_.date.empty() ? detail::utc_date_now() : caption_.date};
-        return detail::atlas_overview_png(renderer_,
-                                          {.mesh = &reference_,
-                                           .fields = &zooms_[0].fields,
-                                           .legend = &zooms_[0].legend,
-                                           .limit = scale_.limit,
-                                           .regions = &result_.decisions[0].regions.regions,
-                                           .plan = &result_.sweep.plan,
-                                           .coverage = result_.sweep.zooms[0].coverage.fraction,
-                                           .name = name,
-                                           .unit = unit_or_units(result_),
-                                           .orientation = &orientation_,
-                                           .footer = detail::footer_lines(result_, footer)});
+        return detail::atlas_overview_png(
+            renderer_, {.mesh = &reference_,
+                        .fields = &zooms_[0].fields,
+                        .legend = &zooms_[0].legend,
+                        .limit = scale_.limit,
+                        .regions = &result_.decisions[0].regions.regions,
+                        .plan = &result_.sweep.plan,
+                        .coverage = result_.sweep.zooms[0].coverage.fraction,
+                        .name = name,
+                        .unit = unit_or_units(result_),
+                        .orientation = &orientation_,
+                        .footer = detail::footer_lines(result_, footer),
+                        .mirror = options_.mirror ? &*options_.mirror : nullptr});
     }
 
   private:
@@ -258,12 +261,14 @@ void PictureWriter::share_on_compared_surface() {
 ZoomContent PictureWriter::zoom_content(std::size_t z) const {
     const auto& d = result_.decisions[z];
     ZoomContent c{.fields = {distance_, d.regions.region_of_vertex, masks_[z]},
-                  .legend = legend_for(result_, z, scale_),
+                  .legend = legend_for(result_, z, scale_, options_.mirror.has_value()),
                   .measured_legend = {}};
     c.measured_legend = c.legend;
     c.measured_legend.measured = true;
     auto& lines = c.measured_legend.lines;
-    lines.insert(lines.begin(), "depth along the view ray (reference − examined)");
+    lines.insert(lines.begin(), options_.mirror
+                                    ? "depth along the view ray (this side − mirrored other)"
+                                    : "depth along the view ray (reference − examined)");
     if (d.rule == DecisionRule::Fused)
         lines.insert(lines.begin() + 1, "depth floor per view: noise, tessellation");
     return c;
@@ -292,8 +297,10 @@ detail::PaintedSurface PictureWriter::paint_view(const PlannedView& pv, const Vi
     style.limit = scale_.limit;
     const ViewMeasurement* m = measurement(pv.view.index);
     if (!m) return detail::paint_surface(reference_, frame, shown, zooms_[z].fields, style);
-    const detail::MeasuredPixels px = detail::measured_pixels(
+    detail::MeasuredPixels px = detail::measured_pixels(
         *m, pv.view, shown, floors_[static_cast<std::size_t>(pv.view.index)]);
+    if (options_.mirror)  // this side against the mirror, as the turned result (inspect.h)
+        for (float& depth : px.depth) depth = -depth;
     style.measured = &px;
     return detail::paint_surface(reference_, frame, shown, zooms_[z].fields, style);
 }

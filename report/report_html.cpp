@@ -3,6 +3,7 @@
 #include "mesh/decimate.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "report/asymmetry_html.h"
 #include "report/atlas_fields.h"
 #include "report/detail/canvas.h"
 #include "scanner/metric.h"
@@ -397,6 +398,7 @@ std::string report_html(ReportPageData page, const std::string& report_json,
         if (in.value("role", "") == "reference" && in.contains("path"))
             title +=
                 ": " + std::filesystem::path(in["path"].get<std::string>()).filename().string();
+    const std::string asymmetry = asymmetry_section_html(data["report"]);
     return fill_template(asset("report.html.in"), {{"TITLE", escape_markup(title)},
                                                    {"THREE_JS", asset("three.min.js")},
                                                    {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
@@ -406,7 +408,8 @@ std::string report_html(ReportPageData page, const std::string& report_json,
                                                    {"OVERLAYS_JS", asset("overlays.js")},
                                                    {"REPORT_JS", asset("report.js")},
                                                    {"GLINT_CSS", asset("glint.css")},
-                                                   {"REPORT_CSS", asset("report.css")}});
+                                                   {"REPORT_CSS", asset("report.css")},
+                                                   {"ASYMMETRY_SECTION", asymmetry}});
 }
 
 std::string report_html(const Mesh& reference, const AnalysisResult& result,

@@ -120,7 +120,8 @@ void run(AsymmetryArgs& a) {
         report = nlohmann::json::parse(text);
         return ReportAddition{.scalars = {{"asymmetry{unit}", std::move(f.field)}},
                               .key = "asymmetry",
-                              .json = std::move(text)};
+                              .json = std::move(text),
+                              .mirror = mirror_pictures(plane.plane)};
     };
     AnalysisObserver observer;
     observer.stage = [](std::string_view) { give_back_free_memory(); };

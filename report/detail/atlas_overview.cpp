@@ -6,6 +6,7 @@
 #include "report/detail/footer.h"
 #include "report/detail/labels.h"
 #include "report/detail/scale_bar.h"
+#include "report/detail/symmetry_plane_trace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -211,6 +212,31 @@ void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const V
     layout->captions.push_back(moved(title_box, x, y));
 }
 
+// The panel painted, with the symmetry plane drawn on it (a mirror comparison) clear of the
+// texts place() puts there (`letters`, the caption below or none); the label goes on the
+// sheet once the panel is placed.
+PaintedSurface painted_panel(const OverviewInput& in, const Frame& frame, const View& view,
+                             const std::vector<PanelText>& letters, const std::string& caption,
+                             std::optional<PlaneLabel>& label) {
+    PaintedSurface painted = paint_surface(*in.mesh, frame, view, *in.fields, {.limit = in.limit});
+    if (in.mirror == nullptr) return painted;
+    std::vector<PixelBox> clear{view_scale_bar_box(view, in.unit)};
+    for (const auto& t : letters)
+        clear.push_back(text_box(t.text, kCaptionFont, t.x, t.y, t.align));
+    if (!caption.empty())
+        clear.push_back(
+            text_box(caption, kCaptionFont, 8, frame.height - 8, IBA::TextAlignX::Left));
+    label = draw_symmetry_plane(painted.image, frame, view, *in.mesh, in.fields->region, *in.mirror,
+                                clear);
+    return painted;
+}
+
+void draw_plane_label(ImageBuf& sheet, int x, int y, const std::optional<PlaneLabel>& label) {
+    if (label)
+        draw_text(sheet, x + label->x, y + label->y, std::string(kSymmetryPlaneLabel), 12,
+                  kSymmetryPlane, IBA::TextAlignX::Left, 2);
+}
+
 }  // namespace
 
 std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
@@ -222,23 +248,32 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
         close.push_back(close_up_view(*in.mesh, *in.fields, whole, (*in.regions)[i], *in.plan, o));
     const int close_h = close.empty() ? 0 : 6 + kTitleStrip + kCloseUp;
     char title[300];
-    std::snprintf(
-        title, sizeof title,
-        "damage atlas of %s (zoom 0): signed shape change, %zu region(s), coverage %.0f %%",
-        in.name.c_str(), in.regions->size(), 100.0 * in.coverage);
-    ImageBuf sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, *in.legend);
+    std::snprintf(title, sizeof title,
+                  "%s atlas of %s (zoom 0): %s, %zu region(s), coverage %.0f %%",
+                  in.mirror ? "asymmetry" : "damage", in.name.c_str(),
+                  in.mirror ? "this side − mirrored other side" : "signed shape change",
+                  in.regions->size(), 100.0 * in.coverage);
+    // a mirror comparison's atlas names the plane's line in its legend, the plane in its footer
+    LegendContent legend = *in.legend;
+    legend.plane_line = in.mirror != nullptr;
+    std::vector<std::string> footer = in.footer;
+    if (in.mirror != nullptr && !footer.empty())
+        footer.push_back(symmetry_plane_footer(*in.mirror, in.unit));
+    ImageBuf sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, legend);
     if (in.layout != nullptr) {
         *in.layout = OverviewLayout{.width = sheet.spec().width, .height = sheet.spec().height};
         in.layout->surface.assign(static_cast<std::size_t>(in.layout->width * in.layout->height),
                                   0);
     }
-    const PaintStyle style{.limit = in.limit};
     renderer.render_views(views, [&](std::size_t k, const Frame& frame) {
         const int x = static_cast<int>(k % 3) * kPanel;
         const int y = kTitleHeight + static_cast<int>(k / 3) * kPanel;
-        place(sheet, x, y, paint_surface(*in.mesh, frame, views[k], *in.fields, style), views[k],
-              panel_caption(o, views[k]), in.unit, true, edge_letters(kPanel, o, views[k]),
-              in.layout);
+        std::optional<PlaneLabel> label;
+        const auto letters = edge_letters(kPanel, o, views[k]);
+        const std::string caption = panel_caption(o, views[k]);
+        place(sheet, x, y, painted_panel(in, frame, views[k], letters, caption, label), views[k],
+              caption, in.unit, true, letters, in.layout);
+        draw_plane_label(sheet, x, y, label);
         record_surface(in.layout, frame, x, y);
     });
     const int y0 = kTitleHeight + 2 * kPanel + 6 + kTitleStrip;  // the close-ups' pictures
@@ -246,18 +281,21 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
         const Region& r = (*in.regions)[k];
         char label[120];
         if (r.kind == RegionKind::MissingSurface)  // no depth: the examined scan has none there
-            std::snprintf(label, sizeof label, "close-up %d: missing surface", r.id);
+            std::snprintf(label, sizeof label, "close-up %d: %s", r.id,
+                          region_kind_name(r, in.mirror != nullptr).c_str());
         else
             std::snprintf(label, sizeof label, "close-up %d: %s %s %s", r.id,
-                          to_string(r.kind).c_str(), format_number(r.peak_depth, true).c_str(),
-                          in.unit.c_str());
+                          region_kind_name(r, in.mirror != nullptr).c_str(),
+                          format_number(r.peak_depth, true).c_str(), in.unit.c_str());
         const int x = static_cast<int>(k) * kCloseUp;
-        place(sheet, x, y0, paint_surface(*in.mesh, frame, close[k], *in.fields, style), close[k],
+        std::optional<PlaneLabel> plane_label;
+        place(sheet, x, y0, painted_panel(in, frame, close[k], {}, "", plane_label), close[k],
               label, in.unit, false, {}, in.layout);
+        draw_plane_label(sheet, x, y0, plane_label);
         record_surface(in.layout, frame, x, y0);
         draw_box(sheet, x, y0, x + kCloseUp - 1, y0 + kCloseUp - 1, kDimText, false);
     });
-    return encode_png(in.footer.empty() ? sheet : with_footer(sheet, in.footer));
+    return encode_png(footer.empty() ? sheet : with_footer(sheet, footer));
 }
 
 }  // namespace glint::detail

@@ -12,6 +12,7 @@
 #include "report/detail/labels.h"
 #include "report/detail/legend.h"
 #include "report/detail/surface_paint.h"
+#include "report/mirror_pictures.h"
 #include "report/orientation.h"
 #include "scanner/plan.h"
 
@@ -46,6 +47,10 @@ struct OverviewInput {
     const Orientation* orientation = nullptr;
     /// Lines below the picture (report/detail/footer.h); none: no footer.
     std::vector<std::string> footer;
+    /// The surface against its mirror image (glint asymmetry): the plane drawn on every panel
+    /// and close-up it crosses (report/detail/symmetry_plane_trace.h), the title and the
+    /// close-ups in the finding's words; null: a sweep's atlas.
+    const MirrorPictures* mirror = nullptr;
     /// Filled with where things went when not null (tests).
     OverviewLayout* layout = nullptr;
 };

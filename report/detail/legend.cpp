@@ -1,6 +1,7 @@
 #include "report/detail/legend.h"
 
 #include "report/detail/surface_paint.h"
+#include "report/detail/symmetry_plane_trace.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,9 @@ constexpr int kMaxBar = 260;
 constexpr int kSwatchStep = kLine + 6;  // px from one swatch row to the next
 
 // Height of the swatch rows: four; six for a view's own measurement.
-int swatches_height(const LegendContent& c) { return (c.measured ? 6 : 4) * kSwatchStep - 4; }
+int swatches_height(const LegendContent& c) {
+    return ((c.measured ? 6 : 4) + (c.plane_line ? 1 : 0)) * kSwatchStep - 4;
+}
 
 // The bar, high values at the top: pixel row of value v.
 int bar_row(double v, double limit, int top, int height) {
@@ -111,15 +114,30 @@ void draw_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
     const int y3 = y2 + kSwatchStep;
     draw_box(dst, x, y3, x + s, y3 + s, back_face_colour(), true);
     draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kFont);
+    if (!c.plane_line) return;
+    const int y4 = y3 + kSwatchStep;
+    draw_box(dst, x, y4 + s / 2 - 1, x + s, y4 + s / 2, kSymmetryPlane, true);
+    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (residual: footer)", kFont);
 }
 
 }  // namespace
 
-std::string region_legend_line(const Region& r, const std::string& unit) {
+std::string region_kind_name(const Region& r, bool mirror) {
+    if (!mirror)
+        return r.kind == RegionKind::MissingSurface ? "missing surface" : to_string(r.kind);
+    switch (r.kind) {
+        case RegionKind::Dent: return "less";
+        case RegionKind::Bump: return "more";
+        case RegionKind::MissingSurface: break;
+    }
+    return "no mirrored surface";
+}
+
+std::string region_legend_line(const Region& r, const std::string& unit, bool mirror) {
     const std::string area = format_number(r.area) + " " + unit + "\u00b2";
     if (r.kind == RegionKind::MissingSurface)
-        return std::to_string(r.id) + "  missing surface, " + area;
-    return std::to_string(r.id) + "  " + to_string(r.kind) + "  " +
+        return std::to_string(r.id) + "  " + region_kind_name(r, mirror) + ", " + area;
+    return std::to_string(r.id) + "  " + region_kind_name(r, mirror) + "  " +
            format_number(r.peak_depth, true) + " " + unit + ", " + area;
 }
 
@@ -132,18 +150,21 @@ int legend_min_height(const LegendContent& c) {
 void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
     const int x0 = x + 12;
     int cy = y + 10 + kFont;
-    draw_text(dst, x0, cy,
-              (c.measured ? "signed depth, this view (" : "signed shape change (") + c.unit + ")",
-              kFont + 1);
+    const std::string what = c.measured ? "signed depth, this view ("
+                             : c.mirror ? "this side − mirrored other ("
+                                        : "signed shape change (";
+    draw_text(dst, x0, cy, what + c.unit + ")", kFont + 1);
     cy += kLine;
-    draw_text(dst, x0, cy, "gain (bump)", kFont, {0.94f, 0.55f, 0.50f});
+    draw_text(dst, x0, cy, c.mirror ? "more than the mirrored other side (bump)" : "gain (bump)",
+              kFont, {0.94f, 0.55f, 0.50f});
     cy += 8;
     const int fixed = legend_min_height(c) - kMinBar;
     const int bar =
         std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLine, kMinBar, kMaxBar);
     draw_bar(dst, x0 + 4, cy, bar, c);
     cy += bar + kLine;
-    draw_text(dst, x0, cy, "loss (dent)", kFont, {0.55f, 0.72f, 0.95f});
+    draw_text(dst, x0, cy, c.mirror ? "less than the mirrored other side (dent)" : "loss (dent)",
+              kFont, {0.55f, 0.72f, 0.95f});
     cy += 12;
     draw_swatches(dst, x0, cy, c);
     cy += swatches_height(c) + kLine;

@@ -11,9 +11,16 @@
 
 namespace glint::detail {
 
+/// A region's kind in words: "dent", "bump", "missing surface"; of a surface against its
+/// mirror image (`mirror`, glint asymmetry), the finding's: "less", "more", "no mirrored
+/// surface".
+[[nodiscard]] std::string region_kind_name(const Region& region, bool mirror = false);
+
 /// A region's line in the legend: "3  dent  −0.41 mm, 12.3 mm²"; a missing-surface region
 /// has no depth to give (report.json's depth is null): "5  missing surface, 2.1 mm²".
-[[nodiscard]] std::string region_legend_line(const Region& region, const std::string& unit);
+/// `mirror`: the kind as region_kind_name gives it ("3  less  −0.41 mm, 12.3 mm²").
+[[nodiscard]] std::string region_legend_line(const Region& region, const std::string& unit,
+                                             bool mirror = false);
 
 struct LegendContent {
     double limit = 1.0;        ///< colour range ±limit, mesh units
@@ -24,6 +31,11 @@ struct LegendContent {
     /// The picture shows one view's own measurement (report/view_measurements.h): the bar is
     /// its signed depth along the view ray, and the swatches its statuses and the pale floor.
     bool measured = false;
+    /// The surface against its mirror image (glint asymmetry): the bar's ends read "more" and
+    /// "less than the mirrored other side".
+    bool mirror = false;
+    /// A swatch names the symmetry plane's line (report/detail/symmetry_plane_trace.h).
+    bool plane_line = false;
     std::vector<std::string> lines;    ///< thresholds and floors, one per line
     std::vector<std::string> regions;  ///< "1 dent −0.41 mm, 12.3 mm²", in id order
 };

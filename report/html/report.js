@@ -229,7 +229,12 @@
       const x = state.high - ((state.high - state.low) * k) / 4;
       put((k * (h - 1)) / 4, (x > 0 && f.kind === "signed" ? "+" : "") + fmt(x) + (k === 0 && f.unit ? " " + f.unit : ""));
     }
-    if (f.kind === "signed") { put(-14, "gain (bump)"); put(h + 12, "loss (dent)"); }
+    // glint asymmetry: the fields give this side against the mirrored other side
+    const mirror = !!REPORT.asymmetry;
+    if (f.kind === "signed") {
+      put(-14, mirror ? "more than the mirror" : "gain (bump)");
+      put(h + 12, mirror ? "less than the mirror" : "loss (dent)");
+    }
   }
 
   // ---- picking -------------------------------------------------------------------------------

@@ -4,14 +4,20 @@
 #include "report/report_html.h"
 #include "report/inspect.h"
 
+#include "analysis/asymmetry.h"
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
+#include "report/asymmetry_json.h"
+#include "report/detail/legend.h"
+#include "report/detail/symmetry_plane_trace.h"
 
+#include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/strutil.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -75,6 +81,25 @@ std::vector<T> decode(const std::string& b64) {
     std::memcpy(out.data(), bytes.data(), out.size() * sizeof(T));
     EXPECT_EQ(bytes.size() % sizeof(T), 0u);
     return out;
+}
+
+// Pixels of a PNG file in the symmetry plane's colour (report/detail/symmetry_plane_trace.h).
+int plane_coloured_pixels(const fs::path& png) {
+    OIIO::ImageBuf image(png.string());
+    EXPECT_TRUE(image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << png;
+    int n = 0;
+    const OIIO::ROI roi = image.roi();
+    for (int y = roi.ybegin; y < roi.yend; ++y)
+        for (int x = roi.xbegin; x < roi.xend; ++x) {
+            float p[3];
+            image.getpixel(x, y, p, 3);
+            bool same = true;
+            for (int k = 0; k < 3; ++k)
+                same &= std::abs(p[k] - detail::kSymmetryPlane[static_cast<std::size_t>(k)]) <
+                        1.5f / 255;
+            n += same;
+        }
+    return n;
 }
 
 TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
@@ -201,6 +226,9 @@ TEST(ReportHtml, IsOneSelfContainedFileHoldingTheAtlasExactly) {
     EXPECT_NE(html.find(style), std::string::npos) << "glint.css inlined";
     EXPECT_NE(html.find("window.glintEvidence"), std::string::npos) << "evidence.js inlined";
     EXPECT_NE(html.find("window.glintOverlays"), std::string::npos) << "overlays.js inlined";
+    // A sweep's page and atlas have no asymmetry: no section, no plane drawn.
+    EXPECT_EQ(html.find("id=\"asymmetry-panel\""), std::string::npos);
+    EXPECT_EQ(plane_coloured_pixels(dir / "atlas" / "atlas.png"), 0);
     // Bounded: the libraries (~0.9 MB) plus the data, nothing per view beyond the best ones.
     EXPECT_LT(html.size(), 4'000'000u);
 
@@ -309,6 +337,104 @@ TEST(ReportHtml, LiveExaminedSurfaceIsDecimatedAboveTheBudgetKeepingTheDamage) {
             EXPECT_NEAR(ref_normals[3 * v + c] / 32767.0, ref.normals[v][c], 2.0 / 32767);
     EXPECT_LT(live.mesh.triangle_count(), budget + 6 * in_dent + budget / 2);
     EXPECT_LT(live.mesh.triangle_count(), exa.triangle_count() / 2);
+}
+
+// glint asymmetry's outputs (issue 27): a sphere dented at +x against its mirror about x = 0.
+// Every output gives the +x side "less", as the finding does: report.json's regions,
+// regions.csv and the legend's words; atlas.png draws the plane; report.html's asymmetry
+// section holds the plane and one row per finding, as report.json's "asymmetry".
+TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
+    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "report_html_asymmetry";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    Mesh surface = make_phantom(
+        {.kind = PhantomKind::Sphere, .scheme = TessellationScheme::Ico, .resolution = 4});
+    apply_damage(
+        surface,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 0}, .radius = 3.0, .depth = 0.5}});
+    AsymmetryOptions asymmetry{.given_plane = SymmetryPlane{.normal = {1, 0, 0}, .offset = 0.0}};
+    AsymmetryPlane plane = prepare_asymmetry(surface, asymmetry);
+    ASSERT_FALSE(plane.mirror.triangles.empty());
+    InspectOptions inspect_options;
+    AnalysisOptions& options = inspect_options.analysis;
+    options.fit.mode = FitMode::Identity;
+    options.sweep.plan.azimuth_step_deg = 90;
+    options.sweep.plan.elevations_deg = {-30, 30};
+    options.sweep.plan.size = 64;
+    options.sweep.render.backend = Backend::Embree;
+    options.units.unit = "mm";
+    inspect_options.exports.output = dir / "out";
+    inspect_options.exports.write_views = false;
+    inspect_options.addition = [&](const AnalysisResult& r) {
+        const AsymmetryFindings f = pair_findings(surface, plane.plane.plane, r);
+        return ReportAddition{.key = "asymmetry",
+                              .json = asymmetry_json(plane.plane, f, Orientation{}, r.unit),
+                              .mirror = mirror_pictures(plane.plane)};
+    };
+    const Inspection run = inspect(surface, plane.mirror, inspect_options, {});
+    const nlohmann::json report = nlohmann::json::parse(read_text(dir / "out" / "report.json"));
+    const nlohmann::json& findings = report["asymmetry"]["findings"];
+    ASSERT_EQ(findings.size(), 1u) << report["asymmetry"].dump(1);
+    const nlohmann::json& f = findings[0];
+    EXPECT_EQ(f["side"], "+x");
+    EXPECT_EQ(f["kind"], "less");
+    EXPECT_LT(f["depth"].get<double>(), -0.2);
+
+    // The finding's region in report.json, regions.csv and the legend: a dent, less.
+    const int id = f["region"].get<int>();
+    bool found = false;
+    for (const auto& r : report["zooms"][0]["regions"])
+        if (r["id"].get<int>() == id) {
+            found = true;
+            EXPECT_EQ(r["kind"], "dent");
+            EXPECT_EQ(r["evidence"].get<std::string>().rfind("shape change -", 0), 0u)
+                << r["evidence"];
+            EXPECT_NEAR(r["peak_depth"].get<double>(), f["depth"].get<double>(), 1e-9);
+        } else if (r["id"].get<int>() == f["mirror_region"].get<int>()) {
+            EXPECT_EQ(r["kind"], "bump") << "the mirror image of the dent";
+        }
+    EXPECT_TRUE(found);
+    EXPECT_TRUE(std::regex_search(read_text(dir / "out" / "regions.csv"),
+                                  std::regex("\\n0,[^,]+," + std::to_string(id) + ",dent,")));
+    for (const auto& r : run.analysis.decisions[0].regions.regions) {
+        if (r.id == id) {
+            EXPECT_NE(detail::region_legend_line(r, "mm", true).find("  less  \u2212"),
+                      std::string::npos);
+        }
+    }
+
+    // atlas.png draws the plane (the x = 0 line of the panels from ±y, ±z, which see it
+    // edge-on, and its trace on the sphere).
+    EXPECT_GT(plane_coloured_pixels(dir / "out" / "atlas.png"), 4 * 200);
+
+    // report.html: the section with the plane, the caveat, and one row per finding.
+    const std::string html = read_text(dir / "out" / "report.html");
+    const auto begin = html.find("<section id=\"asymmetry-panel\">");
+    ASSERT_NE(begin, std::string::npos);
+    const std::string section = html.substr(begin, html.find("</section>", begin) - begin);
+    const nlohmann::json& p = report["asymmetry"]["plane"];
+    EXPECT_NE(section.find(p["residual_text"].get<std::string>()), std::string::npos);
+    EXPECT_NE(section.find("normal</th><td>(1, 0, 0)"), std::string::npos) << section;
+    EXPECT_NE(section.find(escape_markup(std::string(kOneScanCaveat))), std::string::npos);
+    const std::regex row(
+        "<tr data-finding=\"(\\d+)\" data-region=\"(\\d+)\"><td>([^<]*)</td><td>([^<]*)</td>"
+        "<td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td></tr>");
+    std::size_t rows = 0;
+    for (auto it = std::sregex_iterator(section.begin(), section.end(), row);
+         it != std::sregex_iterator(); ++it, ++rows) {
+        const auto& m = *it;
+        const nlohmann::json& g = findings[std::stoul(m[1].str())];
+        EXPECT_EQ(std::stoi(m[2].str()), g["region"].get<int>());
+        EXPECT_EQ(m[3].str(), g["side"].get<std::string>());
+        EXPECT_EQ(m[4].str(), g["kind"].get<std::string>());
+        EXPECT_NEAR(std::stod(m[5].str()), g["depth"].get<double>(), 1e-3);
+        EXPECT_NEAR(std::stod(m[6].str()), g["area"].get<double>(), 1e-3 * g["area"].get<double>());
+        EXPECT_NEAR(std::stod(m[7].str()), g["volume"].get<double>(),
+                    1e-3 * std::abs(g["volume"].get<double>()));
+        EXPECT_EQ(m[8].str(), escape_markup(g["text"].get<std::string>()));
+    }
+    EXPECT_EQ(rows, findings.size());
+    EXPECT_NE(section.find("depth (mm)"), std::string::npos);
 }
 
 }  // namespace
