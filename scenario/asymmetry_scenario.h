@@ -30,7 +30,8 @@ struct AsymmetrySpec {
 };
 
 /// A finding as report.json names it: kind "less", "more" or "no mirrored surface"; side as
-/// the orientation names directions ("+x" for a mesh in no stated space, "left" in LPS/RAS).
+/// the orientation names directions ("+x" for a mesh in no stated space, "left" in LPS/RAS),
+/// in the reference's frame (a scenario's pose undone).
 struct FindingKindSide {
     std::string kind;
     std::string side;

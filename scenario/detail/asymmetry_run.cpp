@@ -93,12 +93,13 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     out.compared = z0.comparison.fraction;
     out.threshold_deg = z0.normal.value;
     out.warnings = std::move(r.warnings);
-    const nlohmann::json json = nlohmann::json::parse(r.json);
-    for (const auto& f : json["findings"]) {
-        out.asymmetry->findings.push_back(
-            {f["kind"].get<std::string>(), f["side"].get<std::string>()});
+    // Kind and side as report.json names them, the side in the reference's frame (the pose
+    // undone) so that [expect] can name it whatever the motion.
+    const auto& undo = meshes.true_reference_from_examined.linear();
+    for (const AsymmetryFinding& f : r.findings.findings)
+        out.asymmetry->findings.push_back({finding_kind(f), orientation.name(undo * f.side)});
+    for (const auto& f : nlohmann::json::parse(r.json)["findings"])
         out.asymmetry->texts.push_back(f["text"].get<std::string>());
-    }
     if (!out.asymmetry->findings.empty()) out.largest_kind = out.asymmetry->findings[0].kind;
     score_findings(mesh, z0, r.findings, out);
     return z0.regions.regions;
