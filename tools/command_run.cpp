@@ -194,6 +194,9 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         print_warnings(o.warnings, o.name);
         if (!global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
+            else if (o.asymmetry && !o.asymmetry->plausible)
+                std::printf("%s: no asymmetry reported, nothing written, %.1f s%s\n",
+                            o.name.c_str(), o.seconds, o.passed() ? "" : " (expectations failed)");
             else
                 std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n",
                             o.name.c_str(), o.regions, 100 * o.coverage, o.seconds,

@@ -30,6 +30,19 @@ SymmetryPlane in_reference_frame(const SymmetryPlane& plane, const Rigid& refere
                          reference_from_examined.linear() * plane.normal);
 }
 
+// The record of the reference is the surface analysed: the reference as the scenario derives
+// it (damage, noise, re-meshing, motion), with its own counts.
+void describe_analysed(const Scenario& sc, const Mesh& mesh, PatientSpace space, InputRecord& in) {
+    in.space = to_string(space);
+    in.vertices = mesh.vertex_count();
+    in.triangles = mesh.triangle_count();
+    const bool moved = !sc.pose.matrix().isIdentity();
+    if (!sc.damages.empty() || sc.remesh || sc.noise_sigma > 0 || sc.shuffle || moved)
+        in.description += std::string(in.description.empty() ? "" : ", ") +
+                          "as the scenario derives it ([[damage]], [examined] remesh, shuffle, "
+                          "noise, pose)";
+}
+
 AsymmetryOutcome plane_outcome(const Scenario& sc, const ScenarioMeshes& meshes,
                                const SymmetryPlaneResult& r) {
     AsymmetryOutcome o;
@@ -80,7 +93,7 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     if (!plane.plane.plausible) return {};  // a verdict, nothing written (as glint asymmetry)
     const PatientSpace space = reference_space(sc);
     for (auto& in : record.inputs)
-        if (in.role == "reference") in.space = to_string(space);
+        if (in.role == "reference") describe_analysed(sc, mesh, space, in);
     const Orientation orientation = resolve_orientation(space, options.exports.up);
     AsymmetryInspection r = inspect_asymmetry(mesh, std::move(plane), options, std::move(record),
                                               orientation, run.observer);
@@ -98,7 +111,8 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     const auto& undo = meshes.true_reference_from_examined.linear();
     for (const AsymmetryFinding& f : r.findings.findings)
         out.asymmetry->findings.push_back({finding_kind(f), orientation.name(undo * f.side)});
-    for (const auto& f : nlohmann::json::parse(r.json)["findings"])
+    const nlohmann::json json = nlohmann::json::parse(r.json);
+    for (const auto& f : json["findings"])
         out.asymmetry->texts.push_back(f["text"].get<std::string>());
     if (!out.asymmetry->findings.empty()) out.largest_kind = out.asymmetry->findings[0].kind;
     score_findings(mesh, z0, r.findings, out);
