@@ -89,7 +89,6 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     if (run.observer.stage) run.observer.stage("symmetry plane");
     AsymmetryPlane plane = prepare_asymmetry(mesh, asymmetry);
     out.asymmetry = plane_outcome(sc, meshes, plane.plane);
-    out.fit_mode = "identity";
     if (!plane.plane.plausible) return {};  // a verdict, nothing written (as glint asymmetry)
     const PatientSpace space = reference_space(sc);
     for (auto& in : record.inputs)
@@ -98,6 +97,7 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     AsymmetryInspection r = inspect_asymmetry(mesh, std::move(plane), options, std::move(record),
                                               orientation, run.observer);
     const AnalysisResult& result = r.inspection.analysis;
+    out.fit_mode = to_string(result.fit.mode);  // none: the mirror is made in place
     out.views = result.sweep.plan.views.size();
     out.output = r.inspection.output;
     const ZoomDecision& z0 = result.decisions.front();
