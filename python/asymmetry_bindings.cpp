@@ -7,6 +7,7 @@
 #include "python/interrupt.h"
 #include "python/keywords.h"
 #include "report/asymmetry_json.h"
+#include "report/asymmetry_run.h"
 #include "report/inspect.h"
 #include "report/orientation.h"
 #include "report/run_inputs.h"
@@ -107,11 +108,9 @@ AsymmetryHandle run_asymmetry(const MeshLike& mesh, const std::optional<std::str
     if (fit_roi) all["fit_roi"] = *fit_roi;
     Keywords k;
     apply_keywords(k, all, kAllKeywords, "asymmetry");
-    AsymmetryOptions options;
-    options.plane.registration = k.analysis.fit.registration;
-    if (plane) options.given_plane = parse_plane_spec(*plane);
+    AsymmetryOptions options = take_asymmetry_options(
+        k.analysis, plane ? std::optional(parse_plane_spec(*plane)) : std::nullopt);
     InspectOptions inspect_options{k.analysis, k.exports};
-    inspect_options.analysis.fit = FitOptions{};  // the mirror is made in place: no fit
     if (output) inspect_options.exports.output = *output;
     inspect_options.exports.replace_existing = k.force;
     inspect_options.validate();  // before any load, as glint asymmetry does
@@ -127,25 +126,13 @@ AsymmetryHandle run_asymmetry(const MeshLike& mesh, const std::optional<std::str
         AsymmetryPlane p = prepare_asymmetry(h->mesh, options);
         a.plane = p.plane;
         if (p.mirror.triangles.empty()) return;
-        RunInput mirror = mesh_run_input("examined", std::move(p.mirror),
-                                         "mirror image of the reference about its symmetry plane");
-        record.add(mirror);
-        inspect_options.addition = [&](const AnalysisResult& r) {
-            a.findings = pair_findings(h->mesh, a.plane.plane, r);
-            return ReportAddition{
-                .scalars = {{"asymmetry{unit}", a.findings.field}},
-                .key = "asymmetry",
-                .json = asymmetry_json(a.plane, a.findings, a.orientation, r.unit),
-                .mirror = mirror_pictures(a.plane)};
-        };
-        Inspection i = inspect(h->mesh, std::move(mirror.mesh), inspect_options, record);
-        a.unit = i.analysis.unit;
-        a.output = i.output;
-        a.report = std::move(i.report_json);
-        // The analysis warns that no fit was asked for; the mirror is in place: no warning.
-        a.warnings = std::move(i.analysis.warnings);
-        std::erase_if(a.warnings,
-                      [](const std::string& w) { return w.starts_with("no fit requested"); });
+        AsymmetryInspection i =
+            inspect_asymmetry(h->mesh, std::move(p), inspect_options, record, a.orientation);
+        a.findings = std::move(i.findings);
+        a.unit = i.inspection.analysis.unit;
+        a.output = i.inspection.output;
+        a.report = std::move(i.inspection.report_json);
+        a.warnings = std::move(i.warnings);
     });
     if (!a.plane.plausible) no_plane(h->source, a.plane);
     warn(a.warnings);

@@ -4,6 +4,7 @@
 #include "mesh/error.h"
 #include "report/inspect.h"
 #include "report/run_inputs.h"
+#include "scenario/detail/asymmetry_run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -174,6 +175,39 @@ void add_truth_scalars(const ScenarioMeshes& meshes, ExportOptions& e) {
 
 }  // namespace
 
+namespace detail {
+
+std::string describe_source(const SurfaceSource& s) {
+    return s.phantom
+               ? "phantom " + to_string(s.phantom->kind) + " " + to_string(s.phantom->scheme) +
+                     " " + std::to_string(s.phantom->resolution)
+               : std::string();
+}
+
+InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOptions& run,
+                                        const ScenarioMeshes& meshes, RunRecord& record) {
+    InspectOptions options{.analysis = sc.analysis};
+    AnalysisOptions& analysis = options.analysis;
+    if (analysis.fit.mode == FitMode::Truth)
+        analysis.fit.truth = meshes.true_reference_from_examined;
+    if (!run.unit.empty()) analysis.units.unit = run.unit;
+    analysis.units.allow_scale_mismatch =
+        analysis.units.allow_scale_mismatch || run.allow_scale_mismatch;
+    record.command_line = run.command_line;
+    if (run.output_root.empty()) return options;
+    ExportOptions& e = options.exports;
+    e.output = run.output_root / sc.name;
+    e.write_views = run.write_views;
+    e.replace_existing = run.replace_existing;
+    record.add_file("scenario", sc.file, sc.name);
+    record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
+                             describe_source(sc.reference), meshes.reference.vertex_count(),
+                             meshes.reference.triangle_count()});
+    return options;
+}
+
+}  // namespace detail
+
 ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) {
     const auto t0 = std::chrono::steady_clock::now();
     ScenarioOutcome out;
@@ -193,34 +227,23 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
     out.reference_vertices = meshes.reference.vertex_count();
 
-    InspectOptions options{.analysis = sc.analysis};
-    AnalysisOptions& analysis = options.analysis;
-    if (analysis.fit.mode == FitMode::Truth)
-        analysis.fit.truth = meshes.true_reference_from_examined;
-    if (!run.unit.empty()) analysis.units.unit = run.unit;
-    analysis.units.allow_scale_mismatch =
-        analysis.units.allow_scale_mismatch || run.allow_scale_mismatch;
-    RunRecord record{.command_line = run.command_line};
+    RunRecord record;
+    InspectOptions options = detail::scenario_inspect_options(sc, run, meshes, record);
+    if (sc.asymmetry.enabled) {
+        const std::vector<Region> regions =
+            detail::run_asymmetry(sc, run, meshes, options, std::move(record), out);
+        check_expect(sc.expect, regions, out);
+        check_asymmetry_expect(sc.expect.asymmetry, *out.asymmetry, out.failures);
+        out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        return out;
+    }
     if (!run.output_root.empty()) {
-        ExportOptions& e = options.exports;
-        e.output = run.output_root / sc.name;
-        e.write_views = run.write_views;
-        e.replace_existing = run.replace_existing;
-        auto describe_source = [](const SurfaceSource& s) {
-            return s.phantom ? "phantom " + to_string(s.phantom->kind) + " " +
-                                   to_string(s.phantom->scheme) + " " +
-                                   std::to_string(s.phantom->resolution)
-                             : std::string();
-        };
-        record.add_file("scenario", sc.file, sc.name);
-        record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
-                                 describe_source(sc.reference), meshes.reference.vertex_count(),
-                                 meshes.reference.triangle_count()});
+        const SurfaceSource& e = sc.examined;
         record.inputs.push_back(
-            {"examined", sc.examined_derived ? fs::path() : sc.examined.mesh,
-             sc.examined_derived ? "derived from the reference" : describe_source(sc.examined),
+            {"examined", sc.examined_derived ? fs::path() : e.mesh,
+             sc.examined_derived ? "derived from the reference" : detail::describe_source(e),
              meshes.examined.vertex_count(), meshes.examined.triangle_count()});
-        add_truth_scalars(meshes, e);
+        add_truth_scalars(meshes, options.exports);
     }
     const Inspection inspection =
         inspect(meshes.reference, meshes.examined, options, record, run.observer);

@@ -55,6 +55,8 @@ struct ScenarioOutcome {
     };
     std::optional<Baseline> baseline;
     std::string fit_mode;
+    /// asymmetry = true: the plane and the findings (scenario/asymmetry_scenario.h)
+    std::optional<AsymmetryOutcome> asymmetry;
     double seconds = 0.0;
     std::vector<std::string> failures;  ///< [expect] entries that did not hold
     std::vector<std::string> warnings;  ///< the run's warnings (report.json's)

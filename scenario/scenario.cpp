@@ -301,6 +301,7 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
         }
     e("min_compared", x.min_compared);
     e("max_compared", x.max_compared);
+    read_asymmetry_expect(r, x.asymmetry);
     r.finish();
 }
 
@@ -411,6 +412,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         sc.baseline_distance = r.positive("distance_threshold");
         r.finish();
     }
+    read_asymmetry_scenario(top, sc);
     top.finish();
     validate_analysis_sections(root, name, sc.analysis);
     return sc;

@@ -10,6 +10,7 @@
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
 #include "mesh/phantom.h"
+#include "scenario/asymmetry_scenario.h"
 #include "volume/edit.h"
 #include "volume/surface.h"
 
@@ -84,6 +85,7 @@ struct ScenarioExpect {
     /// the examined surface is below region_min_true_distance count as false.
     std::optional<std::size_t> max_close_region_vertices;
     double region_min_true_distance = 0.1;
+    AsymmetryExpect asymmetry;  ///< asymmetry = true: findings, plane, no_plane
 };
 
 struct Scenario {
@@ -127,6 +129,9 @@ struct Scenario {
     /// The analysis: [registration] (fit mode register by default; "truth" uses the known
     /// pose), [sweep], [threshold] and [decision], with the command line's defaults.
     AnalysisOptions analysis;
+    /// asymmetry = true: the examined surface (derived from the reference) is compared with its
+    /// own mirror image instead (scenario/asymmetry_scenario.h).
+    AsymmetrySpec asymmetry;
     ScenarioExpect expect;
 };
 

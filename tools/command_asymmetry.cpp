@@ -6,6 +6,7 @@
 #include "mesh/roi.h"
 #include "mesh/units.h"
 #include "report/asymmetry_json.h"
+#include "report/asymmetry_run.h"
 #include "report/inspect.h"
 #include "report/orientation.h"
 #include "report/run_inputs.h"
@@ -23,6 +24,7 @@
 #include <filesystem>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,19 +66,10 @@ void print_findings(const nlohmann::json& a, std::size_t regions, const std::str
     for (const auto& f : a["findings"]) std::printf("  %s\n", f["text"].get<std::string>().c_str());
 }
 
-// The analysis warns that no fit was asked for; here the mirror is made in place, so that is
-// no warning (report.json's fit says "identity").
-std::vector<std::string> without_fit_warning(std::vector<std::string> warnings) {
-    std::erase_if(warnings, [](const std::string& w) { return w.starts_with("no fit requested"); });
-    return warnings;
-}
-
 void run(AsymmetryArgs& a) {
-    AnalysisOptions& analysis = a.options.analysis;
-    AsymmetryOptions options;
-    options.plane.registration = analysis.fit.registration;
-    analysis.fit = FitOptions{};  // the mirror is made in place: no fit
-    if (!a.plane.empty()) options.given_plane = parse_plane_spec(a.plane);
+    AsymmetryOptions options = take_asymmetry_options(
+        a.options.analysis,
+        a.plane.empty() ? std::nullopt : std::optional(parse_plane_spec(a.plane)));
     a.options.exports.output = a.output;
     a.options.exports.replace_existing = a.force;
     a.options.validate();
@@ -108,35 +101,25 @@ void run(AsymmetryArgs& a) {
     }
     RunRecord record{.command_line = global_flags().command_line};
     record.add(input);
-    RunInput mirror = mesh_run_input("examined", std::move(plane.mirror),
-                                     "mirror image of the reference about its symmetry plane");
-    record.add(mirror);
     const Orientation orientation =
         resolve_orientation(parse_space(input.record.space), a.options.exports.up);
-    nlohmann::json report;
-    a.options.addition = [&](const AnalysisResult& r) {
-        AsymmetryFindings f = pair_findings(input.mesh, plane.plane.plane, r);
-        std::string text = asymmetry_json(plane.plane, f, orientation, r.unit);
-        report = nlohmann::json::parse(text);
-        return ReportAddition{.scalars = {{"asymmetry{unit}", std::move(f.field)}},
-                              .key = "asymmetry",
-                              .json = std::move(text),
-                              .mirror = mirror_pictures(plane.plane)};
-    };
+    const SymmetryPlaneResult fitted = plane.plane;
     AnalysisObserver observer;
     observer.stage = [](std::string_view) { give_back_free_memory(); };
     progress.listen(observer);
-    const Inspection result =
-        inspect(input.mesh, std::move(mirror.mesh), a.options, record, observer);
+    const AsymmetryInspection run =
+        inspect_asymmetry(input.mesh, std::move(plane), a.options, record, orientation, observer);
+    const Inspection& result = run.inspection;
     progress.finish();
-    print_warnings(without_fit_warning(result.analysis.warnings));
+    print_warnings(run.warnings);
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::parse(result.report_json);
         j["output"] = absolute_output(result.output);
         std::cout << j.dump(2) << '\n';
         return;
     }
-    print_plane(plane.plane, result.analysis.unit);
+    const nlohmann::json report = nlohmann::json::parse(run.json);
+    print_plane(fitted, result.analysis.unit);
     const auto& d = result.analysis.decisions;
     print_findings(report, d.empty() ? 0 : d[0].regions.regions.size(), result.analysis.unit);
     std::printf("atlas (field asymmetry), pictures and report in %s\n",

@@ -118,6 +118,17 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
                               {"close_region_vertices", t.close_region_vertices}};
     };
     if (o.tally) j["tally"] = tally_json(*o.tally);
+    if (const auto& a = o.asymmetry) {
+        const SymmetryPlane& p = a->plane;
+        j["asymmetry"] = {
+            {"plausible", a->plausible},
+            {"verdict", a->verdict},
+            {"plane", to_string(p)},
+            {"plane_angle_deg",
+             a->plane_angle_deg ? nlohmann::json(*a->plane_angle_deg) : nlohmann::json()},
+            {"plane_offset", a->plane_offset ? nlohmann::json(*a->plane_offset) : nlohmann::json()},
+            {"findings", a->texts}};
+    }
     if (o.baseline)
         j["baseline_distance"] = {{"threshold", o.baseline->threshold},
                                   {"precision", o.baseline->score.precision},
@@ -183,10 +194,17 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         print_warnings(o.warnings, o.name);
         if (!global_flags().json && !score_table) {
             if (o.skipped) std::printf("%s: skipped (%s)\n", o.name.c_str(), o.skip_reason.c_str());
+            else if (o.asymmetry && !o.asymmetry->plausible)
+                std::printf("%s: no asymmetry reported, nothing written, %.1f s%s\n",
+                            o.name.c_str(), o.seconds, o.passed() ? "" : " (expectations failed)");
             else
                 std::printf("%s: %zu region(s), coverage %.1f%%, %.1f s, atlas in %s%s\n",
                             o.name.c_str(), o.regions, 100 * o.coverage, o.seconds,
                             o.output.string().c_str(), o.passed() ? "" : " (expectations failed)");
+            if (o.asymmetry) {
+                std::printf("  %s\n", o.asymmetry->verdict.c_str());
+                for (const auto& t : o.asymmetry->texts) std::printf("  %s\n", t.c_str());
+            }
             for (const auto& f : o.failures) std::printf("  %s\n", f.c_str());
         }
         outcomes.push_back(std::move(o));
