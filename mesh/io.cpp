@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/detail/assimp_reader.h"
+#include "mesh/detail/guarded_mapping.h"
 #include "mesh/detail/ply_reader.h"
 #include "mesh/detail/scene_check.h"
 #include "mesh/detail/stl_reader.h"
@@ -26,7 +27,6 @@
 #include <system_error>
 
 #include <fcntl.h>
-#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -48,13 +48,15 @@ std::string lower_extension(const fs::path& path) {
 
 // A mesh file's bytes, read into memory. Only regular files are read, opened without blocking
 // (a FIFO or a device never hangs the run; issue 23 item 11).
-// note: read(2), not mmap, up to kMaxReadBytes: a mapped file that shrinks while it is parsed
+// note: read(2), not mmap, up to detail::map_above_bytes(): a mapped file that shrinks while it is parsed
 // (another program rewriting it, a network filesystem) ends the process with SIGBUS (issue 23
 // item 8); a read that comes up short, or a size that changed meanwhile, is an error naming
 // the file. The copy costs the file's size once, freed (release()) before the mesh is built
 // up. A larger file (no mesh within the triangle budget needs one: 50 M triangles are ~1.5 GB
-// of binary PLY; only padding, comments or junk elements make it so big) is still mapped, so
-// that its pages are read only as far as the parser gets before it refuses the file.
+// of binary PLY; only padding, comments or junk elements make it so big) is mapped, so that
+// its pages are read only as far as the parser gets before it refuses the file; the mapping is
+// guarded (detail/guarded_mapping.h): pages lost to a shrinking file read as zeros and
+// shrank() says so, and load() then reports the change instead of what the parser made of it.
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
@@ -79,14 +81,15 @@ class FileBytes {
     ~FileBytes() { release(); }
 
     void release() {
-        if (mapped_ != nullptr) ::munmap(mapped_, size_);
-        mapped_ = nullptr;
+        mapped_.reset();
         data_.reset();
         size_ = 0;
     }
     [[nodiscard]] std::span<const char> bytes() const {
-        return {mapped_ != nullptr ? static_cast<const char*>(mapped_) : data_.get(), size_};
+        return mapped_ ? mapped_->bytes() : std::span<const char>(data_.get(), size_);
     }
+    /// True when the mapped file was cut short while it was read (its lost bytes read as 0).
+    [[nodiscard]] bool shrank() const { return mapped_ && mapped_->shrank(); }
 
   private:
     static std::size_t regular_size(int fd, const std::string& source) {
@@ -108,11 +111,11 @@ class FileBytes {
         size_ = regular_size(fd, source);
         if (size_ == 0)
             throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
-        if (size_ > kMaxReadBytes) {
-            mapped_ = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-            if (mapped_ == MAP_FAILED) {
-                mapped_ = nullptr;
-                throw IoError(quoted(source) + ": cannot map: " + std::strerror(errno));
+        if (size_ > detail::map_above_bytes()) {
+            try {
+                mapped_ = std::make_unique<detail::GuardedMapping>(fd, size_);
+            } catch (const IoError& e) {
+                throw IoError(quoted(source) + ": " + e.what());
             }
             return;
         }
@@ -135,9 +138,8 @@ class FileBytes {
                              " now); expected a file no other program is writing");
     }
 
-    static constexpr std::size_t kMaxReadBytes = std::size_t{2} << 30;  // 2 GiB
     std::unique_ptr<char[]> data_;
-    void* mapped_ = nullptr;
+    std::unique_ptr<detail::GuardedMapping> mapped_;
     std::size_t size_ = 0;
 };
 
@@ -261,11 +263,10 @@ void validate_with_own_reader(Mesh (*reader)(std::span<const char>, const std::s
     (void)reader(bytes, source, scratch, options);
 }
 
-LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fast) {
+// The mesh in `data`, the bytes of the file at `path`, before finish().
+LoadedMesh parse(std::span<const char> data, const fs::path& path, const LoadOptions& options,
+                 bool allow_fast) {
     const std::string source = path.string();
-    FileBytes file(path, source);
-    const std::span<const char> data = file.bytes();
-    protect_input(path);
     LoadedMesh loaded;
     loaded.report.path = path;
     const std::string ext = lower_extension(path);
@@ -325,6 +326,27 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
     if (loaded.mesh.unit.empty())
         loaded.mesh.unit =
             unit_from_header(data.first(std::min<std::size_t>(data.size(), 65536)), ext);
+    return loaded;
+}
+
+InputError changed_while_read(const std::string& source) {
+    return InputError(quoted(source) +
+                      ": was cut short while it was read (a mapped file lost its end); expected a "
+                      "file no other program is writing");
+}
+
+LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fast) {
+    const std::string source = path.string();
+    FileBytes file(path, source);
+    protect_input(path);
+    LoadedMesh loaded;
+    try {
+        loaded = parse(file.bytes(), path, options, allow_fast);
+    } catch (const Error&) {
+        if (file.shrank()) throw changed_while_read(source);  // the parser met the zeros
+        throw;
+    }
+    if (file.shrank()) throw changed_while_read(source);
     file.release();
     finish(loaded, options, source);
     return loaded;

@@ -5,6 +5,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/output_guard.h"
+#include "volume/detail/isolated_read.h"
 #include "volume/detail/itk_io.h"
 
 #include <algorithm>
@@ -60,7 +61,12 @@ Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     std::error_code ec;
     if (!fs::exists(path, ec)) throw InputError(quoted(path) + ": no such file or folder");
     for (const fs::path& f : input_files(path)) protect_input(f);  // never an output
-    detail::RawVolume raw = detail::itk_read(path, max_voxels);
+    // DICOM goes through GDCM, which may crash on files the pre-check cannot foresee: its read
+    // runs in a child process (detail/isolated_read.h).
+    auto read = [&] { return detail::itk_read(path, max_voxels); };
+    detail::RawVolume raw = fs::is_directory(path, ec) || detail::volume_format(path) == "dicom"
+                                ? detail::read_in_child(path, read)
+                                : read();
     Volume v;
     v.path = path;
     v.format = std::move(raw.format);
