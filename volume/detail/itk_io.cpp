@@ -4,6 +4,7 @@
 
 #include "mesh/error.h"
 #include "volume/detail/dicom_check.h"
+#include "volume/detail/metaimage_data.h"
 #include "volume/detail/volume_headers.h"
 
 #include <gdcmTrace.h>
@@ -166,23 +167,51 @@ void require_slice_files(const itk::ImageIOBase& io, const fs::path& header,
     }
 }
 
-// A detached, uncompressed MetaImage data file must hold what the header promises (the
-// reader would otherwise fail with a message that names neither file nor sizes).
+// A MetaImage's voxels must be what the header promises: a detached data file that names
+// neither file nor sizes when it fails, LOCAL or compressed data that MetaIO reads short with
+// chatter on stderr and no error (detail/metaimage_data.h).
 void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     auto* meta = dynamic_cast<itk::MetaImageIO*>(const_cast<itk::ImageIOBase*>(&io));
     if (!meta) return;
     MetaImage* m = meta->GetMetaImagePointer();
     const std::string data_name = m->ElementDataFileName();
-    // note: LOCAL data and a LIST are left to MetaIO.
-    if (m->CompressedData() || data_name == "LOCAL" || data_name == "LIST") return;
+    StoredVoxels stored;
+    stored.compressed = m->CompressedData();
+    const MetaImageLayout layout = metaimage_layout(header);
+    stored.compressed_bytes = layout.compressed_bytes;
+    stored.expected = static_cast<std::uint64_t>(io.GetImageSizeInBytes());
+    // note: a LIST is left to MetaIO.
+    if (data_name == "LIST") return;
+    if (data_name == "LOCAL") {
+        if (!layout.data_offset)
+            throw InputError(quoted(header) +
+                             ": no voxels follow its header (ElementDataFile = LOCAL ends the "
+                             "file), expected " +
+                             std::to_string(stored.expected) + " bytes of them");
+        stored.offset = *layout.data_offset;
+        // note: MetaIO reads LOCAL compressed voxels only as far as CompressedDataSize says;
+        // without it the volume came back as uninitialised memory.
+        if (stored.compressed && !stored.compressed_bytes)
+            throw InputError(quoted(header) +
+                             ": CompressedData = True without CompressedDataSize, expected the "
+                             "count of compressed bytes that follow the header");
+        if (const std::string problem = metaimage_voxel_problem(header, stored); !problem.empty())
+            throw InputError(quoted(header) + ": " + problem);
+        return;
+    }
     if (data_name.find(' ') != std::string::npos) {
-        require_slice_files(io, header, data_name);
+        if (!stored.compressed) require_slice_files(io, header, data_name);
         return;
     }
     const fs::path data = header.parent_path() / data_name;
     std::error_code ec;
     if (!fs::exists(data, ec))
         throw InputError(quoted(header) + ": data file \"" + data.string() + "\" is missing");
+    if (stored.compressed) {
+        if (const std::string problem = metaimage_voxel_problem(data, stored); !problem.empty())
+            throw InputError(quoted(header) + ": data file \"" + data.string() + "\": " + problem);
+        return;
+    }
     const auto found = fs::file_size(data, ec);
     const auto expected = static_cast<std::uintmax_t>(io.GetImageSizeInBytes());
     if (!ec && found != expected)
