@@ -60,7 +60,8 @@ TEST(GuardedMapping, AFileCutShortReadsAsZerosInsteadOfEndingTheProcess) {
 }
 
 TEST(GuardedMapping, LeavesNoHandlerBehind) {
-    struct sigaction before {}, after {};
+    struct sigaction before {
+    }, after{};
     ::sigaction(SIGBUS, nullptr, &before);
     {
         const fs::path path = file_of_x("handler.bin");

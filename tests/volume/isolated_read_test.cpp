@@ -1,8 +1,8 @@
 // The DICOM reader's child process (volume/detail/isolated_read.h): whatever the reader does,
 // crash, abort, throw or hang until cancelled, the caller gets one error and goes on.
+#include "volume/detail/isolated_read.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
-#include "volume/detail/isolated_read.h"
 
 #include <gtest/gtest.h>
 
@@ -83,9 +83,8 @@ TEST(ReadInChild, ErrorsComeBackAsTheirOwnKindAndMessage) {
     } catch (const IoError& e) {
         EXPECT_STREQ(e.what(), "disk gone");
     }
-    EXPECT_THROW(
-        (void)detail::read_in_child(kInput, []() -> RawVolume { throw std::bad_alloc(); }),
-        std::bad_alloc);
+    EXPECT_THROW((void)detail::read_in_child(kInput, []() -> RawVolume { throw std::bad_alloc(); }),
+                 std::bad_alloc);
 }
 
 TEST(ReadInChild, TheChildsChatterNeverReachesTheTerminal) {
@@ -109,10 +108,8 @@ TEST(ReadInChild, ItsTemporaryFilesAreRemovedEvenWhenItCrashes) {
         const fs::path own = fs::temp_directory_path();
         std::FILE* f = std::fopen((own / "left-behind").c_str(), "w");
         if (f != nullptr) std::fclose(f);
-        std::FILE* note = std::fopen((parent_temp / ("glint-child-temp-" +
-                                                     std::to_string(::getppid())))
-                                         .c_str(),
-                                     "w");
+        std::FILE* note = std::fopen(
+            (parent_temp / ("glint-child-temp-" + std::to_string(::getppid()))).c_str(), "w");
         if (note != nullptr) {
             std::fputs(own.c_str(), note);
             std::fclose(note);

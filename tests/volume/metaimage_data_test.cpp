@@ -30,8 +30,7 @@ fs::path fresh_dir(const std::string& name) {
 // 4 x 4 x 4 shorts, value = index.
 std::string voxel_bytes() {
     std::string bytes;
-    for (std::int16_t i = 0; i < 64; ++i)
-        bytes.append(reinterpret_cast<const char*>(&i), sizeof i);
+    for (std::int16_t i = 0; i < 64; ++i) bytes.append(reinterpret_cast<const char*>(&i), sizeof i);
     return bytes;
 }
 
@@ -78,11 +77,10 @@ TEST(MetaImageVoxels, WellFormedRawAndCompressedFilesReadAsBefore) {
     const fs::path dir = fresh_dir("good");
     const std::string z = deflated(voxel_bytes());
     expect_index_values(write(dir / "raw.mha", header("LOCAL") + voxel_bytes()));
-    expect_index_values(write(
-        dir / "z.mha",
-        header("LOCAL", "CompressedData = True\nCompressedDataSize = " +
-                            std::to_string(z.size()) + "\n") +
-            z));
+    expect_index_values(
+        write(dir / "z.mha", header("LOCAL", "CompressedData = True\nCompressedDataSize = " +
+                                                 std::to_string(z.size()) + "\n") +
+                                 z));
     write(dir / "d.zraw", z);
     expect_index_values(write(dir / "d.mhd", header("d.zraw", "CompressedData = True\n")));
 }
@@ -106,16 +104,16 @@ TEST(MetaImageVoxels, LocalDataCutShortIsRefusedWithItsSizes) {
 // volume came back as uninitialised memory.
 TEST(MetaImageVoxels, LocalCompressedDataWithoutItsSizeIsRefused) {
     const fs::path dir = fresh_dir("unsized");
-    const std::string m = message_of(write(
-        dir / "z.mha", header("LOCAL", "CompressedData = True\n") + deflated(voxel_bytes())));
+    const std::string m = message_of(
+        write(dir / "z.mha", header("LOCAL", "CompressedData = True\n") + deflated(voxel_bytes())));
     EXPECT_NE(m.find("CompressedData = True without CompressedDataSize"), std::string::npos) << m;
 }
 
 TEST(MetaImageVoxels, CompressedDataThatDoesNotInflateIsRefused) {
     const fs::path dir = fresh_dir("garbage");
-    const std::string m = message_of(write(
-        dir / "b.mha", header("LOCAL", "CompressedData = True\nCompressedDataSize = 40\n") +
-                              std::string(40, '\x55')));
+    const std::string m = message_of(
+        write(dir / "b.mha", header("LOCAL", "CompressedData = True\nCompressedDataSize = 40\n") +
+                                 std::string(40, '\x55')));
     EXPECT_NE(m.find("its compressed voxels do not inflate (zlib: "), std::string::npos) << m;
 }
 

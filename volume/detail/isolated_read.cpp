@@ -62,8 +62,8 @@ class ChildTemp {
         std::string pattern = (fs::temp_directory_path() / "glint-dicom-read-XXXXXX").string();
         if (::mkdtemp(pattern.data()) == nullptr)
             throw IoError("cannot make a temporary folder in \"" +
-                          fs::temp_directory_path().string() + "\" for the DICOM reader: " +
-                          std::strerror(errno));
+                          fs::temp_directory_path().string() +
+                          "\" for the DICOM reader: " + std::strerror(errno));
         path_ = pattern;
         track_staged(path_);
     }
@@ -189,8 +189,9 @@ RawVolume read_result(int fd, const fs::path& input) {
     const std::string where = quoted(input);
     ResultHeader h;
     if (!read_all(fd, 0, &h, sizeof h) || h.magic != kMagic)
-        throw InputError(where + ": the DICOM reader (GDCM) ended without a result; expected a "
-                                 "DICOM series it can read");
+        throw InputError(where +
+                         ": the DICOM reader (GDCM) ended without a result; expected a "
+                         "DICOM series it can read");
     auto text = [&](std::uint64_t offset, std::uint64_t bytes) {
         std::string s(bytes, '\0');
         if (bytes > (std::uint64_t{1} << 20) || !read_all(fd, offset, s.data(), s.size()))
@@ -226,13 +227,13 @@ RawVolume read_result(int fd, const fs::path& input) {
 RawVolume read_in_child(const fs::path& input, const std::function<RawVolume()>& read) {
     const Descriptor result(::memfd_create("glint-dicom-volume", MFD_CLOEXEC));
     if (result.get() < 0)
-        throw IoError(quoted(input) + ": cannot make a memory file for the DICOM reader: " +
-                      std::strerror(errno));
+        throw IoError(quoted(input) +
+                      ": cannot make a memory file for the DICOM reader: " + std::strerror(errno));
     const ChildTemp temp;
     const pid_t child = ::fork();
     if (child < 0)
-        throw IoError(quoted(input) + ": cannot start the DICOM reader process: " +
-                      std::strerror(errno));
+        throw IoError(quoted(input) +
+                      ": cannot start the DICOM reader process: " + std::strerror(errno));
     if (child == 0) run_child(result.get(), temp.path(), read);
     const int status = wait_for(child);
     if (WIFSIGNALED(status))

@@ -77,8 +77,8 @@ std::string inflate_problem(std::ifstream& in, std::uint64_t stored, std::uint64
         return "its compressed voxels inflate to more than the " + bytes(expected) +
                " the header needs";
     if (status != Z_STREAM_END || produced != expected)
-        return "its compressed voxels end after " + bytes(produced) + " of the " +
-               bytes(expected) + " the header needs";
+        return "its compressed voxels end after " + bytes(produced) + " of the " + bytes(expected) +
+               " the header needs";
     return "";
 }
 
