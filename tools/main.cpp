@@ -5,6 +5,7 @@
 #include "mesh/memory_limits.h"
 #include "mesh/version.h"
 #include "tools/command.h"
+#include "tools/progress.h"
 #include "tools/slicer_module.h"
 
 #include <CLI/CLI.hpp>
@@ -142,8 +143,10 @@ int guarded(CLI::App& app, const std::function<void()>& body) {
         return fail(kExitDeviceOrIo, "device error", e.what());
     } catch (const std::bad_alloc&) {
         const std::string& line = global_flags().command_line;
+        const std::string stage = last_stage();
         return fail(kExitDeviceOrIo, "out of memory",
-                    "`" + line.substr(0, 200) + "` needed more memory than it could get (" +
+                    "`" + line.substr(0, 200) + "` needed more memory than it could get" +
+                        (stage.empty() ? "" : " in its stage \"" + stage + "\"") + " (" +
                         glint::memory_limits_text() + ")");
     } catch (const std::exception& e) {
         return fail(kExitInternal, "internal error", e.what());

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <mutex>
 #include <cstdio>
 #include <utility>
 
@@ -89,9 +90,23 @@ StageProgress::~StageProgress() {
     if (enabled_ && !name_.empty()) std::fputc('\n', stderr);
 }
 
+namespace {
+std::mutex g_last_stage_mutex;
+std::string g_last_stage;  // guarded by g_last_stage_mutex
+}  // namespace
+
+std::string last_stage() {
+    const std::lock_guard lock(g_last_stage_mutex);
+    return g_last_stage;
+}
+
 void StageProgress::stage(std::string_view name) {
     finish();
     name_ = name;
+    {
+        const std::lock_guard lock(g_last_stage_mutex);
+        g_last_stage = prefix_ + std::string(name);
+    }
     done_ = total_ = 0;
     start_ = last_draw_ = Clock::now();
     if (enabled_) draw(false);

@@ -66,4 +66,8 @@ class StageProgress {
     std::chrono::steady_clock::time_point last_draw_;
 };
 
+/// The stage a StageProgress of this process opened last ("" before any): words for an error
+/// that ends a run, such as running out of memory ("while sweep"). Thread-safe.
+[[nodiscard]] std::string last_stage();
+
 }  // namespace glint::cli
