@@ -5,8 +5,8 @@
 
 #include <unistd.h>
 #include <algorithm>
-#include <mutex>
 #include <cstdio>
+#include <mutex>
 #include <utility>
 
 namespace glint::cli {
