@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/output_guard.h"
+#include "mesh/small_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -94,12 +95,11 @@ std::string row_text(const nlohmann::json& row) {
 }  // namespace
 
 Rigid read_fit(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw IoError("fit \"" + path + "\": cannot open");
+    const std::string text = read_small_file(path, "fit");
     protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw InputError("fit \"" + path + "\": not valid JSON: " + e.what());
     }

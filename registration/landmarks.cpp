@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/output_guard.h"
+#include "mesh/small_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -106,12 +107,11 @@ LandmarkSide read_side(const nlohmann::json& p, const char* key, const std::stri
 }  // namespace
 
 std::vector<LandmarkPair> read_landmarks(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw IoError("landmarks \"" + path + "\": cannot open");
+    const std::string text = read_small_file(path, "landmarks");
     protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw InputError("landmarks \"" + path + "\": not valid JSON: " + e.what());
     }

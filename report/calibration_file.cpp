@@ -3,6 +3,7 @@
 
 #include "mesh/error.h"
 #include "mesh/output_guard.h"
+#include "mesh/small_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -27,12 +28,11 @@ std::string to_json(const Calibration& c) {
 }
 
 Calibration read_calibration(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    if (!in) throw IoError("calibration \"" + path.string() + "\": cannot open");
+    const std::string text = read_small_file(path, "calibration");
     protect_input(path);  // never an output of this process
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception& e) {
         throw InputError("calibration \"" + path.string() + "\": not valid JSON: " + e.what());
     }

@@ -1,25 +1,26 @@
 // read_npy_mask (scenario/scenario.h): the tooth-wear ground-truth masks, NumPy .npy files.
 #include "mesh/error.h"
+#include "mesh/small_file.h"
 #include "scenario/scenario.h"
 
 #include <algorithm>
 #include <charconv>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 
 namespace glint {
 
 namespace fs = std::filesystem;
 
 std::vector<std::uint8_t> read_npy_mask(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("mask \"" + path.string() + "\": cannot open");
+    const std::string bytes = read_small_file(path, "mask", std::size_t{1} << 30);
+    std::istringstream in(bytes);
     char magic[8] = {};
     in.read(magic, 8);
     if (!in || std::memcmp(magic, "\x93NUMPY", 6) != 0)
         throw InputError("mask \"" + path.string() + "\": not a NumPy .npy file (bad magic)");
     const int major = static_cast<unsigned char>(magic[6]);
-    const std::uintmax_t file_size = fs::file_size(path);
+    const std::uintmax_t file_size = bytes.size();
     std::uint32_t header_len = 0;
     unsigned char b[4] = {};
     in.read(reinterpret_cast<char*>(b), major == 1 ? 2 : 4);

@@ -1,6 +1,7 @@
 #include "scenario/pose_conf.h"
 
 #include "mesh/error.h"
+#include "mesh/small_file.h"
 
 #include <cmath>
 #include <fstream>
@@ -9,8 +10,7 @@
 namespace glint {
 
 Rigid read_conf_pose(const std::filesystem::path& conf, const std::string& entry) {
-    std::ifstream in(conf);
-    if (!in) throw IoError("pose file \"" + conf.string() + "\": cannot be read");
+    std::istringstream in(read_small_file(conf, "pose file"));
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
         std::istringstream words(line);

@@ -5,6 +5,7 @@
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "mesh/remesh.h"
+#include "mesh/small_file.h"
 #include "scenario/detail/ct_acquisition.h"
 #include "scenario/detail/partial_scan.h"
 #include "scenario/detail/scenario_options.h"
@@ -313,7 +314,7 @@ toml::table parse_scenario_file(const fs::path& file) {
         throw IoError("scenario \"" + file.string() + "\" is a directory, expected a .toml file");
     toml::table root;
     try {
-        root = toml::parse_file(file.string());
+        root = toml::parse(read_small_file(file, "scenario", std::size_t{1} << 20), file.string());
     } catch (const toml::parse_error& e) {
         std::ostringstream s;
         s << "scenario \"" << file.string() << "\" line " << e.source().begin.line << ": "

@@ -3,6 +3,7 @@
 
 #include "mesh/error.h"
 #include "mesh/parse.h"
+#include "mesh/small_file.h"
 
 #include <nlohmann/json.hpp>
 
@@ -37,13 +38,7 @@ std::string trim(std::string_view s) {
     return std::string(s.substr(first, s.find_last_not_of(" \t\r") - first + 1));
 }
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("markups \"" + path.string() + "\": cannot open");
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+std::string read_text(const fs::path& path) { return read_small_file(path, "markups"); }
 
 // One markup of a .mrk.json file: {"coordinateSystem": "LPS", "controlPoints": [{"label": …,
 // "position": [x, y, z]}, …]} (Slicer's markups schema, "markups" array).

@@ -139,5 +139,22 @@ TEST(MetaImageVoxels, CompressedDataCutOrShortIsRefused) {
               std::string::npos);
 }
 
+// MetaIO printed four lines ("DimSize defined prior to defining NDims", "MET_Read Failed", …)
+// and ITK's error said "File cannot be read … Reason: Invalid argument".
+TEST(MetaImageVoxels, MetaIOsReasonIsTheMessageAndNothingReachesStderr) {
+    const fs::path dir = fresh_dir("order");
+    const fs::path path = write(dir / "e.mha",
+                                "ObjectType = Image\nDimSize = 4 4 4\nNDims = 3\n"
+                                "ElementType = MET_SHORT\nElementDataFile = "
+                                "LOCAL\n" +
+                                    voxel_bytes());
+    testing::internal::CaptureStderr();
+    const std::string m = message_of(path);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_NE(m.find("MetaImage header: DimSize defined prior to defining NDims; expected"),
+              std::string::npos)
+        << m;
+}
+
 }  // namespace
 }  // namespace glint

@@ -31,6 +31,7 @@
 #include <cstring>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
 #include <optional>
 #include <regex>
@@ -392,10 +393,42 @@ std::string volume_format(const fs::path& path) {
     return "";
 }
 
+// MetaIO writes why it fails to std::cerr ("DimSize defined prior to defining NDims", then
+// three lines of "Read: Cannot parse file") and ITK's exception then says only "File cannot be
+// read … Reason: Invalid argument". While a volume is read, std::cerr goes into a buffer: library
+// code never prints, and the first line becomes the reason of the error.
+// note: std::cerr is process-wide; glint prints nothing through it while a volume is read (the
+// progress display writes with stdio).
+class CerrCapture {
+  public:
+    CerrCapture() : previous_(std::cerr.rdbuf(captured_.rdbuf())) {}
+    ~CerrCapture() { std::cerr.rdbuf(previous_); }
+    CerrCapture(const CerrCapture&) = delete;
+    CerrCapture& operator=(const CerrCapture&) = delete;
+    /// The first non-empty line written, trimmed; "" when none.
+    [[nodiscard]] std::string first_line() const {
+        std::istringstream lines(captured_.str());
+        for (std::string line; std::getline(lines, line);) {
+            line.erase(0, line.find_first_not_of(" \t\r"));
+            line.erase(line.find_last_not_of(" \t\r.") + 1);
+            // hostile header bytes are not echoed to a terminal
+            for (char& c : line)
+                if (!std::isprint(static_cast<unsigned char>(c))) c = '?';
+            if (!line.empty()) return line;
+        }
+        return "";
+    }
+
+  private:
+    std::ostringstream captured_;
+    std::streambuf* previous_;
+};
+
 RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
     itk::Object::GlobalWarningDisplayOff();  // library code never prints
     gdcm::Trace::WarningOff();
     nifti_set_debug_level(0);  // niftilib writes "** ERROR: …" to stderr; ITK's exception says it
+    const CerrCapture chatter;
     try {
         std::error_code ec;
         if (fs::is_directory(path, ec)) return read_dicom_folder(path, max_voxels);
@@ -404,6 +437,10 @@ RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
                 throw InputError(quoted(path) + ": " + problem);
         return read_file(path, max_voxels);
     } catch (const itk::ExceptionObject& e) {
+        const std::string reason = chatter.first_line();
+        if (!reason.empty() && volume_format(path) == "metaimage")
+            throw InputError(quoted(path) + ": MetaImage header: " + reason +
+                             "; expected a header MetaIO can read");
         throw InputError(quoted(path) + ": " + one_line(e));
     }
 }
