@@ -429,15 +429,23 @@ std::string to_string(DecisionRule rule) {
 }
 
 void DecisionOptions::validate() const {
-    if (threshold && !(*threshold > 0))
-        throw OptionError("threshold.deg", *threshold, "must be > 0 (metric units)");
-    if (!(noise_k > 0)) throw OptionError("threshold.noise_k", noise_k, "must be > 0");
-    if (!(min_threshold >= 0)) throw OptionError("threshold.min_deg", min_threshold, "must be ≥ 0");
-    if (!(max_plausible_threshold_deg > 0))
-        throw OptionError("decision.max_plausible_deg", max_plausible_threshold_deg, "must be > 0");
-    if (shape_threshold && !(*shape_threshold > 0))
-        throw OptionError("decision.shape_threshold", *shape_threshold, "must be > 0 mesh units");
-    if (!(shape_k > 0)) throw OptionError("decision.shape_k", shape_k, "must be > 0");
+    // note: `x > 0 && x < inf` also refuses NaN, which fails every comparison.
+    const double inf = std::numeric_limits<double>::infinity();
+    if (threshold && !(*threshold > 0 && *threshold < inf))
+        throw OptionError("threshold.deg", *threshold, "must be finite and > 0 (metric units)");
+    if (!(noise_k > 0 && noise_k < inf))
+        throw OptionError("threshold.noise_k", noise_k, "must be finite and > 0");
+    if (!(min_threshold >= 0 && min_threshold < inf))
+        throw OptionError("threshold.min_deg", min_threshold, "must be finite and ≥ 0");
+    // An angle between normals is at most 180°: a larger cap could never be reached.
+    if (!(max_plausible_threshold_deg > 0 && max_plausible_threshold_deg <= 180))
+        throw OptionError("decision.max_plausible_deg", max_plausible_threshold_deg,
+                          "must be in (0, 180] degrees");
+    if (shape_threshold && !(*shape_threshold > 0 && *shape_threshold < inf))
+        throw OptionError("decision.shape_threshold", *shape_threshold,
+                          "must be finite and > 0 mesh units");
+    if (!(shape_k > 0 && shape_k < inf))
+        throw OptionError("decision.shape_k", shape_k, "must be finite and > 0");
     if (!(shape_low_k > 0 && shape_low_k <= shape_k))
         throw OptionError("decision.shape_low_k", shape_low_k, "must be in (0, shape_k]");
     if (!(min_shape_fraction >= 0))
