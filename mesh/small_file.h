@@ -14,7 +14,8 @@ namespace glint {
 /// "landmarks", "scenario"): `fit "x.json": is a folder, expected a file`.
 /// \throw IoError when it is missing or cannot be read; InputError when it is not a regular
 /// file, is larger than `max_bytes`, or changed size while it was read.
-[[nodiscard]] std::string read_small_file(const std::filesystem::path& path, const std::string& what,
+[[nodiscard]] std::string read_small_file(const std::filesystem::path& path,
+                                          const std::string& what,
                                           std::size_t max_bytes = std::size_t{64} << 20);
 
 }  // namespace glint
