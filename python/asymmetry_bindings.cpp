@@ -100,10 +100,23 @@ RunInput reference_input(const MeshHandle& h) {
                 to_string(r.plane) + "')");
 }
 
-AsymmetryHandle run_asymmetry(const MeshLike& mesh, const std::optional<std::string>& plane,
-                              const std::optional<std::string>& fit_roi,
+// None, or the text of a str keyword. pybind11's own refusal of a wrong type (a std::optional
+// parameter) is a message of several lines listing the signature; this one is one line.
+std::optional<std::string> optional_text(const py::object& value, const char* keyword) {
+    if (value.is_none()) return std::nullopt;
+    if (!py::isinstance<py::str>(value))
+        throw py::type_error(std::string("asymmetry(): ") + keyword +
+                             " must be a str or None, not " +
+                             py::cast<std::string>(py::str(value.get_type().attr("__name__"))));
+    return py::cast<std::string>(value);
+}
+
+AsymmetryHandle run_asymmetry(const MeshLike& mesh, const py::object& plane_value,
+                              const py::object& fit_roi_value,
                               const std::optional<std::filesystem::path>& output,
                               const py::kwargs& kwargs) {
+    const std::optional<std::string> plane = optional_text(plane_value, "plane");
+    const std::optional<std::string> fit_roi = optional_text(fit_roi_value, "fit_roi");
     py::kwargs all = kwargs;
     if (fit_roi) all["fit_roi"] = *fit_roi;
     Keywords k;

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <condition_variable>
 #include <csignal>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <set>
@@ -39,6 +40,24 @@ PyObject* new_exception(py::module_& m, const char* name, py::tuple bases, const
 
 }  // namespace
 
+namespace {
+
+// A message as Python text. Messages quote input bytes, which need not be UTF-8 (a damaged
+// file): PyErr_SetString would fail to decode them and raise the exception with an empty
+// message, so undecodable bytes are written as \xNN instead.
+py::str message_text(const char* what) {
+    PyObject* text =
+        PyUnicode_DecodeUTF8(what, static_cast<Py_ssize_t>(std::strlen(what)), "backslashreplace");
+    if (text == nullptr) throw py::error_already_set();
+    return py::reinterpret_steal<py::str>(text);
+}
+
+void set_error(PyObject* type, const char* what) {
+    PyErr_SetObject(type, message_text(what).ptr());
+}
+
+}  // namespace
+
 void register_exceptions(py::module_& m) {
     const py::handle exception(PyExc_Exception);
     g_error = new_exception(
@@ -62,20 +81,20 @@ void register_exceptions(py::module_& m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const Cancelled& e) {
-            PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+            set_error(PyExc_KeyboardInterrupt, e.what());
         } catch (const OptionError& e) {
             // The library names an option by its scenario key (sweep.size); Python by its
             // keyword (size).
             const std::string keyword = keyword_of_option(e.key());
-            PyErr_SetString(g_input_error, keyword.empty() ? e.what() : e.named(keyword).c_str());
+            set_error(g_input_error, keyword.empty() ? e.what() : e.named(keyword).c_str());
         } catch (const InputError& e) {
-            PyErr_SetString(g_input_error, e.what());
+            set_error(g_input_error, e.what());
         } catch (const IoError& e) {
-            PyErr_SetString(g_io_error, e.what());
+            set_error(g_io_error, e.what());
         } catch (const DeviceError& e) {
-            PyErr_SetString(g_device_error, e.what());
+            set_error(g_device_error, e.what());
         } catch (const Error& e) {
-            PyErr_SetString(g_error, e.what());
+            set_error(g_error, e.what());
         }
     });
 }
@@ -83,7 +102,9 @@ void register_exceptions(py::module_& m) {
 void warn(const std::vector<std::string>& messages) {
     std::set<std::string> issued;  // one call's warnings may repeat (an input's, the run's)
     for (const std::string& message : messages)
-        if (issued.insert(message).second && PyErr_WarnEx(g_warning, message.c_str(), 1) != 0)
+        if (issued.insert(message).second &&
+            PyErr_WarnEx(g_warning, py::cast<std::string>(message_text(message.c_str())).c_str(),
+                         1) != 0)
             throw py::error_already_set();  // a filter turned the warning into an error
 }
 

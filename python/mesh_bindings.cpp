@@ -219,10 +219,16 @@ void bind_mesh_functions(py::module_& m) {
         "converted (copied and checked). Convert once to reuse a mesh in many calls.");
     m.def(
         "load",
-        [](const std::filesystem::path& path, py::kwargs kwargs) {
+        [](const py::object& path, py::kwargs kwargs) {
+            // note: a py::object rather than a path parameter: pybind11's own refusal of a
+            // wrong type is a message of several lines listing the signatures.
+            if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
+                throw py::type_error(
+                    "load(): path must be a str or os.PathLike, not " +
+                    py::cast<std::string>(py::str(path.get_type().attr("__name__"))));
             Keywords k;
             apply_keywords(k, kwargs, kSurfaceKeywords, "load");
-            auto loaded = load(path, k.surface);
+            auto loaded = load(py::cast<std::filesystem::path>(path), k.surface);
             if (loaded->report) warn(loaded->report->warnings);
             return loaded;
         },

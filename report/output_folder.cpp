@@ -43,6 +43,19 @@ pid_t marker_pid(const fs::path& wrapper) {
     return host == host_name() && pid > 0 ? static_cast<pid_t>(pid) : 0;
 }
 
+// Removes a staging wrapper with its marker last: a run killed while removing it (after a
+// commit, or unwinding) leaves a wrapper that is still recognised as glint's and removed by
+// the next run, never an unmarked folder that looks like the user's.
+void remove_wrapper(const fs::path& wrapper) {
+    std::error_code ec;
+    for (fs::directory_iterator it(wrapper, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().filename() != kStagingMarker) {
+            std::error_code ignored;
+            fs::remove_all(it->path(), ignored);
+        }
+    fs::remove_all(wrapper, ec);
+}
+
 // Removes the staging wrappers of killed runs into `target`: marked as glint's, of this host,
 // their process gone. A folder without the marker is the user's and is left alone.
 void remove_leftovers(const fs::path& target) {
@@ -58,8 +71,7 @@ void remove_leftovers(const fs::path& target) {
         const pid_t pid = marker_pid(p);
         if (pid == 0 || pid == ::getpid()) continue;
         if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
-        std::error_code ignored;
-        fs::remove_all(p, ignored);
+        remove_wrapper(p);
     }
 }
 
@@ -111,8 +123,7 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
     }
     fs::create_directory(staging_, ec);
     if (ec || ::access(staging_.c_str(), W_OK) != 0) {
-        std::error_code ignored;
-        fs::remove_all(wrapper_, ignored);
+        remove_wrapper(wrapper_);
         untrack_staged(wrapper_);
         throw IoError("output folder \"" + target_.string() + "\": cannot create \"" +
                       staging_.string() + "\"" +
@@ -121,8 +132,7 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
 }
 
 OutputFolder::~OutputFolder() {
-    std::error_code ec;
-    fs::remove_all(wrapper_, ec);  // destructors never throw; a leftover is marked
+    remove_wrapper(wrapper_);  // never throws; what a kill leaves is marked
     untrack_staged(wrapper_);
 }
 
@@ -191,8 +201,7 @@ void OutputFolder::commit() {
     if (replace_existing_) commit_replacing();
     else commit_new();
     fault_point("committed");
-    std::error_code ec;
-    fs::remove_all(wrapper_, ec);  // the marker, and with --force the replaced results
+    remove_wrapper(wrapper_);  // the marker, and with --force the replaced results
 }
 
 }  // namespace glint

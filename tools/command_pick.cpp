@@ -1,9 +1,9 @@
 // glint pick MESH --azimuth A --elevation E --pixel u,v: which surface point a pixel shows.
-#include "analysis/landmarks.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
 #include "registration/closest_point.h"
 #include "tools/command.h"
+#include "tools/view_flags.h"
 
 #include <nlohmann/json.hpp>
 
@@ -14,24 +14,9 @@
 namespace glint::cli {
 namespace {
 
-struct PickArgs {
-    std::string mesh;
-    double azimuth = 0.0;
-    double elevation = 0.0;
-    int size = 256;
-    double footprint = 0.0;
-    std::vector<double> pixel;
-};
-
 void run(const PickArgs& a) {
     const LoadedMesh m = load_mesh(a.mesh);
-    // note: the framing lives in analysis/landmarks.h so that landmark pixels in
-    // `glint register --landmarks` resolve exactly as this command picks them.
-    const View view = pick_view(m.mesh, {.azimuth_deg = a.azimuth,
-                                         .elevation_deg = a.elevation,
-                                         .size = a.size,
-                                         .footprint = a.footprint});
-    if (a.pixel.size() != 2) throw InputError("--pixel: expected u,v");
+    const View view = check_pick_args(m.mesh, a);
     const ClosestPointIndex index(m.mesh);
     const RayHit hit = pick(index, view.camera, a.pixel[0], a.pixel[1]);
     nlohmann::json j = {{"hit", hit.hit}, {"pixel", a.pixel}};
@@ -58,15 +43,7 @@ void setup(CLI::App& app) {
     static PickArgs a;
     auto* cmd = app.add_subcommand(
         "pick", "The surface point, triangle and barycentrics under a pixel of a view");
-    cmd->add_option("MESH", a.mesh, "Mesh")->required();
-    cmd->add_option("--azimuth", a.azimuth, "Degrees")->capture_default_str();
-    cmd->add_option("--elevation", a.elevation, "Degrees")->capture_default_str();
-    cmd->add_option("--size", a.size, "Image size (framing as glint render)")
-        ->capture_default_str();
-    cmd->add_option("--footprint", a.footprint, "Mesh units per pixel (default: frame the mesh)");
-    cmd->add_option("--pixel", a.pixel, "u,v in pixels (centres at +0.5)")
-        ->delimiter(',')
-        ->required();
+    add_pick_flags(*cmd, a);
     cmd->callback([] { run(a); });
 }
 
