@@ -1,6 +1,6 @@
 // Volume reading and writing through ITK (GDCM for DICOM). Every ITK exception becomes a
 // one-line InputError / IoError naming the file. No Eigen here (see itk_io.h).
-#include "volume/detail/itk_io.h"
+#include "volume/plugin/itk_side.h"
 
 #include "mesh/error.h"
 #include "volume/detail/dicom_check.h"
@@ -354,16 +354,9 @@ FloatImage::Pointer to_itk(const RawVolume& v) {
 
 }  // namespace
 
-std::string volume_format(const fs::path& path) {
-    const std::string name = path.filename().string();
-    if (ends_with(name, ".mha") || ends_with(name, ".mhd")) return "metaimage";
-    if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return "nifti";
-    if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) return "nrrd";
-    if (ends_with(name, ".dcm")) return "dicom";
-    return "";
-}
+namespace itk_side {
 
-RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
+RawVolume read(const fs::path& path, std::size_t max_voxels) {
     itk::Object::GlobalWarningDisplayOff();  // library code never prints
     gdcm::Trace::WarningOff();
     nifti_set_debug_level(0);  // niftilib writes "** ERROR: …" to stderr; ITK's exception says it
@@ -379,7 +372,7 @@ RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
     }
 }
 
-void itk_write(const RawVolume& volume, const fs::path& path) {
+void write(const RawVolume& volume, const fs::path& path) {
     itk::Object::GlobalWarningDisplayOff();
     try {
         auto writer = itk::ImageFileWriter<FloatImage>::New();
@@ -394,4 +387,5 @@ void itk_write(const RawVolume& volume, const fs::path& path) {
     }
 }
 
+}  // namespace itk_side
 }  // namespace glint::detail
