@@ -10,5 +10,8 @@ function(glint_add_test name)
     GLINT_GOLDEN_DIR="${PROJECT_SOURCE_DIR}/tests/golden"
     GLINT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
     GLINT_TEST_OUTPUT_DIR="${CMAKE_BINARY_DIR}/test-output")
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${T_LABELS}")
+  # note: test programs sit two folders down (tests/<module>/), where the volume plugin's
+  # search (volume/detail/volume_plugin.h) would not find the build's lib/glint by itself.
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${T_LABELS}"
+    ENVIRONMENT "GLINT_PLUGIN_DIR=${CMAKE_BINARY_DIR}/lib/glint")
 endfunction()

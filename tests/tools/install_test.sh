@@ -44,11 +44,12 @@ case "$mode" in
 esac
 
 # Nothing installed points into the build tree (no RPATH/RUNPATH).
-for elf in "$prefix/bin/glint" "$prefix"/lib/python3/dist-packages/glint*.so; do
+for elf in "$prefix/bin/glint" "$prefix"/lib/glint/*.so "$prefix"/lib/python3/dist-packages/glint*.so; do
   [ -e "$elf" ] || continue
   if readelf -d "$elf" | grep -E "RPATH|RUNPATH"; then fail "$elf has a run path"; fi
 done
 [ -L "$prefix/lib/glint/slicer/glint" ] || fail "no Slicer module link in $prefix/lib/glint/slicer"
+[ -f "$prefix/lib/glint/libglint_volume_io.so" ] || fail "no volume plugin in $prefix/lib/glint"
 
 cat >"$work/run.sh" <<'INNER'
 set -euo pipefail
@@ -69,6 +70,10 @@ cd "$work"
 grep -q "1 region(s)" sweep.txt || fail "the installed glint did not find the dent"
 "$glint" --quiet run "$prefix/share/glint/scenarios/phantoms/condyle_erosion.toml" -o demo
 [ -f demo/condyle-erosion/report.json ] || fail "the demo scenario wrote no report"
+# A volume opens the ITK plugin from the installed lib/glint (a 2 x 2 x 2 MetaImage).
+printf 'abcdefgh' >tiny.raw
+printf 'ObjectType = Image\nNDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = tiny.raw\n' >tiny.mhd
+"$glint" info tiny.mhd | grep -q "size *2 x 2 x 2" || fail "the installed glint read no volume (its plugin in lib/glint)"
 xml=$("$prefix/lib/glint/slicer/glint" --xml)
 [[ "$xml" == *"<executable>"* ]] || fail "the Slicer module link printed no description"
 # The cohort summary inlines glint's page style: the installed copy, not the sources'.

@@ -2,6 +2,10 @@
 // cannot share a translation unit with the system Eigen 3.4 that mesh/mesh.h includes, so
 // this wall speaks plain arrays: the files that include ITK include no glint header that
 // brings Eigen, and volume/io.cpp converts.
+//
+// itk_read and the writes run in the plugin libglint_volume_io.so (volume/plugin/itk_io.cpp),
+// loaded by the first of them (volume/detail/volume_plugin.h): where it is missing they throw
+// IoError saying so. volume_format is string work and needs no plugin.
 #pragma once
 
 #include <array>

@@ -1,174 +1,60 @@
+// vtk_steps.h's steps, answered by the plugin. The cancel checks stay here, after the long
+// steps, because the request to stop lives in the program's mesh/cancel, not in the plugin.
 #include "volume/detail/vtk_steps.h"
 
 #include "mesh/cancel.h"
-
-#include <vtkBox.h>
-#include <vtkCellArray.h>
-#include <vtkCellArrayIterator.h>
-#include <vtkExtractPolyDataGeometry.h>
-#include <vtkFloatArray.h>
-#include <vtkFlyingEdges3D.h>
-#include <vtkImageData.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkPolyDataConnectivityFilter.h>
-#include <vtkSphere.h>
-#include <vtkTransform.h>
-#include <vtkTransformPolyDataFilter.h>
-#include <vtkWindowedSincPolyDataFilter.h>
-
-#include <cstdint>
-#include <vector>
+#include "volume/detail/volume_plugin.h"
 
 namespace glint::detail {
 
-namespace {
-VtkSurface run_flying_edges(vtkImageData* image, double iso);
-}  // namespace
-
 std::size_t VtkSurface::triangle_count() const {
-    return poly ? static_cast<std::size_t>(poly->GetNumberOfPolys()) : 0;
+    return poly ? volume_io_plugin().triangle_count(poly.get()) : 0;
 }
 
 VtkSurface contour(const Volume& volume, const std::array<std::array<std::size_t, 3>, 2>& crop,
                    double iso) {
-    const VolumeGeometry& g = volume.geometry;
-    std::array<std::size_t, 3> n{};
-    for (std::size_t d = 0; d < 3; ++d) n[d] = crop[1][d] - crop[0][d] + 1;
-    auto image = vtkSmartPointer<vtkImageData>::New();
-    image->SetDimensions(static_cast<int>(n[0]), static_cast<int>(n[1]), static_cast<int>(n[2]));
-    // note: index space (spacing 1, origin at the crop's first voxel); the physical mapping,
-    // with its direction matrix, is applied afterwards (VTK 9.1's contour filters ignore an
-    // image's direction matrix).
-    image->SetOrigin(static_cast<double>(crop[0][0]), static_cast<double>(crop[0][1]),
-                     static_cast<double>(crop[0][2]));
-    image->SetSpacing(1, 1, 1);
-    auto scalars = vtkSmartPointer<vtkFloatArray>::New();
-    const auto count = static_cast<vtkIdType>(n[0] * n[1] * n[2]);
-    if (n == g.size) {
-        // The whole volume: VTK reads our buffer in place (save = 1: VTK never frees it; the
-        // filter only reads, and the image dies with this function).
-        scalars->SetArray(const_cast<float*>(volume.voxels.data()), count, 1);
-        image->GetPointData()->SetScalars(scalars);
-        return run_flying_edges(image, iso);
-    }
-    scalars->SetNumberOfTuples(count);
-    float* dst = scalars->GetPointer(0);
-    for (std::size_t k = 0; k < n[2]; ++k)
-        for (std::size_t j = 0; j < n[1]; ++j) {
-            const float* src =
-                volume.voxels.data() + g.offset(crop[0][0], crop[0][1] + j, crop[0][2] + k);
-            std::copy_n(src, n[0], dst + n[0] * (j + n[1] * k));
-        }
-    image->GetPointData()->SetScalars(scalars);
-    return run_flying_edges(image, iso);
-}
-
-namespace {
-VtkSurface run_flying_edges(vtkImageData* image, double iso) {
-    auto fe = vtkSmartPointer<vtkFlyingEdges3D>::New();
-    fe->SetInputData(image);
-    fe->SetValue(0, iso);
-    fe->ComputeNormalsOff();
-    fe->ComputeGradientsOff();
-    fe->ComputeScalarsOff();
-    fe->Update();
+    const VolumeIoTable& io = volume_io_plugin();
+    PluginSurface* surface = nullptr;
+    call_volume_io([&](const VolumeIoTable&, std::string& message) {
+        return io.contour(volume, crop, iso, surface, message);
+    });
+    VtkSurface out{std::shared_ptr<PluginSurface>(surface, io.release)};
     throw_if_cancelled();
-    return {fe->GetOutput()};
+    return out;
 }
-}  // namespace
 
-void VtkSurface::to_physical(const VolumeGeometry& g) {
-    const Eigen::Matrix3d m = g.direction * g.spacing.asDiagonal();
-    auto transform = vtkSmartPointer<vtkTransform>::New();
-    double e[16] = {
-        m(0, 0), m(0, 1), m(0, 2), g.origin.x(), m(1, 0), m(1, 1), m(1, 2), g.origin.y(),
-        m(2, 0), m(2, 1), m(2, 2), g.origin.z(), 0,       0,       0,       1};
-    transform->SetMatrix(e);
-    auto filter = vtkSmartPointer<vtkTransformPolyDataFilter>::New();
-    filter->SetInputData(poly);
-    filter->SetTransform(transform);
-    filter->SetOutputPointsPrecision(vtkAlgorithm::DOUBLE_PRECISION);
-    filter->Update();
-    poly = filter->GetOutput();
+void VtkSurface::to_physical(const VolumeGeometry& geometry) {
+    call_volume_io([&](const VolumeIoTable& io, std::string& message) {
+        return io.to_physical(*poly, geometry, message);
+    });
 }
 
 void VtkSurface::keep_inside(const Roi& roi) {
-    auto filter = vtkSmartPointer<vtkExtractPolyDataGeometry>::New();
-    if (roi.shape == Roi::Shape::Sphere) {
-        auto sphere = vtkSmartPointer<vtkSphere>::New();
-        sphere->SetCenter(roi.center.x(), roi.center.y(), roi.center.z());
-        sphere->SetRadius(roi.radius);
-        filter->SetImplicitFunction(sphere);
-    } else {
-        auto box = vtkSmartPointer<vtkBox>::New();
-        box->SetBounds(roi.min.x(), roi.max.x(), roi.min.y(), roi.max.y(), roi.min.z(),
-                       roi.max.z());
-        filter->SetImplicitFunction(box);
-    }
-    filter->SetInputData(poly);
-    filter->ExtractInsideOn();
-    filter->ExtractBoundaryCellsOff();  // a triangle with a corner outside is dropped
-    filter->Update();
-    poly = filter->GetOutput();
+    call_volume_io([&](const VolumeIoTable& io, std::string& message) {
+        return io.keep_inside(*poly, roi, message);
+    });
 }
 
 std::size_t VtkSurface::keep_component(const std::optional<Vec3d>& seed) {
-    auto filter = vtkSmartPointer<vtkPolyDataConnectivityFilter>::New();
-    filter->SetInputData(poly);
-    if (seed) {
-        filter->SetExtractionModeToClosestPointRegion();
-        filter->SetClosestPoint(seed->x(), seed->y(), seed->z());
-    } else {
-        filter->SetExtractionModeToLargestRegion();
-    }
-    filter->Update();
-    poly = filter->GetOutput();
-    return static_cast<std::size_t>(filter->GetNumberOfExtractedRegions());
+    std::size_t components = 0;
+    call_volume_io([&](const VolumeIoTable& io, std::string& message) {
+        return io.keep_component(*poly, seed ? &*seed : nullptr, components, message);
+    });
+    return components;
 }
 
 void VtkSurface::smooth(int iterations, double passband) {
-    auto filter = vtkSmartPointer<vtkWindowedSincPolyDataFilter>::New();
-    filter->SetInputData(poly);
-    filter->SetNumberOfIterations(iterations);
-    filter->SetPassBand(passband);
-    filter->NormalizeCoordinatesOn();  // numerical stability (VTK's advice)
-    filter->BoundarySmoothingOff();    // ROI cuts stay where they are
-    filter->FeatureEdgeSmoothingOff();
-    filter->NonManifoldSmoothingOn();
-    filter->Update();
+    call_volume_io([&](const VolumeIoTable& io, std::string& message) {
+        return io.smooth(*poly, iterations, passband, message);
+    });
     throw_if_cancelled();
-    poly = filter->GetOutput();
 }
 
 Mesh VtkSurface::to_mesh(bool flip) const {
     Mesh mesh;
-    vtkPoints* points = poly->GetPoints();
-    vtkCellArray* cells = poly->GetPolys();
-    const auto np = static_cast<std::size_t>(poly->GetNumberOfPoints());
-    std::vector<std::uint32_t> remap(np, UINT32_MAX);
-    mesh.triangles.reserve(static_cast<std::size_t>(cells->GetNumberOfCells()));
-    auto it = vtk::TakeSmartPointer(cells->NewIterator());
-    for (it->GoToFirstCell(); !it->IsDoneWithTraversal(); it->GoToNextCell()) {
-        vtkIdType count = 0;
-        const vtkIdType* ids = nullptr;
-        it->GetCurrentCell(count, ids);
-        if (count != 3) continue;  // flying edges writes triangles only
-        Triangle t{};
-        for (int c = 0; c < 3; ++c) {
-            const auto id = static_cast<std::size_t>(ids[c]);
-            if (remap[id] == UINT32_MAX) {
-                remap[id] = static_cast<std::uint32_t>(mesh.positions.size());
-                double p[3];
-                points->GetPoint(static_cast<vtkIdType>(id), p);
-                mesh.positions.emplace_back(static_cast<float>(p[0]), static_cast<float>(p[1]),
-                                            static_cast<float>(p[2]));
-            }
-            t[static_cast<std::size_t>(c)] = remap[id];
-        }
-        if (flip) std::swap(t[1], t[2]);
-        mesh.triangles.push_back(t);
-    }
+    call_volume_io([&](const VolumeIoTable& io, std::string& message) {
+        return io.to_mesh(*poly, flip, mesh, message);
+    });
     return mesh;
 }
 

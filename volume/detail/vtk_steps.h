@@ -1,21 +1,22 @@
-// The VTK steps of surface extraction, one method each (internal; see volume/surface.h).
+// The VTK steps of surface extraction, one method each (internal; see volume/surface.h). VTK
+// itself lives in the plugin (volume/plugin/vtk_filters.cpp); these forward to it.
 #pragma once
 
 #include "mesh/mesh.h"
 #include "mesh/roi.h"
 #include "volume/volume.h"
 
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
-
 #include <array>
+#include <memory>
 #include <optional>
 
 namespace glint::detail {
 
-/// A triangle surface between VTK filters.
+struct PluginSurface;
+
+/// A triangle surface between VTK filters (held by the plugin).
 struct VtkSurface {
-    vtkSmartPointer<vtkPolyData> poly;
+    std::shared_ptr<PluginSurface> poly;
 
     [[nodiscard]] std::size_t triangle_count() const;
     /// Voxel index coordinates → physical (mm): p = origin + direction · diag(spacing) · i.

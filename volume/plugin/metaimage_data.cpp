@@ -1,4 +1,4 @@
-#include "volume/detail/metaimage_data.h"
+#include "volume/plugin/metaimage_data.h"
 
 #include <zlib.h>
 

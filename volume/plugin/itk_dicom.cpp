@@ -3,7 +3,7 @@
 // the in-plane axes (ImageOrientationPatient) from the geometry; the study, series and frame
 // of reference UIDs are shared by all slices so readers group them into one series.
 #include "mesh/error.h"
-#include "volume/detail/itk_io.h"
+#include "volume/plugin/itk_side.h"
 
 #include <gdcmTrace.h>
 #include <itkGDCMImageIO.h>
@@ -57,7 +57,9 @@ ShortSlice::Pointer slice_image(const RawVolume& v, std::size_t k) {
 
 }  // namespace
 
-void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
+namespace itk_side {
+
+void write_dicom(const RawVolume& v, const fs::path& folder) {
     itk::Object::GlobalWarningDisplayOff();
     gdcm::Trace::WarningOff();  // library code never prints
     std::mt19937_64 rng(std::random_device{}());
@@ -95,4 +97,5 @@ void itk_write_dicom(const RawVolume& v, const fs::path& folder) {
     }
 }
 
+}  // namespace itk_side
 }  // namespace glint::detail

@@ -1,10 +1,10 @@
 // Volume reading and writing through ITK (GDCM for DICOM). Every ITK exception becomes a
 // one-line InputError / IoError naming the file. No Eigen here (see itk_io.h).
-#include "volume/detail/itk_io.h"
+#include "volume/plugin/itk_side.h"
 
 #include "mesh/error.h"
 #include "volume/detail/dicom_check.h"
-#include "volume/detail/metaimage_data.h"
+#include "volume/plugin/metaimage_data.h"
 #include "volume/detail/volume_headers.h"
 
 #include <gdcmTrace.h>
@@ -170,7 +170,7 @@ void require_slice_files(const itk::ImageIOBase& io, const fs::path& header,
 
 // A MetaImage's voxels must be what the header promises: a detached data file that names
 // neither file nor sizes when it fails, LOCAL or compressed data that MetaIO reads short with
-// chatter on stderr and no error (detail/metaimage_data.h).
+// chatter on stderr and no error (metaimage_data.h).
 void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     auto* meta = dynamic_cast<itk::MetaImageIO*>(const_cast<itk::ImageIOBase*>(&io));
     if (!meta) return;
@@ -384,14 +384,7 @@ FloatImage::Pointer to_itk(const RawVolume& v) {
 
 }  // namespace
 
-std::string volume_format(const fs::path& path) {
-    const std::string name = path.filename().string();
-    if (ends_with(name, ".mha") || ends_with(name, ".mhd")) return "metaimage";
-    if (ends_with(name, ".nii") || ends_with(name, ".nii.gz")) return "nifti";
-    if (ends_with(name, ".nrrd") || ends_with(name, ".nhdr")) return "nrrd";
-    if (ends_with(name, ".dcm")) return "dicom";
-    return "";
-}
+namespace itk_side {
 
 // MetaIO writes why it fails to std::cerr ("DimSize defined prior to defining NDims", then
 // three lines of "Read: Cannot parse file") and ITK's exception then says only "File cannot be
@@ -424,7 +417,7 @@ class CerrCapture {
     std::streambuf* previous_;
 };
 
-RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
+RawVolume read(const fs::path& path, std::size_t max_voxels) {
     itk::Object::GlobalWarningDisplayOff();  // library code never prints
     gdcm::Trace::WarningOff();
     nifti_set_debug_level(0);  // niftilib writes "** ERROR: …" to stderr; ITK's exception says it
@@ -445,7 +438,7 @@ RawVolume itk_read(const fs::path& path, std::size_t max_voxels) {
     }
 }
 
-void itk_write(const RawVolume& volume, const fs::path& path) {
+void write(const RawVolume& volume, const fs::path& path) {
     itk::Object::GlobalWarningDisplayOff();
     try {
         auto writer = itk::ImageFileWriter<FloatImage>::New();
@@ -460,4 +453,5 @@ void itk_write(const RawVolume& volume, const fs::path& path) {
     }
 }
 
+}  // namespace itk_side
 }  // namespace glint::detail

@@ -1,0 +1,29 @@
+// Opens libglint_volume_io.so (volume/plugin/), the only part of glint linked to ITK, GDCM
+// and VTK, on first use, so runs that touch no volume never map those libraries.
+#pragma once
+
+#include "volume/plugin/volume_io_abi.h"
+
+#include <string>
+
+namespace glint::detail {
+
+/// The plugin's table, loaded once (thread-safe) from the first folder that holds it:
+/// $GLINT_PLUGIN_DIR alone when set; else the folder of the program or library that holds
+/// this code, its ../lib/glint (bin/ → lib/glint), its ../../glint (an installed Python
+/// module in lib/python3/dist-packages), then the configured install lib/glint.
+/// \throw IoError (exit code 3) naming what is missing and the Debian packages to install.
+[[nodiscard]] const VolumeIoTable& volume_io_plugin();
+
+/// Rethrows an error the plugin reported as glint's own type (InputError, IoError, Error).
+void rethrow_plugin_error(PluginErrorKind kind, const std::string& message);
+
+/// Calls `entry(table, message)` and rethrows what it reports.
+template <class Entry>
+void call_volume_io(Entry&& entry) {
+    std::string message;
+    const PluginErrorKind kind = entry(volume_io_plugin(), message);
+    if (kind != PluginErrorKind::None) rethrow_plugin_error(kind, message);
+}
+
+}  // namespace glint::detail
