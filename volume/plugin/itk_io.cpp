@@ -4,8 +4,8 @@
 
 #include "mesh/error.h"
 #include "volume/detail/dicom_check.h"
-#include "volume/plugin/metaimage_data.h"
 #include "volume/detail/volume_headers.h"
+#include "volume/plugin/metaimage_data.h"
 
 #include <gdcmTrace.h>
 #include <itkGDCMImageIO.h>
