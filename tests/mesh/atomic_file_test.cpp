@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/file_set.h"
+#include "tests/mesh/test_files.h"
 
 #include <gtest/gtest.h>
 
@@ -16,12 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "atomic" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path fresh_dir(const std::string& name) { return test::fresh_dir("atomic", name); }
 
 std::string read_all(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

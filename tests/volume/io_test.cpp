@@ -4,6 +4,7 @@
 #include "volume/load.h"
 
 #include "mesh/error.h"
+#include "tests/mesh/test_files.h"
 #include "volume/detail/dicom_check.h"
 #include "volume/phantom.h"
 
@@ -20,12 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "volume" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path fresh_dir(const std::string& name) { return test::fresh_dir("volume", name); }
 
 // A small ellipsoid on a rotated grid (proper rotation, so DICOM can hold it), integer
 // values (DICOM stores 16-bit integers).

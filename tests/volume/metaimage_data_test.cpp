@@ -3,6 +3,7 @@
 // missing voxels became zeros, exit 0). Each is now one InputError naming the file and sizes;
 // well-formed raw and compressed files, LOCAL or detached, read as before.
 #include "mesh/error.h"
+#include "tests/mesh/test_files.h"
 #include "volume/volume.h"
 
 #include <gtest/gtest.h>
@@ -20,12 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path fresh_dir(const std::string& name) {
-    const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "metaimage_data" / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    return dir;
-}
+fs::path fresh_dir(const std::string& name) { return test::fresh_dir("metaimage_data", name); }
 
 // 4 x 4 x 4 shorts, value = index.
 std::string voxel_bytes() {
