@@ -27,6 +27,7 @@
 // GLINT_BENCH_BASELINE_ARGS adds options to the baseline's command line only (e.g. "--no-exr"
 // for a glint from before per-view EXRs became opt-in, so both write the same files).
 #include "bench/blob_pair.h"
+#include "bench/process_run.h"
 #include "mesh/write.h"
 
 #include <benchmark/benchmark.h>
@@ -55,6 +56,8 @@ namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
+using bench::ProcessRun;
+using bench::run_process;
 
 struct Files {
     fs::path folder;
@@ -89,38 +92,6 @@ const Files& files(int size_class) {
     write_ply(pair.reference, f.reference);
     write_ply(pair.examined, f.examined);
     return cache.emplace(size_class, std::move(f)).first->second;
-}
-
-struct ProcessRun {
-    double seconds = 0.0;
-    double peak_mib = 0.0;
-};
-
-// Runs argv[0] with stdout into `stdout_file` (empty: /dev/null) and stderr kept; waits.
-ProcessRun run_process(const std::vector<std::string>& argv, const fs::path& stdout_file) {
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    const std::string out = stdout_file.empty() ? "/dev/null" : stdout_file.string();
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out.c_str(),
-                                     O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const auto t0 = std::chrono::steady_clock::now();
-    pid_t pid = 0;
-    const int err = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (err != 0) throw std::runtime_error("cannot start " + argv[0]);
-    int status = 0;
-    rusage usage{};
-    wait4(pid, &status, 0, &usage);
-    ProcessRun r;
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.peak_mib = static_cast<double>(usage.ru_maxrss) / 1024.0;
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw std::runtime_error(argv[0] + " " + argv[1] + " failed (status " +
-                                 std::to_string(status) + ")");
-    return r;
 }
 
 nlohmann::json read_json(const fs::path& path) {

@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.25)
 # Fails when a file includes a module its folder must not depend on (DESIGN.md, STYLE.md §2):
 #
-#   mesh ◀ render ◀ scanner ◀ decision ◀ analysis ◀ report ◀ scenario ◀ tools, python
+#   mesh ◀ image ◀ render ◀ scanner ◀ decision ◀ analysis ◀ report ◀ scenario ◀ tools, python
 #   mesh ◀ registration ◀ analysis        mesh ◀ volume ◀ analysis
 #
 # An arrow points at what may be used; nothing points back. A module's tests (tests/<module>/)
@@ -10,12 +10,13 @@ cmake_minimum_required(VERSION 3.25)
 # -DEXTRA_FILE=<path> -DEXTRA_MODULE=<module> one more file is checked as if it lay in that
 # module (the test that proves an include pointing up fails).
 set(allowed_mesh "mesh")
-set(allowed_render "mesh;render;spirv")
+set(allowed_image "mesh;image")
+set(allowed_render "mesh;image;render;spirv")
 set(allowed_registration "mesh;registration")
 set(allowed_volume "mesh;volume")
-set(allowed_scanner "mesh;render;scanner")
-set(allowed_decision "mesh;render;scanner;decision")
-set(allowed_analysis "mesh;render;scanner;decision;registration;volume;analysis")
+set(allowed_scanner "mesh;image;render;scanner")
+set(allowed_decision "mesh;image;render;scanner;decision")
+set(allowed_analysis "mesh;image;render;scanner;decision;registration;volume;analysis")
 set(allowed_report "${allowed_analysis};report")
 set(allowed_scenario "${allowed_report};scenario")
 set(allowed_tools "${allowed_scenario};tools")
@@ -24,7 +25,7 @@ set(allowed_bench "${allowed_scenario};bench")
 # note: fuzz/ may also use tools/: fuzz_render_pick parses command lines with the commands' own
 # flags and checks (tools/view_flags.h), which belong to the command line.
 set(allowed_fuzz "${allowed_tools};fuzz")
-set(modules mesh render registration volume scanner decision analysis report scenario tools python
+set(modules mesh image render registration volume scanner decision analysis report scenario tools python
     bench fuzz)
 
 set(bad "")

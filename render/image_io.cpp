@@ -3,8 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imageio.h>
+#include "image/image_ops.h"
 
 #include <algorithm>
 #include <cctype>
@@ -24,36 +23,26 @@ std::string extension_of(const fs::path& path) {
     return ext;
 }
 
-void add_metadata(OIIO::ImageSpec& spec, const std::map<std::string, std::string>& metadata) {
-    for (const auto& [key, value] : metadata) spec.attribute("glint:" + key, value);
+void add_metadata(FloatImage& image, const std::map<std::string, std::string>& metadata) {
+    for (const auto& [key, value] : metadata) image.metadata.emplace_back("glint:" + key, value);
 }
 
-void write_buffer(const fs::path& path, const OIIO::ImageSpec& spec, const float* pixels,
-                  OIIO::TypeDesc format) {
+void write_buffer(const fs::path& path, const FloatImage& image, PixelFormat format,
+                  bool unassociated_alpha) {
     write_atomically_to_path(path, [&](const fs::path& temp) {
-        auto out = OIIO::ImageOutput::create(temp.string());
-        if (!out) {
-            throw IoError("cannot write \"" + path.string() + "\": " + OIIO::geterror());
-        }
-        OIIO::ImageSpec file_spec = spec;
-        file_spec.set_format(format);
-        if (!out->open(temp.string(), file_spec)) {
-            throw IoError("cannot write \"" + path.string() + "\": " + out->geterror());
-        }
-        if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels)) {
-            throw IoError("cannot write \"" + path.string() + "\": " + out->geterror());
-        }
-        if (!out->close()) {
-            throw IoError("cannot write \"" + path.string() + "\": " + out->geterror());
+        try {
+            write_image_file(temp, image, format, unassociated_alpha);
+        } catch (const IoError& e) {
+            throw IoError("cannot write \"" + path.string() + "\": " + e.what());
         }
     });
 }
 
-OIIO::TypeDesc png_format(int bits) {
+PixelFormat png_format(int bits) {
     if (bits != 8 && bits != 16) {
         throw InputError("png bits = " + std::to_string(bits) + ", expected 8 or 16");
     }
-    return bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    return bits == 8 ? PixelFormat::UInt8 : PixelFormat::UInt16;
 }
 
 }  // namespace
@@ -64,16 +53,11 @@ void write_rgba_image(const fs::path& path, const RgbaImage& image,
     if (ext != ".png" && ext != ".exr") {
         throw InputError("image \"" + path.string() + "\": extension must be .png or .exr");
     }
-    OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"R", "G", "B", "A"};
-    spec.alpha_channel = 3;
-    add_metadata(spec, metadata);
-    if (ext == ".png") {
-        // note: PNG stores straight (unassociated) alpha; our colour is not premultiplied.
-        spec.attribute("oiio:UnassociatedAlpha", 1);
-    }
-    write_buffer(path, spec, image.pixels.data(),
-                 ext == ".png" ? png_format(png_bits) : OIIO::TypeDesc::HALF);
+    FloatImage file{image.width, image.height, {"R", "G", "B", "A"}, 3, -1, image.pixels, {}};
+    add_metadata(file, metadata);
+    // note: PNG stores straight (unassociated) alpha; our colour is not premultiplied.
+    const bool png = ext == ".png";
+    write_buffer(path, file, png ? png_format(png_bits) : PixelFormat::Half, png);
 }
 
 void write_frame_image(const fs::path& path, const Frame& frame, const View& view,
@@ -100,7 +84,14 @@ void write_frame_image(const fs::path& path, const Frame& frame, const View& vie
     // EXR: shaded colour + the raw numbers, all float (no 8- or 16-bit quantisation).
     constexpr int kChannels = 9;
     const std::size_t n = frame.pixel_count();
-    std::vector<float> pixels(kChannels * n);
+    FloatImage file{frame.width,
+                    frame.height,
+                    {"R", "G", "B", "A", "N.x", "N.y", "N.z", "Z", "id"},
+                    3,
+                    7,
+                    std::vector<float>(kChannels * n),
+                    {}};
+    std::vector<float>& pixels = file.pixels;
     for (std::size_t p = 0; p < n; ++p) {
         float* px = &pixels[kChannels * p];
         for (int c = 0; c < 4; ++c) px[c] = shaded.pixels[4 * p + static_cast<std::size_t>(c)];
@@ -109,12 +100,8 @@ void write_frame_image(const fs::path& path, const Frame& frame, const View& vie
         px[8] = frame.primitive_id[p] == kNoPrimitive ? -1.0f
                                                       : static_cast<float>(frame.primitive_id[p]);
     }
-    OIIO::ImageSpec spec(frame.width, frame.height, kChannels, OIIO::TypeDesc::FLOAT);
-    spec.channelnames = {"R", "G", "B", "A", "N.x", "N.y", "N.z", "Z", "id"};
-    spec.alpha_channel = 3;
-    spec.z_channel = 7;
-    add_metadata(spec, metadata);
-    write_buffer(path, spec, pixels.data(), OIIO::TypeDesc::FLOAT);
+    add_metadata(file, metadata);
+    write_buffer(path, file, PixelFormat::Float, false);
 }
 
 }  // namespace glint

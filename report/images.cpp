@@ -4,27 +4,20 @@
 #include "mesh/error.h"
 #include "report/detail/canvas.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <utility>
 
 namespace glint {
 
 namespace fs = std::filesystem;
-using OIIO::ImageBuf;
-using OIIO::ImageSpec;
-using OIIO::ROI;
-using OIIO::TypeDesc;
-namespace IBA = OIIO::ImageBufAlgo;
 
 namespace {
 
-void draw_text(ImageBuf& dst, int x, int y, const std::string& text, int size) {
+void draw_text(Canvas& dst, int x, int y, const std::string& text, int size) {
     detail::draw_text(dst, x, y, text, size);
 }
 
@@ -34,10 +27,8 @@ std::string format_value(double v, const std::string& unit) {
     return buf;
 }
 
-// RGB float image of `image` coloured by `scale`, NaN drawn grey.
-ImageBuf colour_image(const ScalarImage& image, const ColorScale& scale) {
-    ImageSpec spec(image.width, image.height, 1, TypeDesc::FLOAT);
-    ImageBuf norm(spec);
+// `image` coloured by `scale` (3 floats per pixel), NaN drawn grey.
+std::vector<float> colour_values(const ScalarImage& image, const ColorScale& scale) {
     std::vector<float> scaled(image.values.size());
     const double span = scale.high > scale.low ? scale.high - scale.low : 1.0;
     for (std::size_t i = 0; i < scaled.size(); ++i) {
@@ -45,27 +36,23 @@ ImageBuf colour_image(const ScalarImage& image, const ColorScale& scale) {
         scaled[i] =
             std::isnan(v) ? 0.0f : static_cast<float>(std::clamp((v - scale.low) / span, 0.0, 1.0));
     }
-    norm.set_pixels(ROI(0, image.width, 0, image.height, 0, 1, 0, 1), TypeDesc::FLOAT,
-                    scaled.data());
-    const auto knots = detail::diverging_knots();
-    ImageBuf rgb =
-        scale.map == "diverging"
-            ? IBA::color_map(norm, 0, 9, 3, OIIO::cspan<float>(knots.data(), knots.size()))
-            : IBA::color_map(norm, 0, scale.map);
-    if (rgb.has_error()) throw IoError("colour map '" + scale.map + "': " + rgb.geterror());
-    // Grey where there is no data (patched in a plain buffer: per-pixel setpixel is slow).
-    const ROI all(0, image.width, 0, image.height, 0, 1, 0, 3);
-    std::vector<float> px(image.values.size() * 3);
-    rgb.get_pixels(all, TypeDesc::FLOAT, px.data());
+    std::vector<float> px = scale.map == "diverging" ? color_map(scaled, detail::diverging_knots())
+                                                     : color_map(scaled, scale.map);
     for (std::size_t i = 0; i < image.values.size(); ++i)
         if (std::isnan(image.values[i]))
             px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = scale.no_data_grey;
-    rgb.set_pixels(all, TypeDesc::FLOAT, px.data());
-    return rgb;
+    return px;
+}
+
+Canvas colour_image(const ScalarImage& image, const ColorScale& scale) {
+    const std::vector<float> px = colour_values(image, scale);
+    std::vector<std::uint8_t> bytes(px.size());
+    std::transform(px.begin(), px.end(), bytes.begin(), to_byte);
+    return Canvas(image.width, image.height, 3, std::move(bytes));
 }
 
 // A vertical colour bar (high at the top) of the given size.
-ImageBuf colour_bar(int width, int height, const ColorScale& scale) {
+Canvas colour_bar(int width, int height, const ColorScale& scale) {
     ScalarImage ramp{
         width, height,
         std::vector<float>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
@@ -76,11 +63,8 @@ ImageBuf colour_bar(int width, int height, const ColorScale& scale) {
     return colour_image(ramp, scale);
 }
 
-void write_png(const ImageBuf& buf, const fs::path& path) {
-    write_atomically_to_path(path, [&](const fs::path& temp) {
-        if (!buf.write(temp.string(), TypeDesc::UINT8))
-            throw IoError("cannot write \"" + path.string() + "\": " + buf.geterror());
-    });
+void write_png(const Canvas& canvas, const fs::path& path) {
+    write_file_atomically(path, encode_png(canvas));
 }
 
 }  // namespace
@@ -89,9 +73,7 @@ std::vector<Rgb8> colorize(const std::vector<float>& values, const ColorScale& s
     std::vector<Rgb8> out(values.size());
     if (values.empty()) return out;
     const ScalarImage row{static_cast<int>(values.size()), 1, values};
-    const ImageBuf rgb = colour_image(row, scale);
-    std::vector<float> px(values.size() * 3);
-    rgb.get_pixels(ROI(0, row.width, 0, 1, 0, 1, 0, 3), TypeDesc::FLOAT, px.data());
+    const std::vector<float> px = colour_values(row, scale);
     for (std::size_t i = 0; i < values.size(); ++i)
         for (std::size_t c = 0; c < 3; ++c)
             out[i][c] = static_cast<std::uint8_t>(
@@ -111,18 +93,14 @@ void write_heatmap_png(const ScalarImage& image, const ColorScale& scale, const 
     // title stay readable.
     constexpr int kMinWidth = 400;
     const int factor = std::max(1, (kMinWidth + image.width - 1) / std::max(1, image.width));
-    ImageBuf picture = colour_image(image, scale);
-    if (factor > 1)
-        picture = IBA::resample(picture, false,
-                                ROI(0, image.width * factor, 0, image.height * factor, 0, 1, 0, 3));
+    Canvas picture = colour_image(image, scale);
+    if (factor > 1) picture = resize_nearest(picture, image.width * factor, image.height * factor);
     const int pw = image.width * factor;
     const int ph = image.height * factor;
-    ImageBuf sheet(ImageSpec(pw + kBar, std::max(ph + kTitle, 120), 3, TypeDesc::FLOAT));
-    const float black[3] = {0.05f, 0.05f, 0.05f};
-    IBA::fill(sheet, black);
-    IBA::paste(sheet, 0, kTitle, 0, 0, picture);
+    Canvas sheet(pw + kBar, std::max(ph + kTitle, 120), 3, Rgb{0.05f, 0.05f, 0.05f});
+    sheet.paste(picture, 0, kTitle);
     const int bar_h = std::max(40, ph - 20);
-    IBA::paste(sheet, pw + 8, kTitle + 10, 0, 0, colour_bar(16, bar_h, scale));
+    sheet.paste(colour_bar(16, bar_h, scale), pw + 8, kTitle + 10);
     draw_text(sheet, 4, 17, title, 14);
     draw_text(sheet, pw + 28, kTitle + 20, format_value(scale.high, scale.unit), 12);
     draw_text(sheet, pw + 28, kTitle + 10 + bar_h, format_value(scale.low, scale.unit), 12);
@@ -135,22 +113,21 @@ void write_exr_channels(const fs::path& path, int width, int height,
                         const std::vector<std::pair<std::string, std::string>>& metadata) {
     GLINT_ASSERT(names.size() == channels.size() && !names.empty(),
                  "EXR channels and names differ");
-    const int nc = static_cast<int>(names.size());
-    ImageSpec spec(width, height, nc, TypeDesc::FLOAT);
-    spec.channelnames = names;
-    for (const auto& [key, value] : metadata) spec.attribute("glint:" + key, value);
-    ImageBuf buf(spec);
+    FloatImage image{width, height, names, -1, -1, {}, {}};
+    for (const auto& [key, value] : metadata) image.metadata.emplace_back("glint:" + key, value);
     const std::size_t n = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
-    std::vector<float> interleaved(n * static_cast<std::size_t>(nc));
+    image.pixels.resize(n * names.size());
     for (std::size_t c = 0; c < channels.size(); ++c) {
         GLINT_ASSERT(channels[c]->size() == n, "EXR channel size mismatch");
         for (std::size_t i = 0; i < n; ++i)
-            interleaved[i * channels.size() + c] = (*channels[c])[i];
+            image.pixels[i * channels.size() + c] = (*channels[c])[i];
     }
-    buf.set_pixels(ROI(0, width, 0, height, 0, 1, 0, nc), TypeDesc::FLOAT, interleaved.data());
     write_atomically_to_path(path, [&](const fs::path& temp) {
-        if (!buf.write(temp.string(), TypeDesc::FLOAT))
-            throw IoError("cannot write \"" + path.string() + "\": " + buf.geterror());
+        try {
+            write_image_file(temp, image, PixelFormat::Float);
+        } catch (const IoError& e) {
+            throw IoError("cannot write \"" + path.string() + "\": " + e.what());
+        }
     });
 }
 

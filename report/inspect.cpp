@@ -1,6 +1,7 @@
 #include "report/inspect.h"
 
 #include "analysis/asymmetry.h"
+#include "image/image_ops.h"
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/fault_injection.h"
@@ -69,8 +70,10 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     options.validate();
     // The output location is checked (and its staging folder made) before the long work.
     std::optional<OutputFolder> folder;
-    if (!options.exports.output.empty())
+    if (!options.exports.output.empty()) {
         folder.emplace(options.exports.output, options.exports.replace_existing);
+        preload_image_io();  // a missing image plugin stops the run now, not after the sweep
+    }
     const bool writes_exr = folder && options.exports.write_exr;
     const AnalysisOptions used = analysis_for(options, writes_exr);
 

@@ -25,8 +25,6 @@
 namespace glint {
 
 namespace fs = std::filesystem;
-using OIIO::ImageBuf;
-namespace IBA = OIIO::ImageBufAlgo;
 
 namespace {
 
@@ -199,8 +197,8 @@ class PictureWriter {
                                       detail::PaintStyle style) const;
     std::string view_title(const PlannedView& pv, const View& shown) const;
     std::string view_caption(const PlannedView& pv) const;
-    ImageBuf view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
-                          const ImageBuf& blank);
+    Canvas view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
+                        const Canvas& blank);
     detail::ChartInput chart_input(std::size_t z) const;
     std::vector<int> mosaic_tiles(std::size_t z) const;
 
@@ -338,17 +336,17 @@ std::string PictureWriter::view_caption(const PlannedView& pv) const {
 }
 
 // `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
-ImageBuf PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
-                                     const ImageBuf& blank) {
+Canvas PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
+                                   const Canvas& blank) {
     const auto painted = paint_view(pv, shown, frame, {});
-    ImageBuf sheet = blank;
+    Canvas sheet = blank;
     const std::string title = view_title(pv, shown);
-    detail::draw_title(sheet, detail::fit_text(title, 15, sheet.spec().width - 16));
-    IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, painted.image);
+    detail::draw_title(sheet, detail::fit_text(title, 15, sheet.width() - 16));
+    sheet.paste(painted.image, 0, detail::kTitleHeight);
     const std::string unit = unit_or_units(result_);
     const std::string caption = detail::fit_text(view_caption(pv), 12, frame.width - 12);
     detail::draw_text(sheet, 6, detail::kTitleHeight + 16, caption, 12, detail::kText,
-                      IBA::TextAlignX::Left, 2);
+                      detail::TextAlign::Left, 2);
     detail::draw_region_numbers(
         sheet, 0, detail::kTitleHeight, frame.width, frame.height, painted.anchors, 14, 30,
         {detail::view_scale_bar_box(shown, unit), detail::text_box(caption, 12, 6, 16)});
@@ -364,7 +362,7 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
         if (options_.write_views || best_.count(pv.view.index)) wanted.push_back(pv.view.index);
     std::vector<View> shown;
     // Per zoom and kind (measured or atlas): every view of a zoom has one size.
-    std::map<std::pair<std::size_t, bool>, ImageBuf> blank;
+    std::map<std::pair<std::size_t, bool>, Canvas> blank;
     const auto blank_key = [&](const PlannedView& pv) {
         return std::pair{static_cast<std::size_t>(pv.view.zoom_index),
                          measurement(pv.view.index) != nullptr};
@@ -386,8 +384,8 @@ void PictureWriter::write_views(const OutputFolder& folder, PictureOutput& out,
         renderer_, shown, threads_,
         [&](std::size_t slot, std::size_t k, const Frame& frame) {
             const auto& pv = plan.views[static_cast<std::size_t>(wanted[k])];
-            const ImageBuf& sheet = blank.at(blank_key(pv));
-            std::string png = detail::encode_png(view_picture(pv, shown[k], frame, sheet));
+            const Canvas& sheet = blank.at(blank_key(pv));
+            std::string png = encode_png(view_picture(pv, shown[k], frame, sheet));
             if (options_.write_views)
                 write_file_atomically(
                     folder.file(fs::path("views") / (view_file_stem(pv.view) + ".png")), png);
@@ -456,16 +454,16 @@ std::vector<int> PictureWriter::mosaic_tiles(std::size_t z) const {
 std::string PictureWriter::mosaic(std::size_t z) {
     const auto& plan = result_.sweep.plan;
     const int t = options_.mosaic_tile;
-    const ImageBuf chart = detail::view_chart(chart_input(z));
+    const Canvas chart = detail::view_chart(chart_input(z));
     const std::vector<int> tiles = mosaic_tiles(z);
     std::vector<View> shown;
     for (int v : tiles)
         shown.push_back(
             upright(resized(plan.views[static_cast<std::size_t>(v)].view, t), orientation_));
-    const int per_row = std::max(kTilesPerRow, (chart.spec().width + kGap) / (t + kGap));
+    const int per_row = std::max(kTilesPerRow, (chart.width() + kGap) / (t + kGap));
     const int tile_rows = (static_cast<int>(tiles.size()) + per_row - 1) / per_row;
-    const int width = std::max(chart.spec().width, per_row * (t + kGap));
-    const int height = chart.spec().height + tile_rows * (t + kTileCaption + kGap) + kGap;
+    const int width = std::max(chart.width(), per_row * (t + kGap));
+    const int height = chart.height() + tile_rows * (t + kTileCaption + kGap) + kGap;
     const bool measured =
         std::any_of(share_.begin(), share_.end(), [](double s) { return !std::isnan(s); });
     char title[220];
@@ -475,10 +473,10 @@ std::string PictureWriter::mosaic(std::size_t z) {
                   z, detail::format_number(plan.footprints[z]).c_str(),
                   unit_or_units(result_).c_str(), result_.decisions[z].regions.regions.size(),
                   tiles.size());
-    ImageBuf sheet = detail::framed_sheet(width, height, detail::fit_text(title, 15, width + 250),
-                                          measured ? zooms_[z].measured_legend : zooms_[z].legend);
-    IBA::paste(sheet, 0, detail::kTitleHeight, 0, 0, chart);
-    const int tiles_top = detail::kTitleHeight + chart.spec().height + kGap;
+    Canvas sheet = detail::framed_sheet(width, height, detail::fit_text(title, 15, width + 250),
+                                        measured ? zooms_[z].measured_legend : zooms_[z].legend);
+    sheet.paste(chart, 0, detail::kTitleHeight);
+    const int tiles_top = detail::kTitleHeight + chart.height() + kGap;
     std::vector<detail::PaintedSurface> painted(detail::batch_size(threads_));
     const std::string unit = unit_or_units(result_);
     detail::render_in_batches(
@@ -490,12 +488,13 @@ std::string PictureWriter::mosaic(std::size_t z) {
         },
         [&](std::size_t slot, std::size_t k) {
             const PlannedView& pv = plan.views[static_cast<std::size_t>(tiles[k])];
-            const auto& tile = painted[slot].image.spec();
+            const Canvas& tile = painted[slot].image;
             const int x = static_cast<int>(k) % per_row * (t + kGap);
             const int y = tiles_top + static_cast<int>(k) / per_row * (t + kTileCaption + kGap);
-            IBA::paste(sheet, x, y, 0, 0, painted[slot].image);
-            detail::draw_region_numbers(sheet, x, y, tile.width, tile.height, painted[slot].anchors,
-                                        12, 8, {detail::view_scale_bar_box(shown[k], unit)});
+            sheet.paste(painted[slot].image, x, y);
+            detail::draw_region_numbers(sheet, x, y, tile.width(), tile.height(),
+                                        painted[slot].anchors, 12, 8,
+                                        {detail::view_scale_bar_box(shown[k], unit)});
             detail::draw_view_scale_bar(sheet, x, y, shown[k], unit);
             const double share = share_[static_cast<std::size_t>(pv.view.index)];
             char caption[120];
@@ -505,10 +504,10 @@ std::string PictureWriter::mosaic(std::size_t z) {
                           std::isnan(share)
                               ? ""
                               : (", " + detail::format_number(100.0 * share) + " %").c_str());
-            detail::draw_text(sheet, x + 2, y + tile.height + 13,
+            detail::draw_text(sheet, x + 2, y + tile.height() + 13,
                               detail::fit_text(caption, 11, t - 4), 11, detail::kDimText);
         });
-    return detail::encode_png(sheet);
+    return encode_png(sheet);
 }
 
 }  // namespace

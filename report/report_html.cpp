@@ -8,7 +8,7 @@
 #include "report/detail/canvas.h"
 #include "scanner/metric.h"
 
-#include <OpenImageIO/strutil.h>
+#include <openssl/evp.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -34,11 +34,21 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // note: typed arrays are read in the page with the machine's byte order; every machine glint
 // and browsers run on is little-endian, as the arrays are written here.
+// Base64 of bytes (OpenSSL's encoder, one line without breaks).
+std::string base64(std::string_view bytes) {
+    std::string out(4 * ((bytes.size() + 2) / 3), '\0');
+    const int n = EVP_EncodeBlock(reinterpret_cast<unsigned char*>(out.data()),
+                                  reinterpret_cast<const unsigned char*>(bytes.data()),
+                                  static_cast<int>(bytes.size()));
+    out.resize(static_cast<std::size_t>(n));
+    return out;
+}
+
 template <typename T>
 std::string base64_of(const std::vector<T>& values) {
     static_assert(std::endian::native == std::endian::little,
                   "report.html arrays are little-endian");
-    return OIIO::Strutil::base64_encode(
+    return base64(
         std::string_view(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T)));
 }
 
@@ -150,14 +160,10 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
 // OIIO's inferno sampled at 17 points: the page's sequential map is the one OIIO draws.
 std::vector<float> inferno_knots() {
     constexpr int kKnots = 17;
-    OIIO::ImageBuf ramp(OIIO::ImageSpec(kKnots, 1, 1, OIIO::TypeDesc::FLOAT));
-    std::vector<float> t(kKnots), rgb(3 * kKnots);
+    std::vector<float> t(kKnots);
     for (int i = 0; i < kKnots; ++i)
         t[static_cast<std::size_t>(i)] = static_cast<float>(i) / (kKnots - 1);
-    ramp.set_pixels(OIIO::ROI(0, kKnots, 0, 1, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, t.data());
-    const OIIO::ImageBuf c = OIIO::ImageBufAlgo::color_map(ramp, 0, "inferno");
-    c.get_pixels(OIIO::ROI(0, kKnots, 0, 1, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, rgb.data());
-    return rgb;
+    return color_map(t, "inferno");
 }
 
 // A mesh's arrays for the page: float32 positions, uint32 indices and, when it has them,
@@ -224,9 +230,7 @@ std::uint64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
            static_cast<std::uint64_t>((z + kBias) & kMask);
 }
 
-std::string data_uri(const std::string& png) {
-    return "data:image/png;base64," + OIIO::Strutil::base64_encode(png);
-}
+std::string data_uri(const std::string& png) { return "data:image/png;base64," + base64(png); }
 
 // JSON text safe inside <script type="application/json">: "</" (as in "</script>") and the
 // HTML comment opener are escaped, which JSON allows ("\/") or leaves equal in meaning.

@@ -15,9 +15,6 @@
 
 namespace glint::detail {
 
-using OIIO::ImageBuf;
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 constexpr int kPanel = 320;    // px: one direction
@@ -48,17 +45,16 @@ struct PanelText {
     std::string text;
     int x = 0;
     int y = 0;  ///< baseline
-    IBA::TextAlignX align = IBA::TextAlignX::Left;
+    TextAlign align = TextAlign::Left;
 };
 
 // The direction names at the panel's edges, as a radiologist's viewer puts them: what lies
 // up, left and right in the picture.
 std::vector<PanelText> edge_letters(int size, const Orientation& o, const View& v) {
     const auto& axes = v.camera.world_from_camera.linear();
-    return {
-        {with_minus_sign(o.letter(axes.col(1))), size / 2, 16, IBA::TextAlignX::Center},
-        {with_minus_sign(o.letter(-axes.col(0))), 6, size / 2 + 5, IBA::TextAlignX::Left},
-        {with_minus_sign(o.letter(axes.col(0))), size - 6, size / 2 + 5, IBA::TextAlignX::Right}};
+    return {{with_minus_sign(o.letter(axes.col(1))), size / 2, 16, TextAlign::Center},
+            {with_minus_sign(o.letter(-axes.col(0))), 6, size / 2 + 5, TextAlign::Left},
+            {with_minus_sign(o.letter(axes.col(0))), size - 6, size / 2 + 5, TextAlign::Right}};
 }
 
 // The margin each panel keeps free of the surface, pixels: left and right for the letters
@@ -77,9 +73,9 @@ Margin text_margin(const std::vector<View>& views, const Orientation& o) {
     for (const View& v : views)
         for (const PanelText& t : edge_letters(kPanel, o, v)) {
             const PixelBox b = text_box(t.text, kCaptionFont, t.x, t.y, t.align);
-            if (t.align == IBA::TextAlignX::Center) {  // the letter above
+            if (t.align == TextAlign::Center) {  // the letter above
                 m.y = std::max(m.y, b.y1 + kGap);
-            } else if (t.align == IBA::TextAlignX::Left) {
+            } else if (t.align == TextAlign::Left) {
                 m.x = std::max(m.x, b.x1 + kGap);
             } else {
                 m.x = std::max(m.x, kPanel - b.x0 + kGap);
@@ -186,16 +182,16 @@ void record_surface(OverviewLayout* layout, const Frame& frame, int x, int y) {
 // in the margin their framing keeps free) or in the strip above it (close-ups), shortened to
 // fit; its scale bar at the bottom right; `letters` at its edges; and the region numbers
 // placed off all of them.
-void place(ImageBuf& sheet, int x, int y, const PaintedSurface& painted, const View& view,
+void place(Canvas& sheet, int x, int y, const PaintedSurface& painted, const View& view,
            const std::string& caption, const std::string& unit, bool caption_below,
            const std::vector<PanelText>& letters, OverviewLayout* layout) {
-    const int w = painted.image.spec().width, h = painted.image.spec().height;
-    IBA::paste(sheet, x, y, 0, 0, painted.image);
+    const int w = painted.image.width(), h = painted.image.height();
+    sheet.paste(painted.image, x, y);
     const PixelBox bar = view_scale_bar_box(view, unit);
     // the caption stops short of the scale bar when both share the bottom edge
     const int caption_room = (caption_below ? bar.x0 : w) - 16;
     const PanelText title{fit_text(caption, kCaptionFont, caption_room), 8,
-                          caption_below ? h - 8 : 16 - kTitleStrip, IBA::TextAlignX::Left};
+                          caption_below ? h - 8 : 16 - kTitleStrip, TextAlign::Left};
     std::vector<PixelBox> reserved{bar};
     for (const auto& t : letters)
         reserved.push_back(text_box(t.text, kCaptionFont, t.x, t.y, t.align));
@@ -224,17 +220,16 @@ PaintedSurface painted_panel(const OverviewInput& in, const Frame& frame, const 
     for (const auto& t : letters)
         clear.push_back(text_box(t.text, kCaptionFont, t.x, t.y, t.align));
     if (!caption.empty())
-        clear.push_back(
-            text_box(caption, kCaptionFont, 8, frame.height - 8, IBA::TextAlignX::Left));
+        clear.push_back(text_box(caption, kCaptionFont, 8, frame.height - 8, TextAlign::Left));
     label = draw_symmetry_plane(painted.image, frame, view, *in.mesh, in.fields->region, *in.mirror,
                                 clear);
     return painted;
 }
 
-void draw_plane_label(ImageBuf& sheet, int x, int y, const std::optional<PlaneLabel>& label) {
+void draw_plane_label(Canvas& sheet, int x, int y, const std::optional<PlaneLabel>& label) {
     if (label)
         draw_text(sheet, x + label->x, y + label->y, std::string(kSymmetryPlaneLabel), 12,
-                  kSymmetryPlane, IBA::TextAlignX::Left, 2);
+                  kSymmetryPlane, TextAlign::Left, 2);
 }
 
 }  // namespace
@@ -259,9 +254,9 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
     std::vector<std::string> footer = in.footer;
     if (in.mirror != nullptr && !footer.empty())
         footer.push_back(symmetry_plane_footer(*in.mirror, in.unit));
-    ImageBuf sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, legend);
+    Canvas sheet = framed_sheet(3 * kPanel, 2 * kPanel + close_h, title, legend);
     if (in.layout != nullptr) {
-        *in.layout = OverviewLayout{.width = sheet.spec().width, .height = sheet.spec().height};
+        *in.layout = OverviewLayout{.width = sheet.width(), .height = sheet.height()};
         in.layout->surface.assign(static_cast<std::size_t>(in.layout->width * in.layout->height),
                                   0);
     }

@@ -2,21 +2,15 @@
 
 #include "mesh/error.h"
 
-#include <OpenImageIO/filesystem.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 namespace glint::detail {
 
 namespace fs = std::filesystem;
-using OIIO::ImageBuf;
-using OIIO::ImageSpec;
-using OIIO::ROI;
-using OIIO::TypeDesc;
-namespace IBA = OIIO::ImageBufAlgo;
 
 namespace {
 
@@ -37,7 +31,7 @@ constexpr std::array<float, 27> kRdBu = {
 
 std::span<const float> diverging_knots() { return kRdBu; }
 
-ImageBuf diverging_image(const std::vector<float>& values, int width, int height, double limit) {
+Canvas diverging_image(const std::vector<float>& values, int width, int height, double limit) {
     GLINT_ASSERT(
         values.size() == static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
         "diverging image: size does not match its values");
@@ -48,23 +42,17 @@ ImageBuf diverging_image(const std::vector<float>& values, int width, int height
         t[i] =
             std::isnan(v) ? 0.5f : static_cast<float>(std::clamp(0.5 + 0.5 * v / limit, 0.0, 1.0));
     }
-    ImageBuf scalar(ImageSpec(width, height, 1, TypeDesc::FLOAT));
-    scalar.set_pixels(ROI(0, width, 0, height, 0, 1, 0, 1), TypeDesc::FLOAT, t.data());
-    ImageBuf rgb = IBA::color_map(scalar, 0, 9, 3, kRdBu);
-    if (rgb.has_error()) throw IoError("diverging colour map: " + rgb.geterror());
-    return rgb;
+    const std::vector<float> rgb = color_map(t, kRdBu);
+    std::vector<std::uint8_t> bytes(rgb.size());
+    std::transform(rgb.begin(), rgb.end(), bytes.begin(), to_byte);
+    return Canvas(width, height, 3, std::move(bytes));
 }
 
-DivergingTable::DivergingTable() : rgb_(3 * (kEntries + 1)) {
-    ImageBuf ramp(ImageSpec(kEntries + 1, 1, 1, TypeDesc::FLOAT));
+DivergingTable::DivergingTable() {
     std::vector<float> t(kEntries + 1);
     for (int i = 0; i <= kEntries; ++i)
         t[static_cast<std::size_t>(i)] = static_cast<float>(i) / kEntries;
-    ramp.set_pixels(ROI(0, kEntries + 1, 0, 1, 0, 1, 0, 1), TypeDesc::FLOAT, t.data());
-    const ImageBuf rgb = IBA::color_map(ramp, 0, 9, 3, kRdBu);
-    if (rgb.has_error() ||
-        !rgb.get_pixels(ROI(0, kEntries + 1, 0, 1, 0, 1, 0, 3), TypeDesc::FLOAT, rgb_.data()))
-        throw IoError("diverging colour map: " + rgb.geterror());
+    rgb_ = color_map(t, kRdBu);
 }
 
 const DivergingTable& DivergingTable::get() {
@@ -83,41 +71,17 @@ Rgb DivergingTable::operator()(float value, double limit) const {
     return {a[0] + f * (a[3] - a[0]), a[1] + f * (a[4] - a[1]), a[2] + f * (a[5] - a[2])};
 }
 
-ImageBuf canvas(int width, int height, Rgb colour) {
-    ImageBuf buf(ImageSpec(width, height, 3, TypeDesc::UINT8));
-    IBA::fill(buf, colour);
-    return buf;
-}
+Canvas canvas(int width, int height, Rgb colour) { return Canvas(width, height, 3, colour); }
 
-void draw_box(ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, bool fill) {
-    IBA::render_box(dst, x0, y0, x1, y1, colour, fill);
-}
-
-void draw_tag(ImageBuf& dst, int x, int y, std::string_view text, int size) {
+void draw_tag(Canvas& dst, int x, int y, std::string_view text, int size) {
     const int w = text_width(text, size) + size / 2 + 2;
     const int h = size + size / 4 + 2;
     const int x0 = x - w / 2, y0 = y - h / 2;
-    draw_box(dst, x0, y0, x0 + w, y0 + h, {1.0f, 1.0f, 1.0f}, true);
+    draw_box(dst, x0, y0, x0 + w, y0 + h, Rgb{1.0f, 1.0f, 1.0f}, true);
     draw_box(dst, x0, y0, x0 + w, y0 + h, kOutline, false);
     // note: the baseline sits a fifth of the size above the box's bottom edge (DejaVu's
     // descent), so digits look centred.
-    draw_text(dst, x, y0 + h - 1 - size / 5 - 1, text, size, {0.0f, 0.0f, 0.0f},
-              IBA::TextAlignX::Center);
-}
-
-std::string encode_png(const ImageBuf& image) {
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput proxy(bytes);
-    ImageBuf copy = image;  // set_write_ioproxy changes the buffer's state
-    copy.set_write_ioproxy(&proxy);
-    // note: zlib level 1 with the "sub" row filter (libpng's PNG_FILTER_SUB = 16) encoded a
-    // 674 x 414 view picture in 6.7 ms instead of 19.8 ms (defaults: level 6, adaptive
-    // filters), the file 23 % larger (65 kB instead of 53 kB); the pixels are the same.
-    copy.specmod().attribute("png:compressionLevel", 1);
-    copy.specmod().attribute("png:filter", 16);
-    if (!copy.write("picture.png", TypeDesc::UINT8, "png"))
-        throw IoError("cannot encode a PNG picture: " + copy.geterror());
-    return std::string(bytes.begin(), bytes.end());
+    draw_text(dst, x, y0 + h - 1 - size / 5 - 1, text, size, {0.0f, 0.0f, 0.0f}, TextAlign::Center);
 }
 
 std::string format_number(double value, bool sign) {

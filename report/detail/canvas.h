@@ -1,12 +1,13 @@
-// Drawing for glint's pictures on OpenImageIO images (private to report/): text in DejaVu
-// Sans, the diverging colour map of the signed shape change, boxes, PNG encoding. Everything
-// but the text is ImageBufAlgo (render_box, color_map, fill); the text is FreeType's
-// (report/detail/text.cpp: OIIO 2.4's render_text mangles UTF-8); only what OIIO lacks is
-// written by hand elsewhere (shading, hatching, region contours: report/detail/surface_paint.h).
+// Drawing for glint's pictures on glint's canvas (image/canvas.h; private to report/): text in
+// DejaVu Sans, the diverging colour map of the signed shape change, tags. Colour maps, lines,
+// boxes and PNG encoding are OpenImageIO's, through the image plugin (image/image_ops.h); the
+// text is FreeType's (report/detail/text.cpp: OIIO 2.4's render_text mangles UTF-8); only
+// what OIIO lacks is written by hand elsewhere (shading, hatching, region contours:
+// report/detail/surface_paint.h).
 #pragma once
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
+#include "image/canvas.h"
+#include "image/image_ops.h"
 
 #include <algorithm>
 #include <array>
@@ -19,7 +20,8 @@
 
 namespace glint::detail {
 
-using Rgb = std::array<float, 3>;
+/// How text lies against its anchor point.
+enum class TextAlign { Left, Center, Right };
 
 /// Colours of the pictures (linear values written as 8-bit PNG).
 inline constexpr Rgb kBackground{0.125f, 0.135f, 0.155f};
@@ -45,9 +47,9 @@ inline constexpr Rgb kExaminedOnly{0.30f, 0.78f, 0.42f};
 [[nodiscard]] std::span<const float> diverging_knots();
 
 /// Colours `values` (one per pixel of a width × height image) on the diverging map with the
-/// symmetric range [−limit, +limit] (values beyond are clamped; NaN maps to 0). RGB float.
-[[nodiscard]] OIIO::ImageBuf diverging_image(const std::vector<float>& values, int width,
-                                             int height, double limit);
+/// symmetric range [−limit, +limit] (values beyond are clamped; NaN maps to 0).
+[[nodiscard]] Canvas diverging_image(const std::vector<float>& values, int width, int height,
+                                     double limit);
 
 /// The diverging map as a table for per-pixel use: ImageBufAlgo::color_map evaluated once at
 /// kEntries + 1 evenly spaced points of [0, 1]. The map is linear between its 9 knots, which
@@ -67,14 +69,9 @@ class DivergingTable {
     std::vector<float> rgb_;  ///< (kEntries + 1) × 3
 };
 
-/// A colour channel (0…1) as an 8-bit value, rounded as OpenImageIO converts.
-[[nodiscard]] inline std::uint8_t to_byte(float v) {
-    return static_cast<std::uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
-}
-
 /// A width × height RGB image of 8 bits per channel (what the PNG pictures store: drawing,
 /// copying and encoding need no conversion) filled with `colour`.
-[[nodiscard]] OIIO::ImageBuf canvas(int width, int height, Rgb colour = kBackground);
+[[nodiscard]] Canvas canvas(int width, int height, Rgb colour = kBackground);
 
 /// Whether the DejaVu font was found (text is decoration: without it pictures are unlabelled).
 [[nodiscard]] bool has_font();
@@ -88,10 +85,8 @@ class DivergingTable {
 /// UTF-8 text ("°", "²", "−", "×", "±") with its baseline-left (or the alignment given) at
 /// (x, y), drawn with FreeType (report/detail/text.cpp); `shadow` > 0 draws a dark halo of that
 /// radius so the text reads on any colour. Text that does not fit the image whole is not drawn.
-void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size,
-               Rgb colour = kText,
-               OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left,
-               int shadow = 0);
+void draw_text(Canvas& dst, int x, int y, std::string_view text, int size, Rgb colour = kText,
+               TextAlign align = TextAlign::Left, int shadow = 0);
 
 /// Width in pixels of `text`'s ink at `size` (an estimate when no font is found).
 [[nodiscard]] int text_width(std::string_view text, int size);
@@ -101,15 +96,8 @@ void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int siz
 /// word fits.
 [[nodiscard]] std::string fit_text(const std::string& text, int size, int max_width);
 
-/// A box from (x0, y0) to (x1, y1) inclusive, filled or outlined.
-void draw_box(OIIO::ImageBuf& dst, int x0, int y0, int x1, int y1, Rgb colour, bool fill);
-
 /// A number on a small white tag with a dark border, centred on (x, y): the id of a region.
-void draw_tag(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size);
-
-/// The image as PNG bytes (8 bits per channel; an 8-bit image is written as it is).
-/// \throw IoError with OIIO's message.
-[[nodiscard]] std::string encode_png(const OIIO::ImageBuf& image);
+void draw_tag(Canvas& dst, int x, int y, std::string_view text, int size);
 
 /// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set; negative
 /// numbers carry a minus sign (U+2212), not a hyphen.

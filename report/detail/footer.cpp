@@ -81,10 +81,10 @@ std::string utc_date_now() {
 
 int footer_height(std::size_t lines) { return 2 * kPad + static_cast<int>(lines) * kLine; }
 
-OIIO::ImageBuf with_footer(const OIIO::ImageBuf& sheet, const std::vector<std::string>& lines) {
-    const int w = sheet.spec().width, h = sheet.spec().height;
-    OIIO::ImageBuf out = canvas(w, h + footer_height(lines.size()));
-    OIIO::ImageBufAlgo::paste(out, 0, 0, 0, 0, sheet);
+Canvas with_footer(const Canvas& sheet, const std::vector<std::string>& lines) {
+    const int w = sheet.width(), h = sheet.height();
+    Canvas out = canvas(w, h + footer_height(lines.size()));
+    out.paste(sheet, 0, 0);
     draw_box(out, 0, h, w - 1, h, kDimText, true);  // a rule between the picture and its footer
     int y = h + kPad + kFont;
     for (const auto& line : lines) {

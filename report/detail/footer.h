@@ -30,7 +30,6 @@ struct FooterInput {
 [[nodiscard]] int footer_height(std::size_t lines);
 
 /// `sheet` with the footer below it (the sheet's width, footer_height(lines.size()) taller).
-[[nodiscard]] OIIO::ImageBuf with_footer(const OIIO::ImageBuf& sheet,
-                                         const std::vector<std::string>& lines);
+[[nodiscard]] Canvas with_footer(const Canvas& sheet, const std::vector<std::string>& lines);
 
 }  // namespace glint::detail

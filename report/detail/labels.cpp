@@ -6,8 +6,6 @@
 
 namespace glint::detail {
 
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 constexpr int kRings = 8;  // candidate rings around a region before giving up
@@ -51,11 +49,9 @@ PixelBox tag_box(std::string_view text, int font_size, int x, int y) {
     return {x - w / 2, y - h / 2, x - w / 2 + w + 1, y - h / 2 + h + 1};
 }
 
-PixelBox text_box(std::string_view text, int font_size, int x, int y, IBA::TextAlignX align) {
+PixelBox text_box(std::string_view text, int font_size, int x, int y, TextAlign align) {
     const int w = text_width(text, font_size);
-    const int left = align == IBA::TextAlignX::Center  ? x - w / 2
-                     : align == IBA::TextAlignX::Right ? x - w
-                                                       : x;
+    const int left = align == TextAlign::Center ? x - w / 2 : align == TextAlign::Right ? x - w : x;
     return {left - 2, y - font_size - 2, left + w + 2, y + font_size / 4 + 2};
 }
 
@@ -92,22 +88,22 @@ std::vector<PlacedLabel> place_labels(const std::vector<RegionAnchor>& anchors, 
     return placed;
 }
 
-void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width, int height,
+void draw_region_numbers(Canvas& dst, int x0, int y0, int width, int height,
                          const std::vector<RegionAnchor>& anchors, int font_size,
                          std::size_t min_pixels, const std::vector<PixelBox>& reserved) {
     draw_labels(dst, x0, y0, place_labels(anchors, width, height, font_size, min_pixels, reserved),
                 font_size);
 }
 
-void draw_labels(OIIO::ImageBuf& dst, int x0, int y0, const std::vector<PlacedLabel>& labels,
+void draw_labels(Canvas& dst, int x0, int y0, const std::vector<PlacedLabel>& labels,
                  int font_size) {
     for (const auto& l : labels) {
         if (!l.has_leader) continue;
         const int cx = (l.box.x0 + l.box.x1) / 2, cy = (l.box.y0 + l.box.y1) / 2;
         // A dark line under a light one: the leader reads on white and on the background.
-        IBA::render_line(dst, x0 + cx + 1, y0 + cy + 1, x0 + l.anchor_x + 1, y0 + l.anchor_y + 1,
-                         kOutline);
-        IBA::render_line(dst, x0 + cx, y0 + cy, x0 + l.anchor_x, y0 + l.anchor_y, kText);
+        draw_line(dst, x0 + cx + 1, y0 + cy + 1, x0 + l.anchor_x + 1, y0 + l.anchor_y + 1,
+                  kOutline);
+        draw_line(dst, x0 + cx, y0 + cy, x0 + l.anchor_x, y0 + l.anchor_y, kText);
     }
     for (const auto& l : labels)
         draw_tag(dst, x0 + (l.box.x0 + l.box.x1 - 1) / 2, y0 + (l.box.y0 + l.box.y1 - 1) / 2,

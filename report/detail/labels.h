@@ -28,9 +28,8 @@ struct PixelBox {
 [[nodiscard]] PixelBox tag_box(std::string_view text, int font_size, int x, int y);
 
 /// The box text drawn by draw_text at (x, y) covers (ascent above the baseline, descent below).
-[[nodiscard]] PixelBox text_box(
-    std::string_view text, int font_size, int x, int y,
-    OIIO::ImageBufAlgo::TextAlignX align = OIIO::ImageBufAlgo::TextAlignX::Left);
+[[nodiscard]] PixelBox text_box(std::string_view text, int font_size, int x, int y,
+                                TextAlign align = TextAlign::Left);
 
 struct PlacedLabel {
     std::int32_t id = 0;
@@ -50,12 +49,12 @@ struct PlacedLabel {
                                                     const std::vector<PixelBox>& reserved);
 
 /// Draws placed labels into a picture pasted at (x0, y0): leader lines first, then the tags.
-void draw_labels(OIIO::ImageBuf& dst, int x0, int y0, const std::vector<PlacedLabel>& labels,
+void draw_labels(Canvas& dst, int x0, int y0, const std::vector<PlacedLabel>& labels,
                  int font_size);
 
 /// Places (place_labels) and draws the numbers of a width × height picture pasted at (x0, y0),
 /// keeping off `reserved` (picture pixels: captions, edge letters, the scale bar).
-void draw_region_numbers(OIIO::ImageBuf& dst, int x0, int y0, int width, int height,
+void draw_region_numbers(Canvas& dst, int x0, int y0, int width, int height,
                          const std::vector<RegionAnchor>& anchors, int font_size,
                          std::size_t min_pixels, const std::vector<PixelBox>& reserved = {});
 

@@ -9,9 +9,6 @@
 
 namespace glint::detail {
 
-using OIIO::ImageBuf;
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 constexpr int kFont = 13;
@@ -32,19 +29,19 @@ int bar_row(double v, double limit, int top, int height) {
     return top + static_cast<int>(std::lround(t * (height - 1)));
 }
 
-void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c) {
+void draw_bar(Canvas& dst, int x, int top, int height, const LegendContent& c) {
     std::vector<float> ramp(static_cast<std::size_t>(height) * kBarWidth);
     for (int y = 0; y < height; ++y)
         for (int i = 0; i < kBarWidth; ++i)
             ramp[static_cast<std::size_t>(y * kBarWidth + i)] =
                 static_cast<float>(c.limit * (1.0 - 2.0 * y / std::max(1, height - 1)));
-    IBA::paste(dst, x, top, 0, 0, diverging_image(ramp, kBarWidth, height, c.limit));
+    dst.paste(diverging_image(ramp, kBarWidth, height, c.limit), x, top);
     draw_box(dst, x - 1, top - 1, x + kBarWidth, top + height, kDimText, false);
     const std::string unit = " " + c.unit;
     for (int k = -2; k <= 2; ++k) {
         const double v = c.limit * k / 2.0;
         const int row = bar_row(v, c.limit, top, height);
-        IBA::render_line(dst, x + kBarWidth, row, x + kBarWidth + 5, row, kText);
+        draw_line(dst, x + kBarWidth, row, x + kBarWidth + 5, row, kText);
         draw_text(dst, x + kBarWidth + 9, row + kFont / 2 - 1,
                   format_number(v, true) + (k == 2 ? unit : ""), kFont);
     }
@@ -52,24 +49,24 @@ void draw_bar(ImageBuf& dst, int x, int top, int height, const LegendContent& c)
         // The shape floor: below it a change is not told apart from tessellation and noise.
         for (double v : {c.shape_floor, -c.shape_floor}) {
             const int row = bar_row(v, c.limit, top, height);
-            IBA::render_line(dst, x - 4, row, x + kBarWidth - 1, row, kOutline);
+            draw_line(dst, x - 4, row, x + kBarWidth - 1, row, kOutline);
         }
     }
 }
 
 // A swatch hatched as the pictures hatch: rising stripes (or falling) every 7 px.
-void hatched_swatch(ImageBuf& dst, int x, int y, Rgb plain, Rgb stripe, bool rising) {
+void hatched_swatch(Canvas& dst, int x, int y, Rgb plain, Rgb stripe, bool rising) {
     const int s = kLine - 4;
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
             const bool on = rising ? (i + j) % 7 < 2 : (i + 7 * s - j) % 7 < 2;
-            if (x + i < dst.spec().width && y + j < dst.spec().height)
-                dst.setpixel(x + i, y + j, (on ? stripe : plain).data(), 3);
+            if (x + i < dst.width() && y + j < dst.height())
+                dst.set(x + i, y + j, on ? stripe : plain);
         }
 }
 
 // The rows of a view's own measurement: nothing behind, examined only, pale within the floor.
-int draw_measured_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
+int draw_measured_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     const int s = kLine - 4;
     hatched_swatch(dst, x, y, kNothingBehind, kNothingBehindStripe, true);
     draw_text(dst, x + s + 8, y + s - 2, "no examined surface behind it", kFont);
@@ -88,7 +85,7 @@ int draw_measured_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) 
     return y + kSwatchStep;
 }
 
-void draw_swatches(ImageBuf& dst, int x, int y, const LegendContent& c) {
+void draw_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     const int s = kLine - 4;
     if (c.measured) {
         y = draw_measured_swatches(dst, x, y, c);
@@ -147,7 +144,7 @@ int legend_min_height(const LegendContent& c) {
            static_cast<int>(c.lines.size() + 4) * kLine + 10;
 }
 
-void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c) {
+void draw_legend(Canvas& dst, int x, int y, int height, const LegendContent& c) {
     const int x0 = x + 12;
     int cy = y + 10 + kFont;
     const std::string what = c.measured ? "signed depth, this view ("
@@ -205,15 +202,15 @@ void draw_legend(ImageBuf& dst, int x, int y, int height, const LegendContent& c
     }
 }
 
-ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
-                      const LegendContent& legend) {
+Canvas framed_sheet(int picture_w, int picture_h, const std::string& title,
+                    const LegendContent& legend) {
     const int h = kTitleHeight + std::max(picture_h, legend_min_height(legend));
-    ImageBuf sheet = canvas(picture_w + kLegendWidth, h);
+    Canvas sheet = canvas(picture_w + kLegendWidth, h);
     draw_title(sheet, title);
     draw_legend(sheet, picture_w, kTitleHeight, h - kTitleHeight, legend);
     return sheet;
 }
 
-void draw_title(ImageBuf& sheet, const std::string& title) { draw_text(sheet, 8, 20, title, 15); }
+void draw_title(Canvas& sheet, const std::string& title) { draw_text(sheet, 8, 20, title, 15); }
 
 }  // namespace glint::detail

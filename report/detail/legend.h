@@ -50,15 +50,15 @@ inline constexpr int kLegendWidth = 290;
 [[nodiscard]] int legend_min_height(const LegendContent& content);
 
 /// Draws the legend into the panel at (x, y) of the given height.
-void draw_legend(OIIO::ImageBuf& dst, int x, int y, int height, const LegendContent& content);
+void draw_legend(Canvas& dst, int x, int y, int height, const LegendContent& content);
 
 /// A picture's canvas: the title line on top, the legend panel on the right; the picture
 /// (picture_w × picture_h) goes at (0, kTitleHeight). An empty title leaves the title line
 /// blank: draw_title() writes it into a copy (one legend drawn for many pictures).
-[[nodiscard]] OIIO::ImageBuf framed_sheet(int picture_w, int picture_h, const std::string& title,
-                                          const LegendContent& legend);
+[[nodiscard]] Canvas framed_sheet(int picture_w, int picture_h, const std::string& title,
+                                  const LegendContent& legend);
 
 /// The title line of a framed sheet.
-void draw_title(OIIO::ImageBuf& sheet, const std::string& title);
+void draw_title(Canvas& sheet, const std::string& title);
 
 }  // namespace glint::detail

@@ -5,8 +5,6 @@
 
 namespace glint::detail {
 
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 constexpr int kLabelFont = 12;
@@ -45,14 +43,14 @@ ScaleBar view_scale_bar(const View& view, const std::string& unit) {
                      view.camera.projection == Projection::Perspective);
 }
 
-void draw_scale_bar(OIIO::ImageBuf& dst, int right, int bottom, const ScaleBar& bar) {
+void draw_scale_bar(Canvas& dst, int right, int bottom, const ScaleBar& bar) {
     if (bar.pixels < 1) return;
     const int left = right - bar.pixels + 1;
     const int top = bottom - kScaleBarThickness + 1;
     // A dark border so the bar reads on white (no change) and on the background alike.
     draw_box(dst, left - 1, top - 1, right + 1, bottom + 1, kOutline, true);
     draw_box(dst, left, top, right, bottom, kScaleBarColour, true);
-    draw_text(dst, right, top - 5, bar.label, kLabelFont, kText, IBA::TextAlignX::Right, 2);
+    draw_text(dst, right, top - 5, bar.label, kLabelFont, kText, TextAlign::Right, 2);
 }
 
 PixelBox view_scale_bar_box(const View& view, const std::string& unit) {
@@ -64,8 +62,7 @@ PixelBox view_scale_bar_box(const View& view, const std::string& unit) {
     return {left - 3, top - 5 - kLabelFont - 3, right + 3, bottom + 3};
 }
 
-void draw_view_scale_bar(OIIO::ImageBuf& dst, int x0, int y0, const View& view,
-                         const std::string& unit) {
+void draw_view_scale_bar(Canvas& dst, int x0, int y0, const View& view, const std::string& unit) {
     draw_scale_bar(dst, x0 + view.camera.width - kMargin, y0 + view.camera.height - kMargin,
                    view_scale_bar(view, unit));
 }

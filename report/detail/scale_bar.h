@@ -48,14 +48,13 @@ struct ScaleBar {
 
 /// Draws the bar with its right end at x = `right` and its bottom row at y = `bottom`, the
 /// label above it, right-aligned. Nothing is drawn for a bar of 0 pixels.
-void draw_scale_bar(OIIO::ImageBuf& dst, int right, int bottom, const ScaleBar& bar);
+void draw_scale_bar(Canvas& dst, int right, int bottom, const ScaleBar& bar);
 
 /// What draw_view_scale_bar covers (bar and label), in the picture's pixels: region numbers
 /// keep off it.
 [[nodiscard]] PixelBox view_scale_bar_box(const View& view, const std::string& unit);
 
 /// The bar of `view` in the bottom right corner of a picture of that view pasted at (x0, y0).
-void draw_view_scale_bar(OIIO::ImageBuf& dst, int x0, int y0, const View& view,
-                         const std::string& unit);
+void draw_view_scale_bar(Canvas& dst, int x0, int y0, const View& view, const std::string& unit);
 
 }  // namespace glint::detail

@@ -11,10 +11,6 @@
 
 namespace glint::detail {
 
-using OIIO::ImageBuf;
-using OIIO::ROI;
-using OIIO::TypeDesc;
-
 namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -250,9 +246,7 @@ PaintedSurface paint_surface(const Mesh& mesh, const Frame& frame, const View& v
             c[k] = to_byte(cover * base[k] * shade + (1.0f - cover) * style.background[k]);
     }
     PaintedSurface out;
-    out.image = OIIO::ImageBuf(OIIO::ImageSpec(frame.width, frame.height, 3, TypeDesc::UINT8));
-    out.image.set_pixels(ROI(0, frame.width, 0, frame.height, 0, 1, 0, 3), TypeDesc::UINT8,
-                         rgb.data());
+    out.image = Canvas(frame.width, frame.height, 3, std::move(rgb));
     out.anchors = anchors_of(frame, px.region);
     return out;
 }

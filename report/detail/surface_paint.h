@@ -52,7 +52,7 @@ struct RegionAnchor {
 };
 
 struct PaintedSurface {
-    OIIO::ImageBuf image;               ///< RGB, 8 bits per channel, the frame's size
+    Canvas image;                       ///< RGB, 8 bits per channel, the frame's size
     std::vector<RegionAnchor> anchors;  ///< regions visible, by id
 };
 

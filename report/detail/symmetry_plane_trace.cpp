@@ -97,8 +97,8 @@ std::optional<PlaneLabel> label_place(const std::vector<std::uint8_t>& line,
 
 }  // namespace
 
-std::optional<PlaneLabel> draw_symmetry_plane(OIIO::ImageBuf& image, const Frame& frame,
-                                              const View& view, const Mesh& mesh,
+std::optional<PlaneLabel> draw_symmetry_plane(Canvas& image, const Frame& frame, const View& view,
+                                              const Mesh& mesh,
                                               std::span<const std::int32_t> region,
                                               const MirrorPictures& plane,
                                               std::span<const PixelBox> keep_clear) {
@@ -128,7 +128,7 @@ std::optional<PlaneLabel> draw_symmetry_plane(OIIO::ImageBuf& image, const Frame
             const auto p = static_cast<std::size_t>(y * w + x);
             if (line[p] && !touches_region(mesh, frame.primitive_id[p], region) &&
                 !near_any(keep_clear, x, y))
-                image.setpixel(x, y, kSymmetryPlane.data(), 3);
+                image.set(x, y, kSymmetryPlane);
         }
     if (!edge_on) return std::nullopt;
     return label_place(line, d, w, h, keep_clear);

@@ -37,8 +37,8 @@ inline constexpr std::string_view kSymmetryPlaneLabel = "symmetry plane";
 /// touches a region (`region`, per vertex, 0 = none), and those within 3 px of a box of
 /// `keep_clear` (the picture's letters and captions). Returns where the label fits on the
 /// background beside the line, clear of those boxes, in an edge-on view, if anywhere.
-std::optional<PlaneLabel> draw_symmetry_plane(OIIO::ImageBuf& image, const Frame& frame,
-                                              const View& view, const Mesh& mesh,
+std::optional<PlaneLabel> draw_symmetry_plane(Canvas& image, const Frame& frame, const View& view,
+                                              const Mesh& mesh,
                                               std::span<const std::int32_t> region,
                                               const MirrorPictures& plane,
                                               std::span<const PixelBox> keep_clear = {});

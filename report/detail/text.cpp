@@ -14,8 +14,6 @@
 
 namespace glint::detail {
 
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 // note: DejaVu comes with fonts-dejavu-core (tools/setup installs it).
@@ -125,14 +123,17 @@ Ink grown(const Ink& ink, int radius) {
 }
 
 // Blends `colour` over dst with the ink's coverage, the pen's start at (x, y).
-void blend(OIIO::ImageBuf& dst, int x, int y, const Ink& ink, const Rgb& colour) {
-    const OIIO::ROI roi(x + ink.x0, x + ink.x1, y + ink.y0, y + ink.y1, 0, 1, 0, 3);
-    std::vector<float> px(static_cast<std::size_t>(ink.width()) * ink.height() * 3);
-    dst.get_pixels(roi, OIIO::TypeDesc::FLOAT, px.data());
-    for (std::size_t i = 0; i < ink.alpha.size(); ++i)
-        for (std::size_t k = 0; k < 3; ++k)
-            px[3 * i + k] += ink.alpha[i] * (colour[k] - px[3 * i + k]);
-    dst.set_pixels(roi, OIIO::TypeDesc::FLOAT, px.data());
+void blend(Canvas& dst, int x, int y, const Ink& ink, const Rgb& colour) {
+    const int w = ink.width();
+    for (int row = 0; row < ink.height(); ++row)
+        for (int col = 0; col < w; ++col) {
+            const float a = ink.alpha[static_cast<std::size_t>(row * w + col)];
+            const int px = x + ink.x0 + col, py = y + ink.y0 + row;
+            if (a <= 0.0f || !dst.contains(px, py)) continue;
+            Rgb c = dst.rgb(px, py);
+            for (std::size_t k = 0; k < 3; ++k) c[k] += a * (colour[k] - c[k]);
+            dst.set(px, py, c);
+        }
 }
 
 }  // namespace
@@ -174,17 +175,16 @@ bool has_font() { return face() != nullptr; }
 
 bool font_has_glyph(char32_t c) { return face() != nullptr && FT_Get_Char_Index(face(), c) != 0; }
 
-void draw_text(OIIO::ImageBuf& dst, int x, int y, std::string_view text, int size, Rgb colour,
-               IBA::TextAlignX align, int shadow) {
+void draw_text(Canvas& dst, int x, int y, std::string_view text, int size, Rgb colour,
+               TextAlign align, int shadow) {
     const Ink ink = ink_of(text, size);
     if (ink.alpha.empty()) return;
-    const int left = align == IBA::TextAlignX::Center  ? x - ink.width() / 2
-                     : align == IBA::TextAlignX::Right ? x - ink.width()
-                                                       : x;
+    const int left = align == TextAlign::Center  ? x - ink.width() / 2
+                     : align == TextAlign::Right ? x - ink.width()
+                                                 : x;
     // Text that does not fit whole is left out: a cut word misreads.
-    const OIIO::ROI image = dst.roi();
-    if (left + ink.x0 - shadow < image.xbegin || left + ink.x1 + shadow > image.xend ||
-        y + ink.y0 - shadow < image.ybegin || y + ink.y1 + shadow > image.yend)
+    if (left + ink.x0 - shadow < 0 || left + ink.x1 + shadow > dst.width() ||
+        y + ink.y0 - shadow < 0 || y + ink.y1 + shadow > dst.height())
         return;
     if (shadow > 0) blend(dst, left, y, grown(ink, shadow), {0.0f, 0.0f, 0.0f});
     blend(dst, left, y, ink, colour);

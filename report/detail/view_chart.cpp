@@ -8,9 +8,6 @@
 
 namespace glint::detail {
 
-using OIIO::ImageBuf;
-namespace IBA = OIIO::ImageBufAlgo;
-
 namespace {
 
 constexpr int kLeft = 64;    // px: row labels
@@ -24,15 +21,13 @@ constexpr int kFont = 12;
 const std::vector<Rgb>& viridis_table() {
     static const std::vector<Rgb> table = [] {
         constexpr int n = 257;
-        ImageBuf ramp(OIIO::ImageSpec(n, 1, 1, OIIO::TypeDesc::FLOAT));
-        for (int i = 0; i < n; ++i) {
-            const float v = static_cast<float>(i) / (n - 1);
-            ramp.setpixel(i, 0, &v, 1);
-        }
-        const ImageBuf mapped = IBA::color_map(ramp, 0, "viridis");
-        GLINT_ASSERT(!mapped.has_error(), "color_map viridis: " + mapped.geterror());
+        std::vector<float> ramp(n);
+        for (int i = 0; i < n; ++i)
+            ramp[static_cast<std::size_t>(i)] = static_cast<float>(i) / (n - 1);
+        const std::vector<float> mapped = color_map(ramp, "viridis");
         std::vector<Rgb> t(n);
-        for (int i = 0; i < n; ++i) mapped.getpixel(i, 0, t[static_cast<std::size_t>(i)].data(), 3);
+        for (std::size_t i = 0; i < t.size(); ++i)
+            t[i] = {mapped[3 * i], mapped[3 * i + 1], mapped[3 * i + 2]};
         return t;
     }();
     return table;
@@ -52,21 +47,20 @@ std::string joined_ids(const std::vector<std::int32_t>& ids) {
     return ids.size() > 3 ? s + "…" : s;
 }
 
-void draw_cell(ImageBuf& img, int x, int y, const ChartCell& cell, double top) {
+void draw_cell(Canvas& img, int x, int y, const ChartCell& cell, double top) {
     const int w = kChartCellWidth - 2, h = kChartCellHeight - 2;
     if (!cell.measured) {
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i)
-                img.setpixel(x + i, y + j, ((i + j) % 7 < 2 ? kUnseenStripe : kUnseen).data(), 3);
-        draw_text(img, x + w / 2, y + h / 2 + 4, "n/a", kFont - 1, kOutline,
-                  IBA::TextAlignX::Center);
+                img.set(x + i, y + j, (i + j) % 7 < 2 ? kUnseenStripe : kUnseen);
+        draw_text(img, x + w / 2, y + h / 2 + 4, "n/a", kFont - 1, kOutline, TextAlign::Center);
         return;
     }
     const Rgb c = chart_colour(cell.share, top);
     draw_box(img, x, y, x + w - 1, y + h - 1, c, true);
     const float luminance = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
     draw_text(img, x + w / 2, y + h - 6, percent(cell.share), kFont - 1,
-              luminance > 0.45f ? kOutline : kText, IBA::TextAlignX::Center);
+              luminance > 0.45f ? kOutline : kText, TextAlign::Center);
     if (cell.best_of.empty()) return;
     // A region's best view: framed in white, the regions' ids on a tag.
     draw_box(img, x, y, x + w - 1, y + h - 1, {1, 1, 1}, false);
@@ -74,12 +68,12 @@ void draw_cell(ImageBuf& img, int x, int y, const ChartCell& cell, double top) {
     draw_tag(img, x + w / 2, y + 10, joined_ids(cell.best_of), kFont - 2);
 }
 
-void draw_key(ImageBuf& img, int x, int y, double top) {
+void draw_key(Canvas& img, int x, int y, double top) {
     for (int i = 0; i < kKeyWidth; ++i) {
         const Rgb c = chart_colour(top * i / (kKeyWidth - 1), top);
         draw_box(img, x + i, y, x + i, y + 9, c, true);
     }
-    draw_text(img, x - 6, y + 10, "0 %", kFont, kText, IBA::TextAlignX::Right);
+    draw_text(img, x - 6, y + 10, "0 %", kFont, kText, TextAlign::Right);
     draw_text(img, x + kKeyWidth + 6, y + 10, percent(top), kFont);
     draw_text(img, x, y + 28, "share of the view's compared pixels beyond the floor", kFont,
               kDimText);
@@ -115,23 +109,22 @@ double chart_top(const std::vector<ChartCell>& cells) {
     return 1.0;
 }
 
-ImageBuf view_chart(const ChartInput& in) {
+Canvas view_chart(const ChartInput& in) {
     const int cols = std::max<int>(1, static_cast<int>(in.column_labels.size()));
     const int rows = std::max<int>(1, static_cast<int>(in.row_labels.size()));
     const int grid_w = cols * kChartCellWidth, grid_h = rows * kChartCellHeight;
     const int width = std::max(kMinWidth, kLeft + grid_w + 12);
-    ImageBuf img = canvas(width, kTop + grid_h + kBottom);
+    Canvas img = canvas(width, kTop + grid_h + kBottom);
     const double top = chart_top(in.cells);
-    draw_text(img, kLeft - 6, kTop - 8, in.row_title, kFont, kDimText, IBA::TextAlignX::Right);
+    draw_text(img, kLeft - 6, kTop - 8, in.row_title, kFont, kDimText, TextAlign::Right);
     for (int r = 0; r < rows; ++r)
         draw_text(img, kLeft - 6, kTop + r * kChartCellHeight + kChartCellHeight / 2 + 4,
-                  in.row_labels[static_cast<std::size_t>(r)], kFont, kText, IBA::TextAlignX::Right);
+                  in.row_labels[static_cast<std::size_t>(r)], kFont, kText, TextAlign::Right);
     for (int c = 0; c < cols; ++c)
         draw_text(img, kLeft + c * kChartCellWidth + kChartCellWidth / 2, kTop + grid_h + 14,
-                  in.column_labels[static_cast<std::size_t>(c)], kFont, kText,
-                  IBA::TextAlignX::Center);
+                  in.column_labels[static_cast<std::size_t>(c)], kFont, kText, TextAlign::Center);
     draw_text(img, kLeft + grid_w / 2, kTop + grid_h + 32, in.column_title, kFont, kDimText,
-              IBA::TextAlignX::Center);
+              TextAlign::Center);
     for (const auto& cell : in.cells)
         if (cell.column >= 0 && cell.column < cols && cell.row >= 0 && cell.row < rows) {
             const auto [x, y] = chart_cell_origin(cell.column, cell.row);

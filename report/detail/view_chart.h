@@ -40,7 +40,7 @@ inline constexpr int kChartCellHeight = 34;
 [[nodiscard]] std::array<int, 2> chart_cell_origin(int column, int row);
 
 /// The chart as an 8-bit RGB image on the pictures' background.
-[[nodiscard]] OIIO::ImageBuf view_chart(const ChartInput& input);
+[[nodiscard]] Canvas view_chart(const ChartInput& input);
 
 /// The colour of a share of `top` on the chart's map (viridis; clamped).
 [[nodiscard]] Rgb chart_colour(double share, double top);

@@ -4,7 +4,6 @@
 #include "report/detail/footer.h"
 #include "report/detail/legend.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,22 +66,18 @@ TEST(Footer, NamesInputsDateFitAndFloorsWithTheirSources) {
 }
 
 TEST(Footer, AddsItsAreaBelowThePictureWithTheLinesDrawn) {
-    const OIIO::ImageBuf sheet = detail::canvas(300, 100);
+    const Canvas sheet = detail::canvas(300, 100);
     const std::vector<std::string> lines{"reference a.ply", "fit: identity", "floors"};
-    const OIIO::ImageBuf out = detail::with_footer(sheet, lines);
-    EXPECT_EQ(out.spec().width, 300);
-    EXPECT_EQ(out.spec().height, 100 + detail::footer_height(3));
+    const Canvas out = detail::with_footer(sheet, lines);
+    EXPECT_EQ(out.width(), 300);
+    EXPECT_EQ(out.height(), 100 + detail::footer_height(3));
     EXPECT_GE(detail::footer_height(3), 3 * 13);
     if (!detail::has_font()) GTEST_SKIP() << "no font: the footer is blank";
     // Each line's band holds text pixels (brighter than the background).
     int bright_rows = 0;
-    for (int y = 101; y < out.spec().height; ++y) {
+    for (int y = 101; y < out.height(); ++y) {
         bool bright = false;
-        for (int x = 0; x < 300 && !bright; ++x) {
-            float c[3];
-            out.getpixel(x, y, c, 3);
-            bright = c[0] > 0.4f;
-        }
+        for (int x = 0; x < 300 && !bright; ++x) bright = out.value(x, y, 0) > 0.4f;
         bright_rows += bright;
     }
     EXPECT_GT(bright_rows, 3 * 6);

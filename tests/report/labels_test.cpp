@@ -68,7 +68,7 @@ TEST(Labels, TextBoxesCoverWhatIsDrawn) {
     EXPECT_GE(left.x1, 8 + detail::text_width("from anterior", 13));
     EXPECT_LE(left.y0, 300 - 10);
     EXPECT_GE(left.y1, 300);
-    const auto right = detail::text_box("R", 13, 314, 165, OIIO::ImageBufAlgo::TextAlignX::Right);
+    const auto right = detail::text_box("R", 13, 314, 165, detail::TextAlign::Right);
     EXPECT_GE(right.x1, 314);
     EXPECT_LE(right.x0, 314 - detail::text_width("R", 13));
 }

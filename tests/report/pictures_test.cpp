@@ -12,10 +12,12 @@
 #include "report/detail/scale_bar.h"
 #include "report/detail/surface_paint.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 
@@ -23,7 +25,6 @@ namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
-using detail::Rgb;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -32,6 +33,8 @@ Rgb pixel(const OIIO::ImageBuf& image, int x, int y) {
     image.getpixel(x, y, c.data(), 3);
     return c;
 }
+
+Rgb pixel(const Canvas& image, int x, int y) { return image.rgb(x, y); }
 
 // A sphere seen from +y; distance = x (signed, so +x is a gain, −x a loss); a region on the
 // +z cap; the −z cap unseen.
@@ -95,8 +98,7 @@ TEST(SurfacePaint, UnseenIsHatchedGreyAndTheBackgroundIsPlain) {
     const Rgb corner = pixel(s.painted.image, 1, 1);
     // The background exactly, as 8 bits store it.
     for (int k = 0; k < 3; ++k)
-        EXPECT_FLOAT_EQ(corner[k],
-                        static_cast<float>(detail::to_byte(detail::kBackground[k])) / 255.0f);
+        EXPECT_FLOAT_EQ(corner[k], static_cast<float>(to_byte(detail::kBackground[k])) / 255.0f);
 }
 
 TEST(SurfacePaint, RegionsAreOutlinedAndAnchoredInside) {
@@ -144,17 +146,17 @@ TEST(Legend, ShowsTheDarkBackOfAnOpenSurfaceAsPictured) {
     // The legend holds a block of that colour (its swatch, 14 × 14 pixels).
     detail::LegendContent legend;
     legend.unit = "mm";
-    const OIIO::ImageBuf sheet = detail::framed_sheet(10, 10, "", legend);
+    const Canvas sheet = detail::framed_sheet(10, 10, "", legend);
     int block = 0;
-    for (int y = 0; y < sheet.spec().height; ++y)
-        for (int x = 0; x < sheet.spec().width; ++x)
+    for (int y = 0; y < sheet.height(); ++y)
+        for (int x = 0; x < sheet.width(); ++x)
             if (pixel(sheet, x, y) == swatch) ++block;
     EXPECT_GE(block, 12 * 12);
 }
 
 TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
     const std::vector<float> v{-2.0f, -1.0f, 0.0f, 1.0f, 2.0f, kNaN};
-    const OIIO::ImageBuf img = detail::diverging_image(v, 6, 1, 1.0);
+    const Canvas img = detail::diverging_image(v, 6, 1, 1.0);
     const Rgb lo = pixel(img, 0, 0), lo1 = pixel(img, 1, 0), mid = pixel(img, 2, 0),
               hi = pixel(img, 4, 0);
     for (int k = 0; k < 3; ++k) {
@@ -166,8 +168,9 @@ TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
     EXPECT_NEAR(hi[0], 178.0f / 255.0f, 1e-4f);  // #b2182b
 }
 
-// The table the pictures colour pixels with gives OpenImageIO's colours: every value of a
-// fine sweep across (and beyond) the range, the knots, NaN, and a range other than 1.
+// The table the pictures colour pixels with gives OpenImageIO's colours (its color_map on the
+// same knots, through the image plugin): every value of a fine sweep across (and beyond) the
+// range, the knots, NaN, and a range other than 1.
 TEST(DivergingTable, GivesTheColourMapsOwnColours) {
     std::vector<float> v;
     for (int i = -1300; i <= 1300; ++i) v.push_back(static_cast<float>(i) * 0.0017f);
@@ -177,10 +180,16 @@ TEST(DivergingTable, GivesTheColourMapsOwnColours) {
         std::vector<float> scaled(v);
         for (float& x : scaled) x *= static_cast<float>(limit);
         const auto w = static_cast<int>(scaled.size());
-        const OIIO::ImageBuf img = detail::diverging_image(scaled, w, 1, limit);
+        std::vector<float> t(scaled.size());
+        for (std::size_t i = 0; i < t.size(); ++i)
+            t[i] = std::isnan(scaled[i])
+                       ? 0.5f
+                       : static_cast<float>(std::clamp(0.5 + 0.5 * scaled[i] / limit, 0.0, 1.0));
+        const std::vector<float> rgb = color_map(t, detail::diverging_knots());
         const auto& table = detail::DivergingTable::get();
         for (int i = 0; i < w; ++i) {
-            const Rgb want = pixel(img, i, 0);
+            const auto at = 3 * static_cast<std::size_t>(i);
+            const Rgb want{rgb[at], rgb[at + 1], rgb[at + 2]};
             const Rgb got = table(scaled[static_cast<std::size_t>(i)], limit);
             for (int k = 0; k < 3; ++k)
                 ASSERT_NEAR(got[k], want[k], 2e-6f)
@@ -190,18 +199,27 @@ TEST(DivergingTable, GivesTheColourMapsOwnColours) {
 }
 
 TEST(Canvas, IsEightBitAndEncodesAsItIs) {
-    OIIO::ImageBuf c = detail::canvas(7, 5, {1.0f, 0.5f, 0.0f});
-    EXPECT_EQ(c.spec().format, OIIO::TypeDesc::UINT8);
-    const std::string png = detail::encode_png(c);
+    const Canvas c = detail::canvas(7, 5, {1.0f, 0.5f, 0.0f});
+    EXPECT_EQ(c.channels(), 3);
+    EXPECT_EQ(c.pixels().size(), 7u * 5u * 3u);
+    const std::string png = encode_png(c);
     ASSERT_GT(png.size(), 8u);
     EXPECT_EQ(png.substr(1, 3), "PNG");
+    // OpenImageIO reads the bytes back as the canvas holds them.
+    OIIO::Filesystem::IOMemReader reader(png.data(), png.size());
+    OIIO::ImageBuf back("picture.png", 0, 0, nullptr, nullptr, &reader);
+    ASSERT_TRUE(back.read(0, 0, true, OIIO::TypeDesc::UINT8)) << back.geterror();
+    ASSERT_EQ(back.spec().width, 7);
+    ASSERT_EQ(back.spec().height, 5);
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x) EXPECT_EQ(pixel(back, x, y), pixel(c, x, y));
     const Rgb p = pixel(c, 6, 4);
     EXPECT_FLOAT_EQ(p[0], 1.0f);
     EXPECT_FLOAT_EQ(p[1], 128.0f / 255.0f);  // 0.5 rounded as OpenImageIO converts
     EXPECT_FLOAT_EQ(p[2], 0.0f);
-    EXPECT_EQ(detail::to_byte(0.5f), 128);
-    EXPECT_EQ(detail::to_byte(-1.0f), 0);
-    EXPECT_EQ(detail::to_byte(2.0f), 255);
+    EXPECT_EQ(to_byte(0.5f), 128);
+    EXPECT_EQ(to_byte(-1.0f), 0);
+    EXPECT_EQ(to_byte(2.0f), 255);
 }
 
 // A legend listing more regions than its panel holds, on the smallest sheet, with long lines
@@ -213,14 +231,13 @@ TEST(Legend, ManyRegionsOnASmallSheetAreCutNotDrawnOffTheImage) {
     legend.lines.assign(6, "normal floor 8.12 deg (measured; median + 3 MAD over compared)");
     for (int i = 1; i <= 40; ++i)
         legend.regions.push_back(std::to_string(i) + " missing surface, 0.0123 mm2");
-    const OIIO::ImageBuf sheet = detail::framed_sheet(64, 32, "", legend);
-    EXPECT_GE(sheet.spec().height, detail::legend_min_height(legend));
-    OIIO::ImageBuf c = detail::canvas(40, 20);
+    const Canvas sheet = detail::framed_sheet(64, 32, "", legend);
+    EXPECT_GE(sheet.height(), detail::legend_min_height(legend));
+    Canvas c = detail::canvas(40, 20);
     detail::draw_text(c, 5, 60, "below the image", 12);
     detail::draw_text(c, 2, 24, "half below", 12);
     detail::draw_text(c, 35, 15, "past the right edge", 12);
-    detail::draw_text(c, 20, -5, "above", 12, detail::kText,
-                      OIIO::ImageBufAlgo::TextAlignX::Center);
+    detail::draw_text(c, 20, -5, "above", 12, detail::kText, detail::TextAlign::Center);
     EXPECT_EQ(pixel(c, 39, 19), pixel(detail::canvas(40, 20), 39, 19));
 }
 

@@ -7,7 +7,6 @@
 #include "render/renderer.h"
 #include "report/detail/surface_paint.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,13 +14,7 @@
 namespace glint {
 namespace {
 
-using detail::Rgb;
-
-Rgb pixel(const OIIO::ImageBuf& image, int x, int y) {
-    Rgb c{};
-    image.getpixel(x, y, c.data(), 3);
-    return c;
-}
+Rgb pixel(const Canvas& image, int x, int y) { return image.rgb(x, y); }
 
 bool is_bar(const Rgb& c) {
     return std::abs(c[0] - detail::kScaleBarColour[0]) < 0.02f &&
@@ -33,11 +26,11 @@ struct BarRun {
     int pixels = 0;
     int rows = 0;
 };
-BarRun longest_bar_run(const OIIO::ImageBuf& image) {
+BarRun longest_bar_run(const Canvas& image) {
     BarRun best;
-    for (int y = 0; y < image.spec().height; ++y) {
+    for (int y = 0; y < image.height(); ++y) {
         int run = 0, longest = 0;
-        for (int x = 0; x < image.spec().width; ++x) {
+        for (int x = 0; x < image.width(); ++x) {
             run = is_bar(pixel(image, x, y)) ? run + 1 : 0;
             longest = std::max(longest, run);
         }

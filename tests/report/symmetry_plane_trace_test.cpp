@@ -14,15 +14,13 @@
 namespace glint {
 namespace {
 
-using OIIO::ImageBuf;
-
 constexpr int kSize = 256;
 // mm per pixel: the sphere (radius 10) is 80 px across, the background around it holds the
 // label
 constexpr double kFootprint = 0.25;
 
 struct Drawn {
-    ImageBuf image;
+    Canvas image;
     Frame frame;
     View view;
     std::optional<detail::PlaneLabel> label;
@@ -46,9 +44,8 @@ Drawn draw(const Mesh& mesh, double azimuth, double elevation,
     return d;
 }
 
-bool has_plane_colour(const ImageBuf& image, int x, int y) {
-    float p[3];
-    image.getpixel(x, y, p, 3);
+bool has_plane_colour(const Canvas& image, int x, int y) {
+    const Rgb p = image.rgb(x, y);
     for (int k = 0; k < 3; ++k)
         if (std::abs(p[k] - detail::kSymmetryPlane[static_cast<std::size_t>(k)]) > 0.01f)
             return false;
@@ -60,7 +57,7 @@ struct RowCount {
     int near = 0;
     int far = 0;
 };
-RowCount count_row(const ImageBuf& image, int y, double u, double reach) {
+RowCount count_row(const Canvas& image, int y, double u, double reach) {
     RowCount c;
     for (int x = 0; x < kSize; ++x)
         (std::abs(x + 0.5 - u) <= reach ? c.near : c.far) += has_plane_colour(image, x, y) ? 1 : 0;

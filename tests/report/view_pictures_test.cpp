@@ -25,7 +25,6 @@ namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
-using detail::Rgb;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 

@@ -50,6 +50,7 @@ for elf in "$prefix/bin/glint" "$prefix"/lib/glint/*.so "$prefix"/lib/python3/di
 done
 [ -L "$prefix/lib/glint/slicer/glint" ] || fail "no Slicer module link in $prefix/lib/glint/slicer"
 [ -f "$prefix/lib/glint/libglint_volume_io.so" ] || fail "no volume plugin in $prefix/lib/glint"
+[ -f "$prefix/lib/glint/libglint_image_io.so" ] || fail "no image plugin in $prefix/lib/glint"
 
 cat >"$work/run.sh" <<'INNER'
 set -euo pipefail

@@ -2,6 +2,7 @@
 // and VTK, on first use, so runs that touch no volume never map those libraries.
 #pragma once
 
+#include "mesh/plugin_library.h"
 #include "volume/plugin/volume_io_abi.h"
 
 #include <string>
@@ -14,9 +15,6 @@ namespace glint::detail {
 /// module in lib/python3/dist-packages), then the configured install lib/glint.
 /// \throw IoError (exit code 3) naming what is missing and the Debian packages to install.
 [[nodiscard]] const VolumeIoTable& volume_io_plugin();
-
-/// Rethrows an error the plugin reported as glint's own type (InputError, IoError, Error).
-void rethrow_plugin_error(PluginErrorKind kind, const std::string& message);
 
 /// Calls `entry(table, message)` and rethrows what it reports.
 template <class Entry>

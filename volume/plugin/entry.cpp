@@ -6,54 +6,28 @@
 #include "volume/plugin/volume_io_abi.h"
 #include "volume/plugin/vtk_filters.h"
 
-#include <exception>
-#include <new>
-#include <utility>
-
 namespace glint::detail {
 namespace {
 
-template <class Step>
-PluginErrorKind guarded(std::string& message, Step&& step) noexcept {
-    try {
-        std::forward<Step>(step)();
-        return PluginErrorKind::None;
-    } catch (const InputError& e) {
-        message = e.what();
-        return PluginErrorKind::Input;
-    } catch (const IoError& e) {
-        message = e.what();
-        return PluginErrorKind::Io;
-    } catch (const std::bad_alloc& e) {
-        message = e.what();
-        return PluginErrorKind::Memory;
-    } catch (const std::exception& e) {
-        message = e.what();
-    } catch (...) {
-        message = "an unknown exception";
-    }
-    return PluginErrorKind::Other;
-}
-
 PluginErrorKind read(const std::filesystem::path& path, std::size_t max_voxels, RawVolume& out,
                      std::string& message) noexcept {
-    return guarded(message, [&] { out = itk_side::read(path, max_voxels); });
+    return plugin_guarded(message, [&] { out = itk_side::read(path, max_voxels); });
 }
 
 PluginErrorKind write(const RawVolume& volume, const std::filesystem::path& path,
                       std::string& message) noexcept {
-    return guarded(message, [&] { itk_side::write(volume, path); });
+    return plugin_guarded(message, [&] { itk_side::write(volume, path); });
 }
 
 PluginErrorKind write_dicom(const RawVolume& volume, const std::filesystem::path& folder,
                             std::string& message) noexcept {
-    return guarded(message, [&] { itk_side::write_dicom(volume, folder); });
+    return plugin_guarded(message, [&] { itk_side::write_dicom(volume, folder); });
 }
 
 PluginErrorKind contour(const Volume& volume, const VoxelCrop& crop, double iso,
                         PluginSurface*& out, std::string& message) noexcept {
-    return guarded(message,
-                   [&] { out = new PluginSurface(vtk_filters::contour(volume, crop, iso)); });
+    return plugin_guarded(
+        message, [&] { out = new PluginSurface(vtk_filters::contour(volume, crop, iso)); });
 }
 
 void release(PluginSurface* surface) noexcept { delete surface; }
@@ -64,26 +38,27 @@ std::size_t triangle_count(const PluginSurface* surface) noexcept {
 
 PluginErrorKind to_physical(PluginSurface& surface, const VolumeGeometry& geometry,
                             std::string& message) noexcept {
-    return guarded(message, [&] { vtk_filters::to_physical(surface, geometry); });
+    return plugin_guarded(message, [&] { vtk_filters::to_physical(surface, geometry); });
 }
 
 PluginErrorKind keep_inside(PluginSurface& surface, const Roi& roi, std::string& message) noexcept {
-    return guarded(message, [&] { vtk_filters::keep_inside(surface, roi); });
+    return plugin_guarded(message, [&] { vtk_filters::keep_inside(surface, roi); });
 }
 
 PluginErrorKind keep_component(PluginSurface& surface, const Vec3d* seed, std::size_t& components,
                                std::string& message) noexcept {
-    return guarded(message, [&] { components = vtk_filters::keep_component(surface, seed); });
+    return plugin_guarded(message,
+                          [&] { components = vtk_filters::keep_component(surface, seed); });
 }
 
 PluginErrorKind smooth(PluginSurface& surface, int iterations, double passband,
                        std::string& message) noexcept {
-    return guarded(message, [&] { vtk_filters::smooth(surface, iterations, passband); });
+    return plugin_guarded(message, [&] { vtk_filters::smooth(surface, iterations, passband); });
 }
 
 PluginErrorKind to_mesh(const PluginSurface& surface, bool flip, Mesh& out,
                         std::string& message) noexcept {
-    return guarded(message, [&] { out = vtk_filters::to_mesh(surface, flip); });
+    return plugin_guarded(message, [&] { out = vtk_filters::to_mesh(surface, flip); });
 }
 
 constexpr VolumeIoTable kTable{

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "mesh/mesh.h"
+#include "mesh/plugin_abi.h"
 #include "mesh/roi.h"
 #include "volume/detail/itk_io.h"
 #include "volume/volume.h"
@@ -21,15 +22,6 @@
 #include <string>
 
 namespace glint::detail {
-
-/// What went wrong inside the plugin, as the main side rethrows it.
-enum class PluginErrorKind : int {
-    None = 0,
-    Input = 1,   ///< InputError
-    Io = 2,      ///< IoError
-    Other = 3,   ///< any other exception (a library bug): Error
-    Memory = 4,  ///< std::bad_alloc, rethrown as such (the program reports it with its limits)
-};
 
 /// A VTK surface owned by the plugin (a vtkPolyData behind a pointer the program never reads).
 struct PluginSurface;

@@ -1,0 +1,98 @@
+#include "mesh/plugin_library.h"
+
+#include <dlfcn.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+namespace glint::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The file of the program or shared library this code is linked into. For the main program
+// dladdr answers argv[0] (maybe a bare name found on PATH), so there /proc/self/exe is asked.
+fs::path loader_file() {
+    Dl_info info{};
+    if (dladdr(reinterpret_cast<void*>(&loader_file), &info) == 0 || info.dli_fname == nullptr)
+        return {};
+    std::error_code ec;
+    if (std::strcmp(info.dli_fname, program_invocation_name) == 0)
+        return fs::read_symlink("/proc/self/exe", ec);
+    fs::path file = fs::canonical(info.dli_fname, ec);
+    return ec ? fs::path() : file;
+}
+
+std::vector<fs::path> search_folders() {
+    if (const char* dir = std::getenv("GLINT_PLUGIN_DIR"); dir != nullptr && *dir != '\0')
+        return {fs::path(dir)};
+    std::vector<fs::path> folders;
+    if (const fs::path file = loader_file(); !file.empty()) {
+        folders.push_back(file.parent_path());
+        folders.push_back((file.parent_path() / ".." / "lib" / "glint").lexically_normal());
+        // The Python module, installed in lib/python3/dist-packages/.
+        folders.push_back((file.parent_path() / ".." / ".." / "glint").lexically_normal());
+    }
+    folders.emplace_back(GLINT_PLUGIN_INSTALL_DIR);
+    return folders;
+}
+
+std::string joined(const std::vector<fs::path>& folders) {
+    std::string text;
+    for (const fs::path& f : folders) text += (text.empty() ? "\"" : ", \"") + f.string() + "\"";
+    return text;
+}
+
+}  // namespace
+
+fs::path find_plugin(const PluginSpec& spec, std::string& error) {
+    const std::vector<fs::path> folders = search_folders();
+    for (const fs::path& folder : folders) {
+        std::error_code ec;
+        if (fs::is_regular_file(folder / spec.file, ec)) return folder / spec.file;
+    }
+    error = std::string(spec.serves) + ": " + spec.file + " is in none of " + joined(folders) +
+            ", expected glint's lib/glint folder; install the Debian packages " + spec.packages;
+    return {};
+}
+
+const void* load_plugin_table(const PluginSpec& spec, std::string& error) {
+    const fs::path file = find_plugin(spec, error);
+    if (file.empty()) return nullptr;
+    const std::string what = std::string(spec.serves) + ": ";
+    const std::string install = std::string("; install the Debian packages ") + spec.packages;
+    void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (handle == nullptr) {
+        error = what + "cannot load \"" + file.string() + "\": " + dlerror() + install;
+        return nullptr;
+    }
+    using Entry = const void* (*)();
+    auto entry = reinterpret_cast<Entry>(dlsym(handle, spec.entry));
+    const void* table = entry ? entry() : nullptr;
+    // Every table starts with its own size (std::size_t), as the plugin was built.
+    std::size_t size = 0;
+    if (table != nullptr) std::memcpy(&size, table, sizeof size);
+    if (table == nullptr || size != spec.table_size) {
+        error = what + "\"" + file.string() + "\" has no " + spec.entry +
+                " of this glint build, expected the plugin built with it";
+        return nullptr;
+    }
+    return table;  // note: never dlclose'd; the libraries keep global state to the end
+}
+
+void rethrow_plugin_error(PluginErrorKind kind, const std::string& message) {
+    switch (kind) {
+        case PluginErrorKind::None: return;
+        case PluginErrorKind::Input: throw InputError(message);
+        case PluginErrorKind::Io: throw IoError(message);
+        case PluginErrorKind::Memory: throw std::bad_alloc();
+        case PluginErrorKind::Other: break;
+    }
+    throw Error(message);
+}
+
+}  // namespace glint::detail
