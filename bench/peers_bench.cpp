@@ -5,8 +5,11 @@
 //            default: load both files, fit, signed distance, 60 views at 256² (s = 2),
 //            decision, atlas files, per-view PNG pictures, mosaic, atlas.png,
 //            report.json / report.html;
-//   Open3D   `/usr/bin/python3 bench/open3d_peer.py REF EXA`: import, load, point-to-plane ICP,
-//            signed closest-point distance of every reference vertex (Debian's python3-open3d).
+//   Open3D   `/usr/bin/python3 bench/open3d_peer.py REF EXA`: import, load, point-to-plane ICP
+//            coarse to fine and converged (gates 5 % then 1 % of the size, relative changes
+//            1e-9, at most 100 iterations each: glint's accuracy is what such a user wants),
+//            signed closest-point distance of every reference vertex (Debian's
+//            python3-open3d); and the same with `--one-scale` (Open3D's defaults, once).
 //
 // note: whole processes, not analyse() in one process: a user compares the time from typing
 // the command to having the results, which includes loading the files and writing every
@@ -16,7 +19,8 @@
 // One benchmark iteration is one round: both processes once, the first one alternating
 // between rounds; run with --benchmark_repetitions (tools/bench: 5) the medians are the
 // `_median` rows. Counters (seconds unless named otherwise): glint_s and open3d_s (process
-// wall clocks), ratio = glint_s / open3d_s, ratio_work = glint_s / open3d_work_s,
+// wall clocks, Open3D coarse to fine), ratio = glint_s / open3d_s, ratio_work = glint_s /
+// open3d_work_s, open3d_one_scale_s and ratio_one_scale (Open3D's one-scale defaults),
 // glint_peak_mib (glint's peak resident memory, from wait4), the rotation errors of both fits
 // against the known motion (glint_rot_err_deg, open3d_rot_err_deg), and glint's stages from
 // report.json's timings (glint_fit_s, _distance_s, _render_s, _compare_atlas_s, _decision_s;
@@ -132,6 +136,8 @@ struct Round {
     std::optional<GlintRun> baseline;
     ProcessRun open3d;
     nlohmann::json peer;
+    ProcessRun open3d_one_scale;
+    nlohmann::json peer_one_scale;
 };
 
 GlintRun run_glint(const std::string& executable, const Files& f,
@@ -149,25 +155,35 @@ GlintRun run_glint(const std::string& executable, const Files& f,
     return r;
 }
 
-// One round; `first` rotates which process starts it (glint, Open3D, baseline).
+// Open3D's script in one configuration ("" or "--one-scale"); its JSON into `peer`.
+ProcessRun run_open3d(const Files& f, const std::string& option, nlohmann::json& peer) {
+    const fs::path peer_json = f.folder / "open3d.json";
+    std::vector<std::string> argv{"/usr/bin/python3", GLINT_OPEN3D_SCRIPT, f.reference.string(),
+                                  f.examined.string()};
+    if (!option.empty()) argv.push_back(option);
+    const ProcessRun run = run_process(argv, peer_json);
+    peer = read_json(peer_json);
+    return run;
+}
+
+// One round; `first` rotates which process starts it (glint, Open3D twice, baseline).
 Round run_round(const Files& f, int first) {
     Round r;
     const char* baseline = std::getenv("GLINT_BENCH_BASELINE");
-    const std::function<void()> steps[3] = {
+    const bool open3d = open3d_missing().empty();
+    const std::function<void()> steps[4] = {
         [&] { r.glint = run_glint(GLINT_EXECUTABLE, f); },
         [&] {
-            if (!open3d_missing().empty()) return;
-            const fs::path peer_json = f.folder / "open3d.json";
-            r.open3d = run_process({"/usr/bin/python3", GLINT_OPEN3D_SCRIPT, f.reference.string(),
-                                    f.examined.string()},
-                                   peer_json);
-            r.peer = read_json(peer_json);
+            if (open3d) r.open3d = run_open3d(f, "", r.peer);
+        },
+        [&] {
+            if (open3d) r.open3d_one_scale = run_open3d(f, "--one-scale", r.peer_one_scale);
         },
         [&] {
             if (baseline != nullptr)
                 r.baseline = run_glint(baseline, f, std::getenv("GLINT_BENCH_BASELINE_ARGS"));
         }};
-    for (int k = 0; k < 3; ++k) steps[(first + k) % 3]();
+    for (int k = 0; k < 4; ++k) steps[(first + k) % 4]();
     return r;
 }
 
@@ -192,7 +208,7 @@ void BM_Peers(benchmark::State& state) {
     const Files& f = files(static_cast<int>(state.range(0)));
     static int rounds = 0;
     for (auto _ : state) {
-        const Round r = run_round(f, rounds++ % 3);
+        const Round r = run_round(f, rounds++ % 4);
         state.SetIterationTime(r.glint.process.seconds);
         stage_counters(state, "glint_", r.glint, f.truth);
         if (r.baseline) stage_counters(state, "base_", *r.baseline, f.truth);
@@ -204,6 +220,10 @@ void BM_Peers(benchmark::State& state) {
                 rotation_error_deg(r.peer.at("reference_from_examined"), f.truth);
             c["ratio"] = r.glint.process.seconds / r.open3d.seconds;
             c["ratio_work"] = r.glint.process.seconds / r.peer.at("work_s").get<double>();
+            c["open3d_one_scale_s"] = r.open3d_one_scale.seconds;
+            c["open3d_one_scale_rot_err_deg"] =
+                rotation_error_deg(r.peer_one_scale.at("reference_from_examined"), f.truth);
+            c["ratio_one_scale"] = r.glint.process.seconds / r.open3d_one_scale.seconds;
         }
     }
     state.counters["ref_triangles"] = static_cast<double>(f.triangles);

@@ -22,7 +22,8 @@ struct ProcessRun {
 };
 
 /// Runs argv[0] with stdout into `stdout_file` (empty: /dev/null) and stderr kept; waits.
-inline ProcessRun run_process(const std::vector<std::string>& argv, const std::filesystem::path& stdout_file) {
+inline ProcessRun run_process(const std::vector<std::string>& argv,
+                              const std::filesystem::path& stdout_file) {
     std::vector<char*> args;
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);

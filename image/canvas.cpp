@@ -28,7 +28,8 @@ Canvas::Canvas(int width, int height, int channels, std::vector<std::uint8_t> pi
 
 void Canvas::fill(const Rgb& colour) {
     const std::size_t n = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-    const std::array<std::uint8_t, 3> rgb{to_byte(colour[0]), to_byte(colour[1]), to_byte(colour[2])};
+    const std::array<std::uint8_t, 3> rgb{to_byte(colour[0]), to_byte(colour[1]),
+                                          to_byte(colour[2])};
     for (std::size_t i = 0; i < n; ++i)
         std::memcpy(&pixels_[i * static_cast<std::size_t>(channels_)], rgb.data(), 3);
 }
@@ -45,7 +46,8 @@ void Canvas::paste(const Canvas& source, int x, int y) {
             continue;
         }
         for (int col = x0; col < x1; ++col)
-            std::memcpy(&pixels_[offset(col, row)], &source.pixels_[source.offset(col - x, row - y)],
+            std::memcpy(&pixels_[offset(col, row)],
+                        &source.pixels_[source.offset(col - x, row - y)],
                         static_cast<std::size_t>(nc));
     }
 }

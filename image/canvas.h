@@ -59,7 +59,9 @@ class Canvas {
         return static_cast<float>(pixels_[offset(x, y) + static_cast<std::size_t>(c)]) * kToFloat;
     }
     /// The first three channels of pixel (x, y) as 0…1. \pre contains(x, y).
-    [[nodiscard]] Rgb rgb(int x, int y) const { return {value(x, y, 0), value(x, y, 1), value(x, y, 2)}; }
+    [[nodiscard]] Rgb rgb(int x, int y) const {
+        return {value(x, y, 0), value(x, y, 1), value(x, y, 2)};
+    }
     /// Sets the first three channels of pixel (x, y); nothing outside the canvas.
     void set(int x, int y, const Rgb& colour) {
         if (!contains(x, y)) return;
@@ -74,7 +76,9 @@ class Canvas {
     void paste(const Canvas& source, int x, int y);
 
     [[nodiscard]] PixelView view() { return {width_, height_, channels_, pixels_.data()}; }
-    [[nodiscard]] ConstPixelView view() const { return {width_, height_, channels_, pixels_.data()}; }
+    [[nodiscard]] ConstPixelView view() const {
+        return {width_, height_, channels_, pixels_.data()};
+    }
     [[nodiscard]] const std::vector<std::uint8_t>& pixels() const { return pixels_; }
 
   private:

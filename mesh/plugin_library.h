@@ -14,11 +14,11 @@ namespace glint::detail {
 /// One plugin: its file, its one exported entry (returning a table whose first member is the
 /// table's size), what it serves (for messages) and the Debian packages its libraries come from.
 struct PluginSpec {
-    const char* file;       ///< "libglint_image_io.so"
-    const char* entry;      ///< "glint_image_io_table_v1"
-    std::size_t table_size; ///< sizeof the table as this program was built
-    const char* serves;     ///< "pictures", "volume support"
-    const char* packages;   ///< "libopenimageio2.4"
+    const char* file;        ///< "libglint_image_io.so"
+    const char* entry;       ///< "glint_image_io_table_v1"
+    std::size_t table_size;  ///< sizeof the table as this program was built
+    const char* serves;      ///< "pictures", "volume support"
+    const char* packages;    ///< "libopenimageio2.4"
 };
 
 /// The plugin's file, or empty with `error` set to one line naming where it was looked for

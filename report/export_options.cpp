@@ -81,8 +81,8 @@ const std::vector<OptionField<ExportOptions>>& export_option_table() {
              .slicer = "atlasFormats",
              .group = kExportGroup,
              .label = "Atlas files",
-             .help = "Atlas files to write, comma-separated: ply (MeshLab, CloudCompare), vtk "
-                     "(legacy ASCII: ParaView, Slicer, CloudCompare), vtp (ParaView, Slicer)"},
+             .help = "Atlas files to write, comma-separated: ply (MeshLab, CloudCompare), vtp "
+                     "(ParaView, Slicer), vtk (legacy ASCII, the same programs; not by default)"},
             OptionKind::Text,
             [](const ExportOptions& o) -> OptionValue { return to_string(o.atlas_files); },
             [](ExportOptions& o, const std::string& v) {

@@ -14,12 +14,14 @@
 
 namespace glint {
 
-/// Which atlas files a run writes (all three by default): atlas.ply (MeshLab, CloudCompare,
-/// Open3D), atlas.vtk (legacy ASCII: ParaView, 3D Slicer, CloudCompare), atlas.vtp (VTK XML:
-/// ParaView, 3D Slicer). On a 2M-triangle mesh they are 129, 212 and 126 MB.
+/// Which atlas files a run writes: atlas.ply (MeshLab, CloudCompare, Open3D, Blender) and
+/// atlas.vtp (VTK XML: ParaView, 3D Slicer, VTK) by default; atlas.vtk (legacy ASCII: the
+/// same programs read it) only when asked. On a 2M-triangle mesh they are 129, 126 and 212 MB;
+/// the legacy file was the largest and slowest to write and opens in no program the other
+/// two miss, so it is one flag away (--atlas-formats ply,vtk,vtp).
 struct AtlasFiles {
     bool ply = true;
-    bool vtk = true;
+    bool vtk = false;
     bool vtp = true;
     [[nodiscard]] bool operator==(const AtlasFiles&) const = default;
 };

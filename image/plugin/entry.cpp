@@ -23,8 +23,7 @@ OIIO::ImageSpec spec_of(int width, int height, int channels, OIIO::TypeDesc type
 
 // The canvas's memory as an ImageBuf that reads and writes it in place.
 OIIO::ImageBuf wrap(const PixelView& v) {
-    return OIIO::ImageBuf(spec_of(v.width, v.height, v.channels, OIIO::TypeDesc::UINT8),
-                          v.pixels);
+    return OIIO::ImageBuf(spec_of(v.width, v.height, v.channels, OIIO::TypeDesc::UINT8), v.pixels);
 }
 OIIO::ImageBuf wrap(const ConstPixelView& v) {
     // note: ImageBuf takes a writable pointer; the buffer is only read here.
@@ -95,13 +94,12 @@ void read_image_file(const std::filesystem::path& path, FloatImage& out) {
 PluginErrorKind color_map(const float* values, std::size_t count, const char* map_name,
                           const float* knots, int knot_count, float* rgb,
                           std::string& message) noexcept {
-    return plugin_guarded(message, [&] {
-        color_map_values(values, count, map_name, knots, knot_count, rgb);
-    });
+    return plugin_guarded(
+        message, [&] { color_map_values(values, count, map_name, knots, knot_count, rgb); });
 }
 
-PluginErrorKind draw_line(const PixelView& image, int x0, int y0, int x1, int y1,
-                          const Rgb& colour, std::string& message) noexcept {
+PluginErrorKind draw_line(const PixelView& image, int x0, int y0, int x1, int y1, const Rgb& colour,
+                          std::string& message) noexcept {
     return plugin_guarded(message, [&] {
         OIIO::ImageBuf buf = wrap(image);
         check(buf, IBA::render_line(buf, x0, y0, x1, y1, colour), "line");
@@ -152,7 +150,7 @@ PluginErrorKind read_file(const std::filesystem::path& path, FloatImage& out,
     return plugin_guarded(message, [&] { read_image_file(path, out); });
 }
 
-constexpr ImageIoTable kTable{sizeof(ImageIoTable), color_map,  draw_line, draw_box,
+constexpr ImageIoTable kTable{sizeof(ImageIoTable), color_map,  draw_line,  draw_box,
                               resize_nearest,       encode_png, write_file, read_file};
 
 }  // namespace

@@ -58,7 +58,7 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     const Inspection result = inspect(ref, exa, options, record);
     EXPECT_EQ(result.output, dir / "atlas");
     for (const char* f :
-         {"atlas.ply", "atlas.vtk", "regions.csv", "report.json", "report.html", "atlas.png",
+         {"atlas.ply", "atlas.vtp", "regions.csv", "report.json", "report.html", "atlas.png",
           "mosaic_z0.png", "views/z0_az000.0_el-30.0.png", "views/z0_az000.0_el-30.0.exr"})
         EXPECT_TRUE(fs::exists(dir / "atlas" / f)) << f;
 
@@ -165,7 +165,8 @@ TEST(AtlasFiles, ParsesAListAndRefusesUnknownRepeatedAndEmpty) {
     EXPECT_FALSE(two.vtk);
     EXPECT_TRUE(two.vtp);
     EXPECT_EQ(to_string(two), "ply,vtp");
-    EXPECT_EQ(to_string(AtlasFiles{}), "ply,vtk,vtp");
+    EXPECT_EQ(to_string(AtlasFiles{}), "ply,vtp");  // the default: the legacy .vtk when asked
+    EXPECT_EQ(to_string(parse_atlas_files("ply,vtk,vtp", "--atlas-formats")), "ply,vtk,vtp");
     for (const char* bad : {"ply,stl", "vtk,vtk", "", "ply,", " ply"}) {
         try {
             (void)parse_atlas_files(bad, "--atlas-formats");

@@ -33,7 +33,7 @@ atlas)
     # Few views, so some vertices stay unseen: they must hold the documented 0 (seen_z0 = 0),
     # never a NaN a viewer chokes on (viewers_check.py checks there are some).
     "$glint" --quiet sweep "$work/ref.ply" "$work/exa.ply" --size 64 --azimuth-step 90 --elevations 20 \
-        --no-views --no-exr -o "$atlas"
+        --no-views --no-exr --atlas-formats ply,vtk,vtp -o "$atlas"
     for f in atlas.ply atlas.vtk atlas.vtp; do [ -s "$atlas/$f" ] || { echo "FAIL: no $f"; exit 1; }; done
     echo "ok: atlas in $atlas"
     ct=${4:-}
@@ -45,7 +45,7 @@ atlas)
         "$glint" --quiet volume-edit "$ct" --erode 157,113,130,3 --erode-to 1040 -o "$work/ct_eroded.mha"
         "$glint" --quiet surface "$work/ct_eroded.mha" "${roi[@]}" -o "$work/ct_exa.ply"
         "$glint" --quiet sweep "$work/ct_ref.ply" "$work/ct_exa.ply" --size 64 --azimuth-step 90 \
-            --elevations 20 --no-views --unit mm -o "$ct_atlas"
+            --elevations 20 --no-views --unit mm --atlas-formats ply,vtk,vtp -o "$ct_atlas"
         echo "ok: CT atlas in $ct_atlas"
     else
         echo "note: no CT (CThead.mhd) given or found: the MeshLab check runs on the phantom only"
