@@ -29,3 +29,27 @@ function(glint_module name)
   target_include_directories(glint_${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_link_libraries(glint_${name} PRIVATE glint_warnings PUBLIC glint_options)
 endfunction()
+
+# glint_plugin(NAME MODULE_OF sources...): the plugin glint_NAME (libglint_NAME.so), opened by
+# module glint_MODULE_OF with dlopen (mesh/plugin_library.h). It links no glint library: a
+# second copy of glint_mesh would hold a second set of its process-wide state (the cancel
+# flag, the staged-output registry); -z defs proves it when no sanitizer leaves its runtime's
+# symbols to the program. Hidden symbols but its one entry; -Bsymbolic: its own inline and
+# template code binds inside it, never to a copy the program happens to export. In the build
+# tree it sits in lib/glint/, so a program one folder down (tools/glint, python/, fuzz/) finds
+# it at ../lib/glint as the installed bin/glint does; whatever links the module gets it built.
+function(glint_plugin name module_of)
+  add_library(glint_${name} MODULE ${ARGN})
+  set_target_properties(glint_${name} PROPERTIES
+    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib/glint
+    CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
+  target_include_directories(glint_${name} PRIVATE ${PROJECT_SOURCE_DIR})
+  target_link_libraries(glint_${name} PRIVATE glint_warnings glint_options Eigen3::Eigen)
+  target_link_options(glint_${name} PRIVATE -Wl,-Bsymbolic)
+  if(NOT GLINT_SANITIZE AND NOT GLINT_FUZZ)
+    target_link_options(glint_${name} PRIVATE -Wl,-z,defs)
+  endif()
+  add_dependencies(glint_${module_of} glint_${name})
+  include(GNUInstallDirs)
+  install(TARGETS glint_${name} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/glint COMPONENT glint)
+endfunction()

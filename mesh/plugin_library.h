@@ -35,4 +35,29 @@ struct PluginSpec {
 /// Rethrows an error a plugin reported as glint's own type (InputError, IoError, Error).
 void rethrow_plugin_error(PluginErrorKind kind, const std::string& message);
 
+/// The table of the plugin `spec` names, loaded on the first call (once per Table type,
+/// thread-safe). \throw IoError (exit code 3) naming what is missing and what to install.
+template <class Table>
+[[nodiscard]] const Table& plugin_table(const PluginSpec& spec) {
+    struct Loaded {
+        const Table* table = nullptr;
+        std::string error;  ///< why there is no table
+    };
+    static const Loaded loaded = [&] {
+        Loaded l;
+        l.table = static_cast<const Table*>(load_plugin_table(spec, l.error));
+        return l;
+    }();
+    if (loaded.table == nullptr) throw IoError(loaded.error);
+    return *loaded.table;
+}
+
+/// Calls `entry(table, message)` and rethrows what it reports.
+template <class Table, class Entry>
+void call_plugin(const Table& table, Entry&& entry) {
+    std::string message;
+    const PluginErrorKind kind = entry(table, message);
+    if (kind != PluginErrorKind::None) rethrow_plugin_error(kind, message);
+}
+
 }  // namespace glint::detail

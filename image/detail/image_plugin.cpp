@@ -12,17 +12,6 @@ namespace {
 constexpr PluginSpec kPlugin{"libglint_image_io.so", GLINT_IMAGE_IO_ENTRY, sizeof(ImageIoTable),
                              "pictures and image files", "libopenimageio2.4"};
 
-struct LoadedPlugin {
-    const ImageIoTable* table = nullptr;
-    std::string error;  ///< why there is no table
-};
-
-LoadedPlugin load() {
-    LoadedPlugin plugin;
-    plugin.table = static_cast<const ImageIoTable*>(load_plugin_table(kPlugin, plugin.error));
-    return plugin;
-}
-
 }  // namespace
 
 void preload_image_io_plugin() {
@@ -38,10 +27,6 @@ void preload_image_io_plugin() {
     });
 }
 
-const ImageIoTable& image_io_plugin() {
-    static const LoadedPlugin plugin = load();  // once, thread-safe (C++11 statics)
-    if (plugin.table == nullptr) throw IoError(plugin.error);
-    return *plugin.table;
-}
+const ImageIoTable& image_io_plugin() { return plugin_table<ImageIoTable>(kPlugin); }
 
 }  // namespace glint::detail

@@ -6,6 +6,7 @@
 #include "mesh/plugin_library.h"
 
 #include <string>
+#include <utility>
 
 namespace glint::detail {
 
@@ -20,9 +21,7 @@ void preload_image_io_plugin();
 /// Calls `entry(table, message)` and rethrows what it reports.
 template <class Entry>
 void call_image_io(Entry&& entry) {
-    std::string message;
-    const PluginErrorKind kind = entry(image_io_plugin(), message);
-    if (kind != PluginErrorKind::None) rethrow_plugin_error(kind, message);
+    call_plugin(image_io_plugin(), std::forward<Entry>(entry));
 }
 
 }  // namespace glint::detail

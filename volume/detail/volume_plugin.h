@@ -6,6 +6,7 @@
 #include "volume/plugin/volume_io_abi.h"
 
 #include <string>
+#include <utility>
 
 namespace glint::detail {
 
@@ -19,9 +20,7 @@ namespace glint::detail {
 /// Calls `entry(table, message)` and rethrows what it reports.
 template <class Entry>
 void call_volume_io(Entry&& entry) {
-    std::string message;
-    const PluginErrorKind kind = entry(volume_io_plugin(), message);
-    if (kind != PluginErrorKind::None) rethrow_plugin_error(kind, message);
+    call_plugin(volume_io_plugin(), std::forward<Entry>(entry));
 }
 
 }  // namespace glint::detail
