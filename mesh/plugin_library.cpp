@@ -60,28 +60,23 @@ fs::path find_plugin(const PluginSpec& spec, std::string& error) {
     return {};
 }
 
-const void* load_plugin_table(const PluginSpec& spec, std::string& error) {
-    const fs::path file = find_plugin(spec, error);
+void* load_plugin_entry(const PluginSpec& spec, fs::path& file, std::string& error) {
+    file = find_plugin(spec, error);
     if (file.empty()) return nullptr;
-    const std::string what = std::string(spec.serves) + ": ";
-    const std::string install = std::string("; install the Debian packages ") + spec.packages;
     void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (handle == nullptr) {
-        error = what + "cannot load \"" + file.string() + "\": " + dlerror() + install;
+        error = std::string(spec.serves) + ": cannot load \"" + file.string() + "\": " + dlerror() +
+                "; install the Debian packages " + spec.packages;
         return nullptr;
     }
-    using Entry = const void* (*)();
-    auto entry = reinterpret_cast<Entry>(dlsym(handle, spec.entry));
-    const void* table = entry ? entry() : nullptr;
-    // Every table starts with its own size (std::size_t), as the plugin was built.
-    std::size_t size = 0;
-    if (table != nullptr) std::memcpy(&size, table, sizeof size);
-    if (table == nullptr || size != spec.table_size) {
-        error = what + "\"" + file.string() + "\" has no " + spec.entry +
-                " of this glint build, expected the plugin built with it";
-        return nullptr;
-    }
-    return table;  // note: never dlclose'd; the libraries keep global state to the end
+    void* entry = dlsym(handle, spec.entry);
+    if (entry == nullptr) error = plugin_mismatch(spec, file);
+    return entry;  // note: never dlclose'd; the libraries keep global state to the end
+}
+
+std::string plugin_mismatch(const PluginSpec& spec, const fs::path& file) {
+    return std::string(spec.serves) + ": \"" + file.string() + "\" has no " + spec.entry +
+           " of this glint build, expected the plugin built with it";
 }
 
 void rethrow_plugin_error(PluginErrorKind kind, const std::string& message) {

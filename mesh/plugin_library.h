@@ -11,26 +11,32 @@
 
 namespace glint::detail {
 
-/// One plugin: its file, its one exported entry (returning a table whose first member is the
-/// table's size), what it serves (for messages) and the Debian packages its libraries come from.
+/// One plugin: its file, its one exported entry (`const Table* entry()`, the table's first
+/// member its size as the plugin was built), what it serves (for messages) and the Debian
+/// packages its libraries come from.
 struct PluginSpec {
-    const char* file;        ///< "libglint_image_io.so"
-    const char* entry;       ///< "glint_image_io_table_v1"
-    std::size_t table_size;  ///< sizeof the table as this program was built
-    const char* serves;      ///< "pictures", "volume support"
-    const char* packages;    ///< "libopenimageio2.4"
+    const char* file;      ///< "libglint_image_io.so"
+    const char* entry;     ///< "glint_image_io_table_v1"
+    const char* serves;    ///< "pictures and image files", "volume support"
+    const char* packages;  ///< "libopenimageio2.4"
 };
 
 /// The plugin's file, or empty with `error` set to one line naming where it was looked for
 /// and the packages to install (the folders as for load_plugin_table).
 [[nodiscard]] std::filesystem::path find_plugin(const PluginSpec& spec, std::string& error);
 
-/// Finds and opens the plugin and returns its table, or null with `error` set to one line
-/// (what is missing or broken, where it was looked for, the packages to install). Looks in
-/// $GLINT_PLUGIN_DIR alone when set; else the folder of the program or library that holds
-/// this code, its ../lib/glint (bin/ → lib/glint), its ../../glint (an installed Python module
-/// in lib/python3/dist-packages), then the configured install lib/glint. Never dlclose'd.
-[[nodiscard]] const void* load_plugin_table(const PluginSpec& spec, std::string& error);
+/// Finds and opens the plugin and returns its entry's address (`file` set to where it was
+/// found), or null with `error` set to one line (what is missing or broken, where it was
+/// looked for, the packages to install). Looks in $GLINT_PLUGIN_DIR alone when set; else the
+/// folder of the program or library that holds this code, its ../lib/glint (bin/ →
+/// lib/glint), its ../../glint (an installed Python module in lib/python3/dist-packages),
+/// then the configured install lib/glint. Never dlclose'd.
+[[nodiscard]] void* load_plugin_entry(const PluginSpec& spec, std::filesystem::path& file,
+                                      std::string& error);
+
+/// The line for a plugin whose entry gave no table of this build's size.
+[[nodiscard]] std::string plugin_mismatch(const PluginSpec& spec,
+                                          const std::filesystem::path& file);
 
 /// Rethrows an error a plugin reported as glint's own type (InputError, IoError, Error).
 void rethrow_plugin_error(PluginErrorKind kind, const std::string& message);
@@ -45,7 +51,15 @@ template <class Table>
     };
     static const Loaded loaded = [&] {
         Loaded l;
-        l.table = static_cast<const Table*>(load_plugin_table(spec, l.error));
+        std::filesystem::path file;
+        void* symbol = load_plugin_entry(spec, file, l.error);
+        if (symbol == nullptr) return l;
+        // note: called through its own type (`const Table* ()`): a call through any other
+        // function type is undefined (UBSan's -fsanitize=function reports it).
+        const Table* table = reinterpret_cast<const Table* (*)()>(symbol)();
+        if (table == nullptr || table->table_size != sizeof(Table))
+            l.error = plugin_mismatch(spec, file);
+        else l.table = table;
         return l;
     }();
     if (loaded.table == nullptr) throw IoError(loaded.error);

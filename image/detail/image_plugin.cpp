@@ -9,7 +9,7 @@ namespace glint::detail {
 namespace {
 
 // The Debian package of the library the plugin links (dpkg -S libOpenImageIO.so.2.4).
-constexpr PluginSpec kPlugin{"libglint_image_io.so", GLINT_IMAGE_IO_ENTRY, sizeof(ImageIoTable),
+constexpr PluginSpec kPlugin{"libglint_image_io.so", GLINT_IMAGE_IO_ENTRY,
                              "pictures and image files", "libopenimageio2.4"};
 
 }  // namespace

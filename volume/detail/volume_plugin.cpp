@@ -10,8 +10,8 @@ namespace glint::detail {
 namespace {
 
 // The Debian packages of the libraries the plugin links (dpkg -S on each .so it loads).
-constexpr PluginSpec kPlugin{"libglint_volume_io.so", GLINT_VOLUME_IO_ENTRY, sizeof(VolumeIoTable),
-                             "volume support", "libvtk9.1 libinsighttoolkit5.2 libgdcm3.0"};
+constexpr PluginSpec kPlugin{"libglint_volume_io.so", GLINT_VOLUME_IO_ENTRY, "volume support",
+                             "libvtk9.1 libinsighttoolkit5.2 libgdcm3.0"};
 
 }  // namespace
 
