@@ -1,5 +1,6 @@
-// Writing frames as images with OpenImageIO: EXR (float, the numbers) or PNG (8/16-bit, for
-// eyes), chosen by extension, written atomically, with the view in the metadata.
+// Writing frames as images with OpenImageIO (image/image_ops.h, the image plugin): EXR (float,
+// the numbers) or PNG (8/16-bit, for eyes), chosen by extension, written atomically, with the
+// view in the metadata.
 #pragma once
 
 #include "render/frame.h"

@@ -1,7 +1,7 @@
 // Heat maps with a colour bar (glint compare), EXR channels, vertex colours. The pictures of a
 // sweep (views, mosaics, atlas.png) are report/pictures.h's.
-// All colour mapping goes through OpenImageIO's ImageBufAlgo::color_map; files are written
-// atomically (temporary name, then rename).
+// All colour mapping goes through OpenImageIO's ImageBufAlgo::color_map (image/image_ops.h, the
+// image plugin); files are written atomically (temporary name, then rename).
 #pragma once
 
 #include "mesh/mesh.h"
