@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <stdio.h>  // renameat2, RENAME_EXCHANGE, RENAME_NOREPLACE (glibc 2.28)
 #include <unistd.h>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -56,8 +57,26 @@ void remove_wrapper(const fs::path& wrapper) {
     fs::remove_all(wrapper, ec);
 }
 
+// The pid a wrapper's name carries ("<out>.partial-<pid>[-n]" after `prefix`), or 0.
+pid_t named_pid(const std::string& name, const std::string& prefix) {
+    long pid = 0;
+    std::size_t at = prefix.size();
+    for (; at < name.size() && std::isdigit(static_cast<unsigned char>(name[at])) && pid < 1L << 30;
+         ++at)
+        pid = 10 * pid + (name[at] - '0');
+    const bool whole = at == name.size() || name[at] == '-';
+    return whole && at > prefix.size() ? static_cast<pid_t>(pid) : 0;
+}
+
+bool gone(pid_t pid) {
+    return pid > 0 && pid != ::getpid() && ::kill(pid, 0) != 0 && errno == ESRCH;
+}
+
 // Removes the staging wrappers of killed runs into `target`: marked as glint's, of this host,
-// their process gone. A folder without the marker is the user's and is left alone.
+// their process gone. A folder without the marker is the user's and is left alone, but for an
+// empty one whose name carries a pid that is gone: a run killed between making its wrapper and
+// writing the marker left it, and an empty folder holds nothing to lose (only an empty folder
+// is removed: fs::remove refuses any other).
 void remove_leftovers(const fs::path& target) {
     const std::string prefix = target.filename().string() + ".partial-";
     std::error_code ec;
@@ -69,8 +88,12 @@ void remove_leftovers(const fs::path& target) {
             !it->is_directory(ec))
             continue;
         const pid_t pid = marker_pid(p);
-        if (pid == 0 || pid == ::getpid()) continue;
-        if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+        if (pid == 0) {
+            std::error_code ignored;
+            if (gone(named_pid(name, prefix)) && fs::is_empty(p, ignored)) fs::remove(p, ignored);
+            continue;
+        }
+        if (!gone(pid)) continue;  // alive, ours, or not ours to judge
         remove_wrapper(p);
     }
 }

@@ -246,6 +246,33 @@ TEST(OutputFolder, RemovesTheMarkedLeftoversOfKilledRunsOnly) {
     EXPECT_FALSE(fs::exists(dir / "atlas" / kStagingMarker));
 }
 
+// A run killed between making its staging wrapper and writing the marker leaves an empty,
+// unmarked "<out>.partial-<pid>": removed once that pid is gone. An unmarked one holding
+// anything, or named for a live process, stays.
+TEST(OutputFolder, RemovesTheEmptyWrapperOfARunKilledBeforeItsMarker) {
+    const fs::path dir = base("unmarked_leftovers");
+    const pid_t child = ::fork();
+    if (child == 0) ::_exit(0);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    const fs::path empty = dir / ("atlas.partial-" + std::to_string(child));
+    const fs::path empty_second = dir / ("atlas.partial-" + std::to_string(child) + "-1");
+    const fs::path kept = dir / ("atlas.partial-" + std::to_string(child) + "-2");
+    const fs::path alive = dir / ("atlas.partial-" + std::to_string(::getppid()));
+    const fs::path not_a_pid = dir / "atlas.partial-x1";
+    for (const fs::path& p : {empty, empty_second, alive, not_a_pid}) fs::create_directories(p);
+    write_new(kept / "notes.txt", "user's");
+    {
+        OutputFolder out(dir / "atlas");
+        out.commit();
+    }
+    EXPECT_FALSE(fs::exists(empty));
+    EXPECT_FALSE(fs::exists(empty_second));
+    EXPECT_EQ(read_text(kept / "notes.txt"), "user's");
+    EXPECT_TRUE(fs::is_directory(alive));
+    EXPECT_TRUE(fs::is_directory(not_a_pid));
+}
+
 // Item 5: --force replaces with one exchange: the old folder is whole or the new one is.
 TEST(OutputFolder, ReplacingLeavesNoStagingOrAsideFolders) {
     const fs::path dir = base("exchange");
