@@ -64,8 +64,9 @@ FitMode fit_mode(bool do_register, const std::optional<std::filesystem::path>& f
 }
 
 FitHandle register_pair(const MeshLike& reference, const MeshLike& examined,
-                        const std::optional<std::filesystem::path>& output,
-                        const py::kwargs& kwargs) {
+                        const py::object& output_value, const py::kwargs& kwargs) {
+    const std::optional<std::filesystem::path> output =
+        path_argument(output_value, "register", "output");
     Keywords k;
     apply_keywords(k, kwargs, kSurfaceKeywords | kFitGroup | kUnitGroup, "register");
     FitOptions& fit = k.analysis.fit;
@@ -104,10 +105,14 @@ RunInput run_input(const char* role, const MeshHandle& h) {
     return in;
 }
 
-AnalysisHandle analyse_pair(const MeshLike& reference, const MeshLike& examined, bool do_register,
-                            const std::optional<std::filesystem::path>& fit_file,
-                            const std::optional<std::filesystem::path>& output,
-                            const py::kwargs& kwargs) {
+AnalysisHandle analyse_pair(const MeshLike& reference, const MeshLike& examined,
+                            const py::object& register_value, const py::object& fit_value,
+                            const py::object& output_value, const py::kwargs& kwargs) {
+    const bool do_register = bool_argument(register_value, "analyse", "register");
+    const std::optional<std::filesystem::path> fit_file =
+        path_argument(fit_value, "analyse", "fit");
+    const std::optional<std::filesystem::path> output =
+        path_argument(output_value, "analyse", "output");
     Keywords k;
     apply_keywords(k, kwargs, kAllKeywords, "analyse");
     InspectOptions options{k.analysis, k.exports};
@@ -315,8 +320,11 @@ void bind_analysis(py::module_& m) {
             .c_str());
     m.def(
         "options",
-        [](bool do_register, const std::optional<std::filesystem::path>& fit_file,
+        [](const py::object& register_value, const py::object& fit_value,
            const py::kwargs& kwargs) {
+            const bool do_register = bool_argument(register_value, "options", "register");
+            const std::optional<std::filesystem::path> fit_file =
+                path_argument(fit_value, "options", "fit");
             Keywords k;
             apply_keywords(k, kwargs, kAllKeywords & ~kSurfaceKeywords & ~kForceKeyword, "options");
             k.analysis.fit.mode = fit_mode(do_register, fit_file);

@@ -112,9 +112,10 @@ std::optional<std::string> optional_text(const py::object& value, const char* ke
 }
 
 AsymmetryHandle run_asymmetry(const MeshLike& mesh, const py::object& plane_value,
-                              const py::object& fit_roi_value,
-                              const std::optional<std::filesystem::path>& output,
+                              const py::object& fit_roi_value, const py::object& output_value,
                               const py::kwargs& kwargs) {
+    const std::optional<std::filesystem::path> output =
+        path_argument(output_value, "asymmetry", "output");
     const std::optional<std::string> plane = optional_text(plane_value, "plane");
     const std::optional<std::string> fit_roi = optional_text(fit_roi_value, "fit_roi");
     py::kwargs all = kwargs;

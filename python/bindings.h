@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -53,6 +54,18 @@ struct MeshLike {
 [[nodiscard]] std::shared_ptr<MeshHandle> mesh_argument(const MeshLike& value,
                                                         const SurfaceOptions& surface,
                                                         const char* role);
+
+/// A path keyword (`output=`, `fit=`) taken as any object: a str or os.PathLike, or None
+/// (nullopt). \throw pybind11::type_error in one line, "analyse(): output must be a str,
+/// os.PathLike or None, not float" (pybind11's own refusal lists every signature).
+[[nodiscard]] std::optional<std::filesystem::path> path_argument(const pybind11::object& value,
+                                                                 const char* function,
+                                                                 const char* keyword);
+
+/// A bool keyword (`register=`) taken as any object: True or False only (not 1, not "yes").
+/// \throw pybind11::type_error in one line.
+[[nodiscard]] bool bool_argument(const pybind11::object& value, const char* function,
+                                 const char* keyword);
 
 void bind_mesh(pybind11::module_& m);
 void bind_analysis(pybind11::module_& m);

@@ -184,6 +184,30 @@ report and its source says it was transformed (report.json must not name the fil
 
 }  // namespace
 
+namespace {
+
+std::string type_name(const py::handle& value) {
+    return py::cast<std::string>(py::str(value.get_type().attr("__name__")));
+}
+
+}  // namespace
+
+std::optional<std::filesystem::path> path_argument(const py::object& value, const char* function,
+                                                   const char* keyword) {
+    if (value.is_none()) return std::nullopt;
+    if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__"))
+        throw py::type_error(std::string(function) + "(): " + keyword +
+                             " must be a str, os.PathLike or None, not " + type_name(value));
+    return py::cast<std::filesystem::path>(value);
+}
+
+bool bool_argument(const py::object& value, const char* function, const char* keyword) {
+    if (!py::isinstance<py::bool_>(value))
+        throw py::type_error(std::string(function) + "(): " + keyword +
+                             " must be True or False, not " + type_name(value));
+    return py::cast<bool>(value);
+}
+
 std::shared_ptr<MeshHandle> mesh_argument(const MeshLike& argument, const SurfaceOptions& surface,
                                           const char* role) {
     const py::handle value = argument.value;
@@ -198,7 +222,7 @@ std::shared_ptr<MeshHandle> mesh_argument(const MeshLike& argument, const Surfac
                          " must be a glint.Mesh, a path, a (vertices, triangles) pair of arrays "
                          "or a mesh with vertices and triangles (Open3D, trimesh, PyVista), "
                          "not " +
-                         py::cast<std::string>(py::str(value.get_type().attr("__name__"))));
+                         type_name(value));
 }
 
 namespace {
@@ -223,9 +247,8 @@ void bind_mesh_functions(py::module_& m) {
             // note: a py::object rather than a path parameter: pybind11's own refusal of a
             // wrong type is a message of several lines listing the signatures.
             if (!py::isinstance<py::str>(path) && !py::hasattr(path, "__fspath__"))
-                throw py::type_error(
-                    "load(): path must be a str or os.PathLike, not " +
-                    py::cast<std::string>(py::str(path.get_type().attr("__name__"))));
+                throw py::type_error("load(): path must be a str or os.PathLike, not " +
+                                     type_name(path));
             Keywords k;
             apply_keywords(k, kwargs, kSurfaceKeywords, "load");
             auto loaded = load(py::cast<std::filesystem::path>(path), k.surface);

@@ -286,3 +286,21 @@ def test_a_wrong_type_for_a_path_or_plane_is_refused_in_one_line(tmp_path):
         glint.load(1.5)
     with pytest.raises(TypeError, match=r"^asymmetry\(\): plane must be a str or None, not list$"):
         glint.asymmetry(tmp_path / "any.ply", plane=[1.0, 2.0])
+    # The path and bool keywords of analyse, register, asymmetry and options: one line each
+    # (pybind11's own refusal listed every signature over several lines).
+    mesh = tmp_path / "any.ply"
+    for call, keyword, value, expected in [
+            (lambda **kw: glint.analyse(mesh, mesh, **kw), "output", 1.5,
+             r"^analyse\(\): output must be a str, os.PathLike or None, not float$"),
+            (lambda **kw: glint.analyse(mesh, mesh, **kw), "fit", 3,
+             r"^analyse\(\): fit must be a str, os.PathLike or None, not int$"),
+            (lambda **kw: glint.analyse(mesh, mesh, **kw), "register", "yes",
+             r"^analyse\(\): register must be True or False, not str$"),
+            (lambda **kw: glint.register(mesh, mesh, **kw), "output", [1],
+             r"^register\(\): output must be a str, os.PathLike or None, not list$"),
+            (lambda **kw: glint.asymmetry(mesh, **kw), "output", 1.5,
+             r"^asymmetry\(\): output must be a str, os.PathLike or None, not float$"),
+            (lambda **kw: glint.options(**kw), "register", 1,
+             r"^options\(\): register must be True or False, not int$")]:
+        with pytest.raises(TypeError, match=expected):
+            call(**{keyword: value})
