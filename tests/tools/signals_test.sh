@@ -42,7 +42,7 @@ case "$case_name" in
         (GLINT_FAULT="view#2:stall" long_sweep 2>"$work/err.txt") &
         pid=$!
         wait_for_staging "$work/atlas"
-        sleep 0.5
+        wait_until_idle "$pid"  # in the stalled step (its CPU time stands still)
         kill -TERM "$pid"
         sleep 1.2
         start=$(date +%s%N)

@@ -268,7 +268,7 @@ def test_fault_drained_node_then_resumed_is_finished_by_a_rerun(fault_cohort, cl
     # Running jobs finish on a draining node; the others wait, and snakemake waits with them.
     wait_for("the node drained", lambda: cluster.node_state() == "drained", 120, head)
     pending = [j for j in cluster.jobs() if int(j["JobID"]) > start and j["State"] == "PENDING"]
-    assert pending, "no job left waiting on the drained node"
+    assert pending, ("no job left waiting on the drained node", cluster.jobs())
     time.sleep(3)
     assert head.process.poll() is None, "snakemake gave up on jobs waiting for a drained node"
     # The user stops waiting (Ctrl-C): snakemake cancels what it submitted (cluster-cancel).
