@@ -10,7 +10,6 @@
 
 namespace glint::detail {
 
-namespace fs = std::filesystem;
 
 namespace {
 
