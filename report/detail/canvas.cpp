@@ -10,7 +10,6 @@
 
 namespace glint::detail {
 
-
 namespace {
 
 // ColorBrewer RdBu, 9 classes (colorbrewer2.org), as 0…1 values, blue end first.
