@@ -9,6 +9,7 @@
 #include "mesh/detail/stl_reader.h"
 #include "mesh/detail/vtk_reader.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "mesh/normals.h"
 #include "mesh/units.h"
 #include "mesh/validate.h"
@@ -60,10 +61,10 @@ std::string lower_extension(const fs::path& path) {
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
+        if (!reachable_input(path, quoted(source)))
+            throw InputError(quoted(source) + ": file not found");
         std::error_code ec;
-        const auto status = fs::status(path, ec);
-        if (ec || !fs::exists(status)) throw InputError(quoted(source) + ": file not found");
-        if (fs::is_directory(status))
+        if (fs::is_directory(path, ec))
             throw InputError(quoted(source) + ": is a folder, expected a mesh file");
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
         if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));

@@ -1,6 +1,7 @@
 #include "mesh/small_file.h"
 
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -32,9 +33,14 @@ std::string read_small_file(const std::filesystem::path& path, const std::string
                             std::size_t max_bytes) {
     const std::string where = what + " \"" + path.string() + "\"";
     const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-    if (fd < 0)
-        throw IoError(where + ": cannot open: " + std::strerror(errno) +
-                      (errno == ENOENT ? "" : ", expected a readable file"));
+    if (fd < 0) {
+        const int e = errno;
+        // A folder on the way that this user may not enter is named (issue 23 item 18).
+        if (const PathCheck c = check_path(path); e == EACCES && c.reach == PathReach::Denied)
+            throw IoError(where + ": " + c.reason);
+        throw IoError(where + ": cannot open: " + std::strerror(e) +
+                      (e == ENOENT ? "" : ", expected a readable file"));
+    }
     struct stat st {};
     if (::fstat(fd, &st) != 0) {
         const int e = errno;

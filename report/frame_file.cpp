@@ -2,15 +2,18 @@
 
 #include "image/image_ops.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 
 #include <cmath>
 
 namespace glint {
 
 Frame read_frame_exr(const std::filesystem::path& path) {
+    const std::string where = "frame \"" + path.string() + "\"";
+    if (!reachable_input(path, where)) throw InputError(where + ": no such file");
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
-        throw InputError("frame \"" + path.string() + "\": no such file");
+        throw InputError(where + ": is not a regular file, expected an EXR frame");
     FloatImage image;
     try {
         image = read_image_file(path);

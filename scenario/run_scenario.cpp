@@ -2,6 +2,7 @@
 
 #include "analysis/analysis.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "report/inspect.h"
 #include "report/run_inputs.h"
 #include "scenario/detail/asymmetry_run.h"
@@ -25,17 +26,6 @@ std::string fmt(const char* f, double a, double b) {
     return buf;
 }
 
-// Files a scenario needs from the shared data folder; the first missing one, or "".
-std::string missing_input(const Scenario& sc) {
-    for (const auto* s : {&sc.reference, &sc.examined})
-        if (!s->phantom && !s->mesh.empty() && !fs::exists(s->mesh))
-            return s->mesh.string() +
-                   (s->needs_data_root ? " (shared data; give --data-root or GLINT_DATA)" : "");
-    if (!sc.truth_mask.empty() && !fs::exists(sc.truth_mask)) return sc.truth_mask.string();
-    if (!sc.truth_pose_conf.empty() && !fs::exists(sc.truth_pose_conf))
-        return sc.truth_pose_conf.string();
-    return "";
-}
 
 // Scores against the truth, the tallies of regions, and the plain-distance baseline.
 void score_outcome(const Scenario& sc, const ScenarioMeshes& meshes, const AnalysisResult& result,
@@ -207,6 +197,21 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
 }
 
 }  // namespace detail
+
+std::string missing_input(const Scenario& sc) {
+    const auto missing = [&](const fs::path& p) {
+        return !reachable_input(p, "scenario \"" + sc.file.string() + "\": input \"" +
+                                       p.string() + "\"");
+    };
+    for (const auto* s : {&sc.reference, &sc.examined})
+        if (!s->phantom && !s->mesh.empty() && missing(s->mesh))
+            return s->mesh.string() +
+                   (s->needs_data_root ? " (shared data; give --data-root or GLINT_DATA)" : "");
+    if (!sc.truth_mask.empty() && missing(sc.truth_mask)) return sc.truth_mask.string();
+    if (!sc.truth_pose_conf.empty() && missing(sc.truth_pose_conf))
+        return sc.truth_pose_conf.string();
+    return "";
+}
 
 ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) {
     const auto t0 = std::chrono::steady_clock::now();

@@ -65,6 +65,10 @@ struct ScenarioOutcome {
 
 /// Builds, fits, sweeps and scores a scenario. Missing shared data → skipped (reason given).
 /// \throw InputError / IoError / DeviceError for anything else that is wrong.
+/// The first input file the scenario names that does not exist, or "". A file this user may
+/// not reach is no missing data: IoError naming the folder in the way (issue 23 item 18).
+[[nodiscard]] std::string missing_input(const Scenario& scenario);
+
 [[nodiscard]] ScenarioOutcome run_scenario(const Scenario& scenario,
                                            const ScenarioRunOptions& options);
 

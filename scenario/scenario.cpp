@@ -3,6 +3,7 @@
 #include "scenario/pose_conf.h"
 
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "mesh/io.h"
 #include "mesh/remesh.h"
 #include "mesh/small_file.h"
@@ -39,7 +40,9 @@ fs::path resolve_mesh(TableReader& r, const std::string& key, const std::string&
     const fs::path p(text);
     if (p.is_absolute()) return p;
     const fs::path local = scenario_dir / p;
-    if (fs::exists(local)) return local;
+    // A path that exists, or that this user may not reach, is the scenario's own: a data
+    // root is tried only for what is missing beside the scenario.
+    if (check_path(local).reach != PathReach::Missing) return local;
     if (!data_root.empty()) {
         needs_root = true;
         return data_root / p;
@@ -309,7 +312,8 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
 // The scenario file parsed as TOML; a missing file, a folder or a syntax error named.
 toml::table parse_scenario_file(const fs::path& file) {
     std::error_code ec;
-    if (!fs::exists(file, ec)) throw IoError("scenario \"" + file.string() + "\": no such file");
+    if (!reachable_input(file, "scenario \"" + file.string() + "\""))
+        throw IoError("scenario \"" + file.string() + "\": no such file");
     if (fs::is_directory(file, ec))
         throw IoError("scenario \"" + file.string() + "\" is a directory, expected a .toml file");
     toml::table root;
@@ -513,8 +517,8 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
 
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     if (sc.examined_derived && (sc.resample_volume || sc.reference.acquisition.any())) {
-        std::error_code ec;
-        if (!fs::exists(sc.reference.mesh, ec))
+        if (!reachable_input(sc.reference.mesh, "scenario \"" + sc.file.string() +
+                                                    "\": reference volume"))
             throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" +
                           sc.reference.mesh_as_written + "\" not found (looked at \"" +
                           sc.reference.mesh.string() + "\"" +
@@ -525,8 +529,8 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     ScenarioMeshes out;
     auto load = [&](const SurfaceSource& s, const std::string& role) {
         if (s.phantom) return make_phantom(*s.phantom);
-        std::error_code ec;
-        if (!fs::exists(s.mesh, ec))
+        if (!reachable_input(s.mesh,
+                             "scenario \"" + sc.file.string() + "\": " + role + " mesh"))
             throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" +
                           s.mesh_as_written + "\" not found (looked at \"" + s.mesh.string() +
                           "\"" + (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") +
@@ -550,7 +554,9 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                              std::to_string(out.truth.size()) + " values, the reference has " +
                              std::to_string(out.reference.vertex_count()) + " vertices");
     }
-    if (!sc.truth_pose_conf.empty() && !fs::exists(sc.truth_pose_conf))
+    if (!sc.truth_pose_conf.empty() &&
+        !reachable_input(sc.truth_pose_conf,
+                         "scenario \"" + sc.file.string() + "\": pose file"))
         throw IoError(
             "scenario \"" + sc.file.string() + "\": pose file \"" + sc.truth_pose_conf.string() +
             "\" not found" +

@@ -1,6 +1,7 @@
 // glint run SCENARIO… and glint eval SCENARIO…|FOLDER: scenarios end to end, and scored.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "mesh/output_guard.h"
 #include "scenario/run_scenario.h"
 #include "scenario/scenario.h"
@@ -18,6 +19,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace glint::cli {
@@ -49,11 +51,22 @@ std::vector<fs::path> expand(const RunArgs& a, const fs::path& data_root,
     std::vector<fs::path> files;
     for (const auto& s : a.scenarios) {
         const fs::path p(s);
-        if (fs::is_directory(p)) {
+        std::error_code ec;
+        if (reachable_input(p, "scenario \"" + s + "\"") && fs::is_directory(p, ec)) {
             std::vector<fs::path> in_dir;
-            for (const auto& e : fs::recursive_directory_iterator(p))
-                if (e.is_regular_file() && e.path().extension() == ".toml")
-                    in_dir.push_back(e.path());
+            // A subfolder this user may not enter is an error naming it, not a scenario less.
+            fs::path entered = p;  // the folder the next step lists
+            for (auto it = fs::recursive_directory_iterator(p, ec);
+                 !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+                std::error_code kind;
+                if (it->is_directory(kind)) entered = it->path();
+                if (it->is_regular_file(kind) && it->path().extension() == ".toml")
+                    in_dir.push_back(it->path());
+            }
+            if (ec)
+                throw IoError("scenario folder \"" + s + "\": cannot list \"" +
+                              entered.string() + "\": " + ec.message() +
+                              "; expected folders this user may read");
             std::sort(in_dir.begin(), in_dir.end());
             if (in_dir.empty()) throw InputError("folder \"" + s + "\" holds no .toml scenario");
             for (auto& f : in_dir) {
@@ -146,6 +159,8 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
     const fs::path root = data_root_of(a);
     std::vector<Scenario> scenarios;
     expand(a, root, scenarios);
+    // An input this user may not reach stops the run before anything is written.
+    for (const auto& sc : scenarios) (void)missing_input(sc);
     // Earlier results are refused before any scenario runs (not after the first one).
     if (!a.force)
         for (const auto& sc : scenarios)
@@ -182,7 +197,10 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
             o.file = sc.file;
             o.failures.push_back(std::string("error: ") + e.what());
             if (!first_error) {
-                const std::string where = "scenario \"" + sc.file.string() + "\": ";
+                // Said once: errors of run_scenario may name the scenario already.
+                const std::string named = "scenario \"" + sc.file.string() + "\": ";
+                const std::string where =
+                    std::string_view(e.what()).starts_with(named) ? "" : named;
                 if (dynamic_cast<const InputError*>(&e))
                     first_error = std::make_exception_ptr(InputError(where + e.what()));
                 else if (dynamic_cast<const DeviceError*>(&e))

@@ -1,6 +1,7 @@
 // glint: damage detection on 3D surfaces by light-reflection analysis.
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "mesh/io.h"
 #include "mesh/memory_limits.h"
 #include "mesh/version.h"
@@ -16,6 +17,7 @@
 #include <csignal>
 #include <cstdint>
 #include <exception>
+#include <filesystem>
 #include <functional>
 #include <iostream>
 #include <new>
@@ -148,6 +150,13 @@ int guarded(CLI::App& app, const std::function<void()>& body) {
                     "`" + line.substr(0, 200) + "` needed more memory than it could get" +
                         (stage.empty() ? "" : " in its stage \"" + stage + "\"") + " (" +
                         glint::memory_limits_text() + ")");
+    } catch (const std::filesystem::filesystem_error& e) {
+        // A file-system call no reader checked first: the machine's problem, not glint's.
+        const glint::PathCheck why = glint::check_path(e.path1());
+        return fail(kExitDeviceOrIo, "error",
+                    "\"" + e.path1().string() + "\": " +
+                        (why.reach == glint::PathReach::Denied ? why.reason
+                                                               : e.code().message()));
     } catch (const std::exception& e) {
         return fail(kExitInternal, "internal error", e.what());
     }

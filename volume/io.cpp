@@ -4,6 +4,7 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/input_path.h"
 #include "mesh/output_guard.h"
 #include "volume/detail/isolated_read.h"
 #include "volume/detail/itk_io.h"
@@ -59,7 +60,8 @@ bool is_volume_path(const fs::path& path) {
 
 Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     std::error_code ec;
-    if (!fs::exists(path, ec)) throw InputError(quoted(path) + ": no such file or folder");
+    if (!reachable_input(path, quoted(path)))
+        throw InputError(quoted(path) + ": no such file or folder");
     for (const fs::path& f : input_files(path)) protect_input(f);  // never an output
     // DICOM goes through GDCM, which may crash on files the pre-check cannot foresee: its read
     // runs in a child process (detail/isolated_read.h).

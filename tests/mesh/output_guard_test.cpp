@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/file_set.h"
+#include "tests/mesh/unprivileged.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -82,14 +83,18 @@ TEST(OutputGuard, AFolderTheCommandMakesNeedsAWritableFolderAboveIt) {
               std::string::npos);
 }
 
+// Root may write anywhere: as root the check runs as user nobody (tests/mesh/unprivileged.h).
 TEST(OutputGuard, RefusesAFolderThatIsNotWritable) {
-    if (::geteuid() == 0) GTEST_SKIP() << "root may write into any folder";
-    const fs::path dir = base("read_only");
+    const fs::path dir = test::open_temp_folder("read_only");
     fs::create_directories(dir / "ro");
-    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec);
-    const std::string why = folder_refusal(dir / "ro" / "x.ply", OutputParent::MustExist);
-    const std::string made = folder_refusal(dir / "ro" / "new" / "x", OutputParent::MayBeCreated);
+    fs::permissions(dir / "ro", fs::perms::owner_read | fs::perms::owner_exec |
+                                    fs::perms::others_read | fs::perms::others_exec);
+    const std::string why = test::as_unprivileged(
+        [&] { return folder_refusal(dir / "ro" / "x.ply", OutputParent::MustExist); });
+    const std::string made = test::as_unprivileged(
+        [&] { return folder_refusal(dir / "ro" / "new" / "x", OutputParent::MayBeCreated); });
     fs::permissions(dir / "ro", fs::perms::owner_all);
+    fs::remove_all(dir);
     EXPECT_NE(why.find("folder \"" + (dir / "ro").string() + "\" is not writable"),
               std::string::npos);
     EXPECT_NE(made.find("\" is not writable"), std::string::npos);
