@@ -1,7 +1,9 @@
 # `cmake --install` and CPack (.deb).
 #
 # Installed (prefix-relative):
-#   bin/glint                                  the command line (shaders are embedded in it)
+#   bin/glint                                  the command line: a launcher (tools/launcher) that
+#                                              holds SIGINT/SIGTERM and runs lib/glint/glint-program
+#   lib/glint/glint-program                    the program (shaders are embedded in it)
 #   share/doc/glint/README.md                  how to use it
 #   share/glint/scenarios/                     the shipped scenarios (tools/demo runs one)
 #   share/glint/workflows/cohort/              the Snakemake cohort workflow
@@ -17,6 +19,7 @@
 include(GNUInstallDirs)
 
 install(TARGETS glint RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT glint)
+install(TARGETS glint_program RUNTIME DESTINATION ${CMAKE_INSTALL_LIBDIR}/glint COMPONENT glint)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md DESTINATION ${CMAKE_INSTALL_DOCDIR} COMPONENT glint)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenarios/ DESTINATION ${CMAKE_INSTALL_DATADIR}/glint/scenarios
         COMPONENT glint)

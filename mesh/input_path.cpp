@@ -46,8 +46,8 @@ PathCheck check_path(const fs::path& path) {
                                      "\" may not be entered by this user (permission denied); "
                                      "expected a path this user can reach"};
     }
-    return {PathReach::Failed,
-            std::string("cannot be looked at: ") + std::strerror(err) + "; expected a readable path"};
+    return {PathReach::Failed, std::string("cannot be looked at: ") + std::strerror(err) +
+                                   "; expected a readable path"};
 }
 
 bool reachable_input(const fs::path& path, const std::string& where) {

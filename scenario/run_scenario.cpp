@@ -26,7 +26,6 @@ std::string fmt(const char* f, double a, double b) {
     return buf;
 }
 
-
 // Scores against the truth, the tallies of regions, and the plain-distance baseline.
 void score_outcome(const Scenario& sc, const ScenarioMeshes& meshes, const AnalysisResult& result,
                    ScenarioOutcome& out) {
@@ -200,8 +199,8 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
 
 std::string missing_input(const Scenario& sc) {
     const auto missing = [&](const fs::path& p) {
-        return !reachable_input(p, "scenario \"" + sc.file.string() + "\": input \"" +
-                                       p.string() + "\"");
+        return !reachable_input(
+            p, "scenario \"" + sc.file.string() + "\": input \"" + p.string() + "\"");
     };
     for (const auto* s : {&sc.reference, &sc.examined})
         if (!s->phantom && !s->mesh.empty() && missing(s->mesh))

@@ -517,8 +517,8 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
 
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     if (sc.examined_derived && (sc.resample_volume || sc.reference.acquisition.any())) {
-        if (!reachable_input(sc.reference.mesh, "scenario \"" + sc.file.string() +
-                                                    "\": reference volume"))
+        if (!reachable_input(sc.reference.mesh,
+                             "scenario \"" + sc.file.string() + "\": reference volume"))
             throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" +
                           sc.reference.mesh_as_written + "\" not found (looked at \"" +
                           sc.reference.mesh.string() + "\"" +
@@ -529,8 +529,7 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     ScenarioMeshes out;
     auto load = [&](const SurfaceSource& s, const std::string& role) {
         if (s.phantom) return make_phantom(*s.phantom);
-        if (!reachable_input(s.mesh,
-                             "scenario \"" + sc.file.string() + "\": " + role + " mesh"))
+        if (!reachable_input(s.mesh, "scenario \"" + sc.file.string() + "\": " + role + " mesh"))
             throw IoError("scenario \"" + sc.file.string() + "\": " + role + " mesh \"" +
                           s.mesh_as_written + "\" not found (looked at \"" + s.mesh.string() +
                           "\"" + (s.needs_data_root ? "; give --data-root or GLINT_DATA" : "") +
@@ -555,8 +554,7 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                              std::to_string(out.reference.vertex_count()) + " vertices");
     }
     if (!sc.truth_pose_conf.empty() &&
-        !reachable_input(sc.truth_pose_conf,
-                         "scenario \"" + sc.file.string() + "\": pose file"))
+        !reachable_input(sc.truth_pose_conf, "scenario \"" + sc.file.string() + "\": pose file"))
         throw IoError(
             "scenario \"" + sc.file.string() + "\": pose file \"" + sc.truth_pose_conf.string() +
             "\" not found" +

@@ -64,9 +64,8 @@ std::vector<fs::path> expand(const RunArgs& a, const fs::path& data_root,
                     in_dir.push_back(it->path());
             }
             if (ec)
-                throw IoError("scenario folder \"" + s + "\": cannot list \"" +
-                              entered.string() + "\": " + ec.message() +
-                              "; expected folders this user may read");
+                throw IoError("scenario folder \"" + s + "\": cannot list \"" + entered.string() +
+                              "\": " + ec.message() + "; expected folders this user may read");
             std::sort(in_dir.begin(), in_dir.end());
             if (in_dir.empty()) throw InputError("folder \"" + s + "\" holds no .toml scenario");
             for (auto& f : in_dir) {

@@ -5,6 +5,8 @@
 //   runs before any shared library's initialiser: from a few milliseconds after exec (the
 //   relocations) a signal is seen, where glint's ~0.4 s of library start-up used to end with
 //   the default action (exit 143, no word).
+// - Before that, the launcher holds them (release_launcher_signals): no moment of a run ends it
+//   without a word.
 // - timeout(1), shells and batch systems deliver one request both to the process and to its
 //   process group, so the same signal often arrives twice within microseconds; a repeat within
 //   kRepeatWindowNs is the same request (it used to kill glint without a word or a cleanup).
@@ -21,6 +23,7 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <ctime>
 #include <thread>
 
@@ -77,16 +80,37 @@ void catch_signal(int signal) noexcept {
     sigaction(signal, &sa, nullptr);
 }
 
-void install_early() noexcept {
+// The launcher (tools/launcher) blocked SIGINT and SIGTERM before it executed this program, so
+// that a signal of the first milliseconds waits, pending, for the handlers. With them in place
+// the signals it blocked are unblocked (a pending one is delivered now), and its note is
+// removed from the environment, so that programs glint starts inherit nothing of it.
+void release_launcher_signals(char** env) noexcept {
+    static constexpr char kNote[] = "GLINT_UNBLOCK_SIGNALS=";
+    if (env == nullptr) return;
+    for (char** e = env; *e != nullptr; ++e) {
+        if (std::strncmp(*e, kNote, sizeof kNote - 1) != 0) continue;
+        const char* which = *e + sizeof kNote - 1;
+        sigset_t set{};
+        sigemptyset(&set);
+        if (std::strchr(which, 'I') != nullptr) sigaddset(&set, SIGINT);
+        if (std::strchr(which, 'T') != nullptr) sigaddset(&set, SIGTERM);
+        for (char** f = e; *f != nullptr; ++f) f[0] = f[1];  // removed in place
+        sigprocmask(SIG_UNBLOCK, &set, nullptr);
+        return;
+    }
+}
+
+void install_early(char** env) noexcept {
     if (!g_wake_ready.load()) {
         sem_init(&g_wake, 0, 0);
         g_wake_ready.store(true);
     }
     catch_signal(SIGINT);
     catch_signal(SIGTERM);
+    release_launcher_signals(env);
 }
 
-extern "C" void run_before_library_initialisers(int, char**, char**) { install_early(); }
+extern "C" void run_before_library_initialisers(int, char**, char** env) { install_early(env); }
 // note: .preinit_array entries of the executable run before every DT_INIT of its libraries.
 [[gnu::section(".preinit_array"),
   gnu::used]] constexpr void (*kPreinit)(int, char**, char**) = run_before_library_initialisers;
@@ -120,7 +144,7 @@ void write_line(const char* text, std::size_t size) noexcept {
 }  // namespace
 
 void install_interrupt_handlers() {
-    install_early();  // again: a no-op after .preinit_array, needed where it did not run
+    install_early(environ);  // again: a no-op after .preinit_array, needed where it did not run
     std::thread(watchdog).detach();
 }
 

@@ -155,8 +155,7 @@ int guarded(CLI::App& app, const std::function<void()>& body) {
         const glint::PathCheck why = glint::check_path(e.path1());
         return fail(kExitDeviceOrIo, "error",
                     "\"" + e.path1().string() + "\": " +
-                        (why.reach == glint::PathReach::Denied ? why.reason
-                                                               : e.code().message()));
+                        (why.reach == glint::PathReach::Denied ? why.reason : e.code().message()));
     } catch (const std::exception& e) {
         return fail(kExitInternal, "internal error", e.what());
     }

@@ -20,11 +20,10 @@ namespace glint::test {
 inline std::filesystem::path open_temp_folder(const std::string& name) {
     std::string pattern = "/tmp/glint_" + name + ".XXXXXX";
     if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-    std::filesystem::permissions(pattern, std::filesystem::perms::owner_all |
-                                              std::filesystem::perms::group_read |
-                                              std::filesystem::perms::group_exec |
-                                              std::filesystem::perms::others_read |
-                                              std::filesystem::perms::others_exec);
+    std::filesystem::permissions(
+        pattern, std::filesystem::perms::owner_all | std::filesystem::perms::group_read |
+                     std::filesystem::perms::group_exec | std::filesystem::perms::others_read |
+                     std::filesystem::perms::others_exec);
     return pattern;
 }
 
@@ -45,7 +44,8 @@ inline std::string as_unprivileged(const std::function<std::string()>& check) {
     if (pid < 0) return "child failed: fork";
     if (pid == 0) {
         ::close(fds[0]);
-        const bool dropped = ::setgroups(0, nullptr) == 0 && ::setresgid(65534, 65534, 65534) == 0 &&
+        const bool dropped = ::setgroups(0, nullptr) == 0 &&
+                             ::setresgid(65534, 65534, 65534) == 0 &&
                              ::setresuid(65534, 65534, 65534) == 0;
         const std::string answer = dropped ? guarded() : "child failed: cannot drop to nobody";
         std::size_t done = 0;
