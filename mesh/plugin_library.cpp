@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <future>
+#include <mutex>
 #include <vector>
 
 namespace glint::detail {
@@ -72,6 +74,34 @@ void* load_plugin_entry(const PluginSpec& spec, fs::path& file, std::string& err
     void* entry = dlsym(handle, spec.entry);
     if (entry == nullptr) error = plugin_mismatch(spec, file);
     return entry;  // note: never dlclose'd; the libraries keep global state to the end
+}
+
+namespace {
+
+struct BackgroundLoads {
+    std::mutex mutex;
+    std::vector<std::future<void>> loads;
+    // note: destroyed at exit, after main: each future's destructor waits for its load, so the
+    // program never ends while another thread is inside dlopen.
+};
+
+BackgroundLoads& background_loads() {
+    static BackgroundLoads loads;
+    return loads;
+}
+
+}  // namespace
+
+void load_in_background(std::function<void()> load) {
+    BackgroundLoads& b = background_loads();
+    const std::lock_guard lock(b.mutex);
+    b.loads.push_back(std::async(std::launch::async, std::move(load)));
+}
+
+void finish_background_loads() {
+    BackgroundLoads& b = background_loads();
+    const std::lock_guard lock(b.mutex);
+    for (std::future<void>& f : b.loads) f.wait();
 }
 
 std::string plugin_mismatch(const PluginSpec& spec, const fs::path& file) {

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace glint::detail {
@@ -33,6 +34,15 @@ struct PluginSpec {
 /// then the configured install lib/glint. Never dlclose'd.
 [[nodiscard]] void* load_plugin_entry(const PluginSpec& spec, std::filesystem::path& file,
                                       std::string& error);
+
+/// Runs `load` (a plugin's first load) on a thread of its own, so that a run's work goes on
+/// meanwhile. Its errors are the loader's to report at first use: `load` must not throw.
+void load_in_background(std::function<void()> load);
+
+/// Waits until every load started by load_in_background has ended. Called before fork(): a
+/// child made while another thread is inside dlopen inherits the loader's lock and its lists
+/// half-changed, and its first dlopen, dlsym or thrown exception may then hang or crash.
+void finish_background_loads();
 
 /// The line for a plugin whose entry gave no table of this build's size.
 [[nodiscard]] std::string plugin_mismatch(const PluginSpec& spec,

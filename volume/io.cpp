@@ -8,6 +8,7 @@
 #include "mesh/output_guard.h"
 #include "volume/detail/isolated_read.h"
 #include "volume/detail/itk_io.h"
+#include "volume/detail/volume_plugin.h"
 
 #include <algorithm>
 #include <cmath>
@@ -66,9 +67,10 @@ Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     // DICOM goes through GDCM, which may crash on files the pre-check cannot foresee: its read
     // runs in a child process (detail/isolated_read.h).
     auto read = [&] { return detail::itk_read(path, max_voxels); };
-    detail::RawVolume raw = fs::is_directory(path, ec) || detail::volume_format(path) == "dicom"
-                                ? detail::read_in_child(path, read)
-                                : read();
+    const bool isolated = fs::is_directory(path, ec) || detail::volume_format(path) == "dicom";
+    // The plugin is loaded here, not in each child: what a child loads dies with it.
+    if (isolated) (void)detail::volume_io_plugin();
+    detail::RawVolume raw = isolated ? detail::read_in_child(path, read) : read();
     Volume v;
     v.path = path;
     v.format = std::move(raw.format);

@@ -2,8 +2,6 @@
 
 #include "mesh/error.h"
 
-#include <future>
-
 namespace glint::detail {
 
 namespace {
@@ -17,14 +15,16 @@ constexpr PluginSpec kPlugin{"libglint_image_io.so", GLINT_IMAGE_IO_ENTRY,
 void preload_image_io_plugin() {
     std::string error;
     if (find_plugin(kPlugin, error).empty()) throw IoError(error);
-    // note: the future's destructor (at exit) waits for a load still under way, so the
-    // program never ends while another thread is inside dlopen.
-    static std::future<void> loading = std::async(std::launch::async, [] {
-        try {
-            (void)image_io_plugin();
-        } catch (...) {  // reported by the first use
-        }
-    });
+    static const bool started = [] {
+        load_in_background([] {
+            try {
+                (void)image_io_plugin();
+            } catch (...) {  // reported by the first use
+            }
+        });
+        return true;
+    }();
+    (void)started;
 }
 
 const ImageIoTable& image_io_plugin() { return plugin_table<ImageIoTable>(kPlugin); }

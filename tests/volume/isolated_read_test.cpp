@@ -3,11 +3,13 @@
 #include "volume/detail/isolated_read.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/plugin_library.h"
 
 #include <gtest/gtest.h>
 
 #include <signal.h>
 #include <unistd.h>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -52,6 +54,28 @@ TEST(ReadInChild, GivesBackTheVolumeTheChildRead) {
     EXPECT_EQ(back.format, "dicom");
     EXPECT_EQ(back.stored_type, "short");
     EXPECT_EQ(back.voxels, v.voxels);
+}
+
+// A plugin loading on another thread (the image plugin, preloaded by every run) must have
+// ended before the child is made: a child forked while another thread is inside dlopen
+// inherits the loader's lock held and may hang in its first dlopen or thrown exception.
+TEST(ReadInChild, WaitsForPluginsLoadingInTheBackgroundBeforeItForks) {
+    static std::atomic<bool> loaded{false};
+    detail::load_in_background([] {
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
+        loaded.store(true);
+    });
+    const RawVolume back = detail::read_in_child(kInput, [] {
+        RawVolume v;
+        v.size = {1, 1, 1};
+        v.spacing = {1, 1, 1};
+        v.direction = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+        v.format = loaded.load() ? "forked after the load" : "forked during the load";
+        v.stored_type = "float";
+        v.voxels = {0.0f};
+        return v;
+    });
+    EXPECT_EQ(back.format, "forked after the load");
 }
 
 TEST(ReadInChild, ASegmentationFaultIsOneLineNamingTheInputAndTheSignal) {

@@ -15,9 +15,9 @@
 // path relative to the launcher's folder (GLINT_PROGRAM_FROM_BINDIR, set by CMake).
 //
 // note: plain C library calls only, and no C++ library: nothing here may map more than libc.
-#include <csignal>
 #include <cerrno>
 #include <climits>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -68,8 +68,7 @@ int main(int argc, char** argv) {
         char beside[PATH_MAX];
         if (join(beside, folder, "glint-program") && ::access(beside, X_OK) == 0)
             std::strcpy(program, beside);
-        else if (join(beside, folder, GLINT_PROGRAM_FROM_BINDIR))
-            std::strcpy(program, beside);
+        else if (join(beside, folder, GLINT_PROGRAM_FROM_BINDIR)) std::strcpy(program, beside);
     }
     if (program[0] != '\0') ::execv(program, argv);
     const int err = errno;

@@ -2,6 +2,7 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/plugin_library.h"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -230,6 +231,7 @@ RawVolume read_in_child(const fs::path& input, const std::function<RawVolume()>&
         throw IoError(quoted(input) +
                       ": cannot make a memory file for the DICOM reader: " + std::strerror(errno));
     const ChildTemp temp;
+    finish_background_loads();  // no other thread inside dlopen while the child is made
     const pid_t child = ::fork();
     if (child < 0)
         throw IoError(quoted(input) +
