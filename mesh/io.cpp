@@ -2,6 +2,7 @@
 
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
+#include "mesh/checksum.h"
 #include "mesh/detail/assimp_reader.h"
 #include "mesh/detail/guarded_mapping.h"
 #include "mesh/detail/ply_reader.h"
@@ -347,6 +348,8 @@ LoadedMesh load(const fs::path& path, const LoadOptions& options, bool allow_fas
         if (file.shrank()) throw changed_while_read(source);  // the parser met the zeros
         throw;
     }
+    if (file.shrank()) throw changed_while_read(source);
+    loaded.report.sha256 = sha256_hex(file.bytes());
     if (file.shrank()) throw changed_while_read(source);
     file.release();
     finish(loaded, options, source);

@@ -1,6 +1,7 @@
 #include "report/report.h"
 
 #include "mesh/atomic_file.h"
+#include "mesh/checksum.h"
 #include "mesh/error.h"
 #include "mesh/units.h"
 #include "mesh/version.h"
@@ -12,7 +13,6 @@
 #include "report/report_html.h"
 #include "scanner/coverage.h"
 
-#include <openssl/evp.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -20,7 +20,6 @@
 #include <cstdio>
 #include <fstream>
 #include <future>
-#include <iomanip>
 #include <limits>
 #include <sstream>
 #include <utility>
@@ -205,7 +204,8 @@ json inputs_json(const std::vector<InputRecord>& inputs) {
         json j = {{"role", in.role}, {"vertices", in.vertices}, {"triangles", in.triangles}};
         if (!in.path.empty()) {
             j["path"] = in.path.string();
-            j["sha256"] = sha256_file(in.path);
+            // The checksum of the bytes the loader read, else the file as it is now.
+            j["sha256"] = in.sha256.empty() ? sha256_file(in.path) : in.sha256;
         }
         if (!in.description.empty()) j["description"] = in.description;
         if (!in.space.empty()) j["space"] = in.space;
@@ -257,27 +257,6 @@ json units_json(const AnalysisResult& r) {
 }
 
 }  // namespace
-
-std::string sha256_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw IoError("cannot read \"" + path.string() + "\" to checksum it");
-    EVP_MD_CTX* ctx = EVP_MD_CTX_new();
-    if (!ctx) throw IoError("SHA-256: cannot create a digest context");
-    EVP_DigestInit_ex(ctx, EVP_sha256(), nullptr);
-    std::vector<char> buf(1 << 16);
-    while (in) {
-        in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-        EVP_DigestUpdate(ctx, buf.data(), static_cast<std::size_t>(in.gcount()));
-    }
-    unsigned char digest[EVP_MAX_MD_SIZE];
-    unsigned int len = 0;
-    EVP_DigestFinal_ex(ctx, digest, &len);
-    EVP_MD_CTX_free(ctx);
-    std::ostringstream hex;
-    for (unsigned int i = 0; i < len; ++i)
-        hex << std::hex << std::setw(2) << std::setfill('0') << int(digest[i]);
-    return hex.str();
-}
 
 namespace {
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "analysis/analysis.h"
+#include "mesh/checksum.h"
 #include "mesh/mesh.h"
 #include "report/atlas_fields.h"
 #include "report/export_options.h"
@@ -33,11 +34,8 @@ namespace glint {
 inline constexpr std::string_view kMissingSurfaceNote =
     "no examined surface there: no depth or volume to measure";
 
-/// SHA-256 of a file as lowercase hex. \throw IoError.
-[[nodiscard]] std::string sha256_file(const std::filesystem::path& path);
-
 /// The report as JSON text (what report.json holds): the inputs of `record` with their
-/// SHA-256 (each file read once more), the options, the results.
+/// SHA-256 (a mesh file's from the bytes its loader read, any other file read once more), the options, the results.
 [[nodiscard]] std::string report_json(const Mesh& reference, const AnalysisResult& result,
                                       const InspectOptions& options, const RunRecord& record);
 

@@ -17,7 +17,8 @@ RunInput load_run_input(const std::string& role, const fs::path& path,
                  loaded.surface ? "surface of a volume: " + describe(*loaded.surface) : "",
                  loaded.mesh.vertex_count(), loaded.mesh.triangle_count(),
                  // A volume's surface is in its physical space, which ITK reads as LPS.
-                 loaded.surface ? "LPS" : to_string(space_stated_in(path))};
+                 loaded.surface ? "LPS" : to_string(space_stated_in(path)),
+                 loaded.surface ? "" : loaded.report.sha256};
     for (const auto& w : loaded.report.warnings)
         in.warnings.push_back(loaded.report.path.string() + ": " + w);
     in.mesh = std::move(loaded.mesh);

@@ -26,6 +26,8 @@ struct InputRecord {
     /// The patient space its coordinates are in (report/orientation.h): "LPS" for a volume's
     /// surface, what a mesh file states (SPACE=), "" when unknown.
     std::string space;
+    /// SHA-256 of the bytes read (mesh files); empty: report.json checksums the file itself.
+    std::string sha256;
 };
 
 /// A surface of a run and how it was obtained.
