@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
 namespace glint {
@@ -85,27 +86,39 @@ void AtlasAccumulator::merge(const AtlasAccumulator& other) {
     }
 }
 
-ZoomAtlas AtlasAccumulator::finish() const { return finish_atlas(totals_, footprint_); }
+ZoomAtlas AtlasAccumulator::finish() const& { return finish_atlas(totals_, footprint_); }
+
+ZoomAtlas AtlasAccumulator::finish() && { return finish_atlas(std::move(totals_), footprint_); }
 
 ZoomAtlas finish_atlas(AtlasTotals t, double footprint) {
     ZoomAtlas a;
     a.footprint = footprint;
     const std::size_t n = t.size();
+    // Array by array, each total freed once it is read: the totals (doubles) are not held
+    // beside every finished array at once.
+    const auto release = [](auto& v) { std::decay_t<decltype(v)>().swap(v); };
     a.value_mean.resize(n);
-    a.weight.resize(n);
+    for (std::size_t v = 0; v < n; ++v)
+        a.value_mean[v] = t.weight[v] > 0 ? static_cast<float>(t.value_sum[v] / t.weight[v]) : 0.0f;
+    release(t.value_sum);
     a.missing.resize(n);
-    a.best_cos.resize(n);
+    for (std::size_t v = 0; v < n; ++v)
+        a.missing[v] =
+            t.weight[v] > 0 ? static_cast<float>(t.missing_weight[v] / t.weight[v]) : 0.0f;
+    release(t.missing_weight);
     a.depth_mean.resize(n);
-    for (std::size_t v = 0; v < n; ++v) {
-        const double w = t.weight[v];
-        a.weight[v] = static_cast<float>(w);
-        a.value_mean[v] = w > 0 ? static_cast<float>(t.value_sum[v] / w) : 0.0f;
-        a.missing[v] = w > 0 ? static_cast<float>(t.missing_weight[v] / w) : 0.0f;
+    for (std::size_t v = 0; v < n; ++v)
         a.depth_mean[v] = t.depth_weight[v] > 0
                               ? static_cast<float>(t.depth_sum[v] / t.depth_weight[v])
                               : std::numeric_limits<float>::quiet_NaN();
-        a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
-    }
+    release(t.depth_sum);
+    release(t.depth_weight);
+    a.weight.resize(n);
+    for (std::size_t v = 0; v < n; ++v) a.weight[v] = static_cast<float>(t.weight[v]);
+    release(t.weight);
+    a.best_cos.resize(n);
+    for (std::size_t v = 0; v < n; ++v) a.best_cos[v] = t.best_view[v] >= 0 ? t.best_cos[v] : 0.0f;
+    release(t.best_cos);
     a.value_max = std::move(t.value_max);
     a.depth_at_max = std::move(t.depth_at_max);
     a.count = std::move(t.count);

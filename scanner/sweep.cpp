@@ -113,7 +113,8 @@ class ViewStream {
         return s;
     }
 
-    [[nodiscard]] const std::vector<AtlasAccumulator>& atlases() const { return atlases_; }
+    /// The accumulators, handed over (the stream is done with them).
+    [[nodiscard]] std::vector<AtlasAccumulator> take_atlases() { return std::move(atlases_); }
     /// Seconds the workers spent comparing and scattering, summed over them.
     [[nodiscard]] double worker_seconds() const { return worker_seconds_.load(); }
 
@@ -215,9 +216,9 @@ SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPl
         std::min(views_seconds, fold_seconds + stream.worker_seconds() / threads);
     result.render_seconds = views_seconds - result.compare_seconds;
     require_overlap(result.views);
-    for (const auto& a : stream.atlases()) {
+    for (auto& a : stream.take_atlases()) {
         SweepZoom z;
-        z.atlas = a.finish();
+        z.atlas = std::move(a).finish();
         z.coverage = coverage_of(reference, z.atlas, plan.options.roi);
         result.zooms.push_back(std::move(z));
     }
