@@ -30,6 +30,11 @@
 // prefixed base_): before/after measured side by side on the same files;
 // GLINT_BENCH_BASELINE_ARGS adds options to the baseline's command line only (e.g. "--no-exr"
 // for a glint from before per-view EXRs became opt-in, so both write the same files).
+// GLINT_BENCH_GLINT runs another glint executable than the build's (a copy carried to another
+// machine); GLINT_BENCH_GLINT_ARGS adds options to its command line. With the baseline set to
+// the same executable, the two differ only by their options: e.g. on a GPU machine
+// GLINT_BENCH_GLINT_ARGS=--no-pictures and GLINT_BENCH_BASELINE_ARGS="--no-pictures --backend
+// embree" measure the GPU's whole inspection against the CPU's in the same rounds.
 #include "bench/blob_pair.h"
 #include "bench/process_run.h"
 #include "mesh/write.h"
@@ -172,7 +177,11 @@ Round run_round(const Files& f, int first) {
     const char* baseline = std::getenv("GLINT_BENCH_BASELINE");
     const bool open3d = open3d_missing().empty();
     const std::function<void()> steps[4] = {
-        [&] { r.glint = run_glint(GLINT_EXECUTABLE, f); },
+        [&] {
+            const char* other = std::getenv("GLINT_BENCH_GLINT");
+            r.glint = run_glint(other != nullptr ? other : GLINT_EXECUTABLE, f,
+                                std::getenv("GLINT_BENCH_GLINT_ARGS"));
+        },
         [&] {
             if (open3d) r.open3d = run_open3d(f, "", r.peer);
         },

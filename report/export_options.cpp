@@ -56,6 +56,17 @@ const std::vector<OptionField<ExportOptions>>& export_option_table() {
     using F = OptionFields<ExportOptions>;
     static const std::vector<OptionField<ExportOptions>> table = {
         F::flag(
+            {.name = "pictures",
+             .section = "exports",
+             .key = "pictures",
+             .slicer = "pictures",
+             .group = kExportGroup,
+             .label = "Pictures",
+             .help = "PNG pictures: per-view, mosaics, atlas.png, and those report.html shows "
+                     "(--no-pictures draws none and never loads the image library; the atlas "
+                     "files, report.json and report.html's 3D view stay)"},
+            [](auto& o) -> auto& { return o.write_pictures; }),
+        F::flag(
             {.name = "views",
              .section = "exports",
              .key = "views",

@@ -37,7 +37,11 @@ struct ExportOptions {
     /// The output folder (written complete or not at all, report/output_folder.h); empty:
     /// nothing is written.
     std::filesystem::path output;
-    bool write_views = true;  ///< per-view PNGs of what each view measured
+    /// PNG pictures: per-view pictures, mosaics, atlas.png and the pictures report.html shows.
+    /// false: none is drawn and the image library is never loaded (scripts and cohorts that read
+    /// report.json and the atlas files); the atlas files keep their colours.
+    bool write_pictures = true;
+    bool write_views = true;  ///< per-view PNGs of what each view measured (with write_pictures)
     /// Per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back).
     bool write_exr = false;
     AtlasFiles atlas_files;  ///< atlas.ply / atlas.vtk / atlas.vtp

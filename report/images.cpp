@@ -36,8 +36,19 @@ std::vector<float> colour_values(const ScalarImage& image, const ColorScale& sca
         scaled[i] =
             std::isnan(v) ? 0.0f : static_cast<float>(std::clamp((v - scale.low) / span, 0.0, 1.0));
     }
-    std::vector<float> px = scale.map == "diverging" ? color_map(scaled, detail::diverging_knots())
-                                                     : color_map(scaled, scale.map);
+    // The diverging map from its build-time samples (the atlas files' colours load no image
+    // library); the other maps through OpenImageIO, for pictures.
+    std::vector<float> px;
+    if (scale.map == "diverging") {
+        px.resize(3 * scaled.size());
+        const auto& table = detail::DivergingTable::get();
+        for (std::size_t i = 0; i < scaled.size(); ++i) {
+            const Rgb c = table.at(scaled[i]);
+            std::copy(c.begin(), c.end(), px.begin() + static_cast<std::ptrdiff_t>(3 * i));
+        }
+    } else {
+        px = color_map(scaled, scale.map);
+    }
     for (std::size_t i = 0; i < image.values.size(); ++i)
         if (std::isnan(image.values[i]))
             px[3 * i] = px[3 * i + 1] = px[3 * i + 2] = scale.no_data_grey;

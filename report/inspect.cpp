@@ -72,7 +72,9 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     std::optional<OutputFolder> folder;
     if (!options.exports.output.empty()) {
         folder.emplace(options.exports.output, options.exports.replace_existing);
-        preload_image_io();  // a missing image plugin stops the run now, not after the sweep
+        // A missing image plugin stops the run now, not after the sweep; a run that draws no
+        // picture and writes no EXR never loads it.
+        if (options.exports.write_pictures || options.exports.write_exr) preload_image_io();
     }
     const bool writes_exr = folder && options.exports.write_exr;
     const AnalysisOptions used = analysis_for(options, writes_exr);
@@ -83,7 +85,7 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     std::optional<ViewMeasurements> measured;
     AnalysisObserver observed = observer;
     observed.plan = [&](const SweepPlan& plan) {
-        if (folder) measured.emplace(plan);
+        if (folder && options.exports.write_pictures) measured.emplace(plan);
         if (observer.plan) observer.plan(plan);
     };
     observed.view = [&](const PlannedView& v, const DeviationMap& d) {
@@ -101,7 +103,7 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     Inspection out;
     out.analysis = analyse(reference, std::move(examined), used, observed);
     note_accumulation(options, used, writes_exr, out.analysis);
-    if (folder && out.analysis.sweep.on_gpu)
+    if (folder && options.exports.write_pictures && out.analysis.sweep.on_gpu)
         out.analysis.warnings.push_back(
             "per-view pictures and mosaic tiles show the atlas from each view: the sweep "
             "compared on the GPU and no per-view pixel came back (accumulate = host draws what "

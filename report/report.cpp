@@ -446,7 +446,7 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     written();
     stage("report page");
     ReportPageData page = page_data.get();
-    stage("pictures");
+    if (exports.write_pictures) stage("pictures");
     PictureCaption caption;
     for (const auto& in : record.inputs) {
         // a file's name; a generated surface's description ("phantom sphere ico 4")
@@ -455,8 +455,10 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
         if (in.role == "examined") caption.examined_name = name;
     }
     const PictureOutput pictures =
-        write_pictures(folder, reference, result, exports, run_orientation(record, exports),
-                       caption, observer, measured);
+        exports.write_pictures
+            ? write_pictures(folder, reference, result, exports, run_orientation(record, exports),
+                             caption, observer, measured)
+            : PictureOutput{};
     stage("report.html");
     write_file_atomically(folder.file("report.html"),
                           report_html(std::move(page), json_text, pictures));

@@ -1,5 +1,6 @@
 #include "report/report_html.h"
 
+#include "image/sampled_maps.h"
 #include "mesh/decimate.h"
 #include "mesh/error.h"
 #include "mesh/normals.h"
@@ -159,11 +160,17 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
 
 // OIIO's inferno sampled at 17 points: the page's sequential map is the one OIIO draws.
 std::vector<float> inferno_knots() {
+    // 17 evenly spaced colours of OpenImageIO's map, from its build-time samples (the page
+    // loads no image library): sample i·(intervals/16) is the map at i/16.
     constexpr int kKnots = 17;
-    std::vector<float> t(kKnots);
-    for (int i = 0; i < kKnots; ++i)
-        t[static_cast<std::size_t>(i)] = static_cast<float>(i) / (kKnots - 1);
-    return color_map(t, "inferno");
+    constexpr int kStride = kSampledIntervals / (kKnots - 1);
+    const std::span<const float> samples = sampled_map(SampledMap::Inferno);
+    std::vector<float> knots;
+    for (int i = 0; i < kKnots; ++i) {
+        const auto first = samples.begin() + 3 * i * kStride;
+        knots.insert(knots.end(), first, first + 3);
+    }
+    return knots;
 }
 
 // A mesh's arrays for the page: float32 positions, uint32 indices and, when it has them,

@@ -187,6 +187,7 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
     ExportOptions& e = options.exports;
     e.output = run.output_root / sc.name;
     e.write_views = run.write_views;
+    e.write_pictures = run.write_pictures;
     e.replace_existing = run.replace_existing;
     record.add_file("scenario", sc.file, sc.name);
     record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,

@@ -17,8 +17,9 @@ namespace glint {
 
 struct ScenarioRunOptions {
     std::filesystem::path
-        output_root;           ///< atlas folder = output_root / scenario name; empty = no export
-    bool write_views = false;  ///< per-view PNG/EXR (mosaics, atlas and report always)
+        output_root;             ///< atlas folder = output_root / scenario name; empty = no export
+    bool write_views = false;    ///< per-view PNG/EXR (mosaics, atlas and report always)
+    bool write_pictures = true;  ///< false: no PNG at all, the image library never loaded
     /// Hears "load" (the scenario's surfaces read or made), then inspect()'s stages, items and
     /// views (report/inspect.h); its `view` and `fitted` members too.
     AnalysisObserver observer;

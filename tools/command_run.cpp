@@ -32,6 +32,7 @@ struct RunArgs {
     std::string output = "glint-runs";
     std::string data_root;
     bool views = false;
+    bool no_pictures = false;
     bool full = false;
     bool print = false;
     bool force = false;
@@ -181,6 +182,7 @@ std::vector<ScenarioOutcome> run_all(const RunArgs& a, bool score_table) {
         ScenarioRunOptions options;
         options.output_root = a.output;
         options.write_views = a.views;
+        options.write_pictures = !a.no_pictures;
         options.replace_existing = a.force;
         options.unit = a.units.units.unit;
         options.allow_scale_mismatch = a.units.units.allow_scale_mismatch;
@@ -342,6 +344,9 @@ void add_common(CLI::App* cmd, RunArgs& a) {
                     "Where scenario mesh paths not found beside the scenario are looked up "
                     "(default: $GLINT_DATA)");
     cmd->add_flag("--views", a.views, "Also write what each view measured (PNG + EXR)");
+    cmd->add_flag("--no-pictures", a.no_pictures,
+                  "Draw no PNG picture (atlas files, report.json and report.html stay; the image "
+                  "library is never loaded)");
     cmd->add_flag("--full", a.full,
                   "Folders: include scenarios tagged 'full' (longer than the CI suite)");
     cmd->add_flag(

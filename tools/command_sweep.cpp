@@ -54,7 +54,7 @@ std::string floors_line(const ZoomDecision& d, const MetricDescriptor& m, const 
     return line;
 }
 
-void print_summary(const Inspection& inspection) {
+void print_summary(const Inspection& inspection, bool pictures) {
     const AnalysisResult& r = inspection.analysis;
     const MetricDescriptor& m = describe(r.sweep.options.metric);
     const std::string sym(m.symbol);
@@ -97,11 +97,11 @@ void print_summary(const Inspection& inspection) {
                 g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(),
                 u.empty() ? "units" : u.c_str());
     }
-    std::printf(
-        "%zu views in %.1f s (%s on %s); atlas, pictures and report in %s (open %s in a browser)\n",
-        r.sweep.views.size(), inspection.total_seconds, to_string(r.sweep.renderer.backend).c_str(),
-        r.sweep.renderer.device_name.c_str(), inspection.output.string().c_str(),
-        (inspection.output / "report.html").string().c_str());
+    std::printf("%zu views in %.1f s (%s on %s); atlas, %sreport in %s (open %s in a browser)\n",
+                r.sweep.views.size(), inspection.total_seconds,
+                to_string(r.sweep.renderer.backend).c_str(), r.sweep.renderer.device_name.c_str(),
+                pictures ? "pictures and " : "no pictures, ", inspection.output.string().c_str(),
+                (inspection.output / "report.html").string().c_str());
 }
 
 void run(SweepArgs& a) {
@@ -147,7 +147,7 @@ void run(SweepArgs& a) {
         nlohmann::json j = nlohmann::json::parse(result.report_json);
         j["output"] = absolute_output(result.output);
         std::cout << j.dump(2) << '\n';
-    } else print_summary(result);
+    } else print_summary(result, options.exports.write_pictures);
 }
 
 void setup(CLI::App& app) {

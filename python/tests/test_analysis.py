@@ -108,6 +108,33 @@ def test_report_regions_match_the_atlas(analysis):
     assert 0.9 < zoom["coverage"] <= 1.0
 
 
+def test_no_pictures_loads_no_image_library(dent_pair, tmp_path):
+    """pictures=False (issue 25): in a fresh process whose plugin folder holds no plugin, the
+    analysis writes its atlas and report without any picture and never maps OpenImageIO."""
+    import os
+    import subprocess
+    import sys
+
+    ref, exa, _ = dent_pair
+    empty = tmp_path / "no_plugins"
+    empty.mkdir()
+    out = tmp_path / "atlas"
+    script = (
+        "import glint, sys\n"
+        f"glint.analyse({str(ref)!r}, {str(exa)!r}, output={str(out)!r}, pictures=False, "
+        f"**{SMALL_SWEEP!r})\n"
+        "maps = open('/proc/self/maps').read()\n"
+        "sys.exit(3 if 'OpenImageIO' in maps or 'glint_image_io' in maps else 0)\n"
+    )
+    env = dict(os.environ, GLINT_PLUGIN_DIR=str(empty))
+    run = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    written = {p.name for p in out.rglob("*")}
+    assert {"atlas.ply", "atlas.vtp", "report.json", "report.html"} <= written
+    assert not any(name.endswith(".png") for name in written), written
+    assert json.loads((out / "report.json").read_text())["analysis"]["exports"]["pictures"] is False
+
+
 def test_analyse_without_register_on_aligned_copies(dent_pair):
     ref = dent_pair[0]
     result = glint.analyse(ref, ref, register=False, **SMALL_SWEEP)

@@ -1,5 +1,7 @@
 #include "report/detail/canvas.h"
 
+#include "image/diverging_knots.h"
+#include "image/sampled_maps.h"
 #include "mesh/error.h"
 
 #include <algorithm>
@@ -10,24 +12,7 @@
 
 namespace glint::detail {
 
-namespace {
-
-// ColorBrewer RdBu, 9 classes (colorbrewer2.org), as 0…1 values, blue end first.
-constexpr std::array<float, 27> kRdBu = {
-    33 / 255.f,  102 / 255.f, 172 / 255.f,  // #2166ac
-    67 / 255.f,  147 / 255.f, 195 / 255.f,  // #4393c3
-    146 / 255.f, 197 / 255.f, 222 / 255.f,  // #92c5de
-    209 / 255.f, 229 / 255.f, 240 / 255.f,  // #d1e5f0
-    247 / 255.f, 247 / 255.f, 247 / 255.f,  // #f7f7f7
-    253 / 255.f, 219 / 255.f, 199 / 255.f,  // #fddbc7
-    244 / 255.f, 165 / 255.f, 130 / 255.f,  // #f4a582
-    214 / 255.f, 96 / 255.f,  77 / 255.f,   // #d6604d
-    178 / 255.f, 24 / 255.f,  43 / 255.f,   // #b2182b
-};
-
-}  // namespace
-
-std::span<const float> diverging_knots() { return kRdBu; }
+std::span<const float> diverging_knots() { return kDivergingKnots; }
 
 Canvas diverging_image(const std::vector<float>& values, int width, int height, double limit) {
     GLINT_ASSERT(
@@ -40,17 +25,10 @@ Canvas diverging_image(const std::vector<float>& values, int width, int height, 
         t[i] =
             std::isnan(v) ? 0.5f : static_cast<float>(std::clamp(0.5 + 0.5 * v / limit, 0.0, 1.0));
     }
-    const std::vector<float> rgb = color_map(t, kRdBu);
+    const std::vector<float> rgb = color_map(t, kDivergingKnots);
     std::vector<std::uint8_t> bytes(rgb.size());
     std::transform(rgb.begin(), rgb.end(), bytes.begin(), to_byte);
     return Canvas(width, height, 3, std::move(bytes));
-}
-
-DivergingTable::DivergingTable() {
-    std::vector<float> t(kEntries + 1);
-    for (int i = 0; i <= kEntries; ++i)
-        t[static_cast<std::size_t>(i)] = static_cast<float>(i) / kEntries;
-    rgb_ = color_map(t, kRdBu);
 }
 
 const DivergingTable& DivergingTable::get() {
@@ -59,15 +37,12 @@ const DivergingTable& DivergingTable::get() {
 }
 
 Rgb DivergingTable::operator()(float value, double limit) const {
-    const double t = std::isnan(value)
-                         ? 0.5
-                         : std::clamp(0.5 + 0.5 * static_cast<double>(value) / limit, 0.0, 1.0);
-    const double x = t * kEntries;
-    const int i = std::min(static_cast<int>(x), kEntries - 1);
-    const auto f = static_cast<float>(x - i);
-    const float* a = &rgb_[3 * static_cast<std::size_t>(i)];
-    return {a[0] + f * (a[3] - a[0]), a[1] + f * (a[4] - a[1]), a[2] + f * (a[5] - a[2])};
+    return at(std::isnan(value)
+                  ? 0.5
+                  : std::clamp(0.5 + 0.5 * static_cast<double>(value) / limit, 0.0, 1.0));
 }
+
+Rgb DivergingTable::at(double t) const { return sampled_colour(SampledMap::Diverging, t); }
 
 Canvas canvas(int width, int height, Rgb colour) { return Canvas(width, height, 3, colour); }
 

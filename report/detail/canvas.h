@@ -50,22 +50,18 @@ inline constexpr Rgb kExaminedOnly{0.30f, 0.78f, 0.42f};
 [[nodiscard]] Canvas diverging_image(const std::vector<float>& values, int width, int height,
                                      double limit);
 
-/// The diverging map as a table for per-pixel use: ImageBufAlgo::color_map evaluated once at
-/// kEntries + 1 evenly spaced points of [0, 1]. The map is linear between its 9 knots, which
-/// fall on table points (kEntries is a multiple of 8), so interpolating the table gives the
-/// map's own colours (to float rounding) without an image per picture.
+/// The diverging map for per-pixel use: OpenImageIO's colours sampled when glint was built
+/// (image/sampled_maps.h), so per-vertex and per-pixel colours need no image library and no
+/// image per picture. The map is linear between its 9 knots, which fall on samples, so
+/// interpolating the samples gives the map's own colours (to float rounding).
 class DivergingTable {
   public:
-    static constexpr int kEntries = 1024;
-    static_assert(kEntries % 8 == 0, "the map's knots must fall on table points");
-    /// The table (built on first use; thread-safe).
+    /// The table (static; thread-safe).
     [[nodiscard]] static const DivergingTable& get();
     /// The colour of `value` in the range ±limit (clamped; NaN maps to 0, as diverging_image).
     [[nodiscard]] Rgb operator()(float value, double limit) const;
-
-  private:
-    DivergingTable();
-    std::vector<float> rgb_;  ///< (kEntries + 1) × 3
+    /// The colour at t ∈ [0, 1] of the map (clamped).
+    [[nodiscard]] Rgb at(double t) const;
 };
 
 /// A width × height RGB image of 8 bits per channel (what the PNG pictures store: drawing,

@@ -146,6 +146,11 @@
     const atlas = $("atlas-picture");
     if (DATA.images.atlas) atlas.src = DATA.images.atlas;
     else $("atlas-panel").hidden = true;
+    // A run with --no-pictures drew none: the panels say so instead of standing empty.
+    if (!DATA.images.mosaics.length) {
+      $("mosaics").appendChild(el("p", { class: "note" },
+        "No pictures: this run was made with --no-pictures (exports.pictures = false)."));
+    }
     DATA.images.mosaics.forEach((uri, k) => {
       $("mosaics").appendChild(el("h3", {}, "zoom " + k));
       $("mosaics").appendChild(el("img", { src: uri, alt: "mosaic of zoom " + k }));

@@ -4,6 +4,7 @@
 #include "report/pictures.h"
 #include "report/inspect.h"
 
+#include "image/sampled_maps.h"
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
 #include "render/renderer.h"
@@ -166,6 +167,34 @@ TEST(DivergingImage, IsSymmetricAndClampedBeyondTheRange) {
     }
     EXPECT_NEAR(lo[2], 172.0f / 255.0f, 1e-4f);  // #2166ac
     EXPECT_NEAR(hi[0], 178.0f / 255.0f, 1e-4f);  // #b2182b
+}
+
+// The maps sampled at build time (image/sampled_maps.h: the atlas files' colours and
+// report.html's scales, drawn without the image library) are OpenImageIO's: at each sample
+// exactly, between samples the interpolation within a hair of the map (inferno is a smooth
+// curve, so linear steps 1/1024 long stay within 1e-4 of it; the diverging map is linear there).
+TEST(SampledMaps, AreOpenImageIOsColourMaps) {
+    std::vector<float> t;
+    for (int i = 0; i <= kSampledIntervals; ++i)
+        t.push_back(static_cast<float>(i) / kSampledIntervals);
+    for (int i = 0; i < 3000; ++i) t.push_back(static_cast<float>(std::fmod(i * 0.618034, 1.0)));
+    const std::vector<float> inferno = color_map(t, "inferno");
+    const std::vector<float> diverging = color_map(t, detail::diverging_knots());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const bool on_sample = i <= static_cast<std::size_t>(kSampledIntervals);
+        const Rgb a = sampled_colour(SampledMap::Inferno, t[i]);
+        const Rgb b = sampled_colour(SampledMap::Diverging, t[i]);
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (on_sample) ASSERT_EQ(a[k], inferno[3 * i + k]) << "inferno sample " << i;
+            else ASSERT_NEAR(a[k], inferno[3 * i + k], 1e-4f) << "inferno at " << t[i];
+            ASSERT_NEAR(b[k], diverging[3 * i + k], 2e-6f) << "diverging at " << t[i];
+        }
+    }
+    // NaN and out-of-range values are clamped as the pictures clamp them.
+    EXPECT_EQ(sampled_colour(SampledMap::Inferno, -3.0), sampled_colour(SampledMap::Inferno, 0.0));
+    EXPECT_EQ(sampled_colour(SampledMap::Inferno, 7.0), sampled_colour(SampledMap::Inferno, 1.0));
+    EXPECT_EQ(sampled_colour(SampledMap::Diverging, std::nan("")),
+              sampled_colour(SampledMap::Diverging, 0.0));
 }
 
 // The table the pictures colour pixels with gives OpenImageIO's colours (its color_map on the
