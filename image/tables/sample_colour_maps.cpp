@@ -24,7 +24,8 @@ namespace IBA = OIIO::ImageBufAlgo;
 std::vector<float> sample(const char* name) {
     constexpr int n = glint::kSampledIntervals + 1;
     std::vector<float> t(n);
-    for (int i = 0; i < n; ++i) t[static_cast<std::size_t>(i)] = float(i) / glint::kSampledIntervals;
+    for (int i = 0; i < n; ++i)
+        t[static_cast<std::size_t>(i)] = float(i) / glint::kSampledIntervals;
     OIIO::ImageBuf scalar(OIIO::ImageSpec(n, 1, 1, OIIO::TypeDesc::FLOAT));
     scalar.set_pixels(OIIO::ROI(0, n, 0, 1, 0, 1, 0, 1), OIIO::TypeDesc::FLOAT, t.data());
     const std::string map = name;

@@ -152,8 +152,8 @@ def test_summary_files(cohort_run):
 def test_cohort_colours_are_the_atlas_colours():
     """cohort.png draws loss and gain in the colours every atlas picture gives them: the ends of
     the diverging map (blue = loss, red = gain), read from the C++ table the pictures use."""
-    canvas = (SOURCE / "report" / "detail" / "canvas.cpp").read_text()
-    table = canvas[canvas.index("kRdBu = {"):]
+    canvas = (SOURCE / "image" / "diverging_knots.h").read_text()
+    table = canvas[canvas.index("kDivergingKnots = {"):]
     knots = [line.split("//")[1].strip() for line in table[:table.index("};")].splitlines() if "//" in line]
     assert (summary.LOSS_COLOUR, summary.GAIN_COLOUR) == (knots[0], knots[-1])
 
@@ -322,3 +322,33 @@ def test_cohort_table_scrolls_in_its_box_not_the_page(tmp_path):
     assert got["page"][0] <= got["page"][1], got
     assert got["box"][0] > got["box"][1], got  # wider than the window: it scrolls in its box
     assert got["overflow"] == "auto" and got["sticky"] == "sticky", got
+
+
+def test_pictures_false_gives_no_picture_flag_and_keeps_views_off():
+    pair = {"after": {"iso": "", "roi": "", "landmarks": ""}}
+    base = {"size": 64, "azimuth_step": 60, "elevations": [0]}
+    default = cohort.sweep_arguments(pair, base)
+    assert "--no-views" in default and "--no-pictures" not in default
+    without = cohort.sweep_arguments(pair, {**base, "pictures": False})
+    assert "--no-pictures" in without and "--no-views" not in without
+    # `--config pictures=false views=true` reaches the workflow as text
+    assert "--no-pictures" in cohort.sweep_arguments(pair, {**base, "pictures": "false"})
+    assert "--no-views" not in cohort.sweep_arguments(pair, {**base, "views": "true"})
+    with pytest.raises(ValueError, match="pictures = 'maybe'"):
+        cohort.sweep_arguments(pair, {**base, "pictures": "maybe"})
+
+
+def test_a_cohort_without_pictures_has_the_same_table_and_no_png(tmp_path, cohort_run):
+    """pictures=false (issue 25): each pair's glint draws no PNG and loads no image library; the
+    cohort table, made from report.json, is the same as with pictures."""
+    work, manifest, command, _ = cohort_run
+    at = command.index("--config")
+    out = tmp_path / "out"
+    done = subprocess.run([*command[:at], "-d", str(out), *command[at:], "pictures=false"],
+                          capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout, done.stderr)
+    assert not list((out / "pairs").rglob("*.png"))
+    assert list((work / "pairs").rglob("*.png")), "the run with pictures drew none"
+    drop = {"report"}  # the path of each pair's report differs between the two result folders
+    strip = lambda rows: [{k: v for k, v in r.items() if k not in drop} for r in rows]  # noqa: E731
+    assert strip(table(out)) == strip(table(work))

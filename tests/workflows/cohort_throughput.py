@@ -5,6 +5,9 @@ figures go into README ("Cohort runs"). Each run starts from an empty results fo
 is snakemake's whole run, table and summary included.
 
     python3 tests/workflows/cohort_throughput.py build/default/tools/glint [PAIRS ...]   (default: 20 100)
+    python3 tests/workflows/cohort_throughput.py build/default/tools/glint pictures [PAIRS ...] [--rounds N]
+        local `-j2` only, the workflow's default against `pictures=false` (--no-pictures), alternating
+        N rounds (default 2) on the same scans; medians
 """
 import pathlib
 import subprocess
@@ -53,7 +56,37 @@ def main(glint, counts):
     return 0 if all(r[5] for r in rows) else 1
 
 
+def pictures_ab(glint, counts, rounds):
+    """Local runs with and without pictures, alternating, on the same scans."""
+    import statistics
+    glint = str(pathlib.Path(glint).resolve())
+    with tempfile.TemporaryDirectory(prefix="glint-throughput-") as tmp:
+        tmp = pathlib.Path(tmp)
+        for n in counts:
+            manifest = phantom_cohort.write_cohort(tmp / f"scans{n}", glint, n)
+            base = ["snakemake", "-s", str(WORKFLOW / "Snakefile"), "--config", f"manifest={manifest}",
+                    f"glint={glint}"]
+            times = {"pictures": [], "no pictures": []}
+            for r in range(rounds):
+                order = [("pictures", []), ("no pictures", ["pictures=false"])]
+                for name, extra in order if r % 2 == 0 else order[::-1]:
+                    times[name].append(timed([*base, *extra, "-d", str(tmp / f"{name}{n}_{r}".replace(" ", "_")),
+                                              "-j2"]))
+            line = ", ".join(f"{k} {statistics.median(v):.0f} s ({60 * n / statistics.median(v):.1f} pairs/min)"
+                             for k, v in times.items())
+            print(f"{n} pairs, local -j2, medians of {rounds}: {line}", flush=True)
+    return 0
+
+
 if __name__ == "__main__":
     if len(sys.argv) < 2:
         sys.exit(__doc__)
+    if len(sys.argv) > 2 and sys.argv[2] == "pictures":
+        args = sys.argv[3:]
+        rounds = 2
+        if "--rounds" in args:
+            at = args.index("--rounds")
+            rounds = int(args[at + 1])
+            del args[at:at + 2]
+        sys.exit(pictures_ab(sys.argv[1], [int(a) for a in args] or [20], rounds))
     sys.exit(main(sys.argv[1], [int(a) for a in sys.argv[2:]] or [20, 100]))

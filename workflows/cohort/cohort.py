@@ -141,11 +141,26 @@ def pairs(rows):
     return out
 
 
+def config_flag(config, key, default):
+    """A yes/no setting of the config: YAML's true/false, or the text `--config key=false` gives
+    (snakemake passes such values as strings, and "false" is a non-empty, true string)."""
+    value = config.get(key, default)
+    if isinstance(value, str):
+        words = {"true": True, "yes": True, "on": True, "1": True,
+                 "false": False, "no": False, "off": False, "0": False}
+        if value.strip().lower() not in words:
+            raise ValueError(f"config {key} = {value!r}: expected true or false")
+        return words[value.strip().lower()]
+    return bool(value)
+
+
 def sweep_arguments(pair, config):
     """The `glint sweep` arguments of a pair (after REF EXA), from its rows and the config."""
     args = ["--register", "--size", str(config["size"]), "--azimuth-step", str(config["azimuth_step"]),
             "--elevations", ",".join(str(e) for e in config["elevations"]), "--no-exr"]
-    if not config.get("views", False):
+    if not config_flag(config, "pictures", True):
+        args.append("--no-pictures")  # no PNG at all; the image library is never loaded
+    elif not config_flag(config, "views", False):
         args.append("--no-views")
     if config.get("unit"):
         args += ["--unit", str(config["unit"])]

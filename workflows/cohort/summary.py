@@ -4,7 +4,7 @@ temporary name first."""
 import pathlib
 
 # One colour convention with every glint picture, atlas file and report.html: loss blue, gain
-# red, the two ends of the diverging map (ColorBrewer RdBu, report/detail/canvas.cpp kRdBu).
+# red, the two ends of the diverging map (ColorBrewer RdBu, image/diverging_knots.h kDivergingKnots).
 LOSS_COLOUR = "#2166ac"
 GAIN_COLOUR = "#b2182b"
 
