@@ -13,6 +13,7 @@
 #include "report/detail/picture_batches.h"
 #include "report/detail/scale_bar.h"
 #include "report/detail/surface_paint.h"
+#include "report/detail/symmetry_plane_trace.h"
 #include "report/detail/view_chart.h"
 #include "scanner/metric.h"
 
@@ -73,7 +74,8 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .shape_floor = d.rule == DecisionRule::Fused ? d.shape.value : 0.0,
                             .unit = u,
                             .roi = result.sweep.plan.options.roi.has_value(),
-                            .mirror = mirror};
+                            .mirror = mirror,
+                            .plane_line = mirror};
     char b[160];
     std::snprintf(b, sizeof b, "normal floor %.3g%s (%s, %s rule)", d.normal.value,
                   detail::picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit).c_str(),
@@ -197,6 +199,17 @@ class PictureWriter {
                                       detail::PaintStyle style) const;
     std::string view_title(const PlannedView& pv, const View& shown) const;
     std::string view_caption(const PlannedView& pv) const;
+    // A mirror comparison's symmetry plane on a painted view (report/detail/symmetry_plane_trace.h),
+    // clear of the regions and of `keep_clear`; where its label fits, if anywhere.
+    std::optional<detail::PlaneLabel> draw_plane(Canvas& image, const PlannedView& pv,
+                                                 const View& shown, const Frame& frame,
+                                                 std::vector<detail::PixelBox> keep_clear) const {
+        if (!options_.mirror) return std::nullopt;
+        const auto z = static_cast<std::size_t>(pv.view.zoom_index);
+        return detail::draw_symmetry_plane(image, frame, shown, reference_, zooms_[z].fields.region,
+                                           *options_.mirror, keep_clear);
+    }
+
     Canvas view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
                         const Canvas& blank);
     detail::ChartInput chart_input(std::size_t z) const;
@@ -338,13 +351,17 @@ std::string PictureWriter::view_caption(const PlannedView& pv) const {
 // `blank`: the zoom's framed sheet at the frame's size with no title (its legend drawn once).
 Canvas PictureWriter::view_picture(const PlannedView& pv, const View& shown, const Frame& frame,
                                    const Canvas& blank) {
-    const auto painted = paint_view(pv, shown, frame, {});
+    auto painted = paint_view(pv, shown, frame, {});
     Canvas sheet = blank;
     const std::string title = view_title(pv, shown);
     detail::draw_title(sheet, detail::fit_text(title, 15, sheet.width() - 16));
-    sheet.paste(painted.image, 0, detail::kTitleHeight);
     const std::string unit = unit_or_units(result_);
     const std::string caption = detail::fit_text(view_caption(pv), 12, frame.width - 12);
+    const auto label =
+        draw_plane(painted.image, pv, shown, frame,
+                   {detail::view_scale_bar_box(shown, unit), detail::text_box(caption, 12, 6, 16)});
+    sheet.paste(painted.image, 0, detail::kTitleHeight);
+    detail::draw_plane_label(sheet, 0, detail::kTitleHeight, label);
     detail::draw_text(sheet, 6, detail::kTitleHeight + 16, caption, 12, detail::kText,
                       detail::TextAlign::Left, 2);
     detail::draw_region_numbers(
@@ -478,6 +495,7 @@ std::string PictureWriter::mosaic(std::size_t z) {
     sheet.paste(chart, 0, detail::kTitleHeight);
     const int tiles_top = detail::kTitleHeight + chart.height() + kGap;
     std::vector<detail::PaintedSurface> painted(detail::batch_size(threads_));
+    std::vector<std::optional<detail::PlaneLabel>> labels(painted.size());
     const std::string unit = unit_or_units(result_);
     detail::render_in_batches(
         renderer_, shown, threads_,
@@ -485,6 +503,8 @@ std::string PictureWriter::mosaic(std::size_t z) {
             const auto& pv = plan.views[static_cast<std::size_t>(tiles[k])];
             painted[slot] =
                 paint_view(pv, shown[k], frame, {.outline_width = 1, .hatch_period = 5});
+            labels[slot] = draw_plane(painted[slot].image, pv, shown[k], frame,
+                                      {detail::view_scale_bar_box(shown[k], unit)});
         },
         [&](std::size_t slot, std::size_t k) {
             const PlannedView& pv = plan.views[static_cast<std::size_t>(tiles[k])];
@@ -492,6 +512,7 @@ std::string PictureWriter::mosaic(std::size_t z) {
             const int x = static_cast<int>(k) % per_row * (t + kGap);
             const int y = tiles_top + static_cast<int>(k) / per_row * (t + kTileCaption + kGap);
             sheet.paste(painted[slot].image, x, y);
+            detail::draw_plane_label(sheet, x, y, labels[slot]);
             detail::draw_region_numbers(sheet, x, y, tile.width(), tile.height(),
                                         painted[slot].anchors, 12, 8,
                                         {detail::view_scale_bar_box(shown[k], unit)});

@@ -226,12 +226,6 @@ PaintedSurface painted_panel(const OverviewInput& in, const Frame& frame, const 
     return painted;
 }
 
-void draw_plane_label(Canvas& sheet, int x, int y, const std::optional<PlaneLabel>& label) {
-    if (label)
-        draw_text(sheet, x + label->x, y + label->y, std::string(kSymmetryPlaneLabel), 12,
-                  kSymmetryPlane, TextAlign::Left, 2);
-}
-
 }  // namespace
 
 std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {

@@ -114,7 +114,7 @@ void draw_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     if (!c.plane_line) return;
     const int y4 = y3 + kSwatchStep;
     draw_box(dst, x, y4 + s / 2 - 1, x + s, y4 + s / 2, kSymmetryPlane, true);
-    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (residual: footer)", kFont);
+    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (its residual: report)", kFont);
 }
 
 }  // namespace

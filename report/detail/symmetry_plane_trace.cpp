@@ -97,6 +97,12 @@ std::optional<PlaneLabel> label_place(const std::vector<std::uint8_t>& line,
 
 }  // namespace
 
+void draw_plane_label(Canvas& sheet, int x, int y, const std::optional<PlaneLabel>& label) {
+    if (label)
+        draw_text(sheet, x + label->x, y + label->y, std::string(kSymmetryPlaneLabel), 12,
+                  kSymmetryPlane, TextAlign::Left, 2);
+}
+
 std::optional<PlaneLabel> draw_symmetry_plane(Canvas& image, const Frame& frame, const View& view,
                                               const Mesh& mesh,
                                               std::span<const std::int32_t> region,

@@ -43,6 +43,10 @@ std::optional<PlaneLabel> draw_symmetry_plane(Canvas& image, const Frame& frame,
                                               const MirrorPictures& plane,
                                               std::span<const PixelBox> keep_clear = {});
 
+/// The label "symmetry plane" at `label` (from draw_symmetry_plane) on a sheet where the
+/// picture's top left corner is at (x, y); nothing when there is no label.
+void draw_plane_label(Canvas& sheet, int x, int y, const std::optional<PlaneLabel>& label);
+
 /// atlas.png's footer line: "symmetry plane: normal (1, 0, 0), point (0, 0, 0) mm, residual
 /// 0.0005 mm".
 [[nodiscard]] std::string symmetry_plane_footer(const MirrorPictures& plane,

@@ -16,11 +16,13 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -83,14 +85,15 @@ std::vector<T> decode(const std::string& b64) {
     return out;
 }
 
-// Pixels of a PNG file in the symmetry plane's colour (report/detail/symmetry_plane_trace.h).
-int plane_coloured_pixels(const fs::path& png) {
+// Pixels of a PNG file in the symmetry plane's colour (report/detail/symmetry_plane_trace.h),
+// left of column `max_x` (a picture's legend, on its right, has a swatch of that colour).
+int plane_coloured_pixels(const fs::path& png, int max_x = std::numeric_limits<int>::max()) {
     OIIO::ImageBuf image(png.string());
     EXPECT_TRUE(image.read(0, 0, true, OIIO::TypeDesc::FLOAT)) << png;
     int n = 0;
     const OIIO::ROI roi = image.roi();
     for (int y = roi.ybegin; y < roi.yend; ++y)
-        for (int x = roi.xbegin; x < roi.xend; ++x) {
+        for (int x = roi.xbegin; x < std::min(roi.xend, max_x); ++x) {
             float p[3];
             image.getpixel(x, y, p, 3);
             bool same = true;
@@ -364,7 +367,6 @@ TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
     options.sweep.render.backend = Backend::Embree;
     options.units.unit = "mm";
     inspect_options.exports.output = dir / "out";
-    inspect_options.exports.write_views = false;
     inspect_options.addition = [&](const AnalysisResult& r) {
         const AsymmetryFindings f = pair_findings(surface, plane.plane.plane, r);
         return ReportAddition{.key = "asymmetry",
@@ -406,6 +408,17 @@ TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
     // atlas.png draws the plane (the x = 0 line of the panels from ±y, ±z, which see it
     // edge-on, and its trace on the sphere).
     EXPECT_GT(plane_coloured_pixels(dir / "out" / "atlas.png"), 4 * 200);
+    // So do the per-view pictures and the mosaic's tiles (the trace on the sphere, the line
+    // across a view that sees the plane edge-on), left of their legends.
+    int in_views = 0;
+    for (const auto& file : fs::directory_iterator(dir / "out" / "views"))
+        if (file.path().extension() == ".png") {
+            const int n = plane_coloured_pixels(file.path(), 300);
+            EXPECT_GT(n, 50) << file.path() << ": no symmetry plane drawn";
+            in_views += n;
+        }
+    EXPECT_GT(in_views, 8 * 150);
+    EXPECT_GT(plane_coloured_pixels(dir / "out" / "mosaic_z0.png", 240), 100);
 
     // report.html: the section with the plane, the caveat, and one row per finding.
     const std::string html = read_text(dir / "out" / "report.html");
