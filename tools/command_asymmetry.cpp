@@ -122,7 +122,8 @@ void run(AsymmetryArgs& a) {
     print_plane(fitted, result.analysis.unit);
     const auto& d = result.analysis.decisions;
     print_findings(report, d.empty() ? 0 : d[0].regions.regions.size(), result.analysis.unit);
-    std::printf("atlas (field asymmetry), pictures and report in %s\n",
+    std::printf("atlas (field asymmetry), %sreport in %s\n",
+                a.options.exports.write_pictures ? "pictures and " : "no pictures, ",
                 result.output.string().c_str());
 }
 

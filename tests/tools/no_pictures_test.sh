@@ -3,7 +3,8 @@
 # (OpenImageIO and the ~240 libraries Debian builds it with): with a plugin folder that holds
 # no plugin it completes, writes no PNG, and its atlas files are byte for byte those of a run
 # with pictures (their vertex colours come from the colour maps sampled at build time), with
-# report.json recording the choice and report.html saying why it shows no picture.
+# report.json recording the choice and report.html saying why it shows no picture; glint run and
+# glint asymmetry take the same option.
 #   no_pictures_test.sh GLINT WORKDIR EMPTY_PLUGIN_DIR
 set -euo pipefail
 glint=$1
@@ -46,4 +47,13 @@ GLINT_PLUGIN_DIR=$empty_plugins "$glint" --quiet run "$scenario" --no-pictures -
 [ -s "$work/runs/condyle-dent/atlas.ply" ] || fail "glint run --no-pictures wrote no atlas"
 found=$(find "$work/runs" -name '*.png' | head -3)
 [ -z "$found" ] || fail "glint run --no-pictures wrote pictures: $found"
+# glint asymmetry: the same option (the export table's), the same promise.
+"$glint" --quiet phantom condyle --resolution 4 --damage 'dent:center=6,-3.12,6;radius=2.5;depth=0.4' \
+  -o "$work/condyle.ply"
+GLINT_PLUGIN_DIR=$empty_plugins "$glint" --quiet asymmetry "$work/condyle.ply" --size 64 --no-pictures \
+  -o "$work/asymmetry" > "$work/asymmetry.txt" || fail "glint asymmetry --no-pictures needed the image plugin"
+grep -q 'no pictures, report in' "$work/asymmetry.txt" || fail "asymmetry's last line speaks of pictures"
+[ -s "$work/asymmetry/atlas.ply" ] && [ -s "$work/asymmetry/report.html" ] || fail "asymmetry wrote no atlas or page"
+found=$(find "$work/asymmetry" -name '*.png' | head -3)
+[ -z "$found" ] || fail "glint asymmetry --no-pictures wrote pictures: $found"
 echo "ok: --no-pictures runs load no image plugin and write the same atlas files"
