@@ -309,7 +309,9 @@
         "°, elevation " + fmt(r.best_view_elevation_deg) + "°), views/ holds every view";
     } else {
       img.style.display = "none";
-      cap.textContent = "region " + r.id + ": no picture of its best view is embedded (only the strongest regions' are)";
+      const drawn = ((REPORT.analysis || {}).exports || {}).pictures !== false;
+      cap.textContent = "region " + r.id + (drawn ? ": no picture of its best view is embedded (only the strongest regions' are)"
+                                                 : ": no pictures were drawn (this run was made with --no-pictures)");
     }
   }
   // The view's name as its files are named (views/<name>.png), and its direction.
