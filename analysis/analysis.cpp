@@ -106,10 +106,13 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
             .at_border = &result.at_border,
             .facing_away = &result.facing_away,
             .scan_view = result.scan_view ? &*result.scan_view : nullptr,
+            .below_resolution = &result.resolution.below,
             .metric = options.sweep.metric,
             .size = result.size,
             .unit = result.unit};
         result.decisions.push_back(decide(reference, evidence, options.decision));
+        if (!result.resolution.rule.empty())
+            result.decisions.back().comparison.rule += "; " + result.resolution.rule;
         for (const auto& w : result.decisions.back().warnings)
             result.warnings.push_back("zoom " + std::to_string(result.decisions.size() - 1) + ": " +
                                       w);
@@ -169,6 +172,10 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.at_border = std::move(shape.at_border);
     result.facing_away = std::move(shape.facing_away);
     result.scan_view = one_view_scan(fitted);
+    if (reference.voxel_axes || fitted.voxel_axes) {
+        if (!reference_index) reference_index = index_surface(reference);
+        result.resolution = below_resolution(reference, fitted, reference_index, examined_index);
+    }
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");

@@ -16,6 +16,7 @@
 #pragma once
 
 #include "analysis/fit.h"
+#include "analysis/resolution.h"
 #include "analysis/units.h"
 #include "decision/decision.h"
 #include "mesh/mesh.h"
@@ -56,6 +57,9 @@ struct AnalysisResult {
     /// The fitted examined surface's view when it is a one-view scan (mesh/scan_view.h), in
     /// the reference's frame: its dropouts at grazing incidence are not compared.
     std::optional<ScanView> scan_view;
+    /// Where the pair cannot compare because another sheet lies closer than the scans' voxels
+    /// (analysis/resolution.h): empty for surfaces from mesh files.
+    ResolutionEvidence resolution;
     SweepResult sweep;
     /// The reference's BVH the fit and the sweep shared (mesh/surface_index.h), kept for the
     /// pictures (report/) when the reference has at most kKeptIndexTriangles; null otherwise.

@@ -21,6 +21,7 @@ std::string to_string(CompareClass c) {
         case CompareClass::ReferenceBorder: return "reference border";
         case CompareClass::ExaminedBorder: return "examined border";
         case CompareClass::NotReached: return "not reached";
+        case CompareClass::BelowResolution: return "below resolution";
     }
     return "?";
 }
@@ -263,17 +264,20 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     const auto examined_band = band_of(mesh, adj, not_reached, c.band);
     const auto border_band = band_of(mesh, adj, border, c.band);
     c.vertex_class.assign(n, static_cast<std::uint8_t>(CompareClass::Compared));
+    const bool unresolved = in.below_resolution && in.below_resolution->size() == n;
     for (std::size_t v = 0; v < n; ++v) {
         CompareClass k = CompareClass::Compared;
         if (not_reached[v]) k = CompareClass::NotReached;
         else if (c.in_hole[v]) k = CompareClass::Compared;  // a hole is compared, also at a border
         else if (border_band[v]) k = CompareClass::ReferenceBorder;
         else if (examined_band[v]) k = CompareClass::ExaminedBorder;
+        else if (unresolved && (*in.below_resolution)[v]) k = CompareClass::BelowResolution;
         c.vertex_class[v] = static_cast<std::uint8_t>(k);
         double& sum = k == CompareClass::Compared          ? c.compared_area
                       : k == CompareClass::NotReached      ? c.not_reached_area
                       : k == CompareClass::ReferenceBorder ? c.reference_border_area
-                                                           : c.examined_border_area;
+                      : k == CompareClass::ExaminedBorder  ? c.examined_border_area
+                                                           : c.below_resolution_area;
         sum += area[v];
     }
     c.fraction = c.reference_area > 0 ? c.compared_area / c.reference_area : 0.0;

@@ -24,8 +24,12 @@
 //                the reference: a field-of-view cut, a scan's edge, a crop.
 //   examined border   within kBandEdges·ℓ of a not-reached vertex: the examined surface's
 //                open border mapped onto the reference through the fit.
+//   below resolution  another sheet of either surface lies closer along the vertex's normal
+//                than a voxel of the scans' grids (a thin plate, a narrow gap: partial volume
+//                decides where each scan's surface lies; analysis/resolution.h). Only for
+//                surfaces extracted from volumes.
 // Classes are exclusive, in this order: not reached, hole (compared), reference border,
-// examined border, compared.
+// examined border, below resolution, compared.
 //
 // How the decision reads them (decision.cpp): the floors and the histogram read compared
 // vertices only; the damaged mask every reached vertex, less every connected damaged group
@@ -54,9 +58,10 @@ enum class CompareClass : std::uint8_t {
     ReferenceBorder = 1,  ///< near an open border of the reference
     ExaminedBorder = 2,   ///< near an open border of the examined surface
     NotReached = 3,       ///< the examined surface never covered it
+    BelowResolution = 4,  ///< closer to another sheet than the scans' voxels resolve
 };
 
-/// "compared", "reference border", "examined border", "not reached".
+/// "compared", "reference border", "examined border", "not reached", "below resolution".
 [[nodiscard]] std::string to_string(CompareClass c);
 
 /// note: 4 edges — a marching-cubes cut or a range scan's ragged edge curls over 1–3 rows of
@@ -93,6 +98,8 @@ struct ComparisonInputs {
     /// The examined surface is a one-view scan taken from this view, in the reference's frame
     /// (may be null: not a one-view scan).
     const ScanView* scan_view = nullptr;
+    /// 1: below the scans' resolution (analysis/resolution.h; may be null or empty: none).
+    const std::vector<std::uint8_t>* below_resolution = nullptr;
 };
 
 struct Comparison {
@@ -108,6 +115,7 @@ struct Comparison {
     double reference_border_area = 0.0;
     double examined_border_area = 0.0;
     double not_reached_area = 0.0;
+    double below_resolution_area = 0.0;
     std::size_t holes = 0;  ///< gone groups kept as holes (compared)
     double hole_area = 0.0;
     std::optional<ScanView> scan_view;  ///< the examined one-view scan's, reference frame

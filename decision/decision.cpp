@@ -345,11 +345,15 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
         " deep over " + with_unit(s.min_area, e.unit, 2, "%.3g"));
     RegionFieldStore fields;
     build_fields(e, d.comparison, d.shape.value, fields);
+    // A group narrower than the disc the evidence was read over is below what this scale can
+    // tell (the smallest detectable area stated above): not a region.
+    RegionOptions at_scale = region_options;
+    at_scale.min_area = s.min_area;
     d.regions = find_regions(
         reference,
         off_borders(reference,
                     detail::fused_mask(reference, at.evidence, f.excess, d.normal, d.shape, o), d),
-        e.coverage->seen, fields.fields, region_options);
+        e.coverage->seen, fields.fields, at_scale);
     detail::describe_evidence(d.regions, at.evidence, f.excess, d.normal, d.shape);
 }
 
@@ -498,7 +502,8 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                                    .distance = evidence.distance,
                                                    .at_border = evidence.at_border,
                                                    .facing_away = evidence.facing_away,
-                                                   .scan_view = evidence.scan_view});
+                                                   .scan_view = evidence.scan_view,
+                                                   .below_resolution = evidence.below_resolution});
     // Floors and the histogram read the compared vertices; the mask every seen vertex the
     // examined surface reached (a group mostly in a border band is dropped: off_borders).
     Coverage compared = *evidence.coverage;

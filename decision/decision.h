@@ -126,6 +126,8 @@ struct DecisionEvidence {
         nullptr;  ///< closest examined triangle faces away (may be null)
     /// The examined surface's view when it is a one-view scan, reference frame (may be null).
     const ScanView* scan_view = nullptr;
+    /// 1: below the scans' resolution (analysis/resolution.h; may be null: none).
+    const std::vector<std::uint8_t>* below_resolution = nullptr;
     Metric metric = Metric::AngleDeg;
     double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
     std::string unit;   ///< the mesh unit ("mm"), for sentences; empty: "units"

@@ -149,7 +149,7 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
             accumulate(groups[static_cast<std::size_t>(group[v])], mesh, v, areas[v], fields);
     std::vector<Accumulated*> kept;
     for (auto& g : groups) {
-        if (g.vertices.size() < options.min_vertices) {
+        if (g.vertices.size() < options.min_vertices || g.r.area < options.min_area) {
             ++result.dropped_small;
             continue;
         }

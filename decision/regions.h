@@ -47,6 +47,9 @@ struct RegionFields {
 
 struct RegionOptions {
     std::size_t min_vertices = 3;  ///< smaller groups are dropped (counted in dropped_small)
+    /// Groups of a smaller area are dropped too (counted in dropped_small): at a smoothing
+    /// scale of radius r the evidence cannot resolve damage narrower than its disc (π·r²).
+    double min_area = 0.0;
     /// Fill holes: a group of undamaged seen vertices enclosed by one region and smaller than
     /// it joins that region. The floor of a dent keeps its normal (its tilt is zero at the
     /// deepest point), so normal evidence marks a ring; the ring's inside is damaged too.

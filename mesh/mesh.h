@@ -51,6 +51,11 @@ struct Mesh {
     std::vector<ScalarField> scalars;  ///< named per-vertex scalars; optional
     std::vector<std::int32_t> labels;  ///< per-vertex label (0 = none); optional
     std::string unit;                  ///< "mm", "m", … or "" when unknown
+    /// The voxel grid a surface extracted from a volume was sampled on: columns are the grid's
+    /// axes i, j, k scaled by its spacing (mesh units), in the mesh's frame (transform_mesh
+    /// turns them with it). Unset for a mesh read from a file. Where two sheets of surface lie
+    /// closer than a voxel the scan cannot place them apart (analysis/resolution.h).
+    std::optional<Eigen::Matrix3d> voxel_axes;
 
     [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
     [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }

@@ -16,7 +16,8 @@
 //   pixels_z<k>             pixels that touched the vertex (0 unseen)
 //   region_id_z<k>          the region of regions.csv the vertex belongs to, 0 none
 //   not_compared_z<k>       why the vertex was not compared (decision/comparison.h): 0 compared,
-//                           1 reference border, 2 examined border, 3 not reached
+//                           1 reference border, 2 examined border, 3 not reached,
+//                           4 below resolution
 // No field holds NaN: unseen is 0 with seen_z<k> = 0 (MeshLab aborts on a NaN quality,
 // VTK's legacy reader cannot parse one).
 #pragma once

@@ -157,7 +157,8 @@ json comparison_json(const Comparison& c) {
             {"not_compared",
              {{"reference_border", entry(c.reference_border_area)},
               {"examined_border", entry(c.examined_border_area)},
-              {"not_reached", entry(c.not_reached_area)}}},
+              {"not_reached", entry(c.not_reached_area)},
+              {"below_resolution", entry(c.below_resolution_area)}}},
             {"holes", {{"count", c.holes}, {"area", c.hole_area}}}};
 }
 

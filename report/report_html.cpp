@@ -145,9 +145,9 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
                                     static_cast<double>(d.regions.regions.size())));
         fields.push_back(field_json(comparison_field(z),
                                     "not compared: 1 reference border, 2 examined border, 3 not "
-                                    "reached" +
+                                    "reached, 4 below resolution" +
                                         at,
-                                    "category", "", static_cast<int>(z), compared, 0.0, 3.0));
+                                    "category", "", static_cast<int>(z), compared, 0.0, 4.0));
         fields.push_back(field_json(seen_field(z), "coverage: seen" + at, "binary", "",
                                     static_cast<int>(z), seen_f, 0.0, 1.0));
         const auto most = a.count.empty() ? 1u : *std::max_element(a.count.begin(), a.count.end());

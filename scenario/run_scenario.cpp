@@ -192,7 +192,7 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
     record.add_file("scenario", sc.file, sc.name);
     record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
                              describe_source(sc.reference), meshes.reference.vertex_count(),
-                             meshes.reference.triangle_count()});
+                             meshes.reference.triangle_count(), to_string(reference_space(sc))});
     return options;
 }
 

@@ -78,9 +78,10 @@ void print_summary(const Inspection& inspection, bool pictures) {
             std::printf(
                 "  compared %.1f%% of the reference's area; not compared: %.1f%% not reached by "
                 "the examined surface, %.1f%% along the reference's borders, %.1f%% along the "
-                "examined surface's borders\n",
+                "examined surface's borders, %.1f%% below the scans' resolution (thin plates and "
+                "narrow gaps)\n",
                 100.0 * c.fraction, pct(c.not_reached_area), pct(c.reference_border_area),
-                pct(c.examined_border_area));
+                pct(c.examined_border_area), pct(c.below_resolution_area));
         if (c.dropouts > 0)
             std::printf(
                 "  the examined surface is a one-view scan (its normals within %.0f° of one "

@@ -228,6 +228,7 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
         throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" +
                          where);
     out.mesh.unit = "mm";
+    out.mesh.voxel_axes = g.direction * g.spacing.asDiagonal();
     compute_vertex_normals(out.mesh);
     std::vector<std::uint32_t> component;
     r.components_kept = connected_components(out.mesh, component);

@@ -416,7 +416,9 @@
       const c = z.comparison;
       if (!c || c.compared_fraction >= 1) return "";
       const drops = c.dropouts && c.dropouts.count ? ", " + c.dropouts.count + " scanner dropout(s) of a one-view scan" : "";
-      return " · compared " + fmt(100 * c.compared_fraction) + " % of the reference" + drops + " (warm grey: not compared)";
+      const thin = c.not_compared && c.not_compared.below_resolution && c.not_compared.below_resolution.share > 0
+        ? ", " + fmt(100 * c.not_compared.below_resolution.share) + " % below the scans' resolution (thin plates, narrow gaps)" : "";
+      return " · compared " + fmt(100 * c.compared_fraction) + " % of the reference" + drops + thin + " (warm grey: not compared)";
     };
     const z0 = REPORT.zooms[0] || { regions: [], coverage: 0 };
     const shown = DATA.mesh.shown ? " (shown decimated to " + DATA.mesh.shown.triangles + " triangles, within " +

@@ -14,15 +14,13 @@
 
 namespace glint::detail {
 
-namespace {
-
-// The space the reference's coordinates are in: a volume's surface is LPS, a mesh file says
-// (SPACE=) or not, a phantom is in none.
 PatientSpace reference_space(const Scenario& sc) {
     if (sc.reference.phantom || sc.reference.mesh.empty()) return PatientSpace::Unknown;
     if (is_volume_path(sc.reference.mesh)) return PatientSpace::LPS;
     return space_stated_in(sc.reference.mesh);
 }
+
+namespace {
 
 // The plane found on the analysed surface (the examined one, posed), in the reference's frame.
 SymmetryPlane in_reference_frame(const SymmetryPlane& plane, const Rigid& reference_from_examined) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "report/inspect.h"
+#include "report/orientation.h"
 #include "report/run_inputs.h"
 #include "scenario/run_scenario.h"
 #include "scenario/scenario.h"
@@ -14,6 +15,10 @@ namespace glint::detail {
 
 /// "phantom condyle ico 5", or "" for a mesh file.
 [[nodiscard]] std::string describe_source(const SurfaceSource& source);
+
+/// The space the reference's coordinates are in: a volume's surface is LPS (as ITK reads its
+/// header), a mesh file says (SPACE=) or not, a phantom is in none.
+[[nodiscard]] PatientSpace reference_space(const Scenario& sc);
 
 /// The scenario's analysis options with the run's unit, its exports (output_root / name) and
 /// the record of the scenario file and its reference (as input "reference").

@@ -268,5 +268,46 @@ TEST(Comparison, DecideCallsWornAwaySurfaceALossAndAnUnscannedPartNothing) {
     EXPECT_GT(e.comparison.not_reached_area, 0.0);
 }
 
+// A thin plate or a narrow gap (analysis/resolution.h) is not compared: a shape change there
+// is no region, while the same change on resolved surface is one.
+TEST(Comparison, BelowResolutionIsNotComparedAndHoldsNoRegion) {
+    Inputs in;
+    for (std::size_t v = 0; v < in.n; ++v) in.distance[v] = v % 2 ? 0.001f : -0.001f;
+    const auto bump = [&](int cx, int cy) {
+        for (int y = 0; y <= kN; ++y)
+            for (int x = 0; x <= kN; ++x)
+                if (const double r = std::hypot(x - cx, y - cy); r <= 3.0)
+                    in.distance[vid(x, y)] = static_cast<float>(1.5 * (1.0 - r / 4.0));
+    };
+    bump(12, 20);
+    bump(28, 20);
+    std::vector<std::uint8_t> thin(in.n, 0);
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 22; x <= 34; ++x) thin[vid(x, y)] = 1;
+    ComparisonInputs inputs = in.view();
+    inputs.below_resolution = &thin;
+    const Comparison c = classify_comparison(flat(), inputs);
+    EXPECT_EQ(class_at(c, 28, 20), CompareClass::BelowResolution);
+    EXPECT_EQ(class_at(c, 12, 20), CompareClass::Compared);
+    EXPECT_EQ(class_at(c, 28, 2), CompareClass::ReferenceBorder);  // the border band comes first
+    EXPECT_EQ(to_string(CompareClass::BelowResolution), "below resolution");
+    // 13 columns of the 31 × 31 compared vertices, a unit dual area each.
+    EXPECT_NEAR(c.below_resolution_area, 13.0 * 31.0, 1e-6);
+    EXPECT_NEAR(c.compared_area + c.reference_border_area + c.below_resolution_area,
+                c.reference_area, 1e-9);
+
+    Zoom z(in);  // the bumps tilt the surface: strong normal evidence on them
+    for (std::size_t v = 0; v < in.n; ++v)
+        if (in.distance[v] > 0.1f) z.atlas.value_mean[v] = z.atlas.value_max[v] = 30.0f;
+    DecisionEvidence e = z.evidence(in);
+    e.below_resolution = &thin;
+    const ZoomDecision d = decide(flat(), e, DecisionOptions{});
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_NEAR(d.regions.regions[0].centroid.x(), 12.0, 1.0);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Bump);
+    // Without the flag both bumps are regions: the test would see a missed rule.
+    EXPECT_EQ(decide(flat(), z.evidence(in), DecisionOptions{}).regions.regions.size(), 2u);
+}
+
 }  // namespace
 }  // namespace glint

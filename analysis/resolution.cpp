@@ -1,0 +1,112 @@
+#include "analysis/resolution.h"
+
+#include "mesh/geometry.h"
+#include "registration/closest_point.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace glint {
+
+double voxel_extent_along(const Eigen::Matrix3d& axes, const Vec3d& n) {
+    return std::abs(n.dot(axes.col(0))) + std::abs(n.dot(axes.col(1))) +
+           std::abs(n.dot(axes.col(2)));
+}
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Distance along the unit direction d from o to the first surface beyond `skip` (inf: none).
+double first_hit(const ClosestPointIndex& index, const Vec3d& o, const Vec3d& d, double skip) {
+    const RayHit h = index.intersect({o + skip * d, d});
+    return h.hit ? skip + h.t : kInf;
+}
+
+// The reference's own clearance at p: the gap outside or the thickness inside, the nearer.
+double reference_clearance(const ClosestPointIndex& index, const Vec3d& p, const Vec3d& n,
+                           double skip) {
+    return std::min(first_hit(index, p, n, skip), first_hit(index, p, -n, skip));
+}
+
+// The examined surface's clearance on the line through p along n: from the examined sheet
+// nearest p to the next examined sheet on either side of it.
+double examined_clearance(const ClosestPointIndex& index, const Vec3d& p, const Vec3d& n,
+                          double skip) {
+    const double out = first_hit(index, p, n, 0.0);
+    const double in = first_hit(index, p, -n, 0.0);
+    if (!std::isfinite(out) && !std::isfinite(in)) return kInf;
+    const Vec3d d = out <= in ? n : Vec3d(-n);
+    const Vec3d sheet = p + std::min(out, in) * d;
+    return std::min(first_hit(index, sheet, d, skip), first_hit(index, sheet, -d, skip));
+}
+
+std::string rule_text(const Mesh& reference, const Mesh& fitted) {
+    const auto grid = [](const Mesh& m) {
+        if (!m.voxel_axes) return std::string("no grid (a mesh file)");
+        std::ostringstream s;
+        s.precision(3);
+        s << m.voxel_axes->col(0).norm() << " × " << m.voxel_axes->col(1).norm() << " × "
+          << m.voxel_axes->col(2).norm();
+        return s.str();
+    };
+    std::ostringstream s;
+    s << "below resolution: another sheet of either surface closer, along the vertex's normal, "
+         "than "
+      << kResolutionVoxels
+      << " voxel(s) of the coarser grid seen along that normal (reference " << grid(reference)
+      << ", examined " << grid(fitted) << "): a thin plate or a narrow gap, where partial volume "
+                                          "decides each scan's surface";
+    return s.str();
+}
+
+}  // namespace
+
+ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
+                                    std::shared_ptr<const SurfaceIndex> reference_index,
+                                    std::shared_ptr<const SurfaceIndex> examined_index) {
+    ResolutionEvidence out;
+    if (!reference.voxel_axes && !fitted.voxel_axes) return out;
+    if (reference.vertex_count() == 0 || fitted.triangle_count() == 0) return out;
+    out.rule = rule_text(reference, fitted);
+    if (!reference_index) reference_index = index_surface(reference);
+    if (!examined_index) examined_index = index_surface(fitted);
+    const ClosestPointIndex ref(reference, reference_index);
+    const ClosestPointIndex exa(fitted, examined_index);
+    const std::size_t n = reference.vertex_count();
+    // note: rays start a thousandth of the voxel off the surface, so that the vertex's own
+    // triangles are not hit at t ≈ 0.
+    const Eigen::Matrix3d& axes = reference.voxel_axes ? *reference.voxel_axes : *fitted.voxel_axes;
+    const double skip = 1e-3 * axes.colwise().norm().minCoeff();
+    out.below.assign(n, 0);
+    out.clearance.assign(n, std::numeric_limits<float>::infinity());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                          for (std::size_t v = r.begin(); v != r.end(); ++v) {
+                              const Vec3d p = reference.positions[v].cast<double>();
+                              const Vec3d nv = reference.normals[v].cast<double>();
+                              if (!(nv.squaredNorm() > 0.5)) continue;
+                              double voxel = 0.0;
+                              if (reference.voxel_axes)
+                                  voxel = voxel_extent_along(*reference.voxel_axes, nv);
+                              if (fitted.voxel_axes)
+                                  voxel = std::max(voxel,
+                                                   voxel_extent_along(*fitted.voxel_axes, nv));
+                              const double c = std::min(reference_clearance(ref, p, nv, skip),
+                                                        examined_clearance(exa, p, nv, skip));
+                              out.clearance[v] = static_cast<float>(c);
+                              out.below[v] = c < kResolutionVoxels * voxel ? 1 : 0;
+                          }
+                      });
+    const auto area = vertex_areas(reference);
+    for (std::size_t v = 0; v < n; ++v)
+        if (out.below[v]) out.flagged_area += area[v];
+    return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,127 @@
+// Surfaces closer than the scans resolve (analysis/resolution.h): thin plates and narrow gaps
+// are flagged on a coarse grid and not on a fine one; thick parts never; mesh files carry no
+// grid and nothing is flagged.
+#include "analysis/resolution.h"
+
+#include "mesh/geometry.h"
+#include "volume/phantom.h"
+#include "volume/surface.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace glint {
+namespace {
+
+Mesh ellipsoid_surface(const Vec3d& center, const Vec3d& radii, double spacing) {
+    EllipsoidVolumeOptions o;
+    o.center = center;
+    o.radii = radii;
+    o.grid.spacing = Vec3d::Constant(spacing);
+    const Vec3d half = radii + Vec3d::Constant(3.0);
+    for (int d = 0; d < 3; ++d)
+        o.grid.size[static_cast<std::size_t>(d)] =
+            static_cast<std::size_t>(2 * half[d] / spacing) + 1;
+    o.grid.origin = center - half;
+    return extract_surface(make_ellipsoid_volume(o), {.iso = 500.0}).mesh;
+}
+
+Mesh merged(const Mesh& a, const Mesh& b) {
+    Mesh m = a;
+    const auto base = static_cast<std::uint32_t>(a.vertex_count());
+    m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+    m.normals.insert(m.normals.end(), b.normals.begin(), b.normals.end());
+    for (auto t : b.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+    return m;
+}
+
+Eigen::Matrix3d grid(double x, double y, double z) { return Vec3d(x, y, z).asDiagonal(); }
+
+// Share of the vertices selected by `pick` that are flagged.
+template <class Pick>
+double flagged_share(const Mesh& m, const ResolutionEvidence& e, Pick pick) {
+    std::size_t n = 0, f = 0;
+    for (std::size_t v = 0; v < m.vertex_count(); ++v)
+        if (pick(m.positions[v].cast<double>(), m.normals[v].cast<double>())) {
+            ++n;
+            f += e.below[v];
+        }
+    EXPECT_GT(n, 20u);
+    return n ? static_cast<double>(f) / static_cast<double>(n) : 0.0;
+}
+
+TEST(Resolution, VoxelExtentIsTheVoxelsWidthAlongTheDirection) {
+    const Eigen::Matrix3d a = grid(1, 1, 2);
+    EXPECT_DOUBLE_EQ(voxel_extent_along(a, {0, 0, 1}), 2.0);
+    EXPECT_DOUBLE_EQ(voxel_extent_along(a, {1, 0, 0}), 1.0);
+    EXPECT_NEAR(voxel_extent_along(a, Vec3d(1, 1, 1).normalized()), 4.0 / std::sqrt(3.0), 1e-12);
+    // A turned grid: the same voxel seen along its own axis is its spacing there.
+    const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+    EXPECT_NEAR(voxel_extent_along(r * a, r * Vec3d(0, 0, 1)), 2.0, 1e-12);
+}
+
+TEST(Resolution, ExtractedSurfacesCarryTheirGridAndMotionsTurnIt) {
+    Mesh m = ellipsoid_surface({0, 0, 0}, {5, 5, 5}, 0.5);
+    ASSERT_TRUE(m.voxel_axes.has_value());
+    EXPECT_TRUE(m.voxel_axes->isApprox(grid(0.5, 0.5, 0.5)));
+    Rigid t = Rigid::Identity();
+    t.linear() = Eigen::AngleAxisd(std::numbers::pi / 2, Vec3d::UnitX()).toRotationMatrix();
+    m.voxel_axes = grid(1, 1, 2);
+    transform_mesh(m, t);
+    EXPECT_TRUE(m.voxel_axes->col(2).isApprox(Vec3d(0, -2, 0), 1e-12));
+}
+
+TEST(Resolution, AThinPlateIsBelowACoarseGridAndResolvedByAFineOne) {
+    // A plate 1.4 mm thick: across it a 1 × 1 × 2 mm voxel (2 mm along z) holds both faces,
+    // a 0.25 mm voxel does not.
+    Mesh plate = ellipsoid_surface({0, 0, 0}, {12, 12, 0.7}, 0.25);
+    const auto faces = [](const Vec3d& p, const Vec3d& n) {
+        return std::abs(n.z()) > 0.9 && p.head<2>().norm() < 6.0;
+    };
+    const ResolutionEvidence fine = below_resolution(plate, plate, nullptr, nullptr);
+    ASSERT_EQ(fine.below.size(), plate.vertex_count());
+    EXPECT_EQ(flagged_share(plate, fine, faces), 0.0);
+    for (const float c : fine.clearance) ASSERT_FALSE(std::isnan(c));
+    plate.voxel_axes = grid(1, 1, 2);
+    const ResolutionEvidence coarse = below_resolution(plate, plate, nullptr, nullptr);
+    EXPECT_GT(flagged_share(plate, coarse, faces), 0.95);
+    EXPECT_GT(coarse.flagged_area, 0.0);
+    EXPECT_NE(coarse.rule.find("1 × 1 × 2"), std::string::npos) << coarse.rule;
+    // A thick body on the same coarse grid: nothing.
+    Mesh ball = ellipsoid_surface({0, 0, 0}, {8, 8, 8}, 0.5);
+    ball.voxel_axes = grid(1, 1, 2);
+    const ResolutionEvidence thick = below_resolution(ball, ball, nullptr, nullptr);
+    EXPECT_EQ(flagged_share(ball, thick, [](const Vec3d&, const Vec3d&) { return true; }), 0.0);
+}
+
+TEST(Resolution, AGapOnlyTheExaminedScanHasIsFlaggedOnItsSideOnly) {
+    // Two balls 0.6 mm apart in the examined scan, one of them in the reference: the
+    // reference's side facing the gap is below a 1 mm grid, its far side is not.
+    const Mesh ball = ellipsoid_surface({0, 0, 0}, {6, 6, 6}, 0.5);
+    const Mesh other = ellipsoid_surface({12.6, 0, 0}, {6, 6, 6}, 0.5);
+    Mesh reference = ball;
+    Mesh examined = merged(ball, other);
+    reference.voxel_axes = grid(1, 1, 1);
+    examined.voxel_axes = grid(1, 1, 1);
+    const ResolutionEvidence e = below_resolution(reference, examined, nullptr, nullptr);
+    // (vertices whose normal faces outwards: marching cubes leaves a few degenerate ones)
+    const auto facing = [](const Vec3d& p, const Vec3d& n) { return n.dot(p.normalized()) > 0.5; };
+    EXPECT_EQ(flagged_share(reference, e,
+                            [&](const Vec3d& p, const Vec3d& n) { return p.x() > 5.8 && facing(p, n); }),
+              1.0);
+    EXPECT_EQ(flagged_share(reference, e, [](const Vec3d& p, const Vec3d&) { return p.x() < 3.0; }),
+              0.0);
+    // The grid of one scan is enough; mesh files (no grid on either) flag nothing.
+    reference.voxel_axes.reset();
+    EXPECT_EQ(below_resolution(reference, examined, nullptr, nullptr).below.size(),
+              reference.vertex_count());
+    examined.voxel_axes.reset();
+    const ResolutionEvidence none = below_resolution(reference, examined, nullptr, nullptr);
+    EXPECT_TRUE(none.below.empty());
+    EXPECT_TRUE(none.rule.empty());
+}
+
+}  // namespace
+}  // namespace glint
