@@ -172,9 +172,12 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.at_border = std::move(shape.at_border);
     result.facing_away = std::move(shape.facing_away);
     result.scan_view = one_view_scan(fitted);
-    if (reference.voxel_axes || fitted.voxel_axes) {
+    if (const ResolutionGrids grids =
+            resolution_grids(reference, fitted, options.decision.resolution);
+        grids.reference || grids.examined) {
         if (!reference_index) reference_index = index_surface(reference);
-        result.resolution = below_resolution(reference, fitted, reference_index, examined_index);
+        result.resolution =
+            below_resolution(reference, fitted, grids, reference_index, examined_index);
     }
     result.distance_seconds = seconds_since(t);
 

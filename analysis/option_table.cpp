@@ -455,6 +455,21 @@ std::vector<Field> decision_fields() {
              .help = "A normal floor estimated above this is implausible: capped and reported"},
             [](auto& o) -> auto& { return o.decision.max_plausible_threshold_deg; }),
         F::optional_number(
+            {.name = "resolution",
+             .section = "decision",
+             .key = "resolution",
+             .slicer = "resolution",
+             .group = kDecisionGroup,
+             .unit = "mesh units",
+             .min = 0,
+             .min_exclusive = true,
+             .label = "Scan resolution",
+             .help = "For meshes read from files: the voxel edge of the scans they were segmented "
+                     "from; where two sheets of surface lie closer than it, the pair is not "
+                     "compared (below resolution). Surfaces extracted from volumes use their own "
+                     "grid"},
+            [](auto& o) -> auto& { return o.decision.resolution; }),
+        F::optional_number(
             {.name = "shape_threshold",
              .section = "decision",
              .key = "shape_threshold",

@@ -46,34 +46,47 @@ double examined_clearance(const ClosestPointIndex& index, const Vec3d& p, const 
     return std::min(first_hit(index, sheet, d, skip), first_hit(index, sheet, -d, skip));
 }
 
-std::string rule_text(const Mesh& reference, const Mesh& fitted) {
-    const auto grid = [](const Mesh& m) {
-        if (!m.voxel_axes) return std::string("no grid (a mesh file)");
+std::string rule_text(const ResolutionGrids& grids) {
+    const auto grid = [&](const std::optional<Eigen::Matrix3d>& a) {
+        if (!a) return std::string("no grid (a mesh file)");
         std::ostringstream s;
         s.precision(3);
-        s << m.voxel_axes->col(0).norm() << " × " << m.voxel_axes->col(1).norm() << " × "
-          << m.voxel_axes->col(2).norm();
+        s << a->col(0).norm() << " × " << a->col(1).norm() << " × " << a->col(2).norm();
         return s.str();
     };
     std::ostringstream s;
     s << "below resolution: another sheet of either surface closer, along the vertex's normal, "
          "than "
-      << kResolutionVoxels
-      << " voxel(s) of the coarser grid seen along that normal (reference " << grid(reference)
-      << ", examined " << grid(fitted) << "): a thin plate or a narrow gap, where partial volume "
-                                          "decides each scan's surface";
+      << kResolutionVoxels << " voxel(s) of the coarser grid seen along that normal (reference "
+      << grid(grids.reference) << ", examined " << grid(grids.examined)
+      << (grids.given ? "; --resolution for a mesh file" : "")
+      << "): a thin plate or a narrow gap, where partial volume decides each scan's surface";
     return s.str();
 }
 
 }  // namespace
 
+ResolutionGrids resolution_grids(const Mesh& reference, const Mesh& examined,
+                                 std::optional<double> given) {
+    ResolutionGrids g{reference.voxel_axes, examined.voxel_axes, false};
+    const auto fill = [&](std::optional<Eigen::Matrix3d>& a) {
+        if (a || !given) return;
+        a = Eigen::Matrix3d::Identity() * *given;
+        g.given = true;
+    };
+    fill(g.reference);
+    fill(g.examined);
+    return g;
+}
+
 ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
+                                    const ResolutionGrids& grids,
                                     std::shared_ptr<const SurfaceIndex> reference_index,
                                     std::shared_ptr<const SurfaceIndex> examined_index) {
     ResolutionEvidence out;
-    if (!reference.voxel_axes && !fitted.voxel_axes) return out;
+    if (!grids.reference && !grids.examined) return out;
     if (reference.vertex_count() == 0 || fitted.triangle_count() == 0) return out;
-    out.rule = rule_text(reference, fitted);
+    out.rule = rule_text(grids);
     if (!reference_index) reference_index = index_surface(reference);
     if (!examined_index) examined_index = index_surface(fitted);
     const ClosestPointIndex ref(reference, reference_index);
@@ -81,7 +94,7 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
     const std::size_t n = reference.vertex_count();
     // note: rays start a thousandth of the voxel off the surface, so that the vertex's own
     // triangles are not hit at t ≈ 0.
-    const Eigen::Matrix3d& axes = reference.voxel_axes ? *reference.voxel_axes : *fitted.voxel_axes;
+    const Eigen::Matrix3d& axes = grids.reference ? *grids.reference : *grids.examined;
     const double skip = 1e-3 * axes.colwise().norm().minCoeff();
     out.below.assign(n, 0);
     out.clearance.assign(n, std::numeric_limits<float>::infinity());
@@ -92,11 +105,9 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               const Vec3d nv = reference.normals[v].cast<double>();
                               if (!(nv.squaredNorm() > 0.5)) continue;
                               double voxel = 0.0;
-                              if (reference.voxel_axes)
-                                  voxel = voxel_extent_along(*reference.voxel_axes, nv);
-                              if (fitted.voxel_axes)
-                                  voxel = std::max(voxel,
-                                                   voxel_extent_along(*fitted.voxel_axes, nv));
+                              if (grids.reference) voxel = voxel_extent_along(*grids.reference, nv);
+                              if (grids.examined)
+                                  voxel = std::max(voxel, voxel_extent_along(*grids.examined, nv));
                               const double c = std::min(reference_clearance(ref, p, nv, skip),
                                                         examined_clearance(exa, p, nv, skip));
                               out.clearance[v] = static_cast<float>(c);

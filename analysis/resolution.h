@@ -19,7 +19,7 @@
 //                               1 mm across, 2 mm along the slices' normal, 2.3 mm diagonal).
 // The vertex is *below resolution* where the smaller clearance is under kResolutionVoxels times
 // the larger of the two scans' extents along n. A surface from a mesh file carries no grid:
-// where neither surface has one the rule is off (nothing is flagged).
+// where neither surface has one, and no --resolution was given, the rule is off.
 #pragma once
 
 #include "mesh/mesh.h"
@@ -27,6 +27,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,11 +49,21 @@ struct ResolutionEvidence {
     std::string rule;           ///< one line: the rule and the grids it read
 };
 
+/// The grids the rule reads: each surface's own (Mesh::voxel_axes), else, for a mesh read from
+/// a file, an isotropic grid of `given` mesh units (the --resolution option) when set.
+struct ResolutionGrids {
+    std::optional<Eigen::Matrix3d> reference;
+    std::optional<Eigen::Matrix3d> examined;
+    bool given = false;  ///< a grid came from the option, not from a volume
+};
+[[nodiscard]] ResolutionGrids resolution_grids(const Mesh& reference, const Mesh& examined,
+                                               std::optional<double> given);
+
 /// The evidence above. `reference_index` / `examined_index` index `reference` and `fitted`
 /// (built here when null). \pre both meshes have vertex normals; `fitted` is in the
-/// reference's frame (its voxel_axes turned with it).
+/// reference's frame (its grid turned with it).
 [[nodiscard]] ResolutionEvidence below_resolution(
-    const Mesh& reference, const Mesh& fitted,
+    const Mesh& reference, const Mesh& fitted, const ResolutionGrids& grids,
     std::shared_ptr<const SurfaceIndex> reference_index,
     std::shared_ptr<const SurfaceIndex> examined_index);
 

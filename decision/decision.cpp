@@ -445,6 +445,8 @@ void DecisionOptions::validate() const {
     if (!(max_plausible_threshold_deg > 0 && max_plausible_threshold_deg <= 180))
         throw OptionError("decision.max_plausible_deg", max_plausible_threshold_deg,
                           "must be in (0, 180] degrees");
+    if (resolution && !(*resolution > 0 && *resolution < inf))
+        throw OptionError("decision.resolution", *resolution, "must be finite and > 0 mesh units");
     if (shape_threshold && !(*shape_threshold > 0 && *shape_threshold < inf))
         throw OptionError("decision.shape_threshold", *shape_threshold,
                           "must be finite and > 0 mesh units");

@@ -67,6 +67,9 @@ struct DecisionOptions {
     /// A normal floor above this (degrees; scaled to the metric by its colour range) is
     /// implausible: most of the surface would then differ. It is capped and reported.
     double max_plausible_threshold_deg = 20.0;
+    /// For meshes read from files: the voxel edge of the scans they came from (mesh units);
+    /// surfaces extracted from volumes carry their own grid (analysis/resolution.h).
+    std::optional<double> resolution;
     /// Shape evidence: the floor given (mesh units); else estimated.
     std::optional<double> shape_threshold;
     double shape_k = 6.0;      ///< shape floor: median + k·1.4826·MAD of |shape excess| …

@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace glint {
 namespace {
@@ -39,6 +40,12 @@ Mesh merged(const Mesh& a, const Mesh& b) {
 
 Eigen::Matrix3d grid(double x, double y, double z) { return Vec3d(x, y, z).asDiagonal(); }
 
+ResolutionEvidence flag(const Mesh& reference, const Mesh& examined,
+                        std::optional<double> given = std::nullopt) {
+    return below_resolution(reference, examined, resolution_grids(reference, examined, given),
+                            nullptr, nullptr);
+}
+
 // Share of the vertices selected by `pick` that are flagged.
 template <class Pick>
 double flagged_share(const Mesh& m, const ResolutionEvidence& e, Pick pick) {
@@ -58,7 +65,8 @@ TEST(Resolution, VoxelExtentIsTheVoxelsWidthAlongTheDirection) {
     EXPECT_DOUBLE_EQ(voxel_extent_along(a, {1, 0, 0}), 1.0);
     EXPECT_NEAR(voxel_extent_along(a, Vec3d(1, 1, 1).normalized()), 4.0 / std::sqrt(3.0), 1e-12);
     // A turned grid: the same voxel seen along its own axis is its spacing there.
-    const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(0.7, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
     EXPECT_NEAR(voxel_extent_along(r * a, r * Vec3d(0, 0, 1)), 2.0, 1e-12);
 }
 
@@ -80,19 +88,19 @@ TEST(Resolution, AThinPlateIsBelowACoarseGridAndResolvedByAFineOne) {
     const auto faces = [](const Vec3d& p, const Vec3d& n) {
         return std::abs(n.z()) > 0.9 && p.head<2>().norm() < 6.0;
     };
-    const ResolutionEvidence fine = below_resolution(plate, plate, nullptr, nullptr);
+    const ResolutionEvidence fine = flag(plate, plate);
     ASSERT_EQ(fine.below.size(), plate.vertex_count());
     EXPECT_EQ(flagged_share(plate, fine, faces), 0.0);
     for (const float c : fine.clearance) ASSERT_FALSE(std::isnan(c));
     plate.voxel_axes = grid(1, 1, 2);
-    const ResolutionEvidence coarse = below_resolution(plate, plate, nullptr, nullptr);
+    const ResolutionEvidence coarse = flag(plate, plate);
     EXPECT_GT(flagged_share(plate, coarse, faces), 0.95);
     EXPECT_GT(coarse.flagged_area, 0.0);
     EXPECT_NE(coarse.rule.find("1 × 1 × 2"), std::string::npos) << coarse.rule;
     // A thick body on the same coarse grid: nothing.
     Mesh ball = ellipsoid_surface({0, 0, 0}, {8, 8, 8}, 0.5);
     ball.voxel_axes = grid(1, 1, 2);
-    const ResolutionEvidence thick = below_resolution(ball, ball, nullptr, nullptr);
+    const ResolutionEvidence thick = flag(ball, ball);
     EXPECT_EQ(flagged_share(ball, thick, [](const Vec3d&, const Vec3d&) { return true; }), 0.0);
 }
 
@@ -105,22 +113,45 @@ TEST(Resolution, AGapOnlyTheExaminedScanHasIsFlaggedOnItsSideOnly) {
     Mesh examined = merged(ball, other);
     reference.voxel_axes = grid(1, 1, 1);
     examined.voxel_axes = grid(1, 1, 1);
-    const ResolutionEvidence e = below_resolution(reference, examined, nullptr, nullptr);
+    const ResolutionEvidence e = flag(reference, examined);
     // (vertices whose normal faces outwards: marching cubes leaves a few degenerate ones)
     const auto facing = [](const Vec3d& p, const Vec3d& n) { return n.dot(p.normalized()) > 0.5; };
-    EXPECT_EQ(flagged_share(reference, e,
-                            [&](const Vec3d& p, const Vec3d& n) { return p.x() > 5.8 && facing(p, n); }),
-              1.0);
+    EXPECT_EQ(
+        flagged_share(reference, e,
+                      [&](const Vec3d& p, const Vec3d& n) { return p.x() > 5.8 && facing(p, n); }),
+        1.0);
     EXPECT_EQ(flagged_share(reference, e, [](const Vec3d& p, const Vec3d&) { return p.x() < 3.0; }),
               0.0);
     // The grid of one scan is enough; mesh files (no grid on either) flag nothing.
     reference.voxel_axes.reset();
-    EXPECT_EQ(below_resolution(reference, examined, nullptr, nullptr).below.size(),
-              reference.vertex_count());
+    EXPECT_EQ(flag(reference, examined).below.size(), reference.vertex_count());
     examined.voxel_axes.reset();
-    const ResolutionEvidence none = below_resolution(reference, examined, nullptr, nullptr);
+    const ResolutionEvidence none = flag(reference, examined);
     EXPECT_TRUE(none.below.empty());
     EXPECT_TRUE(none.rule.empty());
+}
+
+TEST(Resolution, AMeshFileTakesTheGivenResolutionAndAVolumesGridWins) {
+    // The plate as a mesh file would hold it (no grid): off, unless --resolution says 2 mm.
+    Mesh plate = ellipsoid_surface({0, 0, 0}, {12, 12, 0.7}, 0.25);
+    plate.voxel_axes.reset();
+    const auto faces = [](const Vec3d& p, const Vec3d& n) {
+        return std::abs(n.z()) > 0.9 && p.head<2>().norm() < 6.0;
+    };
+    EXPECT_TRUE(flag(plate, plate).below.empty());
+    const ResolutionGrids g = resolution_grids(plate, plate, 2.0);
+    ASSERT_TRUE(g.reference && g.examined);
+    EXPECT_TRUE(g.given);
+    EXPECT_TRUE(g.reference->isApprox(grid(2, 2, 2)));
+    const ResolutionEvidence given = flag(plate, plate, 2.0);
+    EXPECT_GT(flagged_share(plate, given, faces), 0.95);
+    EXPECT_NE(given.rule.find("--resolution"), std::string::npos) << given.rule;
+    // A surface from a volume keeps its own grid: 0.25 mm resolves the 1.4 mm plate.
+    Mesh from_volume = plate;
+    from_volume.voxel_axes = grid(0.25, 0.25, 0.25);
+    const ResolutionGrids own = resolution_grids(from_volume, from_volume, 2.0);
+    EXPECT_FALSE(own.given);
+    EXPECT_EQ(flagged_share(from_volume, flag(from_volume, from_volume, 2.0), faces), 0.0);
 }
 
 }  // namespace
