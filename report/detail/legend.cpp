@@ -99,7 +99,7 @@ void draw_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     // Not compared: hatched the other way.
     hatched_swatch(dst, x, y, kNotCompared, kNotComparedStripe, false);
     draw_text(dst, x + s + 8, y + s - 2,
-              c.measured ? "not compared (edge, border)" : "not compared (border, unscanned)",
+              c.measured ? "not compared (edge, border)" : "not compared (border, unscanned, thin)",
               kFont);
     const int y2 = y + kSwatchStep;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
