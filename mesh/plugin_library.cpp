@@ -81,8 +81,9 @@ namespace {
 struct BackgroundLoads {
     std::mutex mutex;
     std::vector<std::future<void>> loads;
-    // note: destroyed at exit, after main: each future's destructor waits for its load, so the
-    // program never ends while another thread is inside dlopen.
+    // note: destroyed at exit; each future's destructor waits for its load. The program waits
+    // earlier (finish_background_loads at the end of main): a load still in dlopen while exit
+    // runs has its libraries' destructors run before the rest of their start-up.
 };
 
 BackgroundLoads& background_loads() {

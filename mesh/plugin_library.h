@@ -41,7 +41,9 @@ void load_in_background(std::function<void()> load);
 
 /// Waits until every load started by load_in_background has ended. Called before fork(): a
 /// child made while another thread is inside dlopen inherits the loader's lock and its lists
-/// half-changed, and its first dlopen, dlsym or thrown exception may then hang or crash.
+/// half-changed, and its first dlopen, dlsym or thrown exception may then hang or crash. And
+/// before exit: exit runs the destructors a library registers while it loads at once, and the
+/// rest of its start-up then uses what they destroyed.
 void finish_background_loads();
 
 /// The line for a plugin whose entry gave no table of this build's size.

@@ -4,6 +4,7 @@
 #include "mesh/input_path.h"
 #include "mesh/io.h"
 #include "mesh/memory_limits.h"
+#include "mesh/plugin_library.h"
 #include "mesh/version.h"
 #include "tools/command.h"
 #include "tools/progress.h"
@@ -205,11 +206,21 @@ int main(int argc, char** argv) {
     }
     // A call shaped like 3D Slicer's (glint --xml, then flags and index arguments: see
     // tools/slicer_module.h) runs the sweep as a Slicer module.
-    if (is_slicer_call(argc, argv)) return guarded(app, [&] { run_slicer_module(argc, argv); });
-    if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty())
-        return fail(kExitBadInput, "error", unknown);
-    return guarded(app, [&] {
-        glint::throw_if_cancelled();  // a signal during start-up: no work begins
-        app.parse(argc, argv);
-    });
+    int code = kExitOk;
+    if (is_slicer_call(argc, argv)) {
+        code = guarded(app, [&] { run_slicer_module(argc, argv); });
+    } else if (const std::string unknown = check_command_word(app, argc, argv); !unknown.empty()) {
+        code = fail(kExitBadInput, "error", unknown);
+    } else {
+        code = guarded(app, [&] {
+            glint::throw_if_cancelled();  // a signal during start-up: no work begins
+            app.parse(argc, argv);
+        });
+    }
+    // A plugin still loading (a run stopped or refused in its first half second) ends its
+    // dlopen before exit begins: exit runs the destructors its libraries register at once,
+    // and the rest of their start-up then used a logger already destroyed (a stray
+    // "log4cplus:ERROR" line after the run's one line).
+    glint::detail::finish_background_loads();
+    return code;
 }
