@@ -73,7 +73,8 @@ const std::vector<OptionField<ExportOptions>>& export_option_table() {
              .slicer = "views",
              .group = kExportGroup,
              .label = "Per-view pictures",
-             .help = "Per-view PNG pictures in views/ (--no-views leaves them out)"},
+             .help = "A PNG picture of every view in views/ (without it, the mosaic charts "
+                     "every view and draws the regions' best views whole, as report.html does)"},
             [](auto& o) -> auto& { return o.write_views; }),
         F::flag(
             {.name = "exr",

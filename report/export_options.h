@@ -41,7 +41,10 @@ struct ExportOptions {
     /// false: none is drawn and the image library is never loaded (scripts and cohorts that read
     /// report.json and the atlas files); the atlas files keep their colours.
     bool write_pictures = true;
-    bool write_views = true;  ///< per-view PNGs of what each view measured (with write_pictures)
+    /// Per-view PNGs of what each view measured (with write_pictures). Off by default: the
+    /// mosaic charts every view and draws the regions' best ones whole, report.html shows
+    /// those; drawing all of them again cost a third of a 200k-triangle run.
+    bool write_views = false;
     /// Per-view EXR with the raw numbers (opt-in: a GPU sweep then reads every frame back).
     bool write_exr = false;
     AtlasFiles atlas_files;  ///< atlas.ply / atlas.vtk / atlas.vtp

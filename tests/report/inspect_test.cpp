@@ -79,6 +79,7 @@ TEST(Inspect, AnnouncesEveryStageAndCountsTheExports) {
     o.analysis.sweep.render.backend = Backend::Embree;
     o.exports.output = std::filesystem::path(GLINT_TEST_OUTPUT_DIR) / "inspect_stages";
     o.exports.replace_existing = true;
+    o.exports.write_views = true;  // one picture per view, counted below
     std::vector<std::string> stages;
     std::map<std::string, std::pair<std::size_t, std::size_t>> last;  // stage → (done, total)
     std::size_t views = 0;

@@ -316,6 +316,7 @@ TEST(Pictures, ASweepWritesAtlasMosaicAndViewsWithTheDentInBlue) {
     options.sweep.plan.size = 64;
     options.sweep.render.backend = Backend::Embree;
     inspect_options.exports.output = dir / "atlas";
+    inspect_options.exports.write_views = true;
     const AnalysisResult result = inspect(ref, exa, inspect_options, {}).analysis;
     ASSERT_EQ(result.decisions[0].regions.regions.size(), 1u);
     const int best = result.decisions[0].regions.regions[0].best_view;

@@ -367,6 +367,7 @@ TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
     options.sweep.render.backend = Backend::Embree;
     options.units.unit = "mm";
     inspect_options.exports.output = dir / "out";
+    inspect_options.exports.write_views = true;
     inspect_options.addition = [&](const AnalysisResult& r) {
         const AsymmetryFindings f = pair_findings(surface, plane.plane.plane, r);
         return ReportAddition{.key = "asymmetry",

@@ -49,6 +49,7 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     a.sweep.max_incidence_deg = 70.0;
     options.exports.output = dir / "atlas";
     options.exports.write_exr = true;
+    options.exports.write_views = true;
     RunRecord record{.command_line = "glint sweep ref.ply exa.ply -o atlas --exr"};
     record.add(mesh_run_input("reference", ref, "", dir / "ref.ply"));
     // A scenario's ground truth rides along into the atlas files, beside glint's own fields.

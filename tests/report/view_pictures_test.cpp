@@ -186,6 +186,7 @@ struct DentedSweep {
         o.analysis.sweep.plan.size = 128;
         o.analysis.sweep.render.backend = Backend::Embree;
         o.exports.output = dir / "out";
+        o.exports.write_views = true;
         result = inspect(ref, exa, o, {}).analysis;
         for (const auto& pv : result.sweep.plan.views) {
             const double toward_dent = -pv.view.camera.forward().x();  // camera on +x: 1
@@ -276,7 +277,9 @@ TEST(ViewPictures, WithoutMeasurementsAViewShowsTheAtlasAndTheChartSaysNotAvaila
     fs::remove_all(target);
     {
         OutputFolder folder(target);
-        (void)write_pictures(folder, s.ref, s.result, ExportOptions{}, Orientation{});
+        ExportOptions exports;
+        exports.write_views = true;
+        (void)write_pictures(folder, s.ref, s.result, exports, Orientation{});
         folder.commit();
     }
     const auto& view = s.result.sweep.plan.views[static_cast<std::size_t>(s.facing)].view;
@@ -318,8 +321,9 @@ TEST(ViewPictures, AViewIsDrawnFromWhatItMeasuredNotFromTheAtlas) {
     fs::remove_all(target);
     {
         OutputFolder folder(target);
-        (void)write_pictures(folder, s.ref, s.result, ExportOptions{}, Orientation{}, {}, {},
-                             &measured);
+        ExportOptions exports;
+        exports.write_views = true;
+        (void)write_pictures(folder, s.ref, s.result, exports, Orientation{}, {}, {}, &measured);
         folder.commit();
     }
     OIIO::ImageBuf picture((target / "views" / (view_file_stem(pv.view) + ".png")).string());
