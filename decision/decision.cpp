@@ -410,6 +410,24 @@ void decide_normal(const Mesh& reference, const DecisionEvidence& e,
                      " ≥ floor " + fixed(d.normal.value, 2) + std::string(m.symbol);
 }
 
+// No vertex of the reference is compared (each one unseen, unreached, in a border band or below
+// the scans' resolution): the floors would be read over nothing and no damage can be told, so
+// none is reported and nothing is stated detectable.
+void nothing_compared(const Mesh& reference, ZoomDecision& d) {
+    const Comparison& c = d.comparison;
+    const auto pct = [&](double a) { return fixed(100.0 * a / c.reference_area, 1) + " %"; };
+    d.regions.region_of_vertex.assign(reference.vertex_count(), 0);
+    d.scale.min_depth = std::numeric_limits<double>::quiet_NaN();
+    d.scale.min_area = std::numeric_limits<double>::quiet_NaN();
+    d.scale.text = "nothing of the reference was compared (" + pct(c.not_reached_area) +
+                   " not reached by the examined surface, " +
+                   pct(c.reference_border_area + c.examined_border_area) + " along borders, " +
+                   pct(c.below_resolution_area) +
+                   " below the scans' resolution, the rest unseen): no damage can be told";
+    d.rule_text = d.scale.text;
+    d.warnings.push_back(d.scale.text);
+}
+
 }  // namespace
 
 std::string to_string(FloorSource source) {
@@ -531,6 +549,10 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
         d.rule = DecisionRule::Normal;
         d.warnings.push_back(
             "no shape evidence (signed distance) was measured: the normal rule decided alone");
+    }
+    if (d.comparison.compared_area <= 0.0 && d.comparison.reference_area > 0.0) {
+        nothing_compared(reference, d);
+        return d;
     }
     if (d.rule == DecisionRule::Fused) decide_fused(reference, e, compared, o, region_options, d);
     else decide_normal(reference, e, region_options, d);

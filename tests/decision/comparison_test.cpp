@@ -309,5 +309,34 @@ TEST(Comparison, BelowResolutionIsNotComparedAndHoldsNoRegion) {
     EXPECT_EQ(decide(flat(), z.evidence(in), DecisionOptions{}).regions.regions.size(), 2u);
 }
 
+// Every vertex below the scans' resolution: nothing is compared, so the floors would be read over
+// nothing. No region is reported (the bumps are strong), and no smallest damage is stated.
+TEST(Comparison, NothingComparedReportsNoRegionAndStatesNoDetectableDamage) {
+    Inputs in;
+    for (std::size_t v = 0; v < in.n; ++v) in.distance[v] = 0.0f;
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x)
+            if (std::hypot(x - 20, y - 20) <= 3.0) in.distance[vid(x, y)] = 1.5f;
+    Zoom z(in);
+    for (std::size_t v = 0; v < in.n; ++v)
+        if (in.distance[v] > 0.1f) z.atlas.value_mean[v] = z.atlas.value_max[v] = 30.0f;
+    const std::vector<std::uint8_t> all_thin(in.n, 1);
+    DecisionEvidence e = z.evidence(in);
+    ASSERT_EQ(decide(flat(), e, DecisionOptions{}).regions.regions.size(), 1u)
+        << "compared, the bump is a region";
+    e.below_resolution = &all_thin;
+    const ZoomDecision d = decide(flat(), e, DecisionOptions{});
+    EXPECT_EQ(d.comparison.compared_area, 0.0);
+    EXPECT_TRUE(d.regions.regions.empty());
+    EXPECT_EQ(d.regions.region_of_vertex, std::vector<int>(in.n, 0));
+    EXPECT_TRUE(std::isnan(d.scale.min_depth));
+    EXPECT_TRUE(std::isnan(d.scale.min_area));
+    EXPECT_NE(d.scale.text.find("nothing of the reference was compared"), std::string::npos)
+        << d.scale.text;
+    EXPECT_NE(d.scale.text.find("below the scans' resolution"), std::string::npos);
+    EXPECT_EQ(d.scale.text.find("smallest detectable"), std::string::npos);
+    ASSERT_FALSE(d.warnings.empty());
+}
+
 }  // namespace
 }  // namespace glint
