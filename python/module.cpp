@@ -2,6 +2,7 @@
 // README, section "Python").
 #include "mesh/cancel.h"
 #include "mesh/front_end.h"
+#include "mesh/plugin_library.h"
 #include "mesh/version.h"
 #include "python/bindings.h"
 #include "python/interrupt.h"
@@ -24,4 +25,12 @@ PYBIND11_MODULE(glint, m) {
     m.def(
         "cancel", [] { glint::request_cancel(SIGINT); },
         "Asks the glint calls in progress (any thread) to stop; each then raises KeyboardInterrupt.");
+    // A plugin still loading on its own thread (a call interrupted in its first half second)
+    // ends its dlopen before the interpreter exits: exit would run the destructors its libraries
+    // registered at once, and the rest of their start-up then use what those destroyed.
+    m.def("_finish_background_loads", [] {
+        const py::gil_scoped_release unlocked;
+        glint::detail::finish_background_loads();
+    });
+    py::module_::import("atexit").attr("register")(m.attr("_finish_background_loads"));
 }
