@@ -91,6 +91,12 @@ void draw_text(Canvas& dst, int x, int y, std::string_view text, int size, Rgb c
 /// word fits.
 [[nodiscard]] std::string fit_text(const std::string& text, int size, int max_width);
 
+/// `text` on as many lines as it needs, each at most `max_width` px wide (the later ones at
+/// most `next_width`): cut at a space, at " (" where that makes the first line fit. A word wider
+/// than a line is cut with an ellipsis (fit_text), never left out.
+[[nodiscard]] std::vector<std::string> wrap_text(const std::string& text, int size, int max_width,
+                                                 int next_width);
+
 /// A number on a small white tag with a dark border, centred on (x, y): the id of a region.
 void draw_tag(Canvas& dst, int x, int y, std::string_view text, int size);
 

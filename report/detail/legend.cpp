@@ -138,10 +138,36 @@ std::string region_legend_line(const Region& r, const std::string& unit, bool mi
            format_number(r.peak_depth, true) + " " + unit + ", " + area;
 }
 
+namespace {
+
+// The legend's notes as drawn: the range and the shape floor first, then c.lines, each on as
+// many lines as the panel's width needs (continuations indented).
+struct NoteLine {
+    std::string text;
+    bool continued = false;
+};
+
+std::vector<NoteLine> note_lines(const LegendContent& c) {
+    std::vector<std::string> lines = c.lines;
+    lines.insert(lines.begin(), "range \u00b1" + format_number(c.limit) + " " + c.unit +
+                                    (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
+    if (c.shape_floor > 0)
+        lines.insert(lines.begin() + 1,
+                     "shape floor \u00b1" + format_number(c.shape_floor) + " " + c.unit +
+                         (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
+    std::vector<NoteLine> out;
+    for (const auto& l : lines) {
+        const auto parts = wrap_text(l, kFont - 1, kLegendWidth - 20, kLegendWidth - 30);
+        for (std::size_t i = 0; i < parts.size(); ++i) out.push_back({parts[i], i > 0});
+    }
+    return out;
+}
+
+}  // namespace
+
 int legend_min_height(const LegendContent& c) {
-    // (two lines each for the range and the shape floor when they wrap)
     return 10 + 2 * kLine + kMinBar + kLine + 12 + swatches_height(c) +
-           static_cast<int>(c.lines.size() + 4) * kLine + 10;
+           static_cast<int>(note_lines(c).size()) * kLine + 2 * kLine + 10;
 }
 
 void draw_legend(Canvas& dst, int x, int y, int height, const LegendContent& c) {
@@ -165,21 +191,9 @@ void draw_legend(Canvas& dst, int x, int y, int height, const LegendContent& c) 
     cy += 12;
     draw_swatches(dst, x0, cy, c);
     cy += swatches_height(c) + kLine;
-    std::vector<std::string> lines = c.lines;
-    lines.insert(lines.begin(), "range \u00b1" + format_number(c.limit) + " " + c.unit +
-                                    (c.limit_source.empty() ? "" : " (" + c.limit_source + ")"));
-    if (c.shape_floor > 0)
-        lines.insert(lines.begin() + 1,
-                     "shape floor \u00b1" + format_number(c.shape_floor) + " " + c.unit +
-                         (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
-    for (const auto& l : lines) {
-        // A line too wide for the panel goes on two, its parenthesis on the second.
-        const auto cut = l.rfind(" (");
-        const bool wrap = text_width(l, kFont - 1) > kLegendWidth - 20 && cut != std::string::npos;
-        draw_text(dst, x0, cy, wrap ? l.substr(0, cut) : l, kFont - 1, kDimText);
-        cy += kLine - 2;
-        if (!wrap) continue;
-        draw_text(dst, x0 + 10, cy, l.substr(cut + 1), kFont - 1, kDimText);
+    // A note too wide for the panel goes on as many lines as it needs (never left out).
+    for (const auto& l : note_lines(c)) {
+        draw_text(dst, l.continued ? x0 + 10 : x0, cy, l.text, kFont - 1, kDimText);
         cy += kLine - 2;
     }
     if (c.regions.empty()) {

@@ -204,6 +204,45 @@ std::string fit_text(const std::string& text, int size, int max_width) {
     return {};
 }
 
+std::vector<std::string> wrap_text(const std::string& text, int size, int max_width,
+                                   int next_width) {
+    std::vector<std::string> lines;
+    std::string rest = text;
+    while (!rest.empty()) {
+        const int width = lines.empty() ? max_width : next_width;
+        if (text_width(rest, size) <= width) {
+            lines.push_back(rest);
+            break;
+        }
+        std::size_t cut = std::string::npos;
+        if (const auto paren = rest.rfind(" ("); paren != std::string::npos && paren > 0 &&
+                                                 text_width(rest.substr(0, paren), size) <= width)
+            cut = paren;
+        for (std::size_t at = rest.rfind(' '); cut == std::string::npos && at != std::string::npos &&
+                                               at > 0;
+             at = rest.rfind(' ', at - 1))
+            if (text_width(rest.substr(0, at), size) <= width) cut = at;
+        if (cut == std::string::npos) {  // one word wider than the line
+            const auto space = rest.find(' ');
+            std::string word = rest.substr(0, space);
+            std::string shown = fit_text(word, size, width);
+            while (shown.empty() && word.size() > 1) {
+                while (word.size() > 1 && (static_cast<unsigned char>(word.back()) & 0xC0) == 0x80)
+                    word.pop_back();  // a UTF-8 character is dropped whole
+                word.pop_back();
+                if (text_width(word + "\u2026", size) <= width) shown = word + "\u2026";
+            }
+            lines.push_back(shown.empty() ? "\u2026" : shown);
+            if (space == std::string::npos) break;
+            cut = space;
+        } else {
+            lines.push_back(rest.substr(0, cut));
+        }
+        rest = rest.substr(cut + 1);
+    }
+    return lines;
+}
+
 int text_width(std::string_view text, int size) {
     if (!has_font()) return static_cast<int>(text.size()) * size * 6 / 10;
     return ink_of(text, size).width();

@@ -82,5 +82,37 @@ TEST(Text, TitlesTooWideAreCutAtAWordWithAnEllipsis) {
     EXPECT_EQ(detail::fit_text(title, 13, 5), "");
 }
 
+// A legend note wider than the panel goes on as many lines as it needs, each within its width,
+// every word kept (it used to be left out whole when its parenthesis alone did not fit).
+TEST(Text, NotesTooWideWrapOnAsManyLinesAsTheyNeedAndLoseNoWord) {
+    const std::string note =
+        "not compared (border, unscanned, thin): hatched in the views and grey on the atlas, "
+        "counted in no cell of the chart (report.json comparison.not_compared)";
+    const int width = 270;
+    const int next = 260;
+    const auto lines = detail::wrap_text(note, 12, width, next);
+    ASSERT_GE(lines.size(), 3u);
+    std::string joined;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        EXPECT_LE(detail::text_width(lines[i], 12), i == 0 ? width : next) << lines[i];
+        joined += (i ? " " : "") + lines[i];
+    }
+    EXPECT_EQ(joined, note);
+    EXPECT_EQ(detail::wrap_text("short", 12, width, next), std::vector<std::string>{"short"});
+    // The parenthesis goes to the next line whole where that makes the first fit.
+    const std::string range = "range \u00b13.5 mm (the 99th percentile of |shape change|)";
+    const auto two = detail::wrap_text(range, 12, detail::text_width("range \u00b13.5 mm", 12) + 4,
+                                       1000);
+    ASSERT_EQ(two.size(), 2u);
+    EXPECT_EQ(two[0], "range \u00b13.5 mm");
+    // A single word wider than the line is cut with an ellipsis, whole UTF-8 characters only.
+    const auto word = detail::wrap_text("\u00b1\u00b1\u00b1\u00b1\u00b1\u00b1\u00b1\u00b1", 12,
+                                        detail::text_width("\u00b1\u00b1\u00b1", 12) + 12, 40);
+    ASSERT_EQ(word.size(), 1u);
+    EXPECT_NE(word[0].find("\u2026"), std::string::npos);
+    EXPECT_EQ(word[0].rfind("\u00b1", 0), 0u);
+    EXPECT_EQ((word[0].size() - std::string("\u2026").size()) % std::string("\u00b1").size(), 0u);
+}
+
 }  // namespace
 }  // namespace glint
