@@ -284,8 +284,57 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     return c;
 }
 
+namespace {
+
+// The area below resolution and the whole area of each group's footprint: its vertices and
+// those within `radius` of one (reached through mesh edges, each measured from the group vertex
+// it was reached from), where evidence read over that radius comes from.
+void footprint_areas(const Mesh& mesh, const std::vector<std::int32_t>& group, std::size_t groups,
+                     const std::vector<double>& area, const Comparison& c, double radius,
+                     std::vector<double>& total, std::vector<double>& thin) {
+    const auto is_thin = [&](std::size_t v) {
+        return c.vertex_class[v] == static_cast<std::uint8_t>(CompareClass::BelowResolution);
+    };
+    total.assign(groups, 0.0);
+    thin.assign(groups, 0.0);
+    const std::size_t n = mesh.vertex_count();
+    std::vector<std::int32_t> reached_by(n, -1);  // the group that reached it (first wins)
+    std::vector<std::uint32_t> source(n, 0);
+    std::vector<std::uint32_t> queue;
+    for (std::size_t v = 0; v < n; ++v)
+        if (group[v] >= 0) {
+            reached_by[v] = group[v];
+            source[v] = static_cast<std::uint32_t>(v);
+            queue.push_back(static_cast<std::uint32_t>(v));
+        }
+    if (radius > 0) {
+        const detail::Adjacency adj = detail::adjacency(mesh);
+        const double r2 = radius * radius;
+        for (std::size_t head = 0; head < queue.size(); ++head) {
+            const std::uint32_t u = queue[head];
+            for (std::uint32_t k = adj.offset[u]; k < adj.offset[u + 1]; ++k) {
+                const std::uint32_t w = adj.index[k];
+                if (reached_by[w] >= 0 ||
+                    (mesh.positions[w] - mesh.positions[source[u]]).squaredNorm() > r2)
+                    continue;
+                reached_by[w] = reached_by[u];
+                source[w] = source[u];
+                queue.push_back(w);
+            }
+        }
+    }
+    for (std::size_t v = 0; v < n; ++v) {
+        if (reached_by[v] < 0) continue;
+        const auto g = static_cast<std::size_t>(reached_by[v]);
+        total[g] += area[v];
+        if (is_thin(v)) thin[g] += area[v];
+    }
+}
+
+}  // namespace
+
 std::size_t drop_border_groups(const Mesh& mesh, std::vector<std::uint8_t>& damaged,
-                               const Comparison& c) {
+                               const Comparison& c, double radius) {
     const std::size_t n = mesh.vertex_count();
     if (c.vertex_class.size() != n || damaged.size() != n) return 0;
     const auto area = vertex_areas(mesh);
@@ -301,10 +350,13 @@ std::size_t drop_border_groups(const Mesh& mesh, std::vector<std::uint8_t>& dama
         total[g] += area[v];
         if (!c.compared(v)) banded[g] += area[v];
     }
+    std::vector<double> footprint, thin;
+    footprint_areas(mesh, group, groups, area, c, radius, footprint, thin);
     std::size_t dropped = 0;
     std::vector<std::uint8_t> drop(groups, 0);
     for (std::size_t g = 0; g < groups; ++g)
-        if (banded[g] > kBorderMajority * total[g]) {
+        if (banded[g] > kBorderMajority * total[g] ||
+            thin[g] > kBelowResolutionShare * footprint[g]) {
             drop[g] = 1;
             ++dropped;
         }

@@ -243,7 +243,7 @@ FusedAtScale fused_floors(const DecisionEvidence& e, const Coverage& compared,
 // (decision/comparison.h drop_border_groups), counted in the comparison.
 std::vector<std::uint8_t> off_borders(const Mesh& reference, std::vector<std::uint8_t> mask,
                                       ZoomDecision& d) {
-    d.comparison.border_groups += drop_border_groups(reference, mask, d.comparison);
+    d.comparison.border_groups += drop_border_groups(reference, mask, d.comparison, d.scale.radius);
     return mask;
 }
 

@@ -218,8 +218,8 @@ std::vector<std::string> wrap_text(const std::string& text, int size, int max_wi
         if (const auto paren = rest.rfind(" ("); paren != std::string::npos && paren > 0 &&
                                                  text_width(rest.substr(0, paren), size) <= width)
             cut = paren;
-        for (std::size_t at = rest.rfind(' '); cut == std::string::npos && at != std::string::npos &&
-                                               at > 0;
+        for (std::size_t at = rest.rfind(' ');
+             cut == std::string::npos && at != std::string::npos && at > 0;
              at = rest.rfind(' ', at - 1))
             if (text_width(rest.substr(0, at), size) <= width) cut = at;
         if (cut == std::string::npos) {  // one word wider than the line

@@ -216,6 +216,46 @@ TEST(Comparison, DropsADamagedStripAlongACutButKeepsADamageReachingTheCutWhole) 
     EXPECT_EQ(damaged[vid(20, 12)], 1);
 }
 
+// A change that runs on from a thin plate (below resolution) into its surroundings is the
+// plate's partial volume: a group with more than a tenth of its area there is dropped, one
+// that merely touches it is kept.
+TEST(Comparison, DropsAGroupRunningOnFromAThinPlateButKeepsOneThatTouchesIt) {
+    Inputs in;
+    const Mesh mesh = flat();
+    std::vector<std::uint8_t> thin(in.n, 0);
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 18; x <= 22; ++x) thin[vid(x, y)] = 1;  // a plate along y
+    ComparisonInputs inputs = in.view();
+    inputs.below_resolution = &thin;
+    const Comparison c = classify_comparison(mesh, inputs);
+    ASSERT_EQ(class_at(c, 20, 20), CompareClass::BelowResolution);
+    std::vector<std::uint8_t> damaged(in.n, 0);
+    // x 15..24 around the plate: half of the group on it.
+    for (int y = 10; y <= 16; ++y)
+        for (int x = 15; x <= 24; ++x) damaged[vid(x, y)] = 1;
+    // x 8..22 beside it: 5 of 15 columns on the plate is a third (dropped) ...
+    for (int y = 22; y <= 26; ++y)
+        for (int x = 8; x <= 22; ++x) damaged[vid(x, y)] = 1;
+    // ... x 5..18: 1 of 14 columns (kept whole, its thin column too).
+    for (int y = 30; y <= 34; ++y)
+        for (int x = 5; x <= 18; ++x) damaged[vid(x, y)] = 1;
+    EXPECT_EQ(drop_border_groups(mesh, damaged, c), 2u);
+    EXPECT_EQ(damaged[vid(16, 13)], 0);
+    EXPECT_EQ(damaged[vid(10, 24)], 0);
+    EXPECT_EQ(damaged[vid(10, 32)], 1);
+    EXPECT_EQ(damaged[vid(18, 32)], 1);
+    // Evidence read over a radius comes from the group's surroundings within it: a group beside
+    // the plate, not on it, is kept at each vertex's own scale and dropped where that radius
+    // reaches well into the plate.
+    std::vector<std::uint8_t> beside(in.n, 0);
+    for (int y = 12; y <= 28; ++y)
+        for (int x = 12; x <= 16; ++x) beside[vid(x, y)] = 1;
+    std::vector<std::uint8_t> own = beside;
+    EXPECT_EQ(drop_border_groups(mesh, own, c), 0u);
+    EXPECT_EQ(drop_border_groups(mesh, beside, c, 4.0), 1u);
+    EXPECT_EQ(beside[vid(14, 20)], 0);
+}
+
 // decide() over the same evidence: seen everywhere, undamaged noise elsewhere.
 struct Zoom {
     ZoomAtlas atlas;

@@ -101,8 +101,8 @@ TEST(Text, NotesTooWideWrapOnAsManyLinesAsTheyNeedAndLoseNoWord) {
     EXPECT_EQ(detail::wrap_text("short", 12, width, next), std::vector<std::string>{"short"});
     // The parenthesis goes to the next line whole where that makes the first fit.
     const std::string range = "range \u00b13.5 mm (the 99th percentile of |shape change|)";
-    const auto two = detail::wrap_text(range, 12, detail::text_width("range \u00b13.5 mm", 12) + 4,
-                                       1000);
+    const auto two =
+        detail::wrap_text(range, 12, detail::text_width("range \u00b13.5 mm", 12) + 4, 1000);
     ASSERT_EQ(two.size(), 2u);
     EXPECT_EQ(two[0], "range \u00b13.5 mm");
     // A single word wider than the line is cut with an ellipsis, whole UTF-8 characters only.
