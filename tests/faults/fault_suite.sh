@@ -17,12 +17,12 @@ mkdir -p "$work/in"
     --damage "dent:center=0,0,10;radius=2.5;depth=0.6" -o "$work/in/exa.ply" >/dev/null
 sweep() {
     "$glint" --quiet sweep "$work/in/ref.ply" "$work/in/exa.ply" --register --size 48 \
-        --azimuth-step 60 --elevations 0,45 --no-exr "$@"
+        --azimuth-step 60 --elevations 0,45 --no-exr --views "$@"
 }
 # The same run in place of the calling (sub)shell, so that `$!` of `(sweep_exec …) &` is glint.
 sweep_exec() {
     exec "$glint" --quiet sweep "$work/in/ref.ply" "$work/in/exa.ply" --register --size 48 \
-        --azimuth-step 60 --elevations 0,45 --no-exr "$@"
+        --azimuth-step 60 --elevations 0,45 --no-exr --views "$@"
 }
 digest() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum) | sha256sum | cut -c1-16; }
 listing() { (cd "$1" && find . -type f | sort); }

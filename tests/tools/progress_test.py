@@ -25,7 +25,8 @@ import sys
 
 GLINT, WORK = sys.argv[1], sys.argv[2]
 CUBE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "cube.obj")
-SMALL = ["--size", "32", "--azimuth-step", "90", "--elevations", "0,45", "--no-exr"]
+# --views: a picture per view, so that the pictures stage has a count to show.
+SMALL = ["--size", "32", "--azimuth-step", "90", "--elevations", "0,45", "--no-exr", "--views"]
 STAGES = ["load", "fit", "distance", "sweep", "decide", "export", "atlas files", "report page",
           "pictures", "mosaics", "atlas.png", "report.html"]
 EXPORTS = STAGES[STAGES.index("export"):]
