@@ -137,7 +137,7 @@ mkdir -p "$work/mnt"
 mount -t tmpfs -o "size=${limit}k" tmpfs "$work/mnt" || { echo "mount failed"; exit 0; }
 cp -a "$work/clean" "$work/mnt/prev"
 GLINT_FAULT= "$glint" --quiet sweep "$work/in/ref.ply" "$work/in/exa.ply" --register --size 48 \
-    --azimuth-step 60 --elevations 0,45 --no-exr -o "$work/mnt/prev" --force 2>"$work/mnt.err"
+    --azimuth-step 60 --elevations 0,45 --no-exr --views -o "$work/mnt/prev" --force 2>"$work/mnt.err"
 echo "exit $?"
 (cd "$work/mnt/prev" && find . -type f -print0 | sort -z | xargs -0 sha256sum) | sha256sum | cut -c1-16 >"$work/mnt.digest"
 (cd "$work/mnt/prev" && find . -type f | sort) >"$work/mnt.listing"
@@ -218,7 +218,7 @@ case_address_space() {
         before=$(digest "$work/prev")
         set +e
         (ulimit -v $((mb * 1024)) && exec "$glint" --quiet sweep "$work/in/ref.ply" "$work/in/exa.ply" \
-            --register --size 48 --azimuth-step 60 --elevations 0,45 --no-exr -o "$work/prev" --force) \
+            --register --size 48 --azimuth-step 60 --elevations 0,45 --no-exr --views -o "$work/prev" --force) \
             2>"$work/err.txt"
         code=$?
         set -e
