@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 namespace glint {
@@ -21,6 +22,14 @@ double voxel_extent_along(const Eigen::Matrix3d& axes, const Vec3d& n) {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The width of one voxel of the coarser grid seen along unit direction d.
+double voxel_width(const ResolutionGrids& grids, const Vec3d& d) {
+    double w = 0.0;
+    if (grids.reference) w = voxel_extent_along(*grids.reference, d);
+    if (grids.examined) w = std::max(w, voxel_extent_along(*grids.examined, d));
+    return w;
+}
 
 // Distance along the unit direction d from o to the first surface beyond `skip` (inf: none).
 double first_hit(const ClosestPointIndex& index, const Vec3d& o, const Vec3d& d, double skip) {
@@ -46,6 +55,24 @@ double examined_clearance(const ClosestPointIndex& index, const Vec3d& p, const 
     return std::min(first_hit(index, sheet, d, skip), first_hit(index, sheet, -d, skip));
 }
 
+// The solid's thinnest across a cone of kConeRays rays tilted kConeTiltDeg from `inward` at
+// o, each hit's distance in voxels of the coarser grid seen along its ray (+inf: none hit).
+double cone_voxels(const ClosestPointIndex& index, const Vec3d& o, const Vec3d& inward, double skip,
+                   const ResolutionGrids& grids) {
+    const Vec3d u = inward.unitOrthogonal();
+    const Vec3d w = inward.cross(u);
+    const double tilt = kConeTiltDeg * std::numbers::pi / 180.0;
+    double best = kInf;
+    for (int k = 0; k < kConeRays; ++k) {
+        const double phi = 2.0 * std::numbers::pi * k / kConeRays;
+        const Vec3d d =
+            std::cos(tilt) * inward + std::sin(tilt) * (std::cos(phi) * u + std::sin(phi) * w);
+        const double t = first_hit(index, o, d, skip);
+        if (std::isfinite(t)) best = std::min(best, t / voxel_width(grids, d));
+    }
+    return best;
+}
+
 std::string rule_text(const ResolutionGrids& grids) {
     const auto grid = [&](const std::optional<Eigen::Matrix3d>& a) {
         if (!a) return std::string("no grid (a mesh file)");
@@ -57,10 +84,12 @@ std::string rule_text(const ResolutionGrids& grids) {
     std::ostringstream s;
     s << "below resolution: another sheet of either surface closer, along the vertex's normal, "
          "than "
-      << kResolutionVoxels << " voxel(s) of the coarser grid seen along that normal (reference "
-      << grid(grids.reference) << ", examined " << grid(grids.examined)
-      << (grids.given ? "; --resolution for a mesh file" : "")
-      << "): a thin plate or a narrow gap, where partial volume decides each scan's surface";
+      << kResolutionVoxels << " voxel(s) of the coarser grid seen along that normal, or the "
+      << "reference's own far side closer along one of " << kConeRays << " rays tilted "
+      << kConeTiltDeg << "° inward (reference " << grid(grids.reference) << ", examined "
+      << grid(grids.examined) << (grids.given ? "; --resolution for a mesh file" : "")
+      << "): a thin plate, a thin process's tip or a narrow gap, where partial volume decides "
+         "each scan's surface";
     return s.str();
 }
 
@@ -104,14 +133,14 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               const Vec3d p = reference.positions[v].cast<double>();
                               const Vec3d nv = reference.normals[v].cast<double>();
                               if (!(nv.squaredNorm() > 0.5)) continue;
-                              double voxel = 0.0;
-                              if (grids.reference) voxel = voxel_extent_along(*grids.reference, nv);
-                              if (grids.examined)
-                                  voxel = std::max(voxel, voxel_extent_along(*grids.examined, nv));
+                              const double voxel = voxel_width(grids, nv);
                               const double c = std::min(reference_clearance(ref, p, nv, skip),
                                                         examined_clearance(exa, p, nv, skip));
                               out.clearance[v] = static_cast<float>(c);
-                              out.below[v] = c < kResolutionVoxels * voxel ? 1 : 0;
+                              double ratio = c / voxel;
+                              if (ratio >= kResolutionVoxels)
+                                  ratio = std::min(ratio, cone_voxels(ref, p, -nv, skip, grids));
+                              out.below[v] = ratio < kResolutionVoxels ? 1 : 0;
                           }
                       });
     const auto area = vertex_areas(reference);

@@ -346,9 +346,16 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     RegionFieldStore fields;
     build_fields(e, d.comparison, d.shape.value, fields);
     // A group narrower than the disc the evidence was read over is below what this scale can
-    // tell (the smallest detectable area stated above): not a region.
+    // tell (the smallest detectable area stated above): not a region. Only its compared area
+    // counts: surface below resolution or in a border's band is no evidence.
     RegionOptions at_scale = region_options;
     at_scale.min_area = s.min_area;
+    std::vector<std::uint8_t> counted;
+    if (!d.comparison.vertex_class.empty()) {
+        counted.resize(reference.vertex_count());
+        for (std::size_t v = 0; v < counted.size(); ++v) counted[v] = d.comparison.compared(v);
+        at_scale.min_area_counted = &counted;
+    }
     d.regions = find_regions(
         reference,
         off_borders(reference,

@@ -71,8 +71,9 @@ struct Accumulated {
     double shape_area = 0.0;  // area with a known shape change
     double missing_area = 0.0;
     double best_value = -1.0;
-    double gone_peak = 0.0;  // most negative depth of surface gone in a hole
-    double gone_area = 0.0;  // area in a hole
+    double gone_peak = 0.0;     // most negative depth of surface gone in a hole
+    double gone_area = 0.0;     // area in a hole
+    double counted_area = 0.0;  // area that meets RegionOptions::min_area
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
 };
@@ -144,12 +145,17 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
     const std::size_t count = masked_components(mesh, damaged, group);
     const auto areas = vertex_areas(mesh);
     std::vector<Accumulated> groups(count);
-    for (std::size_t v = 0; v < n; ++v)
-        if (group[v] >= 0)
-            accumulate(groups[static_cast<std::size_t>(group[v])], mesh, v, areas[v], fields);
+    const auto* counted = options.min_area_counted;
+    GLINT_ASSERT(!counted || counted->size() == n, "counted mask does not match the mesh");
+    for (std::size_t v = 0; v < n; ++v) {
+        if (group[v] < 0) continue;
+        Accumulated& g = groups[static_cast<std::size_t>(group[v])];
+        accumulate(g, mesh, v, areas[v], fields);
+        if (!counted || (*counted)[v]) g.counted_area += areas[v];
+    }
     std::vector<Accumulated*> kept;
     for (auto& g : groups) {
-        if (g.vertices.size() < options.min_vertices || g.r.area < options.min_area) {
+        if (g.vertices.size() < options.min_vertices || g.counted_area < options.min_area) {
             ++result.dropped_small;
             continue;
         }

@@ -50,6 +50,10 @@ struct RegionOptions {
     /// Groups of a smaller area are dropped too (counted in dropped_small): at a smoothing
     /// scale of radius r the evidence cannot resolve damage narrower than its disc (π·r²).
     double min_area = 0.0;
+    /// When set (per vertex, 1: counted), min_area is met by the area of these vertices only:
+    /// the compared ones. Surface below the scans' resolution or in a border's band is no
+    /// evidence, and a group is not told apart by area it could not compare.
+    const std::vector<std::uint8_t>* min_area_counted = nullptr;
     /// Fill holes: a group of undamaged seen vertices enclosed by one region and smaller than
     /// it joins that region. The floor of a dent keeps its normal (its tilt is zero at the
     /// deepest point), so normal evidence marks a ring; the ring's inside is damaged too.

@@ -1,5 +1,5 @@
-// Surfaces closer than the scans resolve (analysis/resolution.h): thin plates and narrow gaps
-// are flagged on a coarse grid and not on a fine one; thick parts never; mesh files carry no
+// Surfaces closer than the scans resolve (analysis/resolution.h): thin plates, a thin
+// process's tip and narrow gaps are flagged on a coarse grid and not on a fine one; thick parts never; mesh files carry no
 // grid and nothing is flagged.
 #include "analysis/resolution.h"
 
@@ -102,6 +102,33 @@ TEST(Resolution, AThinPlateIsBelowACoarseGridAndResolvedByAFineOne) {
     ball.voxel_axes = grid(1, 1, 2);
     const ResolutionEvidence thick = flag(ball, ball);
     EXPECT_EQ(flagged_share(ball, thick, [](const Vec3d&, const Vec3d&) { return true; }), 0.0);
+}
+
+TEST(Resolution, AThinProcesssTipIsBelowResolutionThoughItsNormalRunsAlongIt) {
+    // A process 3 mm across and 8 mm long along the 2 mm slices: along its tip's normal the
+    // far side is 8 mm away (4 voxels), but 45° off the axis the process's flank lies within
+    // 1.4 mm, under the voxel's 2.1–2.4 mm seen that way: partial volume decides how far the
+    // tip reaches.
+    Mesh process = ellipsoid_surface({0, 0, 0}, {1.5, 1.5, 4.0}, 0.08);
+    process.voxel_axes = grid(1, 1, 2);
+    const auto tip = [](const Vec3d& p, const Vec3d& n) { return p.z() > 3.0 && n.z() > 0.9; };
+    const ResolutionEvidence e = flag(process, process);
+    EXPECT_EQ(flagged_share(process, e, tip), 1.0);
+    for (std::size_t v = 0; v < process.vertex_count(); ++v) {
+        if (!tip(process.positions[v].cast<double>(), process.normals[v].cast<double>())) continue;
+        EXPECT_GT(e.clearance[v], 2.0 * 2.0) << "the normal alone would not flag the tip";
+    }
+    EXPECT_NE(e.rule.find("tilted 45°"), std::string::npos) << e.rule;
+    // A blunt end of the same grid, a ball 6 mm across: its chords 45° off the normal are
+    // 4.2 mm long, nearly two voxels, and nothing is flagged.
+    Mesh ball = ellipsoid_surface({0, 0, 0}, {3, 3, 3}, 0.25);
+    ball.voxel_axes = grid(1, 1, 2);
+    EXPECT_EQ(
+        flagged_share(ball, flag(ball, ball), [](const Vec3d&, const Vec3d&) { return true; }),
+        0.0);
+    // The same process on a grid eight times finer is resolved at its tip.
+    process.voxel_axes = grid(0.125, 0.125, 0.25);
+    EXPECT_EQ(flagged_share(process, flag(process, process), tip), 0.0);
 }
 
 TEST(Resolution, AGapOnlyTheExaminedScanHasIsFlaggedOnItsSideOnly) {

@@ -73,6 +73,35 @@ TEST(FindRegions, GroupsConnectedDamageAndMeasuresIt) {
     EXPECT_EQ(r.region_of_vertex[id(10, 10)], 0);
 }
 
+TEST(FindRegions, OnlyComparedAreaMeetsTheSmallestDetectableArea) {
+    // Two 3×3 groups (9 units of area each) against a smallest detectable area of 8: the one
+    // with two of its vertices not compared (below resolution) holds 7 compared units and is
+    // not a region; the other is, and keeps its whole area.
+    const int n = 20;
+    const Mesh m = grid(n);
+    const std::size_t nv = m.vertex_count();
+    std::vector<float> angle(nv, 0.5f);
+    const std::vector<std::uint8_t> seen(nv, 1);
+    std::vector<std::uint8_t> counted(nv, 1);
+    auto id = [n](int x, int y) { return static_cast<std::size_t>(y * (n + 1) + x); };
+    for (int y = 3; y <= 5; ++y)
+        for (int x = 3; x <= 5; ++x) {
+            angle[id(x, y)] = 10.f;
+            angle[id(x + 10, y + 10)] = 10.f;
+        }
+    counted[id(13, 13)] = counted[id(14, 13)] = 0;
+    RegionOptions o{.min_vertices = 3, .min_area = 8.0};
+    o.min_area_counted = &counted;
+    const RegionResult r = find_regions(m, at_least(angle, 5.f), seen, {.value = &angle}, o);
+    ASSERT_EQ(r.regions.size(), 1u);
+    EXPECT_EQ(r.dropped_small, 1u);
+    EXPECT_NEAR(r.regions[0].centroid.x(), 4.0, 1e-9);
+    EXPECT_NEAR(r.regions[0].area, 9.0, 1e-9);
+    // Without the mask every vertex counts: both are regions.
+    o.min_area_counted = nullptr;
+    EXPECT_EQ(find_regions(m, at_least(angle, 5.f), seen, {.value = &angle}, o).regions.size(), 2u);
+}
+
 TEST(FindRegions, FillsTheFloorOfARingShapedDent) {
     // The angle marks a dent's flanks, not its floor: a ring. Its inside belongs to it.
     const int n = 20;
