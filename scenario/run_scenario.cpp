@@ -185,9 +185,10 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
     record.command_line = run.command_line;
     if (run.output_root.empty()) return options;
     ExportOptions& e = options.exports;
+    e = sc.exports;
     e.output = run.output_root / sc.name;
-    e.write_views = run.write_views;
-    e.write_pictures = run.write_pictures;
+    e.write_views = sc.exports.write_views || run.write_views;
+    e.write_pictures = sc.exports.write_pictures && run.write_pictures;
     e.replace_existing = run.replace_existing;
     record.add_file("scenario", sc.file, sc.name);
     record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,

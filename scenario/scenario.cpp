@@ -408,6 +408,7 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
     }
     read_damages(top, name, sc);
     read_analysis_sections(top, dir, sc.analysis);
+    detail::read_export_section(top, dir, sc.exports);
     if (const auto* t = table("expect", false)) {
         TableReader r(*t, name, "expect");
         read_expect(r, sc.expect);

@@ -10,6 +10,7 @@
 #include "mesh/geometry.h"
 #include "mesh/mesh.h"
 #include "mesh/phantom.h"
+#include "report/export_options.h"
 #include "scenario/asymmetry_scenario.h"
 #include "volume/edit.h"
 #include "volume/surface.h"
@@ -129,6 +130,9 @@ struct Scenario {
     /// The analysis: [registration] (fit mode register by default; "truth" uses the known
     /// pose), [sweep], [threshold] and [decision], with the command line's defaults.
     AnalysisOptions analysis;
+    /// [exports]: what a run writes (pictures, views, atlas files, which way is up); the run's
+    /// --views and --no-pictures add to it. Its output folder is the run's.
+    ExportOptions exports;
     /// asymmetry = true: the examined surface (derived from the reference) is compared with its
     /// own mirror image instead (scenario/asymmetry_scenario.h).
     AsymmetrySpec asymmetry;

@@ -73,10 +73,11 @@ OptionValue resolved(const OptionInfo& info, OptionValue value, const fs::path& 
     return value;
 }
 
-// Every option of the table whose section is `section` ("" = the top level), read when present.
-void read_options(TableReader& r, const std::string& section, const fs::path& dir,
-                  AnalysisOptions& options) {
-    for (const auto& field : analysis_option_table()) {
+// Every option of `table` whose section is `section` ("" = the top level), read when present.
+template <class Options>
+void read_options(TableReader& r, const std::string& section, const fs::path& dir, Options& options,
+                  const std::vector<OptionField<Options>>& table) {
+    for (const auto& field : table) {
         if (field.info.section != section) continue;
         const std::string key(field.info.key);
         const toml::node* node = r.get(key);
@@ -116,7 +117,7 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
     options.fit.mode = FitMode::Register;
     // The unit both meshes are in (analysis/units.h; phantoms are in mm) and the other
     // top-level options.
-    read_options(top, "", dir, options);
+    read_options(top, "", dir, options, analysis_option_table());
     auto section = [&](const std::string& key, auto read) {
         const toml::node* node = top.get(key);
         if (!node) return;
@@ -130,10 +131,24 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
     };
     section("registration", [&](TableReader& r) {
         read_fit_mode(r, dir, options.fit);
-        read_options(r, "registration", dir, options);
+        read_options(r, "registration", dir, options, analysis_option_table());
     });
     for (const char* name : {"sweep", "threshold", "decision"})
-        section(name, [&](TableReader& r) { read_options(r, name, dir, options); });
+        section(name, [&](TableReader& r) {
+            read_options(r, name, dir, options, analysis_option_table());
+        });
+}
+
+void read_export_section(TableReader& top, const fs::path& dir, ExportOptions& exports) {
+    const toml::node* node = top.get("exports");
+    if (!node) return;
+    const auto* t = node->as_table();
+    if (!t)
+        top.fail(node, "exports",
+                 "expected a section [exports], found " + TableReader::type_name(*node));
+    TableReader r(*t, top.file(), "exports");
+    read_options(r, "exports", dir, exports, export_option_table());
+    r.finish();
 }
 
 void validate_analysis_sections(const toml::table& root, const std::string& file,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "analysis/analysis.h"
+#include "report/export_options.h"
 #include "scenario/detail/toml_reader.h"
 
 #include <filesystem>
@@ -15,6 +16,11 @@ namespace glint::detail {
 /// relative paths are resolved against `scenario_dir`.
 void read_analysis_sections(TableReader& top, const std::filesystem::path& scenario_dir,
                             AnalysisOptions& options);
+
+/// The [exports] section, when present: what a run of the scenario writes (pictures, views,
+/// atlas files, which way is up), the keys of export_option_table(). Fails as above.
+void read_export_section(TableReader& top, const std::filesystem::path& scenario_dir,
+                         ExportOptions& exports);
 
 /// options.validate(), with an OptionError turned into "scenario \"F\" line L: [section] key …".
 void validate_analysis_sections(const toml::table& root, const std::string& file,

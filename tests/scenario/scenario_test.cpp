@@ -84,6 +84,24 @@ TEST(LoadScenario, ReadsEverySection) {
     EXPECT_EQ(sc.expect.regions, 1u);
 }
 
+TEST(LoadScenario, ExportsSayWhatARunWritesAndWhichWayIsUp) {
+    // A volume whose header lies about superior (CThead) says up = "-z" in [exports]; a
+    // scenario without the section keeps the command line's defaults.
+    EXPECT_TRUE(load_scenario(write_scenario("plain", kValid), {}).exports.up.empty());
+    std::string text = kValid;
+    text.replace(text.find("[expect]"), 8,
+                 "[exports]\nup = \"-z\"\nviews = true\natlas_files = \"ply\"\n\n[expect]");
+    const Scenario sc = load_scenario(write_scenario("exports", text), {});
+    EXPECT_EQ(sc.exports.up, "-z");
+    EXPECT_TRUE(sc.exports.write_views);
+    std::string bad_up = kValid;
+    bad_up.replace(bad_up.find("[expect]"), 8, "[exports]\nup = \"sideways\"\n\n[expect]");
+    expect_error(bad_up, {"bad.toml", "exports.up", "sideways"});
+    std::string typo = kValid;
+    typo.replace(typo.find("[expect]"), 8, "[exports]\nupp = \"-z\"\n\n[expect]");
+    expect_error(typo, {"bad.toml", "exports.upp", "unknown key"});
+}
+
 TEST(LoadScenario, RejectsATypoedKeyNamingItsLine) {
     std::string text = kValid;
     text.replace(text.find("radius = 3.0"), 12, "raduis = 3.0");
