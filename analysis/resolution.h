@@ -23,7 +23,7 @@
 //                               straight rays read; a thin process is thin *across* its tip,
 //                               whose normal runs along the process (CThead's whole surface: a
 //                               2 mm process along the 2 mm slices reached 2.2 mm farther in
-//                               one scan, its tip 2 voxels long along the normal).
+//                               one scan, 5–10 mm of bone behind its tip along the normal).
 // The vertex is *below resolution* where the smaller clearance is under kResolutionVoxels times
 // the larger of the two scans' extents along n, or the cone's thinnest is under
 // kResolutionVoxels voxels along its ray. A surface from a mesh file carries no grid:
