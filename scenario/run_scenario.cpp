@@ -185,10 +185,8 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
     record.command_line = run.command_line;
     if (run.output_root.empty()) return options;
     ExportOptions& e = options.exports;
-    e = sc.exports;
+    e = scenario_exports(sc, run.write_views, run.write_pictures);
     e.output = run.output_root / sc.name;
-    e.write_views = sc.exports.write_views || run.write_views;
-    e.write_pictures = sc.exports.write_pictures && run.write_pictures;
     e.replace_existing = run.replace_existing;
     record.add_file("scenario", sc.file, sc.name);
     record.inputs.push_back({"reference", sc.reference.phantom ? fs::path() : sc.reference.mesh,
@@ -198,6 +196,13 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
 }
 
 }  // namespace detail
+
+ExportOptions scenario_exports(const Scenario& sc, bool views, bool pictures) {
+    ExportOptions e = sc.exports;
+    e.write_views = e.write_views || views;
+    e.write_pictures = e.write_pictures && pictures;
+    return e;
+}
 
 std::string missing_input(const Scenario& sc) {
     const auto missing = [&](const fs::path& p) {

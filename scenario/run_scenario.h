@@ -30,6 +30,10 @@ struct ScenarioRunOptions {
     bool allow_scale_mismatch = false;  ///< --allow-scale-mismatch
 };
 
+/// What a run of `sc` writes: its [exports], with the run's --views added and --no-pictures
+/// (pictures = false) obeyed; the output folder is left to the caller.
+[[nodiscard]] ExportOptions scenario_exports(const Scenario& sc, bool views, bool pictures);
+
 struct ScenarioOutcome {
     std::string name;
     std::filesystem::path file;

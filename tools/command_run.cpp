@@ -245,12 +245,8 @@ void run_command(const RunArgs& a) {
         // The options each scenario's analysis would run with, loading no mesh.
         std::vector<Scenario> scenarios;
         expand(a, data_root_of(a), scenarios);
-        for (const auto& sc : scenarios) {
-            ExportOptions exports = sc.exports;  // as run_scenario merges the run's flags
-            exports.write_views = exports.write_views || a.views;
-            exports.write_pictures = exports.write_pictures && !a.no_pictures;
-            print_options(sc.analysis, exports);
-        }
+        for (const auto& sc : scenarios)
+            print_options(sc.analysis, scenario_exports(sc, a.views, !a.no_pictures));
         return;
     }
     const auto outcomes = run_all(a, false);

@@ -109,6 +109,20 @@ void read_fit_mode(TableReader& r, const fs::path& dir, FitOptions& f) {
         f.fit_file = local_path(dir, *v);
 }
 
+// The section `key` of `top`, when present, read by `read` (unknown keys then fail).
+template <class Read>
+void read_section(TableReader& top, const std::string& key, Read read) {
+    const toml::node* node = top.get(key);
+    if (!node) return;
+    const auto* t = node->as_table();
+    if (!t)
+        top.fail(node, key,
+                 "expected a section [" + key + "], found " + TableReader::type_name(*node));
+    TableReader r(*t, top.file(), key);
+    read(r);
+    r.finish();
+}
+
 }  // namespace
 
 void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptions& options) {
@@ -118,17 +132,7 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
     // The unit both meshes are in (analysis/units.h; phantoms are in mm) and the other
     // top-level options.
     read_options(top, "", dir, options, analysis_option_table());
-    auto section = [&](const std::string& key, auto read) {
-        const toml::node* node = top.get(key);
-        if (!node) return;
-        const auto* t = node->as_table();
-        if (!t)
-            top.fail(node, key,
-                     "expected a section [" + key + "], found " + TableReader::type_name(*node));
-        TableReader r(*t, top.file(), key);
-        read(r);
-        r.finish();
-    };
+    const auto section = [&](const std::string& key, auto read) { read_section(top, key, read); };
     section("registration", [&](TableReader& r) {
         read_fit_mode(r, dir, options.fit);
         read_options(r, "registration", dir, options, analysis_option_table());
@@ -140,15 +144,9 @@ void read_analysis_sections(TableReader& top, const fs::path& dir, AnalysisOptio
 }
 
 void read_export_section(TableReader& top, const fs::path& dir, ExportOptions& exports) {
-    const toml::node* node = top.get("exports");
-    if (!node) return;
-    const auto* t = node->as_table();
-    if (!t)
-        top.fail(node, "exports",
-                 "expected a section [exports], found " + TableReader::type_name(*node));
-    TableReader r(*t, top.file(), "exports");
-    read_options(r, "exports", dir, exports, export_option_table());
-    r.finish();
+    read_section(top, "exports", [&](TableReader& r) {
+        read_options(r, "exports", dir, exports, export_option_table());
+    });
 }
 
 void validate_analysis_sections(const toml::table& root, const std::string& file,
