@@ -7,6 +7,7 @@
 #include "mesh/scan_view.h"
 #include "render/context.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <future>
@@ -78,6 +79,20 @@ std::string swap_hint(const Mesh& reference, double exa_area, const AnalysisResu
     return b;
 }
 
+// Per reference vertex, whether the fitted examined scan's field of view fails to hold it a
+// voxel deep (empty: unknown). note: a voxel — marching cubes places the examined surface up to
+// its outer voxels' centres, and its last row of triangles there curls.
+std::vector<std::uint8_t> beyond_view(const Mesh& reference, const Mesh& fitted) {
+    if (fitted.field_of_view.empty()) return {};
+    const double voxel = fitted.voxel_axes ? fitted.voxel_axes->colwise().norm().maxCoeff() : 0.0;
+    std::vector<std::uint8_t> beyond(reference.vertex_count(), 0);
+    for (std::size_t v = 0; v < beyond.size(); ++v)
+        beyond[v] = fitted.field_of_view.depth_inside(reference.positions[v].cast<double>()) < voxel
+                        ? 1
+                        : 0;
+    return beyond;
+}
+
 // The sweep of the fitted pair, each view handed to the observer on the way.
 void sweep_step(const Mesh& reference, const Mesh& fitted, const AnalysisOptions& options,
                 const AnalysisObserver& observer, const SweepSurfaces& surfaces,
@@ -107,6 +122,8 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
             .facing_away = &result.facing_away,
             .scan_view = result.scan_view ? &*result.scan_view : nullptr,
             .below_resolution = &result.resolution.below,
+            .beyond_view = &result.beyond_examined_view,
+            .voxel = result.voxel,
             .metric = options.sweep.metric,
             .size = result.size,
             .unit = result.unit};
@@ -172,9 +189,12 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.at_border = std::move(shape.at_border);
     result.facing_away = std::move(shape.facing_away);
     result.scan_view = one_view_scan(fitted);
+    result.beyond_examined_view = beyond_view(reference, fitted);
     if (const ResolutionGrids grids =
             resolution_grids(reference, fitted, options.decision.resolution);
         grids.reference || grids.examined) {
+        for (const auto& grid : {grids.reference, grids.examined})
+            if (grid) result.voxel = std::max(result.voxel, grid->colwise().norm().maxCoeff());
         if (!reference_index) reference_index = index_surface(reference);
         result.resolution =
             below_resolution(reference, fitted, grids, reference_index, examined_index);

@@ -57,9 +57,16 @@ struct AnalysisResult {
     /// The fitted examined surface's view when it is a one-view scan (mesh/scan_view.h), in
     /// the reference's frame: its dropouts at grazing incidence are not compared.
     std::optional<ScanView> scan_view;
+    /// Per reference vertex, 1 where the fitted examined scan's field of view (its volume's
+    /// grid and surface ROI: mesh/field_of_view.h) does not hold it, or holds it less than a
+    /// voxel deep; empty where the field of view is unknown (a mesh file).
+    std::vector<std::uint8_t> beyond_examined_view;
     /// Where the pair cannot compare because another sheet lies closer than the scans' voxels
     /// (analysis/resolution.h): empty for surfaces from mesh files.
     ResolutionEvidence resolution;
+    /// The coarser scan's voxel, its longest edge (mesh units; 0: no grid known): the decision
+    /// reads its evidence no finer (DecisionEvidence::voxel).
+    double voxel = 0.0;
     SweepResult sweep;
     /// The reference's BVH the fit and the sweep shared (mesh/surface_index.h), kept for the
     /// pictures (report/) when the reference has at most kKeptIndexTriangles; null otherwise.

@@ -2,6 +2,7 @@
 
 #include "mesh/geometry.h"
 #include "registration/closest_point.h"
+#include "volume/contrast.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -73,6 +74,19 @@ double cone_voxels(const ClosestPointIndex& index, const Vec3d& o, const Vec3d& 
     return best;
 }
 
+// Whether either scan's surface is faint at reference vertex v (Mesh::faint): its own flag, or
+// a corner of the closest examined triangle that the closest point depends on.
+bool faint_here(const Mesh& reference, const Mesh& fitted, const ClosestPointIndex& exa,
+                std::size_t v, const Vec3d& p) {
+    if (reference.faint.size() == reference.vertex_count() && reference.faint[v]) return true;
+    if (fitted.faint.size() != fitted.vertex_count()) return false;
+    const ClosestPoint c = exa.closest(p);
+    const auto& t = fitted.triangles[c.triangle];
+    for (std::size_t k = 0; k < 3; ++k)
+        if (c.barycentric[static_cast<Eigen::Index>(k)] > 1e-9 && fitted.faint[t[k]]) return true;
+    return false;
+}
+
 std::string rule_text(const ResolutionGrids& grids) {
     const auto grid = [&](const std::optional<Eigen::Matrix3d>& a) {
         if (!a) return std::string("no grid (a mesh file)");
@@ -89,7 +103,9 @@ std::string rule_text(const ResolutionGrids& grids) {
       << kConeTiltDeg << "° inward (reference " << grid(grids.reference) << ", examined "
       << grid(grids.examined) << (grids.given ? "; --resolution for a mesh file" : "")
       << "): a thin plate, a thin process's tip or a narrow gap, where partial volume decides "
-         "each scan's surface";
+         "each scan's surface; or either scan's surface faint there (its volume within "
+      << kContrastSigmas
+      << " noise σ of the iso value for a voxel beside it: noise and partial volume place it)";
     return s.str();
 }
 
@@ -126,6 +142,7 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
     const Eigen::Matrix3d& axes = grids.reference ? *grids.reference : *grids.examined;
     const double skip = 1e-3 * axes.colwise().norm().minCoeff();
     out.below.assign(n, 0);
+    std::vector<std::uint8_t> faint(n, 0);
     out.clearance.assign(n, std::numeric_limits<float>::infinity());
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
@@ -141,11 +158,15 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               if (ratio >= kResolutionVoxels)
                                   ratio = std::min(ratio, cone_voxels(ref, p, -nv, skip, grids));
                               out.below[v] = ratio < kResolutionVoxels ? 1 : 0;
+                              if (faint_here(reference, fitted, exa, v, p)) faint[v] = 1;
                           }
                       });
     const auto area = vertex_areas(reference);
-    for (std::size_t v = 0; v < n; ++v)
+    for (std::size_t v = 0; v < n; ++v) {
+        if (faint[v]) out.faint_area += area[v];
+        out.below[v] = out.below[v] || faint[v];
         if (out.below[v]) out.flagged_area += area[v];
+    }
     return out;
 }
 

@@ -64,7 +64,10 @@ struct ResolutionEvidence {
     /// The smaller of the two clearances (mesh units; +inf where nothing lies along the line).
     std::vector<float> clearance;
     double flagged_area = 0.0;  ///< area of the flagged vertices (mesh units²)
-    std::string rule;           ///< one line: the rule and the grids it read
+    /// Of those, the area flagged because either scan's surface is faint there (its volume
+    /// within a few noise σ of the iso value beside it: volume/contrast.h, Mesh::faint).
+    double faint_area = 0.0;
+    std::string rule;  ///< one line: the rule and the grids it read
 };
 
 /// The grids the rule reads: each surface's own (Mesh::voxel_axes), else, for a mesh read from

@@ -97,6 +97,7 @@ void scale_to_analysis_unit(Mesh& examined, const UnitResolution& units) {
     if (units.examined_scale == 1.0) return;
     for (auto& p : examined.positions) p *= static_cast<float>(units.examined_scale);
     if (examined.voxel_axes) *examined.voxel_axes *= units.examined_scale;
+    examined.field_of_view.scale(units.examined_scale);
 }
 
 }  // namespace glint

@@ -165,7 +165,8 @@ std::string rule_text(const Comparison& c) {
          "examined surface behind most views, or its closest point on an examined border "
          "beyond half an edge); a part without examined surface that stays off the reference's "
          "borders (under a quarter of its area next to them, no run of them half as long as its "
-         "rim) "
+         "rim), inside the examined scan's field of view where it is known (not within a voxel "
+         "of its cut) "
          "and under "
       << 100.0 * kMaxHoleShare
       << " % of its area is a hole the examined scan covered around: compared (a loss where the "
@@ -238,6 +239,14 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
                 beyond += area[u];
         return beyond > 0.5 * group_area[g];
     };
+    // A gone group the examined scan's field of view does not hold wholly.
+    const bool have_view = in.beyond_view && in.beyond_view->size() == n;
+    const auto beyond_view = [&](std::size_t g) {
+        if (!have_view) return false;
+        for (const auto u : members[g])
+            if ((*in.beyond_view)[u]) return true;
+        return false;
+    };
     c.hole_depth.assign(n, std::numeric_limits<float>::quiet_NaN());
     c.in_hole.assign(n, 0);
     std::vector<std::uint8_t> not_reached(n, 0);
@@ -246,9 +255,13 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         // of the reference with a sliver of its area; a strip beyond a field-of-view cut lies
         // mostly in the band of the reference's own cut. A wide strip (two fields of view 6 mm
         // apart) has little of its area in that band but a third or more of its rim on the cut.
-        const bool hole = banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
+        const bool cut_by_view = beyond_view(g);
+        const bool hole = !cut_by_view && banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
                           group_area[g] <= kMaxHoleShare * c.reference_area;
-        if (hole && grazing(g)) {
+        if (cut_by_view) {
+            ++c.beyond_view;
+            c.beyond_view_area += group_area[g];
+        } else if (hole && grazing(g)) {
             ++c.dropouts;
             c.dropout_area += group_area[g];
         } else if (hole) {

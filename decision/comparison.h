@@ -15,6 +15,12 @@
 //                of the reference's area: the examined scan covered the surface around it, so
 //                the surface is really gone there (a resection, worn-away material, or a
 //                scanner's dropout). It stays compared; its kind follows the shape (below).
+//   beyond view  a gone group holding a vertex that the examined scan's field of view does not
+//                hold (within a voxel of its cut, or beyond it: mesh/field_of_view.h; known for
+//                surfaces extracted from volumes): the scan had no data there, so its surface
+//                ends open at its own cut whatever the reference does. Not reached, never a
+//                hole, whatever the surface around it (a field of view through a skull's dome
+//                leaves the dome's top with reached surface all round it).
 //   dropout      a gone group that would be a hole, on a one-view examined scan (a range
 //                image: mesh/scan_view.h), whose reference surface faces that scan's sensor at
 //                more than kGrazingDeg for most of its area: the sensor saw it only at grazing
@@ -101,6 +107,9 @@ struct ComparisonInputs {
     const ScanView* scan_view = nullptr;
     /// 1: below the scans' resolution (analysis/resolution.h; may be null or empty: none).
     const std::vector<std::uint8_t>* below_resolution = nullptr;
+    /// 1: outside the examined scan's field of view, or within a voxel of its cut (may be
+    /// null or empty: the field of view is unknown).
+    const std::vector<std::uint8_t>* beyond_view = nullptr;
 };
 
 struct Comparison {
@@ -122,6 +131,9 @@ struct Comparison {
     std::optional<ScanView> scan_view;  ///< the examined one-view scan's, reference frame
     std::size_t dropouts = 0;           ///< gone groups at grazing incidence: not reached
     double dropout_area = 0.0;
+    /// Gone groups reaching beyond the examined scan's field of view: not reached.
+    std::size_t beyond_view = 0;
+    double beyond_view_area = 0.0;
     double fraction = 1.0;  ///< compared / reference area
     std::string rule;       ///< one line: the rule applied
     /// Damaged groups dropped because they lay mostly in a not-compared band (drop_border_groups).

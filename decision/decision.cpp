@@ -304,9 +304,16 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     s.quiet = false;
     s.own_normal = f.normal;
     s.own_shape = f.shape;
-    const std::string own = own_scale_text(f);
+    const bool implausible = f.normal.implausible || f.shape.implausible;
+    const std::string own = implausible ? own_scale_text(f)
+                                        : "the scans' voxels reach " + with_unit(e.voxel, e.unit) +
+                                              ": the evidence is read no finer than a voxel";
     EvidenceAtScale at;
-    for (const double r : detail::scale_ladder(reference, e.size)) {
+    std::vector<double> ladder = detail::scale_ladder(reference, e.size);
+    // note: no rung below the voxel — unless none reaches it (a coarse mesh of a fine scan).
+    if (std::any_of(ladder.begin(), ladder.end(), [&](double r) { return r >= e.voxel; }))
+        std::erase_if(ladder, [&](double r) { return r < e.voxel; });
+    for (const double r : ladder) {
         s.tried.push_back(r);
         read_at_scale(reference, e, r, at);
         f = fused_floors(at.evidence, compared, o, true);
@@ -337,12 +344,15 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     state_detectable(reference, at.evidence, o, d.shape, s);
     d.rule_text = fused_rule_text(d, describe(Metric::AngleDeg)) +
                   "; evidence read over a radius of " + with_unit(s.radius, e.unit);
-    d.warnings.push_back(
+    const std::string read =
         own + "; the evidence was read over a radius of " + with_unit(s.radius, e.unit) +
         ", where the undamaged majority is quiet (normal floor " + fixed(d.normal.value, 2) +
         "°, shape floor " + with_unit(d.shape.value, e.unit) +
         "); the smallest detectable damage there: " + with_unit(s.min_depth, e.unit) +
-        " deep over " + with_unit(s.min_area, e.unit, 2, "%.3g"));
+        " deep over " + with_unit(s.min_area, e.unit, 2, "%.3g");
+    // A scale chosen for the voxel alone is no warning: it is how scans are read.
+    if (implausible) d.warnings.push_back(read);
+    else s.text = own + "; " + s.text;
     RegionFieldStore fields;
     build_fields(e, d.comparison, d.shape.value, fields);
     // A group narrower than the disc the evidence was read over is below what this scale can
@@ -377,7 +387,7 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Covera
         d.warnings.push_back(
             "no smoothing scale fits this mesh (its median edge is longer than "
             "4 % of its size): the implausible floors are capped");
-    if (implausible && can_scale && !o.threshold && !o.shape_threshold) {
+    if ((implausible || e.voxel > 0) && can_scale && !o.threshold && !o.shape_threshold) {
         if (reference.has_normals()) {
             decide_at_quiet_scale(reference, e, compared, o, region_options, std::move(f), d);
         } else {
@@ -530,7 +540,8 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                                    .at_border = evidence.at_border,
                                                    .facing_away = evidence.facing_away,
                                                    .scan_view = evidence.scan_view,
-                                                   .below_resolution = evidence.below_resolution});
+                                                   .below_resolution = evidence.below_resolution,
+                                                   .beyond_view = evidence.beyond_view});
     // Floors and the histogram read the compared vertices; the mask every seen vertex the
     // examined surface reached (a group mostly in a border band is dropped: off_borders).
     Coverage compared = *evidence.coverage;

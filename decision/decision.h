@@ -131,6 +131,12 @@ struct DecisionEvidence {
     const ScanView* scan_view = nullptr;
     /// 1: below the scans' resolution (analysis/resolution.h; may be null: none).
     const std::vector<std::uint8_t>* below_resolution = nullptr;
+    /// 1: beyond the examined scan's field of view (decision/comparison.h; may be null: unknown).
+    const std::vector<std::uint8_t>* beyond_view = nullptr;
+    /// The coarser scan's voxel, its longest edge (mesh units; 0: unknown, meshes from files
+    /// without --resolution). The fused rule reads the evidence no finer than it: within a
+    /// voxel, noise and partial volume, not the object, shape a scan's surface.
+    double voxel = 0.0;
     Metric metric = Metric::AngleDeg;
     double size = 1.0;  ///< bounding diagonal of the reference (mesh units)
     std::string unit;   ///< the mesh unit ("mm"), for sentences; empty: "units"
@@ -142,8 +148,10 @@ struct DecisionEvidence {
 /// undamaged majority is quiet (neither floor implausible); the first such radius is chosen.
 /// Where none is, no region is reported: dozens of noise regions would say nothing.
 struct EvidenceScale {
-    double radius = 0.0;        ///< 0: each vertex's own evidence
-    bool searched = false;      ///< the floors at the vertices' own scale were implausible
+    double radius = 0.0;  ///< 0: each vertex's own evidence
+    /// The floors at the vertices' own scale were implausible, or the scans' voxel is known
+    /// (DecisionEvidence::voxel): the evidence was read over a radius.
+    bool searched = false;
     bool quiet = true;          ///< false: no scale tried made the majority quiet (no regions)
     double min_depth = 0.0;     ///< smallest detectable depth there (mesh units)
     double min_area = 0.0;      ///< smallest detectable area there (mesh units²)

@@ -12,6 +12,7 @@ void transform_mesh(Mesh& mesh, const Rigid& new_from_old) {
     for (auto& p : mesh.positions) p = (new_from_old * p.cast<double>()).cast<float>();
     for (auto& n : mesh.normals) n = (r * n.cast<double>()).normalized().cast<float>();
     if (mesh.voxel_axes) *mesh.voxel_axes = r * *mesh.voxel_axes;
+    mesh.field_of_view.transform(new_from_old);
 }
 
 double rotation_angle_deg(const Rigid& t) {

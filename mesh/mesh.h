@@ -1,6 +1,8 @@
 // The triangle mesh every glint module works on: flat arrays indexed by vertex / triangle id.
 #pragma once
 
+#include "mesh/field_of_view.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -56,6 +58,14 @@ struct Mesh {
     /// turns them with it). Unset for a mesh read from a file. Where two sheets of surface lie
     /// closer than a voxel the scan cannot place them apart (analysis/resolution.h).
     std::optional<Eigen::Matrix3d> voxel_axes;
+    /// Where the acquisition a surface was extracted from saw (mesh/field_of_view.h), in the
+    /// mesh's frame: empty for a mesh read from a file.
+    FieldOfView field_of_view;
+    /// Per vertex of a surface extracted from a volume, 1 where the volume's values stay within
+    /// a few noise σ of the iso value for a voxel on either side (volume/contrast.h): noise and
+    /// partial volume place that surface. Empty for a mesh read from a file; ignored when its
+    /// size is not the vertex count (a mesh edited since).
+    std::vector<std::uint8_t> faint;
 
     [[nodiscard]] std::size_t vertex_count() const { return positions.size(); }
     [[nodiscard]] std::size_t triangle_count() const { return triangles.size(); }

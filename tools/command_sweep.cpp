@@ -89,6 +89,11 @@ void print_summary(const Inspection& inspection, bool pictures) {
                 "scanner dropouts, not compared\n",
                 c.scan_view ? c.scan_view->cone_deg : 0.0, c.dropouts, pct(c.dropout_area),
                 kGrazingDeg);
+        if (c.beyond_view > 0)
+            std::printf(
+                "  %zu gone patch(es), %.1f%% of the reference, reach beyond the examined scan's "
+                "field of view (its volume's grid or surface ROI): not reached\n",
+                c.beyond_view, pct(c.beyond_view_area));
         for (const auto& g : d.regions.regions)
             std::printf(
                 "  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "

@@ -2,6 +2,7 @@
 
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "volume/sampling.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,26 +13,6 @@
 namespace glint {
 
 namespace {
-
-// Trilinear interpolation at a fractional index; `outside` beyond the grid.
-float sample(const Volume& v, const Vec3d& index, float outside) {
-    const VolumeGeometry& g = v.geometry;
-    std::array<std::size_t, 3> i0{};
-    std::array<double, 3> f{};
-    for (std::size_t d = 0; d < 3; ++d) {
-        const double x = index[static_cast<Eigen::Index>(d)];
-        if (!(x >= 0) || x > double(g.size[d] - 1)) return outside;
-        i0[d] = std::min(static_cast<std::size_t>(x), g.size[d] - 2);
-        f[d] = x - double(i0[d]);
-    }
-    double value = 0.0;
-    for (int c = 0; c < 8; ++c) {
-        const std::size_t di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1;
-        const double w = (di ? f[0] : 1 - f[0]) * (dj ? f[1] : 1 - f[1]) * (dk ? f[2] : 1 - f[2]);
-        if (w != 0) value += w * v.voxels[g.offset(i0[0] + di, i0[1] + dj, i0[2] + dk)];
-    }
-    return static_cast<float>(value);
-}
 
 std::string vec(const Vec3d& p) {
     char b[96];
@@ -68,16 +49,71 @@ VolumeGeometry output_grid(const VolumeGeometry& in, const std::optional<Vec3d>&
     return g;
 }
 
+// Whether the output's fractional index x maps inside the input's field of view (its voxels'
+// extent, half a voxel beyond the outer centres); `over` receives, per input axis, how far it
+// lies beyond (0: inside).
+bool maps_inside(const VolumeGeometry& out, const VolumeGeometry& in,
+                 const Rigid& original_from_moved, const Vec3d& x, Vec3d& over) {
+    const Vec3d i = in.index_from_physical(original_from_moved * out.physical_from_index(x));
+    for (Eigen::Index d = 0; d < 3; ++d) {
+        const double last = double(in.size[static_cast<std::size_t>(d)] - 1) + 0.5;
+        over[d] = i[d] < -0.5 ? i[d] + 0.5 : i[d] > last ? i[d] - last : 0.0;
+    }
+    return over.isZero();
+}
+
+// The output grid cropped to the field of view the input saw: the largest box of whole output
+// voxels (grown by `reach`, the sub-samples' spread) whose every sample maps inside the input.
+// Moving the object takes parts of it out of the input's field of view; a scan of the moved
+// object has no data there (not air), so its surface ends open at its own field of view as the
+// input's does. Shrinks one face at a time, the face of an outside corner along the output
+// axis that moves furthest along the input axis it left. 	hrow InputError nothing is left.
+VolumeGeometry crop_to_field_of_view(const VolumeGeometry& out, const VolumeGeometry& in,
+                                     const Rigid& original_from_moved, double reach) {
+    std::array<long, 3> lo{0, 0, 0}, hi{};
+    for (std::size_t d = 0; d < 3; ++d) hi[d] = static_cast<long>(out.size[d]) - 1;
+    // d(input index) / d(output index): which output axis moves along which input axis.
+    Eigen::Matrix3d along;
+    for (Eigen::Index a = 0; a < 3; ++a)
+        along.col(a) =
+            in.index_from_physical(original_from_moved * out.physical_from_index(Vec3d::Unit(a))) -
+            in.index_from_physical(original_from_moved * out.physical_from_index(Vec3d::Zero()));
+    for (bool inside = false; !inside;) {
+        inside = true;
+        for (int c = 0; c < 8 && inside; ++c) {
+            std::array<bool, 3> high{};
+            Vec3d x;
+            for (std::size_t d = 0; d < 3; ++d) {
+                high[d] = (c >> d) & 1;
+                x[static_cast<Eigen::Index>(d)] =
+                    high[d] ? double(hi[d]) + reach : double(lo[d]) - reach;
+            }
+            Vec3d over;
+            if (maps_inside(out, in, original_from_moved, x, over)) continue;
+            inside = false;
+            Eigen::Index e = 0;
+            over.cwiseAbs().maxCoeff(&e);
+            Eigen::Index a = 0;
+            along.row(e).cwiseAbs().maxCoeff(&a);
+            const auto d = static_cast<std::size_t>(a);
+            high[d] ? --hi[d] : ++lo[d];
+            if (lo[d] > hi[d])
+                throw InputError(
+                    "volume edit: the motion moves the object wholly out of the "
+                    "volume's field of view, expected a motion that keeps part of "
+                    "it in view");
+        }
+    }
+    VolumeGeometry g = out;
+    g.origin = out.physical_from_index(Vec3d(double(lo[0]), double(lo[1]), double(lo[2])));
+    for (std::size_t d = 0; d < 3; ++d) g.size[d] = static_cast<std::size_t>(hi[d] - lo[d] + 1);
+    return g;
+}
+
 }  // namespace
 
 Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
     Volume out;
-    out.geometry = output_grid(in.geometry, edit.spacing);
-    out.stored_type = "float";
-    const VolumeGeometry& g = out.geometry;
-    out.voxels.resize(g.voxel_count());
-    const float background = in.range()[0];
-    const double ramp = in.geometry.spacing.mean();  // the erosion's partial-volume ramp
     const Rigid original_from_moved = edit.moved_from_original.inverse();
     // Sub-sample offsets (in output voxels): one at the centre, or 2 × 2 × 2 over the voxel.
     std::vector<Vec3d> offsets = {Vec3d::Zero()};
@@ -86,9 +122,16 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
         for (int c = 0; c < 8; ++c)
             offsets.emplace_back(c & 1 ? 0.25 : -0.25, c & 2 ? 0.25 : -0.25, c & 4 ? 0.25 : -0.25);
     }
+    out.geometry = crop_to_field_of_view(output_grid(in.geometry, edit.spacing), in.geometry,
+                                         original_from_moved, edit.spacing ? 0.25 : 0.0);
+    out.stored_type = "float";
+    const VolumeGeometry& g = out.geometry;
+    out.voxels.resize(g.voxel_count());
+    const float background = in.range()[0];
+    const double ramp = in.geometry.spacing.mean();  // the erosion's partial-volume ramp
     auto eroded = [&](const Vec3d& x) {
         const Vec3d p = original_from_moved * x;
-        float value = sample(in, in.geometry.index_from_physical(p), background);
+        float value = sample_trilinear(in, in.geometry.index_from_physical(p), background);
         for (const Erosion& e : edit.erosions) {
             const double d = (p - e.center).norm() - e.radius;
             const double w = std::clamp(0.5 - d / ramp, 0.0, 1.0);

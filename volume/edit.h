@@ -25,7 +25,8 @@ struct VolumeEdit {
     Rigid moved_from_original = Rigid::Identity();
     std::vector<Erosion> erosions;
     /// Another acquisition's voxel size (mm along i, j, k); unset: the input's grid. The output
-    /// grid keeps the input's origin and direction and covers its extent; each output voxel is
+    /// grid keeps the input's origin and direction and covers its extent (cropped to what the
+    /// input saw of the moved object, edit_volume); each output voxel is
     /// the mean of 2 × 2 × 2 samples spread over its own extent (the scanner integrates over
     /// its voxel: partial volume at the new size).
     std::optional<Vec3d> spacing;
@@ -40,8 +41,13 @@ struct VolumeEdit {
 [[nodiscard]] Rigid motion_about(const Rigid& pose, const Vec3d& pivot);
 
 /// The edited volume on the input's grid (or the grid of `edit.spacing`): each output voxel at
-/// x takes the eroded input at
-/// p = moved_from_original⁻¹ · x (trilinear; outside the input: the input's smallest value).
+/// x takes the eroded input at p = moved_from_original⁻¹ · x (trilinear). The grid is cropped
+/// to the input's field of view: a motion takes part of the object out of what the input saw,
+/// and a scan of the moved object has no data there, so the output keeps only whole voxels
+/// whose every sample lies inside the input (its surface ends open at the cut, as a scan's
+/// does at its field of view; the two fields of view differ by the motion).
+/// \throw InputError a voxel size that is no size or over the budget; a motion that leaves
+/// nothing of the input in view.
 /// Erosion is partial-volume correct: the weight of a ball falls linearly from 1 to 0 over
 /// one voxel (the mean spacing) across its surface, value ← value + w · (min(value, target) − value).
 [[nodiscard]] Volume edit_volume(const Volume& input, const VolumeEdit& edit);

@@ -6,6 +6,7 @@
 #include "mesh/error.h"
 #include "mesh/normals.h"
 #include "mesh/validate.h"
+#include "volume/contrast.h"
 #include "volume/detail/vtk_steps.h"
 
 #include <meshoptimizer.h>
@@ -143,6 +144,20 @@ void check_budget(const Volume& volume, double iso, std::uint64_t triangles, std
                      "with a surface ROI, or give another iso value");
 }
 
+// Where the scan saw: the grid (its outer voxels' centres bound the surface marching cubes can
+// place) and the surface ROI that cropped it.
+FieldOfView field_of_view(const VolumeGeometry& g, const std::optional<Roi>& roi) {
+    FieldOfView f;
+    Vec3d last;
+    for (std::size_t d = 0; d < 3; ++d) last[static_cast<Eigen::Index>(d)] = double(g.size[d] - 1);
+    f.boxes.push_back(
+        {g.physical_from_index(Vec3d::Zero()), g.direction * g.spacing.asDiagonal(), last});
+    if (roi && roi->shape == Roi::Shape::Box)
+        f.boxes.push_back({roi->min, Eigen::Matrix3d::Identity(), roi->max - roi->min});
+    if (roi && roi->shape == Roi::Shape::Sphere) f.balls.push_back({roi->center, roi->radius});
+    return f;
+}
+
 }  // namespace
 
 void SurfaceOptions::validate() const {
@@ -229,7 +244,15 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
                          where);
     out.mesh.unit = "mm";
     out.mesh.voxel_axes = g.direction * g.spacing.asDiagonal();
+    out.mesh.field_of_view = field_of_view(g, o.roi);
     compute_vertex_normals(out.mesh);
+    r.noise_sigma = noise_sigma(volume);
+    out.mesh.faint = faint_vertices(volume, out.mesh, r.iso, kContrastSigmas * r.noise_sigma);
+    const auto faint = std::count(out.mesh.faint.begin(), out.mesh.faint.end(), 1);
+    r.notes.push_back("noise σ ≈ " + num(r.noise_sigma) + "; " +
+                      num(100.0 * double(faint) / double(out.mesh.vertex_count())) +
+                      " % of the vertices faint (within " + num(kContrastSigmas) +
+                      " σ of the iso value for a voxel beside them: not compared)");
     std::vector<std::uint32_t> component;
     r.components_kept = connected_components(out.mesh, component);
     if (!o.largest && !o.seed) r.components_found = r.components_kept;

@@ -59,6 +59,7 @@ struct SurfaceReport {
     std::size_t vertices = 0;
     double decimation_error_mm = 0.0;  ///< meshoptimizer's error estimate (0: none)
     double seconds = 0.0;
+    double noise_sigma = 0.0;        ///< the volume's noise σ, estimated (volume/contrast.h)
     std::vector<std::string> notes;  ///< what was done, in words
 };
 

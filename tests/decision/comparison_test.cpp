@@ -117,6 +117,32 @@ TEST(Comparison, AHoleInsideCoveredSurfaceStaysComparedAndAWornCapIsALoss) {
     EXPECT_EQ(p.hole_depth[vid(20, 20)], 0.0f);
 }
 
+TEST(Comparison, AGonePartReachingBeyondTheExaminedFieldOfViewIsNotReachedNeverAHole) {
+    // The worn cap of the hole test, but the examined scan's field of view ends at x = 21 (a
+    // skull's dome cut by the scan's last slice: reached surface all round the gone top).
+    const auto cap = [](int x, int y) {
+        return std::max(0.0, 2.0 - 0.25 * std::hypot(x - 20, y - 20));
+    };
+    Inputs in;
+    in.gone(20, 20, 3.0);
+    std::vector<std::uint8_t> beyond(in.n, 0);
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 22; x <= kN; ++x) beyond[vid(x, y)] = 1;
+    ComparisonInputs view = in.view();
+    view.beyond_view = &beyond;
+    const Comparison c = classify_comparison(grid(cap), view);
+    EXPECT_EQ(c.holes, 0u);
+    EXPECT_EQ(c.beyond_view, 1u);
+    EXPECT_GT(c.beyond_view_area, 20.0);
+    EXPECT_EQ(class_at(c, 20, 20), CompareClass::NotReached);
+    EXPECT_FALSE(c.in_hole[vid(20, 20)]);
+    EXPECT_EQ(class_at(c, 20, 10), CompareClass::Compared) << "reached surface stays compared";
+    // A field of view that holds the whole gone part leaves it a hole.
+    std::fill(beyond.begin(), beyond.end(), 0);
+    for (int y = 0; y <= kN; ++y) beyond[vid(kN, y)] = 1;
+    EXPECT_EQ(classify_comparison(grid(cap), view).holes, 1u);
+}
+
 TEST(Comparison, AOneViewScansDropoutAtGrazingIncidenceIsNotReachedNotAHole) {
     // The same gone disc on the flat grid (normals +z), the examined surface a one-view scan.
     Inputs in;

@@ -306,6 +306,35 @@ TEST(Decide, ImplausibleFloorsMoveToTheScaleWhereTheMajorityIsQuiet) {
     EXPECT_NEAR(dent.regions.regions[0].centroid.y(), 20.0, 1.5);
 }
 
+TEST(Decide, AKnownVoxelReadsTheEvidenceNoFinerThanAVoxel) {
+    // Quiet evidence (plausible floors at each vertex's own scale) with a 3-deep loss of radius
+    // 9; the scans' voxel is 3 units. The grid's median edge is √2 (half its triangles' first
+    // edges are diagonals) and, stated 200 units large, the ladder is 2, 4 and 8 edges: 4√2 is
+    // the first rung no finer than a voxel. Reading there is how scans are read, not a warning.
+    Evidence e;
+    e.change(20, 20, 9.0, -3.0f, 30.0f);
+    DecisionEvidence view = e.view();
+    view.size = 200.0;
+    view.voxel = 3.0;
+    const ZoomDecision d = decide(e.mesh, view, DecisionOptions{});
+    EXPECT_TRUE(d.scale.searched);
+    EXPECT_TRUE(d.scale.quiet);
+    EXPECT_NEAR(d.scale.radius, 4.0 * std::sqrt(2.0), 1e-5);
+    EXPECT_EQ(d.scale.tried.size(), 1u) << "no rung finer than the voxel is tried";
+    EXPECT_FALSE(d.scale.own_normal.implausible);
+    EXPECT_NE(d.scale.text.find("no finer than a voxel"), std::string::npos) << d.scale.text;
+    EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Dent);
+    EXPECT_NEAR(d.regions.regions[0].centroid.x(), 20.0, 1.5);
+    // Without a voxel the same evidence is read at each vertex's own scale.
+    view.voxel = 0.0;
+    const ZoomDecision own = decide(e.mesh, view, DecisionOptions{});
+    EXPECT_FALSE(own.scale.searched);
+    EXPECT_EQ(own.scale.radius, 0.0);
+    ASSERT_EQ(own.regions.regions.size(), 1u);
+}
+
 TEST(Decide, WhereNoScaleQuietsTheMajorityNoRegionIsReported) {
     // Waves 1.5 deep and 24 long over the whole grid: coherent at every scale tried (at most
     // 8 % of the size), so no floor becomes plausible.

@@ -1,4 +1,5 @@
 #include "mesh/geometry.h"
+#include "mesh/mesh.h"
 
 #include <gtest/gtest.h>
 
@@ -84,6 +85,30 @@ TEST(TransformMesh, MovesPositionsAndRotatesNormals) {
     EXPECT_TRUE(m.positions[0].isApprox(Vec3f(0, 1, 5), 1e-6f));
     EXPECT_TRUE(m.normals[0].isApprox(Vec3f(0, 1, 0), 1e-6f));
     EXPECT_NEAR(rotation_angle_deg(t), 90.0, 1e-9);
+}
+
+TEST(FieldOfView, DepthInsideTheGridAndTheRoiAndItMovesWithTheMesh) {
+    // A 1 × 1 × 2 grid of 11 × 11 × 6 voxels: centres from (0, 0, 0) to (10, 10, 10).
+    FieldOfView f;
+    f.boxes.push_back({Vec3d::Zero(), Vec3d(1, 1, 2).asDiagonal(), Vec3d(10, 10, 5)});
+    EXPECT_NEAR(f.depth_inside(Vec3d(5, 5, 5)), 5.0, 1e-12);
+    EXPECT_NEAR(f.depth_inside(Vec3d(5, 5, 9)), 1.0, 1e-12);
+    EXPECT_NEAR(f.depth_inside(Vec3d(-2, 5, 5)), -2.0, 1e-12);
+    f.balls.push_back({Vec3d(5, 5, 5), 3.0});
+    EXPECT_NEAR(f.depth_inside(Vec3d(5, 5, 7)), 1.0, 1e-12) << "the ball is the nearer cut";
+    EXPECT_TRUE(FieldOfView{}.empty());
+    EXPECT_GT(FieldOfView{}.depth_inside(Vec3d(1e9, 0, 0)), 1e300);
+    // Turned a quarter about z and moved with its mesh; scaled from cm to mm.
+    Mesh m;
+    m.field_of_view = f;
+    Rigid turn = Rigid::Identity();
+    turn.linear() = Eigen::AngleAxisd(std::numbers::pi / 2, Vec3d::UnitZ()).toRotationMatrix();
+    turn.translation() = Vec3d(100, 0, 0);
+    transform_mesh(m, turn);
+    EXPECT_NEAR(m.field_of_view.depth_inside(turn * Vec3d(5, 5, 7)), 1.0, 1e-9);
+    EXPECT_NEAR(m.field_of_view.depth_inside(turn * Vec3d(-2, 5, 5)), -4.0, 1e-9);  // the ball
+    m.field_of_view.scale(10.0);
+    EXPECT_NEAR(m.field_of_view.depth_inside(10.0 * (turn * Vec3d(5, 5, 7))), 10.0, 1e-9);
 }
 
 }  // namespace

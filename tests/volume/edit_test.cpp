@@ -3,6 +3,7 @@
 // each scan's own noise realisation; the surface stays where the object is.
 #include "volume/edit.h"
 
+#include "mesh/components.h"
 #include "mesh/error.h"
 #include "volume/phantom.h"
 #include "volume/surface.h"
@@ -49,6 +50,60 @@ TEST(EditVolume, AnotherVoxelSizeCoversTheSameExtentAndKeepsTheSurfaceInPlace) {
     // Partial volume at the new size: the surface stays within a tenth of the coarse voxel.
     EXPECT_LT(rms_off_sphere(after, 10.0), 0.2);
     EXPECT_LT(rms_off_sphere(before, 10.0), 0.2);
+}
+
+TEST(EditVolume, AMovedObjectIsSeenOnlyWhereTheInputSawItAndItsSurfaceEndsOpenThere) {
+    // A bar 60 mm long through a 48 mm field of view along x: the input's surface ends open at
+    // x = ±23.5 (its outer voxels' centres). Moved 5 mm along +x, the new scan has data only
+    // where the moved bar was seen: x ≥ −24 + 5 (the input's outer voxel reaches −24).
+    EllipsoidVolumeOptions o;
+    o.radii = {30, 8, 8};
+    o.grid.spacing = {1, 1, 2};
+    o.grid.size = {48, 48, 24};
+    o.grid.origin = {-23.5, -23.5, -23};
+    const Volume in = make_ellipsoid_volume(o);
+    VolumeEdit edit;
+    edit.moved_from_original = Rigid(Eigen::Translation3d(5, 0, 0));
+    const Volume out = edit_volume(in, edit);
+    EXPECT_EQ(out.geometry.size[0], 43u);  // x from −18.5 (index 5) to 23.5
+    EXPECT_EQ(out.geometry.size[1], 48u);
+    EXPECT_NEAR(out.geometry.origin.x(), -18.5, 1e-12);
+    EXPECT_NEAR(out.geometry.origin.y(), -23.5, 1e-12);
+    const auto border_at = [](const Mesh& m, double x) {
+        const auto border = border_vertices(m);
+        std::size_t n = 0;
+        for (std::size_t v = 0; v < m.vertex_count(); ++v)
+            n += border[v] && std::abs(m.positions[v].x() - x) < 0.6;
+        return n;
+    };
+    const Mesh moved = extract_surface(out, {.iso = 500.0}).mesh;
+    float lowest = 1e9f;
+    for (const auto& p : moved.positions) lowest = std::min(lowest, p.x());
+    EXPECT_NEAR(lowest, -18.5, 0.01);
+    EXPECT_GT(border_at(moved, -18.5), 20u) << "open at its own field of view, not capped";
+    // A turned object: the cropped grid's every voxel corner still maps inside the input.
+    edit.moved_from_original = motion_about(
+        Rigid(Eigen::AngleAxisd(0.1, Vec3d(0.3, 0.2, 1.0).normalized())), Vec3d::Zero());
+    edit.spacing = Vec3d(0.8, 0.8, 0.8);
+    const Volume turned = edit_volume(in, edit);
+    const Rigid back = edit.moved_from_original.inverse();
+    for (int c = 0; c < 8; ++c) {
+        Vec3d x;
+        for (int d = 0; d < 3; ++d)
+            x[d] = (c >> d) & 1
+                       ? double(turned.geometry.size[static_cast<std::size_t>(d)] - 1) + 0.25
+                       : -0.25;
+        const Vec3d i =
+            in.geometry.index_from_physical(back * turned.geometry.physical_from_index(x));
+        for (int d = 0; d < 3; ++d) {
+            EXPECT_GE(i[d], -0.5 - 1e-9);
+            EXPECT_LE(i[d], double(in.geometry.size[static_cast<std::size_t>(d)]) - 0.5 + 1e-9);
+        }
+    }
+    EXPECT_LT(turned.geometry.size[0], 59u);
+    // Moved wholly out of view: one clear error.
+    edit.moved_from_original = Rigid(Eigen::Translation3d(100, 0, 0));
+    EXPECT_THROW((void)edit_volume(in, edit), InputError);
 }
 
 TEST(EditVolume, NoiseIsEachScansOwnRealisation) {
