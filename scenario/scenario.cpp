@@ -91,7 +91,10 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
     }
     read_surface_options(r, s.surface);
     s.cut = detail::read_scan_cut(r);
-    if ((s.surface.iso || s.surface.any()) && !mesh)
+    // A derived examined scan (no mesh of its own) may take its own field of view: surface_roi.
+    SurfaceOptions others = s.surface;
+    if (!required) others.roi.reset();
+    if ((others.iso || others.any()) && !mesh)
         r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
                "surface keys need a volume file: mesh = \"scan.nii.gz\"");
     const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
@@ -496,9 +499,13 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
     VolumeEdit edit;
     edit.moved_from_original = motion_about(sc.pose, sc.pivot);
     edit.erosions = sc.erosions;
-    out.examined = extract_surface(detail::acquire(volume, edit, sc.examined.acquisition),
-                                   sc.reference.surface)
-                       .mesh;
+    // The examined scan is cut as the reference was, or to its own field of view (its
+    // surface_roi, in its own frame: where that scanner saw).
+    SurfaceOptions examined_surface = sc.reference.surface;
+    if (sc.examined.surface.roi) examined_surface.roi = sc.examined.surface.roi;
+    out.examined =
+        extract_surface(detail::acquire(volume, edit, sc.examined.acquisition), examined_surface)
+            .mesh;
     detail::cut_pair(sc, out, edit.moved_from_original);
     out.truth.assign(out.reference.vertex_count(), 0);
     for (std::size_t v = 0; v < out.truth.size(); ++v)
@@ -543,6 +550,12 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     if (sc.reference.cut)
         out.notes.push_back(detail::cut_scan(out.reference, *sc.reference.cut, "reference"));
     if (sc.examined_derived) {
+        if (sc.examined.surface.roi)
+            throw InputError("scenario \"" + sc.file.string() +
+                             "\": surface_roi in [examined] is the field of view of a scan "
+                             "resampled from the reference's volume, expected pose, voxel_size, "
+                             "volume_noise or erode in [examined] on a volume reference (or give "
+                             "the examined its own mesh, or cut it with keep_side)");
         derive_examined(sc, out);
         return out;
     }

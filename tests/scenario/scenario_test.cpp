@@ -203,6 +203,38 @@ voxel_size = [0.8, 0.0, 0.8]
     EXPECT_TRUE(sc.resample_volume);
 }
 
+TEST(LoadScenario, AResampledExaminedScanTakesItsOwnFieldOfViewButNoOtherSurfaceKey) {
+    const std::string volume = R"(
+name = "ct"
+[reference]
+mesh = "head.mha"
+iso = 500.0
+surface_roi = "box:0,0,0,50,50,50"
+[examined]
+voxel_size = [0.8, 0.8, 0.8]
+surface_roi = "box:0,0,8,50,50,42"
+)";
+    const Scenario sc = load_scenario(write_scenario("fov", volume), {});
+    ASSERT_TRUE(sc.examined.surface.roi.has_value());
+    EXPECT_EQ(sc.examined.surface.roi->min.z(), 8.0);
+    EXPECT_EQ(sc.reference.surface.roi->min.z(), 0.0);
+    std::string largest = volume;
+    largest.replace(largest.find("voxel_size"), 10, "largest = true\nvoxel_size");
+    expect_error(largest, {"largest", "surface keys need a volume file"});
+    // On a phantom reference there is no scan to cut: one clear error when the pair is built.
+    std::string phantom = kValid;
+    phantom.replace(phantom.find("[examined]"), 10,
+                    "[examined]\nsurface_roi = \"box:-20,-20,-20,20,20,0\"");
+    const Scenario p = load_scenario(write_scenario("phantom", phantom), {});
+    try {
+        (void)build_scenario_meshes(p);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("surface_roi in [examined]"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(LoadScenario, MissingFileIsAnIoError) {
     EXPECT_THROW((void)load_scenario("/nonexistent/scenario.toml", {}), IoError);
 }
