@@ -28,7 +28,8 @@ int partner_of(const std::vector<Region>& regions, std::size_t i, const Symmetry
     double best_distance = std::numeric_limits<double>::infinity();
     for (std::size_t j = 0; j < regions.size(); ++j) {
         const Region& q = regions[j];
-        if (j == i || paired[j] || q.kind == RegionKind::MissingSurface || sign_of(q) == sign_of(r))
+        if (j == i || paired[j] || q.kind == RegionKind::MissingSurface || q.hole ||
+            sign_of(q) == sign_of(r))
             continue;
         const double d = (q.centroid - image).norm();
         if (d <= 2.0 * std::max(radius_of(r), radius_of(q)) && d < best_distance) {
@@ -50,7 +51,9 @@ AsymmetryFinding finding_of(const Region& r, const Region* mirror, const Symmetr
     f.area = r.area;
     f.volume = -r.volume;
     f.centroid = r.centroid;
-    if (r.kind == RegionKind::MissingSurface) {
+    // A hole (a dent of the mirror where it holds no surface, decision/comparison.h): the
+    // mirrored side has no surface there; its depth is no measure of the difference.
+    if (r.kind == RegionKind::MissingSurface || r.hole) {
         f.mirror_missing = true;
         f.depth = f.volume = std::numeric_limits<double>::quiet_NaN();
     }
@@ -174,6 +177,8 @@ void as_side_against_mirror(AnalysisResult& result) {
     for (float& d : result.distance) d = -d;
     for (auto& decision : result.decisions)
         for (Region& r : decision.regions.regions) {
+            // A hole of the mirror is no loss of this side: the other side has no surface there.
+            if (r.hole) r.kind = RegionKind::MissingSurface;
             if (r.kind == RegionKind::MissingSurface) continue;
             r.kind = r.kind == RegionKind::Dent ? RegionKind::Bump : RegionKind::Dent;
             r.peak_depth = -r.peak_depth;

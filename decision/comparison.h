@@ -47,7 +47,13 @@
 // reference's normals over the hole. Where the reference stood above that plane on average
 // the material is gone: a loss, each vertex's depth minus its height above the rim, a dent
 // where it reaches the shape floor. Over a flat or concave patch the rim cannot tell worn-away
-// material from surface a scanner never captured: depth 0, "missing surface".
+// material from surface a scanner never captured, unless the examined surface cannot drop
+// out: one that is no one-view scan (a surface extracted from a volume, a crown segmented
+// from micro-CT, a scan fused from all round) holds surface wherever the object has some, so
+// surface gone inside a rim it covered is material gone. Such a hole is a loss too, whatever
+// its shape (hole_loss); its depth is what the reference stood above the rim, a lower bound:
+// how far below the rim the material went the examined surface does not show. Only a hole in
+// a one-view scan's surface over a flat or concave patch stays depth 0, "missing surface".
 #pragma once
 
 #include "mesh/mesh.h"
@@ -118,8 +124,12 @@ struct Comparison {
     /// rim cannot tell; NaN outside holes).
     std::vector<float> hole_depth;
     std::vector<std::uint8_t> in_hole;  ///< 1: the vertex lies in a hole (compared, gone)
-    double edge = 0.0;                  ///< the reference's median edge length ℓ (mesh units)
-    double band = 0.0;                  ///< kBandEdges·ℓ
+    /// 1: the vertex's hole is a loss (material gone), whether or not its depth reaches the
+    /// shape floor: the reference stood above the hole's rim, or the examined surface is no
+    /// one-view scan (see the rule above).
+    std::vector<std::uint8_t> hole_loss;
+    double edge = 0.0;  ///< the reference's median edge length ℓ (mesh units)
+    double band = 0.0;  ///< kBandEdges·ℓ
     double reference_area = 0.0;
     double compared_area = 0.0;
     double reference_border_area = 0.0;
@@ -128,6 +138,8 @@ struct Comparison {
     double below_resolution_area = 0.0;
     std::size_t holes = 0;  ///< gone groups kept as holes (compared)
     double hole_area = 0.0;
+    std::size_t lost_holes = 0;  ///< of those, the holes read as a loss (hole_loss)
+    double lost_hole_area = 0.0;
     std::optional<ScanView> scan_view;  ///< the examined one-view scan's, reference frame
     std::size_t dropouts = 0;           ///< gone groups at grazing incidence: not reached
     double dropout_area = 0.0;

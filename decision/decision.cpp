@@ -181,11 +181,16 @@ std::vector<std::uint8_t> normal_rule_mask(const DecisionEvidence& e, const Floo
 }
 
 // In holes (decision/comparison.h) the depth of the surface gone where it reaches the shape
-// floor, 0 where the loss is not measurable (a dropout, a flat patch); NaN outside holes.
+// floor or where the hole is a loss whatever its depth (Comparison::hole_loss: then a lower
+// bound), 0 where the loss is not measurable (a one-view scan's flat patch); NaN outside holes.
 std::vector<float> gone_depth(const Comparison& c, double floor) {
     std::vector<float> gone(c.hole_depth.size(), std::numeric_limits<float>::quiet_NaN());
-    for (std::size_t v = 0; v < gone.size(); ++v)
-        if (c.in_hole[v]) gone[v] = c.hole_depth[v] <= -floor ? c.hole_depth[v] : 0.0f;
+    const bool have_loss = c.hole_loss.size() == gone.size();
+    for (std::size_t v = 0; v < gone.size(); ++v) {
+        if (!c.in_hole[v]) continue;
+        const bool loss = have_loss && c.hole_loss[v];
+        gone[v] = loss || c.hole_depth[v] <= -floor ? c.hole_depth[v] : 0.0f;
+    }
     return gone;
 }
 
@@ -216,7 +221,8 @@ void build_fields(const DecisionEvidence& e, const Comparison& c, double shape_f
                             .shape = &s.shape,
                             .missing = &e.atlas->missing,
                             .view = &e.atlas->max_view,
-                            .gone = &s.gone};
+                            .gone = &s.gone,
+                            .gone_loss = c.hole_loss.empty() ? nullptr : &c.hole_loss};
 }
 
 // The fused rule's floors from evidence `e` (one scale).

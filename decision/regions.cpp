@@ -73,6 +73,7 @@ struct Accumulated {
     double best_value = -1.0;
     double gone_peak = 0.0;     // most negative depth of surface gone in a hole
     double gone_area = 0.0;     // area in a hole
+    double loss_area = 0.0;     // area in a hole that is a loss (RegionFields::gone_loss)
     double counted_area = 0.0;  // area that meets RegionOptions::min_area
     Vec3d centroid_sum{0, 0, 0};
     std::vector<std::uint32_t> vertices;
@@ -96,6 +97,7 @@ void accumulate(Accumulated& g, const Mesh& mesh, std::size_t v, double area,
     if (f.gone && std::isfinite((*f.gone)[v])) {
         g.gone_peak = std::min(g.gone_peak, static_cast<double>((*f.gone)[v]));
         g.gone_area += area;
+        if (f.gone_loss && (*f.gone_loss)[v]) g.loss_area += area;
     }
     if (f.view && value > g.best_value) {
         g.best_value = value;
@@ -116,7 +118,8 @@ void finish(Accumulated& g, const RegionOptions& options, bool holes) {
     // open surface through the hole (its rim's distances point there, not at the loss).
     const bool hole = g.gone_area > 0 && (g.r.missing_fraction > options.missing_majority ||
                                           g.gone_area > options.missing_majority * g.r.area);
-    if (hole && g.gone_peak < 0) {
+    g.r.hole = hole;
+    if (hole && (g.gone_peak < 0 || g.loss_area > options.missing_majority * g.gone_area)) {
         g.r.kind = RegionKind::Dent;
         g.r.peak_depth = g.gone_peak;
     } else if (hole || g.r.missing_fraction > options.missing_majority)

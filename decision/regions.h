@@ -28,6 +28,10 @@ struct Region {
     Vec3d centroid{0, 0, 0};        ///< area-weighted, reference coordinates
     std::int32_t best_view = -1;    ///< view where the region's strongest deviation was seen
     RegionKind kind = RegionKind::Dent;
+    /// The region lies mostly in a hole (RegionFields::gone): the examined surface holds none
+    /// there, and a dent's depth is what the reference stood above the hole's rim, a lower
+    /// bound of the loss.
+    bool hole = false;
     std::string evidence;  ///< why the decision admitted it (filled by decision/decision.cpp)
 };
 
@@ -43,6 +47,10 @@ struct RegionFields {
     /// loss, 0 = a hole whose loss is not measurable, NaN = no hole. A region mostly in a hole
     /// is a dent when the hole lost measurable surface, else "missing surface".
     const std::vector<float>* gone = nullptr;
+    /// 1: the vertex's hole is a loss whatever its measured depth (Comparison::hole_loss: the
+    /// examined surface cannot drop out). A region mostly in such holes is a dent, its depth a
+    /// lower bound. May be null.
+    const std::vector<std::uint8_t>* gone_loss = nullptr;
 };
 
 struct RegionOptions {

@@ -65,6 +65,8 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         j["mean_depth"] = nullptr;
         j["volume"] = nullptr;
         j["depth_note"] = std::string(kMissingSurfaceNote);
+    } else if (r.kind == RegionKind::Dent && r.hole) {
+        j["depth_note"] = std::string(kHoleLossNote);
     }
     if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {
         const auto& v = plan.views[static_cast<std::size_t>(r.best_view)].view;
@@ -161,7 +163,10 @@ json comparison_json(const Comparison& c) {
           {"examined_border", entry(c.examined_border_area)},
           {"not_reached", entry(c.not_reached_area)},
           {"below_resolution", entry(c.below_resolution_area)}}},
-        {"holes", {{"count", c.holes}, {"area", c.hole_area}}}};
+        {"holes",
+         {{"count", c.holes},
+          {"area", c.hole_area},
+          {"losses", {{"count", c.lost_holes}, {"area", c.lost_hole_area}}}}}};
 }
 
 json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {

@@ -34,6 +34,13 @@ namespace glint {
 inline constexpr std::string_view kMissingSurfaceNote =
     "no examined surface there: no depth or volume to measure";
 
+/// What a dent's depth means where it is a hole (report.json's depth_note): the examined
+/// surface holds nothing inside the hole, so the depth is what the reference stood above the
+/// hole's rim, a lower bound of the loss (decision/comparison.h).
+inline constexpr std::string_view kHoleLossNote =
+    "surface gone in a hole: the depth is how far the reference stood above the hole's rim, a "
+    "lower bound of the loss";
+
 /// The report as JSON text (what report.json holds): the inputs of `record` with their
 /// SHA-256 (a mesh file's from the bytes its loader read, any other file read once more), the options, the results.
 [[nodiscard]] std::string report_json(const Mesh& reference, const AnalysisResult& result,

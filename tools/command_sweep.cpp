@@ -96,12 +96,15 @@ void print_summary(const Inspection& inspection, bool pictures) {
                 c.beyond_view, pct(c.beyond_view_area));
         for (const auto& g : d.regions.regions)
             std::printf(
-                "  region %d: %s, area %s, peak depth %s, strongest vertex mean %.2f%s, mean %.2f%s, "
-                "centroid (%.3f, %.3f, %.3f) %s\n",
+                "  region %d: %s, area %s, peak depth %s%s, strongest vertex mean %.2f%s, mean "
+                "%.2f%s, centroid (%.3f, %.3f, %.3f) %s\n",
                 g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
-                with_unit(g.peak_depth, u, 1, "%+.4g").c_str(), g.max_value, sym.c_str(),
-                g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(), g.centroid.z(),
-                u.empty() ? "units" : u.c_str());
+                with_unit(g.peak_depth, u, 1, "%+.4g").c_str(),
+                g.kind == RegionKind::Dent && g.hole
+                    ? " (surface gone in a hole: at least this deep)"
+                    : "",
+                g.max_value, sym.c_str(), g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(),
+                g.centroid.z(), u.empty() ? "units" : u.c_str());
     }
     std::printf("%zu views in %.1f s (%s on %s); atlas, %sreport in %s (open %s in a browser)\n",
                 r.sweep.views.size(), inspection.total_seconds,

@@ -289,11 +289,11 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
     const MetricDescriptor& m = describe(e.metric);
     for (auto& r : regions.regions) {
         char text[400];
-        if (r.kind == RegionKind::Dent && r.missing_fraction > 0.5)
+        if (r.kind == RegionKind::Dent && r.hole)
             std::snprintf(text, sizeof text,
                           "surface gone: no examined surface on %.0f%% of it, a hole the examined "
-                          "scan covers around; the reference stood up to %s above the hole's "
-                          "rim (a loss); %s %.2f%s ≥ floor %.2f%s",
+                          "scan covers around; a loss at least as deep as the reference stood "
+                          "above the hole's rim (%s); %s %.2f%s ≥ floor %.2f%s",
                           100.0 * r.missing_fraction,
                           with_unit(-r.peak_depth, e.unit, 1, "%.3g").c_str(),
                           std::string(m.name).c_str(), r.max_value, std::string(m.symbol).c_str(),

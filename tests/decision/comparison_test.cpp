@@ -110,11 +110,30 @@ TEST(Comparison, AHoleInsideCoveredSurfaceStaysComparedAndAWornCapIsALoss) {
     EXPECT_EQ(class_at(c, 20, 20), CompareClass::Compared);
     EXPECT_TRUE(c.in_hole[vid(20, 20)]);
     EXPECT_LT(c.hole_depth[vid(20, 20)], -0.5f);  // the top stood above the hole's rim
-    // A hole over a pit lost surface too, but its rim cannot tell how deep: 0.
+    EXPECT_TRUE(c.hole_loss[vid(20, 20)]);
+    EXPECT_EQ(c.lost_holes, 1u);
+    EXPECT_DOUBLE_EQ(c.lost_hole_area, c.hole_area);
+    // A hole over a pit: nothing stood above its rim (depth 0), but an examined surface that is
+    // no one-view scan cannot drop out, so the surface gone there is material gone: a loss.
     const auto pit = [&](int x, int y) { return -cap(x, y); };
     const Comparison p = classify_comparison(grid(pit), in.view());
     EXPECT_EQ(p.holes, 1u);
     EXPECT_EQ(p.hole_depth[vid(20, 20)], 0.0f);
+    EXPECT_TRUE(p.hole_loss[vid(20, 20)]);
+    EXPECT_EQ(p.lost_holes, 1u);
+    // On a one-view scan that faced the pit (a hole, not a grazing dropout) the rim cannot tell
+    // worn-away material from a dropout: no loss, depth unknown (0).
+    const ScanView facing{.direction = Vec3d(0.0, 0.0, 1.0), .cone_deg = 77.0};
+    ComparisonInputs one_view = in.view();
+    one_view.scan_view = &facing;
+    const Comparison q = classify_comparison(grid(pit), one_view);
+    EXPECT_EQ(q.holes, 1u);
+    EXPECT_EQ(q.dropouts, 0u);
+    EXPECT_EQ(q.hole_depth[vid(20, 20)], 0.0f);
+    EXPECT_FALSE(q.hole_loss[vid(20, 20)]);
+    EXPECT_EQ(q.lost_holes, 0u);
+    // The worn cap stays a loss on that scan: the reference stood above the hole's rim.
+    EXPECT_TRUE(classify_comparison(grid(cap), one_view).hole_loss[vid(20, 20)]);
 }
 
 TEST(Comparison, AGonePartReachingBeyondTheExaminedFieldOfViewIsNotReachedNeverAHole) {

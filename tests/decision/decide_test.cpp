@@ -186,10 +186,12 @@ TEST(Decide, FusedRuleNeedsTheNormalFieldToCorroborateAShapeChange) {
     EXPECT_TRUE(d.regions.regions.empty());
 }
 
-// A patch without examined surface inside covered surface is a hole; on a flat part its rim
-// cannot tell removed material from a scanner's dropout: "missing surface"
-// (decision/comparison.h). A worn cap is a loss: comparison_test.cpp.
-TEST(Decide, AHoleOverAFlatPartIsMissingSurface) {
+// A patch without examined surface inside covered surface is a hole (decision/comparison.h).
+// On a flat part of a one-view scan its rim cannot tell removed material from a scanner's
+// dropout: "missing surface". An examined surface that is no one-view scan cannot drop out:
+// the same hole is material gone, a dent whose depth (nothing stood above the flat rim: 0) is
+// a lower bound. A worn cap is a loss on either: comparison_test.cpp.
+TEST(Decide, AHoleOverAFlatPartIsALossUnlessTheExaminedSurfaceIsAOneViewScan) {
     Evidence e;
     for (int y = 10; y <= 14; ++y)
         for (int x = 10; x <= 14; ++x) {
@@ -198,10 +200,24 @@ TEST(Decide, AHoleOverAFlatPartIsMissingSurface) {
         }
     const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
     ASSERT_EQ(d.regions.regions.size(), 1u);
-    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::MissingSurface);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Dent);
+    EXPECT_EQ(d.regions.regions[0].peak_depth, 0.0);
+    EXPECT_TRUE(d.regions.regions[0].hole);
     EXPECT_GT(d.regions.regions[0].missing_fraction, 0.5);
+    EXPECT_NE(d.regions.regions[0].evidence.find("surface gone"), std::string::npos);
     EXPECT_EQ(d.comparison.holes, 1u);
+    EXPECT_EQ(d.comparison.lost_holes, 1u);
     EXPECT_EQ(vertices_of(d, 1).size(), 25u);
+
+    const ScanView facing{.direction = Vec3d(0.0, 0.0, 1.0), .cone_deg = 77.0};
+    DecisionEvidence one_view = e.view();
+    one_view.scan_view = &facing;
+    const ZoomDecision s = decide(e.mesh, one_view, DecisionOptions{});
+    ASSERT_EQ(s.regions.regions.size(), 1u);
+    EXPECT_EQ(s.regions.regions[0].kind, RegionKind::MissingSurface);
+    EXPECT_EQ(s.comparison.holes, 1u);
+    EXPECT_EQ(s.comparison.lost_holes, 0u);
+    EXPECT_EQ(vertices_of(s, 1).size(), 25u);
 }
 
 TEST(Decide, GivenThresholdsAreUsedAsGivenAndUnmeasurableFloorsAreWarnedAbout) {

@@ -127,6 +127,16 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
         EXPECT_TRUE(region[key].is_null()) << key;
     EXPECT_EQ(region["depth_note"], std::string(kMissingSurfaceNote));
 
+    // The same region as a dent in a hole (surface gone): its depth a lower bound, said so.
+    AnalysisResult hole = result.analysis;
+    hole.decisions[0].regions.regions[0].hole = true;
+    const nlohmann::json h = nlohmann::json::parse(report_json(ref, hole, options, record));
+    const auto& lost = h["zooms"][0]["regions"][0];
+    EXPECT_EQ(lost["kind"], "dent");
+    EXPECT_LT(lost["peak_depth"].get<double>(), 0.0);
+    EXPECT_EQ(lost["depth_note"], std::string(kHoleLossNote));
+    EXPECT_TRUE(h["zooms"][0]["comparison"]["holes"].contains("losses"));
+
     // regions.csv says the same: the dent's depths and volume as numbers, the missing surface's
     // cells empty (peak_depth, mean_depth, volume are the 10th to 12th columns).
     const auto cells = [](const std::string& csv) {
