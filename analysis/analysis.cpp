@@ -5,6 +5,7 @@
 #include "mesh/fault_injection.h"
 #include "mesh/normals.h"
 #include "mesh/scan_view.h"
+#include "mesh/stopwatch.h"
 #include "render/context.h"
 
 #include <algorithm>
@@ -18,10 +19,6 @@ namespace glint {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 void announce(const AnalysisObserver& observer, std::string_view stage) {
     fault_point(stage);

@@ -28,6 +28,15 @@ function(glint_module name)
   add_library(glint_${name} ${ARGN})
   target_include_directories(glint_${name} PUBLIC ${PROJECT_SOURCE_DIR})
   target_link_libraries(glint_${name} PRIVATE glint_warnings PUBLIC glint_options)
+  glint_unity(glint_${name})
+endfunction()
+
+# glint_unity(TARGET): with GLINT_UNITY, TARGET compiles as unity translation units.
+function(glint_unity target)
+  if(GLINT_UNITY)
+    set_target_properties(${target} PROPERTIES UNITY_BUILD ON
+      UNITY_BUILD_BATCH_SIZE ${GLINT_UNITY_BATCH})
+  endif()
 endfunction()
 
 # glint_plugin(NAME MODULE_OF sources...): the plugin glint_NAME (libglint_NAME.so), opened by

@@ -56,6 +56,11 @@ class DeviceError : public Error {
     using Error::Error;
 };
 
+/// An input file as messages name it: quoted_mesh("jaw.stl") → mesh "jaw.stl".
+inline std::string quoted_mesh(const std::string& source) { return "mesh \"" + source + "\""; }
+/// quoted_volume("CThead.nrrd") → volume "CThead.nrrd".
+inline std::string quoted_volume(const std::string& source) { return "volume \"" + source + "\""; }
+
 namespace detail {
 [[noreturn]] void assert_failed(const char* cond, const std::string& msg, const char* file,
                                 int line);

@@ -40,8 +40,6 @@ namespace {
 
 std::atomic<std::uint64_t> g_default_max_triangles{kDefaultMaxTriangles};
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
 std::string lower_extension(const fs::path& path) {
     std::string ext = path.extension().string();
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -62,13 +60,13 @@ std::string lower_extension(const fs::path& path) {
 class FileBytes {
   public:
     FileBytes(const fs::path& path, const std::string& source) {
-        if (!reachable_input(path, quoted(source)))
-            throw InputError(quoted(source) + ": file not found");
+        if (!reachable_input(path, quoted_mesh(source)))
+            throw InputError(quoted_mesh(source) + ": file not found");
         std::error_code ec;
         if (fs::is_directory(path, ec))
-            throw InputError(quoted(source) + ": is a folder, expected a mesh file");
+            throw InputError(quoted_mesh(source) + ": is a folder, expected a mesh file");
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-        if (fd < 0) throw IoError(quoted(source) + ": cannot open: " + std::strerror(errno));
+        if (fd < 0) throw IoError(quoted_mesh(source) + ": cannot open: " + std::strerror(errno));
         try {
             read_all(fd, source);
         } catch (...) {
@@ -97,9 +95,9 @@ class FileBytes {
     static std::size_t regular_size(int fd, const std::string& source) {
         struct stat st {};
         if (::fstat(fd, &st) != 0)
-            throw IoError(quoted(source) + ": cannot read its size: " + std::strerror(errno));
+            throw IoError(quoted_mesh(source) + ": cannot read its size: " + std::strerror(errno));
         if (!S_ISREG(st.st_mode))
-            throw InputError(quoted(source) + ": is " +
+            throw InputError(quoted_mesh(source) + ": is " +
                              (S_ISFIFO(st.st_mode)   ? "a FIFO"
                               : S_ISCHR(st.st_mode)  ? "a character device"
                               : S_ISBLK(st.st_mode)  ? "a block device"
@@ -112,12 +110,12 @@ class FileBytes {
     void read_all(int fd, const std::string& source) {
         size_ = regular_size(fd, source);
         if (size_ == 0)
-            throw InputError(quoted(source) + ": file is empty (0 bytes), expected a mesh");
+            throw InputError(quoted_mesh(source) + ": file is empty (0 bytes), expected a mesh");
         if (size_ > detail::map_above_bytes()) {
             try {
                 mapped_ = std::make_unique<detail::GuardedMapping>(fd, size_);
             } catch (const IoError& e) {
-                throw IoError(quoted(source) + ": " + e.what());
+                throw IoError(quoted_mesh(source) + ": " + e.what());
             }
             return;
         }
@@ -128,13 +126,14 @@ class FileBytes {
             const std::size_t chunk = std::min<std::size_t>(size_ - done, std::size_t{1} << 26);
             const ssize_t n = ::read(fd, data_.get() + done, chunk);
             if (n < 0 && errno == EINTR) continue;
-            if (n < 0) throw IoError(quoted(source) + ": cannot read: " + std::strerror(errno));
+            if (n < 0)
+                throw IoError(quoted_mesh(source) + ": cannot read: " + std::strerror(errno));
             if (n == 0) break;
             done += static_cast<std::size_t>(n);
         }
         const std::size_t now = regular_size(fd, source);
         if (done != size_ || now != size_)
-            throw InputError(quoted(source) + ": changed while it was read (" +
+            throw InputError(quoted_mesh(source) + ": changed while it was read (" +
                              std::to_string(size_) + " bytes when opened, " + std::to_string(done) +
                              " read, " + std::to_string(now) +
                              " now); expected a file no other program is writing");
@@ -206,7 +205,7 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
         const Vec3f& p = mesh.positions[v];
         if (!p.allFinite()) {
             const int k = !std::isfinite(p.x()) ? 0 : !std::isfinite(p.y()) ? 1 : 2;
-            throw InputError(quoted(source) + ": vertex " + std::to_string(v) + " of " +
+            throw InputError(quoted_mesh(source) + ": vertex " + std::to_string(v) + " of " +
                              std::to_string(mesh.positions.size()) + ": coordinate " + "xyz"[k] +
                              " is " + (std::isnan(p[k]) ? "NaN" : "infinite") +
                              ", expected a finite number");
@@ -216,14 +215,14 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
         for (auto i : mesh.triangles[t])
             if (i >= n)
-                throw InputError(quoted(source) + ": triangle " + std::to_string(t) +
+                throw InputError(quoted_mesh(source) + ": triangle " + std::to_string(t) +
                                  " uses vertex " + std::to_string(i) + ", the file has " +
                                  std::to_string(n) + " vertices");
     if (!mesh.normals.empty() && mesh.normals.size() != n) mesh.normals.clear();
 
     const bool points_only = mesh.triangles.empty();
     if (points_only && !options.allow_points_only)
-        throw InputError(quoted(source) + ": has " + std::to_string(n) +
+        throw InputError(quoted_mesh(source) + ": has " + std::to_string(n) +
                          " vertices but no triangles, expected a triangle mesh");
     RepairCounts counts;
     if (!points_only) {
@@ -242,14 +241,14 @@ void finish(LoadedMesh& loaded, const LoadOptions& options, const std::string& s
     report.duplicate_triangles = counts.duplicate_triangles;
     report.unused_vertices = counts.unused_vertices;
     if (!points_only && mesh.triangles.empty())
-        throw InputError(quoted(source) + ": all " +
+        throw InputError(quoted_mesh(source) + ": all " +
                          std::to_string(counts.degenerate_triangles + counts.duplicate_triangles) +
                          " triangles are degenerate (zero area) or duplicates, expected a "
                          "triangle mesh with area");
     if (!points_only) {
         check_mesh(mesh, source);
     } else if (mesh.positions.empty()) {
-        throw InputError(quoted(source) + ": has no vertices, expected a mesh or point cloud");
+        throw InputError(quoted_mesh(source) + ": has no vertices, expected a mesh or point cloud");
     }
     if (options.compute_normals && !points_only) compute_vertex_normals(mesh);
 }
@@ -277,7 +276,8 @@ LoadedMesh parse(std::span<const char> data, const fs::path& path, const LoadOpt
     switch (format) {
         case Format::Ply:
             if (!starts_with(data, "ply"))
-                throw InputError(quoted(source) + ": does not start with \"ply\", not a PLY file");
+                throw InputError(quoted_mesh(source) +
+                                 ": does not start with \"ply\", not a PLY file");
             if (allow_fast) {
                 loaded.report.reader = MeshReader::FastPly;
                 loaded.mesh = detail::read_ply(bytes, source, loaded.report, options);
@@ -305,8 +305,8 @@ LoadedMesh parse(std::span<const char> data, const fs::path& path, const LoadOpt
             if (bad != std::string_view::npos) {
                 char hex[8];
                 std::snprintf(hex, sizeof hex, "0x%02X", static_cast<unsigned char>(data[bad]));
-                throw InputError(quoted(source) + ": byte " + std::to_string(bad) + " is " + hex +
-                                 ", binary content in a ." + ext.substr(1) +
+                throw InputError(quoted_mesh(source) + ": byte " + std::to_string(bad) + " is " +
+                                 hex + ", binary content in a ." + ext.substr(1) +
                                  " file, which is a text format");
             }
             detail::check_before_assimp(data, ext, source, options.max_triangles);
@@ -319,7 +319,7 @@ LoadedMesh parse(std::span<const char> data, const fs::path& path, const LoadOpt
             break;
         case Format::Unknown:
             throw InputError(
-                quoted(source) + ": unknown mesh format (" +
+                quoted_mesh(source) + ": unknown mesh format (" +
                 (ext.empty() ? std::string("no extension") : "extension " + ext) +
                 " and no known signature); expected PLY, STL, OBJ, OFF, glTF/GLB or VTK");
     }
@@ -332,7 +332,7 @@ LoadedMesh parse(std::span<const char> data, const fs::path& path, const LoadOpt
 }
 
 InputError changed_while_read(const std::string& source) {
-    return InputError(quoted(source) +
+    return InputError(quoted_mesh(source) +
                       ": was cut short while it was read (a mapped file lost its end); expected a "
                       "file no other program is writing");
 }

@@ -10,7 +10,7 @@ namespace glint {
 
 namespace {
 
-std::string size_text(double bytes) {
+std::string memory_text(double bytes) {
     char b[48];
     if (bytes >= 1073741824.0) std::snprintf(b, sizeof b, "%.1f GiB", bytes / 1073741824.0);
     else std::snprintf(b, sizeof b, "%.0f MiB", bytes / 1048576.0);
@@ -23,12 +23,12 @@ std::string memory_limits_text() {
     std::string text;
     rlimit limit{};
     if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-        text = "address space limited to " + size_text(static_cast<double>(limit.rlim_cur)) +
+        text = "address space limited to " + memory_text(static_cast<double>(limit.rlim_cur)) +
                " (ulimit -v), ";
     const long pages = sysconf(_SC_PHYS_PAGES);
     const long page = sysconf(_SC_PAGE_SIZE);
     if (pages > 0 && page > 0)
-        text += size_text(static_cast<double>(pages) * static_cast<double>(page)) +
+        text += memory_text(static_cast<double>(pages) * static_cast<double>(page)) +
                 " of memory on this machine";
     else text += "memory size unknown";
     return text;

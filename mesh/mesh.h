@@ -17,6 +17,8 @@ namespace glint {
 
 using Vec3f = Eigen::Vector3f;
 using Vec3d = Eigen::Vector3d;
+/// The "no value" of per-vertex and per-pixel float fields (not seen, not compared).
+inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 /// Three vertex ids, counter-clockwise seen from outside (the normal side).
 using Triangle = std::array<std::uint32_t, 3>;
 /// 8-bit sRGB colour.

@@ -10,24 +10,20 @@
 
 namespace glint {
 
-namespace {
-
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
-}  // namespace
+namespace {}  // namespace
 
 void check_mesh(const Mesh& mesh, const std::string& source) {
     if (mesh.positions.empty())
-        throw InputError(quoted(source) + ": has no vertices, expected a triangle mesh");
+        throw InputError(quoted_mesh(source) + ": has no vertices, expected a triangle mesh");
     if (mesh.triangles.empty())
-        throw InputError(quoted(source) + ": has " + std::to_string(mesh.positions.size()) +
+        throw InputError(quoted_mesh(source) + ": has " + std::to_string(mesh.positions.size()) +
                          " vertices but no triangles, expected a triangle mesh");
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
         const auto& p = mesh.positions[v];
         if (!p.allFinite()) {
             std::ostringstream msg;
-            msg << quoted(source) << ": vertex " << v << " has a non-finite coordinate (" << p.x()
-                << ", " << p.y() << ", " << p.z() << "), expected finite numbers";
+            msg << quoted_mesh(source) << ": vertex " << v << " has a non-finite coordinate ("
+                << p.x() << ", " << p.y() << ", " << p.z() << "), expected finite numbers";
             throw InputError(msg.str());
         }
     }
@@ -35,17 +31,17 @@ void check_mesh(const Mesh& mesh, const std::string& source) {
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (auto i : mesh.triangles[t]) {
             if (i >= n)
-                throw InputError(quoted(source) + ": triangle " + std::to_string(t) +
+                throw InputError(quoted_mesh(source) + ": triangle " + std::to_string(t) +
                                  " uses vertex " + std::to_string(i) + ", mesh has " +
                                  std::to_string(n) + " vertices");
         }
     }
     const Vec3f extent = bounds(mesh).extent();
     if (!(extent.maxCoeff() > 0.0f))
-        throw InputError(quoted(source) +
+        throw InputError(quoted_mesh(source) +
                          ": all vertices coincide (zero extent), expected a surface");
     if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size())
-        throw InputError(quoted(source) + ": has " + std::to_string(mesh.normals.size()) +
+        throw InputError(quoted_mesh(source) + ": has " + std::to_string(mesh.normals.size()) +
                          " normals for " + std::to_string(n) + " vertices");
 }
 

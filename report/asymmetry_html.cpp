@@ -15,7 +15,7 @@ using nlohmann::json;
 
 // A number of report.json for people: 4 significant digits; "–" for null (no depth or volume
 // where the mirror has no surface).
-std::string number(const json& value) {
+std::string number_text(const json& value) {
     if (!value.is_number()) return "\u2013";
     char b[40];
     std::snprintf(b, sizeof b, "%.4g", value.get<double>() + 0.0);
@@ -26,9 +26,9 @@ std::string number(const json& value) {
 std::string triple(const json& v) {
     std::string out = "(";
     for (std::size_t k = 0; k < 3; ++k)
-        out +=
-            (k ? ", " : "") +
-            (v[k].is_number() ? number(std::round(v[k].get<double>() * 1e6) / 1e6) : number(v[k]));
+        out += (k ? ", " : "") + (v[k].is_number()
+                                      ? number_text(std::round(v[k].get<double>() * 1e6) / 1e6)
+                                      : number_text(v[k]));
     return out + ")";
 }
 
@@ -41,11 +41,12 @@ std::string plane_table(const json& p, const std::string& unit) {
     std::string t = "<table id=\"asymmetry-plane\"><tbody>\n";
     t += row("normal", triple(p["normal"]));
     t += row("point (" + unit + ")", triple(p["point"]));
-    t += row("angle of the normal to the file's x, y, z axes",
-             number(a[0]) + "\u00b0, " + number(a[1]) + "\u00b0, " + number(a[2]) + "\u00b0");
+    t += row("angle of the normal to the file's x, y, z axes", number_text(a[0]) + "\u00b0, " +
+                                                                   number_text(a[1]) + "\u00b0, " +
+                                                                   number_text(a[2]) + "\u00b0");
     t += row("residual (RMS of the mirrored surface on the surface)",
              p.value("residual_text", with_unit(p.value("residual", 0.0), unit)));
-    t += row("overlap", number(100.0 * p.value("overlap", 0.0)) + " %");
+    t += row("overlap", number_text(100.0 * p.value("overlap", 0.0)) + " %");
     t += row("found by", p.value("source", ""));
     t += row("verdict", p.value("verdict", ""));
     return t + "</tbody></table>\n";
@@ -64,9 +65,10 @@ std::string findings_table(const json& findings, const std::string& unit) {
         const json& f = findings[i];
         t += "<tr data-finding=\"" + std::to_string(i) + "\" data-region=\"" +
              std::to_string(f.value("region", 0)) + "\"><td>" + escape_markup(f.value("side", "")) +
-             "</td><td>" + escape_markup(f.value("kind", "")) + "</td><td>" + number(f["depth"]) +
-             "</td><td>" + number(f["area"]) + "</td><td>" + number(f["volume"]) + "</td><td>" +
-             escape_markup(f.value("text", "")) + "</td></tr>\n";
+             "</td><td>" + escape_markup(f.value("kind", "")) + "</td><td>" +
+             number_text(f["depth"]) + "</td><td>" + number_text(f["area"]) + "</td><td>" +
+             number_text(f["volume"]) + "</td><td>" + escape_markup(f.value("text", "")) +
+             "</td></tr>\n";
     }
     return t + "</tbody></table>\n";
 }

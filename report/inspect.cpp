@@ -5,6 +5,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/fault_injection.h"
+#include "mesh/stopwatch.h"
 #include "report/output_folder.h"
 #include "report/report.h"
 #include "report/report_html.h"
@@ -22,10 +23,6 @@ namespace glint {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Per-view EXRs hold every pixel's comparison, so those sweeps read their frames back; the
 // report says why the comparison left the GPU.

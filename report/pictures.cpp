@@ -29,7 +29,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr int kViewMin = 384;    // px: per-view pictures are at least this large …
 constexpr int kViewMax = 512;    // … and at most this (rendered at that size, never resized)
 constexpr int kShareSize = 128;  // px: the small pictures that count a view's share (enough pixels)

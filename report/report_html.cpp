@@ -31,7 +31,6 @@ std::string_view report_asset(std::string_view key);
 namespace {
 
 using nlohmann::json;
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 // note: typed arrays are read in the page with the machine's byte order; every machine glint
 // and browsers run on is little-endian, as the arrays are written here.

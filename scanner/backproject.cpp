@@ -15,8 +15,6 @@ namespace glint {
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 // Barycentric weights of the point where `ray` meets the plane of triangle t, clamped to the
 // triangle (the pixel centre may fall just outside the triangle its sub-sample hit).
 // cos_incidence is signed: positive when the triangle's front (its winding's normal, the side

@@ -11,8 +11,6 @@ namespace glint {
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 bool covered(const FrameView& f, std::size_t i, float min_coverage) {
     return f.primitive[i] != kNoPrimitive && f.coverage[i] >= min_coverage;
 }

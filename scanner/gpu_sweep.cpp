@@ -3,6 +3,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
+#include "mesh/stopwatch.h"
 #include "render/gpu_atlas.h"
 #include "scanner/coverage.h"
 
@@ -31,10 +32,6 @@ std::string to_string(Accumulation accumulation) {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 GpuAtlasOptions atlas_options(const SweepPlan& plan, const SweepOptions& options) {
     return GpuAtlasOptions{

@@ -12,8 +12,6 @@ namespace glint {
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 void angle_values(const FrameView&, const FrameView&, std::span<const float> angle,
                   std::span<float> value) {
     std::copy(angle.begin(), angle.end(), value.begin());

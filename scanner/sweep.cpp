@@ -4,6 +4,7 @@
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
 #include "mesh/front_end.h"
+#include "mesh/stopwatch.h"
 #include "scanner/backproject.h"
 #include "scanner/gpu_sweep.h"
 
@@ -21,10 +22,6 @@ namespace glint {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 }  // namespace
 

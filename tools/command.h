@@ -1,5 +1,7 @@
 // How a subcommand plugs into `glint`: a command_<name>.cpp defines a setup function that adds
 // a CLI11 subcommand (with its callback) and registers it with a static CommandRegistrar.
+// Its helpers live in namespace glint::cli::<name>_command, so no two commands' helpers meet
+// when a unity build (GLINT_UNITY) compiles several commands as one translation unit.
 // The callback does the work and throws glint errors; main() maps them to exit codes:
 //   0 ok, 1 a check failed (e.g. an [expect] of a scenario), 2 bad input (InputError and
 //   command-line errors), 3 device or IO trouble (DeviceError, IoError), 4 internal error.

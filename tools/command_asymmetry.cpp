@@ -29,7 +29,7 @@
 #include <utility>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::asymmetry_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -151,4 +151,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(62, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::asymmetry_command

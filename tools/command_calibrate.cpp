@@ -16,7 +16,7 @@
 #include <iostream>
 #include <string>
 
-namespace glint::cli {
+namespace glint::cli::calibrate_command {
 namespace {
 
 struct CalibrateArgs {
@@ -93,4 +93,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(75, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::calibrate_command

@@ -14,7 +14,7 @@
 #include <iostream>
 #include <string>
 
-namespace glint::cli {
+namespace glint::cli::compare_command {
 namespace {
 
 struct CompareArgs {
@@ -84,4 +84,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(50, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::compare_command

@@ -9,7 +9,7 @@
 #include <iomanip>
 #include <iostream>
 
-namespace glint::cli {
+namespace glint::cli::devices_command {
 namespace {
 
 void run() {
@@ -66,4 +66,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(45, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::devices_command

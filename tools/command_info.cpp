@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::info_command {
 namespace {
 
 nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
@@ -183,4 +183,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(10, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::info_command

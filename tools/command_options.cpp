@@ -13,7 +13,7 @@
 #include <iostream>
 #include <string>
 
-namespace glint::cli {
+namespace glint::cli::options_command {
 namespace {
 
 const char* kind_name(OptionKind k) {
@@ -99,4 +99,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(95, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::options_command

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::phantom_command {
 namespace {
 
 struct PhantomArgs {
@@ -119,4 +119,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(20, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::phantom_command

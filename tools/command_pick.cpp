@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::pick_command {
 namespace {
 
 void run(const PickArgs& a) {
@@ -50,4 +50,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(45, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::pick_command

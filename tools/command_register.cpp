@@ -22,7 +22,7 @@
 #include <iostream>
 #include <string>
 
-namespace glint::cli {
+namespace glint::cli::register_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -121,4 +121,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(40, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::register_command

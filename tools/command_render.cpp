@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::render_command {
 namespace {
 
 std::string output_for(const std::string& pattern, std::size_t index, std::size_t count) {
@@ -104,4 +104,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(40, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::render_command

@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::run_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -373,4 +373,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(70, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::run_command

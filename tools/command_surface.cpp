@@ -12,7 +12,7 @@
 #include <iostream>
 #include <string>
 
-namespace glint::cli {
+namespace glint::cli::surface_command {
 namespace {
 
 struct SurfaceArgs {
@@ -71,4 +71,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(15, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::surface_command

@@ -23,7 +23,7 @@
 #include <string>
 #include <utility>
 
-namespace glint::cli {
+namespace glint::cli::sweep_command {
 namespace {
 
 namespace fs = std::filesystem;
@@ -185,4 +185,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(60, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::sweep_command

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-namespace glint::cli {
+namespace glint::cli::volume_edit_command {
 namespace {
 
 struct EditArgs {
@@ -120,4 +120,4 @@ void setup(CLI::App& app) {
 const CommandRegistrar registrar(16, setup);
 
 }  // namespace
-}  // namespace glint::cli
+}  // namespace glint::cli::volume_edit_command

@@ -1,6 +1,7 @@
 #include "tools/progress.h"
 
 #include "mesh/cancel.h"
+#include "mesh/stopwatch.h"
 #include "tools/command.h"
 
 #include <unistd.h>
@@ -17,10 +18,6 @@ using Clock = std::chrono::steady_clock;
 
 bool progress_shown() {
     return !global_flags().quiet && !global_flags().json && ::isatty(STDERR_FILENO);
-}
-
-double seconds_since(Clock::time_point t0) {
-    return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
 // "[#######.......................]": `done` of `total` in 30 characters.

@@ -19,8 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string quoted(const fs::path& p) { return "volume \"" + p.string() + "\""; }
-
 detail::RawVolume to_raw(const Volume& v) {
     detail::RawVolume r;
     const VolumeGeometry& g = v.geometry;
@@ -61,8 +59,8 @@ bool is_volume_path(const fs::path& path) {
 
 Volume read_volume(const fs::path& path, std::size_t max_voxels) {
     std::error_code ec;
-    if (!reachable_input(path, quoted(path)))
-        throw InputError(quoted(path) + ": no such file or folder");
+    if (!reachable_input(path, quoted_volume(path.string())))
+        throw InputError(quoted_volume(path.string()) + ": no such file or folder");
     for (const fs::path& f : input_files(path)) protect_input(f);  // never an output
     // DICOM goes through GDCM, which may crash on files the pre-check cannot foresee: its read
     // runs in a child process (detail/isolated_read.h).
@@ -84,17 +82,17 @@ Volume read_volume(const fs::path& path, std::size_t max_voxels) {
             g.direction(d, c) = raw.direction[static_cast<std::size_t>(3 * d + c)];
     }
     if (!(g.spacing.array() > 0).all())
-        throw InputError(quoted(path) + ": spacing (" + std::to_string(g.spacing.x()) + ", " +
-                         std::to_string(g.spacing.y()) + ", " + std::to_string(g.spacing.z()) +
-                         ") mm, expected every spacing > 0");
+        throw InputError(quoted_volume(path.string()) + ": spacing (" +
+                         std::to_string(g.spacing.x()) + ", " + std::to_string(g.spacing.y()) +
+                         ", " + std::to_string(g.spacing.z()) + ") mm, expected every spacing > 0");
     if (std::abs(std::abs(g.direction.determinant()) - 1.0) > 1e-3)
-        throw InputError(quoted(path) + ": direction matrix is not orthonormal (determinant " +
-                         std::to_string(g.direction.determinant()) +
-                         "), expected direction cosines");
+        throw InputError(
+            quoted_volume(path.string()) + ": direction matrix is not orthonormal (determinant " +
+            std::to_string(g.direction.determinant()) + "), expected direction cosines");
     v.voxels = std::move(raw.voxels);
     for (std::size_t n = 0; n < v.voxels.size(); ++n)
         if (!std::isfinite(v.voxels[n]))
-            throw InputError(quoted(path) + ": voxel " + std::to_string(n) +
+            throw InputError(quoted_volume(path.string()) + ": voxel " + std::to_string(n) +
                              " is not finite, expected finite values");
     return v;
 }
@@ -103,7 +101,7 @@ void write_volume(const Volume& volume, const fs::path& path) {
     const std::string format = detail::volume_format(path);
     if (format.empty() || format == "dicom")
         throw InputError(
-            quoted(path) +
+            quoted_volume(path.string()) +
             ": cannot write this extension, expected .mha .mhd .nii .nii.gz .nrrd .nhdr");
     const detail::RawVolume raw = to_raw(volume);
     const std::string name = path.filename().string();

@@ -20,7 +20,7 @@ namespace glint {
 
 namespace {
 
-std::string quoted(const Volume& v) {
+std::string quoted_volume_of(const Volume& v) {
     return "volume \"" + (v.path.empty() ? std::string("(generated)") : v.path.string()) + "\"";
 }
 
@@ -135,7 +135,7 @@ std::uint64_t estimate_contour_triangles(const Volume& volume,
 void check_budget(const Volume& volume, double iso, std::uint64_t triangles, std::uint64_t budget,
                   bool estimated) {
     if (triangles <= budget) return;
-    throw InputError(quoted(volume) + ": the surface at iso " + num(iso) +
+    throw InputError(quoted_volume_of(volume) + ": the surface at iso " + num(iso) +
                      (estimated ? " would have at least about " : " has ") +
                      std::to_string(triangles) + " triangles" +
                      (estimated ? " (counted from the voxel edges it crosses)" : "") +
@@ -199,13 +199,13 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
     r.iso = *o.iso;
     r.range = volume.range();
     if (!(r.iso > r.range[0] && r.iso < r.range[1]))
-        throw InputError(quoted(volume) + ": iso " + num(r.iso) + " is outside the data range " +
-                         num(r.range[0]) + " … " + num(r.range[1]) +
+        throw InputError(quoted_volume_of(volume) + ": iso " + num(r.iso) +
+                         " is outside the data range " + num(r.range[0]) + " … " + num(r.range[1]) +
                          "; give an iso value between them");
     const auto crop = crop_bounds(g, o.roi);
     for (std::size_t d = 0; d < 3; ++d) {
         if (crop[0][d] >= crop[1][d])
-            throw InputError(quoted(volume) + ": the surface ROI " + to_string(*o.roi) +
+            throw InputError(quoted_volume_of(volume) + ": the surface ROI " + to_string(*o.roi) +
                              " holds no voxel of the volume");
         r.cropped[d] = crop[1][d] - crop[0][d] + 1;
     }
@@ -215,13 +215,14 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
     check_budget(volume, r.iso, s.triangle_count(), budget, false);
     const std::string where = o.roi ? " inside the ROI " + to_string(*o.roi) : "";
     if (s.triangle_count() == 0)
-        throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" +
-                         where);
+        throw InputError(quoted_volume_of(volume) + ": the surface at iso " + num(r.iso) +
+                         " is empty" + where);
     s.to_physical(g);
     if (o.roi) {
         s.keep_inside(*o.roi);
         if (s.triangle_count() == 0)
-            throw InputError(quoted(volume) + ": no triangle of the surface lies" + where);
+            throw InputError(quoted_volume_of(volume) + ": no triangle of the surface lies" +
+                             where);
     }
     r.contour_triangles = s.triangle_count();
     if (o.largest || o.seed) {
@@ -240,8 +241,8 @@ ExtractedSurface extract_surface(const Volume& volume, const SurfaceOptions& o) 
         decimate(out.mesh, o, tolerance, r);
     }
     if (out.mesh.triangles.empty())
-        throw InputError(quoted(volume) + ": the surface at iso " + num(r.iso) + " is empty" +
-                         where);
+        throw InputError(quoted_volume_of(volume) + ": the surface at iso " + num(r.iso) +
+                         " is empty" + where);
     out.mesh.unit = "mm";
     out.mesh.voxel_axes = g.direction * g.spacing.asDiagonal();
     out.mesh.field_of_view = field_of_view(g, o.roi);

@@ -17,9 +17,7 @@ namespace glint::detail {
 
 namespace {
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
-std::string lower_extension(const std::filesystem::path& path) {
+std::string extension_without_dot(const std::filesystem::path& path) {
     std::string ext = path.extension().string();
     if (!ext.empty() && ext.front() == '.') ext.erase(0, 1);
     for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -131,8 +129,9 @@ Mesh read_assimp(const std::filesystem::path& path, const std::string& source, L
     const aiScene* scene =
         importer.ReadFile(path.string(), aiProcess_ValidateDataStructure | aiProcess_Triangulate);
     if (scene == nullptr || scene->mRootNode == nullptr)
-        throw InputError(quoted(source) + ": assimp cannot read it: " + importer.GetErrorString());
-    report.format = lower_extension(path);
+        throw InputError(quoted_mesh(source) +
+                         ": assimp cannot read it: " + importer.GetErrorString());
+    report.format = extension_without_dot(path);
     report.reader = MeshReader::Assimp;
     if (report.format == "obj") note_missing_mtl(path, report);
     if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE)

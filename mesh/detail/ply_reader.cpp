@@ -20,8 +20,6 @@ namespace {
 
 using namespace ply;
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
 // What the reader builds while it walks the body.
 struct Builder {
     Mesh mesh;
@@ -85,10 +83,10 @@ class PlyParser {
 
   private:
     [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(quoted(source_) + ": " + what);
+        throw InputError(quoted_mesh(source_) + ": " + what);
     }
     [[noreturn]] void fail_line(std::size_t line, const std::string& what) const {
-        throw InputError(quoted(source_) + ": line " + std::to_string(line) + ": " + what);
+        throw InputError(quoted_mesh(source_) + ": line " + std::to_string(line) + ": " + what);
     }
 
     // The fewest bytes one item of `el` can take: its fixed-size properties plus each list's

@@ -20,8 +20,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
 std::uint64_t add_sat(std::uint64_t a, std::uint64_t b) {
     return a > UINT64_MAX - b ? UINT64_MAX : a + b;
 }
@@ -39,7 +37,8 @@ void check_json_depth(std::span<const char> text, const std::string& source) {
             in_string = true;
         } else if (c == '{' || c == '[') {
             if (++depth > kMaxJsonDepth)
-                throw InputError(quoted(source) + ": glTF JSON nests objects/arrays deeper than " +
+                throw InputError(quoted_mesh(source) +
+                                 ": glTF JSON nests objects/arrays deeper than " +
                                  std::to_string(kMaxJsonDepth) + " levels (at byte " +
                                  std::to_string(i) + "), more than the limit");
         } else if (c == '}' || c == ']') {
@@ -106,7 +105,7 @@ std::vector<std::uint64_t> mesh_triangles(const json& doc, const std::string& so
         const auto prims = elements(member(*meshes[m], "primitives"));
         for (std::size_t p = 0; p < prims.size(); ++p) {
             const json* prim = prims[p];
-            const std::string where = quoted(source) + ": glTF mesh " + std::to_string(m) +
+            const std::string where = quoted_mesh(source) + ": glTF mesh " + std::to_string(m) +
                                       " primitive " + std::to_string(p);
             const json& mode_json = member(*prim, "mode");
             if (!mode_json.is_null() && !mode_json.is_number_unsigned())
@@ -191,7 +190,7 @@ void walk(std::vector<Node>& nodes, std::size_t root, const std::string& source)
             const std::size_t c = node.children[next++];
             if (nodes[c].state == 1)
                 throw InputError(
-                    quoted(source) + ": glTF node " + std::to_string(c) +
+                    quoted_mesh(source) + ": glTF node " + std::to_string(c) +
                     " is its own ancestor (the node graph has a cycle), expected a tree");
             if (nodes[c].state == 0) {
                 nodes[c].state = 1;
@@ -235,9 +234,9 @@ void check_gltf_json(std::span<const char> text, const std::string& source,
     try {
         doc = json::parse(text.begin(), text.end());
     } catch (const json::exception& e) {
-        throw InputError(quoted(source) + ": glTF JSON does not parse: " + e.what());
+        throw InputError(quoted_mesh(source) + ": glTF JSON does not parse: " + e.what());
     }
-    if (!doc.is_object()) throw InputError(quoted(source) + ": glTF JSON is not an object");
+    if (!doc.is_object()) throw InputError(quoted_mesh(source) + ": glTF JSON is not an object");
     // note: assimp's glTF importers claim a file only when asset.version starts with 1 or 2;
     // any other file it hands to every importer it has, by content (a fuzz_glb finding: an
     // 18-byte non-glTF file overran a buffer in one of them), so such a file stops here.
@@ -246,7 +245,7 @@ void check_gltf_json(std::span<const char> text, const std::string& source,
         asset && asset->is_object() && asset->contains("version") ? &(*asset)["version"] : nullptr;
     if (!version || !version->is_string() || version->get<std::string>().empty() ||
         (version->get<std::string>()[0] != '1' && version->get<std::string>()[0] != '2'))
-        throw InputError(quoted(source) + ": glTF JSON has " +
+        throw InputError(quoted_mesh(source) + ": glTF JSON has " +
                          (version ? "asset.version " + printable(version->dump().substr(0, 40))
                                   : std::string("no asset.version")) +
                          ", expected \"1.0\" or \"2.0\"");
@@ -257,7 +256,7 @@ void check_gltf_json(std::span<const char> text, const std::string& source,
         walk(nodes, root, source);
         const Node& r = nodes[root];
         if (r.height > kMaxGltfNodeDepth)
-            throw InputError(quoted(source) + ": glTF nodes nest " + std::to_string(r.height) +
+            throw InputError(quoted_mesh(source) + ": glTF nodes nest " + std::to_string(r.height) +
                              " levels deep below root node " + std::to_string(root) +
                              ", more than the limit " + std::to_string(kMaxGltfNodeDepth));
         instances = add_sat(instances, r.instances);
@@ -265,7 +264,7 @@ void check_gltf_json(std::span<const char> text, const std::string& source,
     }
     if (instances > kMaxGltfInstances)
         throw InputError(
-            quoted(source) + ": glTF node graph expands to " +
+            quoted_mesh(source) + ": glTF node graph expands to " +
             (instances == UINT64_MAX ? std::string("over 2^64") : std::to_string(instances)) +
             " node instances (a node shared by several parents is copied for each), "
             "more than the limit " +
@@ -283,19 +282,20 @@ std::uint32_t le32(std::span<const char> data, std::size_t at) {
 // version 1 a 20-byte header with the content length at 12; both put the JSON at byte 20.
 void check_glb(std::span<const char> data, const std::string& source, std::uint64_t max_triangles) {
     if (data.size() < 20)
-        throw InputError(quoted(source) + ": GLB is " + std::to_string(data.size()) +
+        throw InputError(quoted_mesh(source) + ": GLB is " + std::to_string(data.size()) +
                          " bytes, shorter than its 20-byte header");
     const std::uint32_t version = le32(data, 4);
     if (version != 1 && version != 2)
-        throw InputError(quoted(source) + ": GLB version " + std::to_string(version) +
+        throw InputError(quoted_mesh(source) + ": GLB version " + std::to_string(version) +
                          ", expected 1 or 2");
     const std::size_t start = 20;
     const std::uint64_t length = le32(data, 12);  // both versions: JSON length at 12, data at 20
     if (version == 2 && le32(data, 16) != 0x4E4F534Au)
-        throw InputError(quoted(source) + ": GLB's first chunk is not JSON");
+        throw InputError(quoted_mesh(source) + ": GLB's first chunk is not JSON");
     if (length > data.size() - start)
-        throw InputError(quoted(source) + ": GLB JSON chunk declares " + std::to_string(length) +
-                         " bytes, only " + std::to_string(data.size() - start) + " follow");
+        throw InputError(quoted_mesh(source) + ": GLB JSON chunk declares " +
+                         std::to_string(length) + " bytes, only " +
+                         std::to_string(data.size() - start) + " follow");
     check_gltf_json(data.subspan(start, static_cast<std::size_t>(length)), source, max_triangles);
 }
 
@@ -400,16 +400,17 @@ void check_off_faces(std::span<const char> data, std::size_t pos, std::uint64_t 
         const auto nr = std::from_chars(words[0].data(), words[0].data() + words[0].size(), n);
         if (nr.ec != std::errc() || nr.ptr != words[0].data() + words[0].size() || n < 3 ||
             n + 1 > words.size())
-            throw InputError(quoted(source) + ": line " + std::to_string(line_of(data, pos - 1)) +
-                             ": OFF face " + std::to_string(seen - vertices - 1) + " starts \"" +
-                             printable(line) + "\", expected a corner count of at least 3 and " +
+            throw InputError(quoted_mesh(source) + ": line " +
+                             std::to_string(line_of(data, pos - 1)) + ": OFF face " +
+                             std::to_string(seen - vertices - 1) + " starts \"" + printable(line) +
+                             "\", expected a corner count of at least 3 and " +
                              "that many vertex indices");
         for (std::size_t k = 1; k <= n && k < words.size(); ++k) {
             const auto w = words[k];
             std::uint64_t index = 0;
             const auto r = std::from_chars(w.data(), w.data() + w.size(), index);
             if (r.ec != std::errc() || r.ptr != w.data() + w.size() || index >= vertices)
-                throw InputError(quoted(source) + ": line " +
+                throw InputError(quoted_mesh(source) + ": line " +
                                  std::to_string(line_of(data, pos - 1)) + ": OFF face " +
                                  std::to_string(seen - vertices - 1) + " uses vertex \"" +
                                  printable(w) + "\", expected an index from 0 to " +
@@ -436,7 +437,8 @@ void check_off(std::span<const char> data, const std::string& source) {
         // of 8 numbers made assimp read a face without indices (an invalid read under ASan,
         // fuzz/fuzz_off).
         if (first && line.find("OFF") == std::string_view::npos && split_words(line).size() != 3)
-            throw InputError(quoted(source) + ": line " + std::to_string(line_of(data, pos - 1)) +
+            throw InputError(quoted_mesh(source) + ": line " +
+                             std::to_string(line_of(data, pos - 1)) +
                              ": an OFF file without the OFF keyword starts with " +
                              std::to_string(split_words(line).size()) +
                              " words, expected the three counts (vertices faces edges)");
@@ -457,7 +459,7 @@ void check_off(std::span<const char> data, const std::string& source) {
             const auto w = words[k];
             const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[k]);
             if (r.ec != std::errc() || r.ptr != w.data() + w.size())
-                throw InputError(quoted(source) + ": OFF " + (k == 0 ? "vertex" : "face") +
+                throw InputError(quoted_mesh(source) + ": OFF " + (k == 0 ? "vertex" : "face") +
                                  " count is \"" + printable(w) +
                                  "\", expected a non-negative integer");
         }
@@ -493,9 +495,9 @@ void check_obj_vertex(std::string_view line, std::uint64_t line_no, std::uint64_
         const auto w = words[k];
         const auto r = std::from_chars(w.data(), w.data() + w.size(), x);
         if (r.ec == std::errc() && !std::isfinite(x))
-            throw InputError(quoted(source) + ": line " + std::to_string(line_no) + ": vertex " +
-                             std::to_string(vertex) + " coordinate " + "xyz"[k - 1] + " is \"" +
-                             printable(w) + "\", expected a finite number");
+            throw InputError(quoted_mesh(source) + ": line " + std::to_string(line_no) +
+                             ": vertex " + std::to_string(vertex) + " coordinate " + "xyz"[k - 1] +
+                             " is \"" + printable(w) + "\", expected a finite number");
     }
 }
 
@@ -516,7 +518,7 @@ void check_obj_face(const std::vector<std::string_view>& words, std::uint64_t li
         const auto r = std::from_chars(w.data(), w.data() + w.size(), index);
         const bool number = r.ec == std::errc() && r.ptr == w.data() + w.size();
         if (!number || index == 0 || (index < 0 && static_cast<std::uint64_t>(-index) > vertices))
-            throw InputError(quoted(source) + ": line " + std::to_string(line_no) +
+            throw InputError(quoted_mesh(source) + ": line " + std::to_string(line_no) +
                              ": face corner " + std::to_string(k) + " is \"" + printable(words[k]) +
                              "\", expected a vertex index from 1 to the vertex count, or from -1 "
                              "back to -" +
@@ -544,14 +546,14 @@ void check_obj(std::span<const char> data, const std::string& source, std::uint6
         const std::uint64_t corners = corner_words.size() - 1;
         check_obj_face(corner_words, lines, vertices, source, last_index);
         if (corners > kMaxObjFaceCorners)
-            throw InputError(quoted(source) + ": line " + std::to_string(lines) + ": a face of " +
-                             std::to_string(corners) + " corners, expected at most " +
-                             std::to_string(kMaxObjFaceCorners) +
+            throw InputError(quoted_mesh(source) + ": line " + std::to_string(lines) +
+                             ": a face of " + std::to_string(corners) +
+                             " corners, expected at most " + std::to_string(kMaxObjFaceCorners) +
                              " (split the polygon; triangulating it would take minutes)");
         triangles += std::max<std::uint64_t>(1, corners >= 2 ? corners - 2 : 1);
     }
     if (last_index.value > vertices)
-        throw InputError(quoted(source) + ": line " + std::to_string(last_index.line) +
+        throw InputError(quoted_mesh(source) + ": line " + std::to_string(last_index.line) +
                          ": a face uses vertex " + std::to_string(last_index.value) +
                          ", the file has " + std::to_string(vertices) +
                          " vertices; expected an index from 1 to " + std::to_string(vertices));
@@ -566,7 +568,7 @@ void check_before_assimp(std::span<const char> data, const std::string& ext,
     if (glb_magic) check_glb(data, source, max_triangles);
     else if (ext == ".glb")
         throw InputError(
-            quoted(source) + ": a .glb file that does not start with \"glTF\" (found \"" +
+            quoted_mesh(source) + ": a .glb file that does not start with \"glTF\" (found \"" +
             printable(std::string_view(data.data(), std::min<std::size_t>(data.size(), 4))) +
             "\"), expected a binary glTF");
     else if (ext == ".gltf") check_gltf_json(data, source, max_triangles);

@@ -18,8 +18,6 @@ namespace {
 constexpr std::size_t kHeaderBytes = 84;  ///< 80-byte comment + uint32 facet count
 constexpr std::size_t kFacetBytes = 50;   ///< normal + 3 corners (12 floats) + uint16 attribute
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
 std::string_view trim_left(std::string_view s) {
     while (!s.empty() &&
            (s.front() == ' ' || s.front() == '\t' || s.front() == '\r' || s.front() == '\n'))
@@ -53,14 +51,14 @@ std::uint32_t facet_count(std::span<const char> data) {
 Mesh read_binary(std::span<const char> data, const std::string& source, LoadReport& report,
                  std::uint64_t max_triangles) {
     if (data.size() < kHeaderBytes)
-        throw InputError(quoted(source) + ": binary STL needs at least " +
+        throw InputError(quoted_mesh(source) + ": binary STL needs at least " +
                          std::to_string(kHeaderBytes) +
                          " bytes (header and facet count), the file has " +
                          std::to_string(data.size()) + " bytes");
     const std::uint64_t n = facet_count(data);
     const std::uint64_t expected = kHeaderBytes + kFacetBytes * n;
     if (expected != data.size())
-        throw InputError(quoted(source) + ": binary STL declares " + std::to_string(n) +
+        throw InputError(quoted_mesh(source) + ": binary STL declares " + std::to_string(n) +
                          " facets (" + std::to_string(expected) + " bytes) but the file has " +
                          std::to_string(data.size()) + " bytes");
     check_triangle_budget(n, max_triangles, source, "binary STL declares");
@@ -76,7 +74,7 @@ Mesh read_binary(std::span<const char> data, const std::string& source, LoadRepo
         for (std::size_t k = 0; k < 3; ++k) {
             const Vec3f v(c[3 * k], c[3 * k + 1], c[3 * k + 2]);
             if (!v.allFinite())
-                throw InputError(quoted(source) + ": facet " + std::to_string(f) + " of " +
+                throw InputError(quoted_mesh(source) + ": facet " + std::to_string(f) + " of " +
                                  std::to_string(n) + ", corner " + std::to_string(k) +
                                  ": coordinate is not finite (" + std::to_string(v.x()) + ", " +
                                  std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")");
@@ -132,7 +130,7 @@ class AsciiStl {
                     v[k] = x;
                 }
                 if (!v.allFinite())
-                    throw InputError(quoted(source_) + ": line " + std::to_string(line_no_) +
+                    throw InputError(quoted_mesh(source_) + ": line " + std::to_string(line_no_) +
                                      ": facet " + std::to_string(facet) + ", corner " +
                                      std::to_string(corners.size()) +
                                      ": coordinate is not finite: \"" + std::string(line) + "\"");
@@ -153,7 +151,7 @@ class AsciiStl {
             }
         }
         if (state == State::InFacet || state == State::InLoop || state == State::LoopDone)
-            throw InputError(quoted(source_) + ": ASCII STL ends inside facet " +
+            throw InputError(quoted_mesh(source_) + ": ASCII STL ends inside facet " +
                              std::to_string(facet) + " (begun at line " +
                              std::to_string(facet_line) + "): the file is truncated");
         if (state == State::InSolid)
@@ -166,13 +164,13 @@ class AsciiStl {
   private:
     [[noreturn]] void fail(std::string_view line, const std::string& expected) const {
         const std::string text = printable(line, 80);
-        throw InputError(quoted(source_) + ": line " + std::to_string(line_no_) + ": expected " +
-                         expected + ", found \"" + text + "\"");
+        throw InputError(quoted_mesh(source_) + ": line " + std::to_string(line_no_) +
+                         ": expected " + expected + ", found \"" + text + "\"");
     }
 
     void add_facet(const std::vector<Vec3f>& corners, std::size_t facet, std::size_t facet_line) {
         if (corners.size() < 3)
-            throw InputError(quoted(source_) + ": facet " + std::to_string(facet) + " (line " +
+            throw InputError(quoted_mesh(source_) + ": facet " + std::to_string(facet) + " (line " +
                              std::to_string(facet_line) + ") has " +
                              std::to_string(corners.size()) + " vertices, expected 3");
         if (corners.size() > 3) ++report_.split_polygons;

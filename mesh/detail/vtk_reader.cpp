@@ -18,8 +18,6 @@ namespace glint::detail {
 
 namespace {
 
-std::string quoted(const std::string& source) { return "mesh \"" + source + "\""; }
-
 std::vector<std::string_view> split(std::string_view line) { return split_words(line); }
 
 class VtkParser {
@@ -78,7 +76,7 @@ class VtkParser {
         return "byte " + std::to_string(at);
     }
     [[noreturn]] void fail(const std::string& what) const {
-        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what);
+        throw InputError(quoted_mesh(source_) + ": " + where(line_start_) + ": " + what);
     }
     // ---- low-level reading ----------------------------------------------------------------
 
@@ -206,7 +204,7 @@ class VtkParser {
     }
 
     [[noreturn]] void truncated(const std::string& what, std::uint64_t got, std::uint64_t count) {
-        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what +
+        throw InputError(quoted_mesh(source_) + ": " + where(line_start_) + ": " + what +
                          " ends after " + std::to_string(got) + " of " + std::to_string(count) +
                          " values: the file is truncated");
     }
@@ -242,9 +240,9 @@ class VtkParser {
         const std::size_t min_bytes = binary_ ? std::max<std::size_t>(size_of(t), 1) : 2;
         if (count <= left / min_bytes + 1) return;
         if (binary_) truncated(what, left / min_bytes, count);
-        throw InputError(quoted(source_) + ": " + where(line_start_) + ": " + what + " declares " +
-                         std::to_string(count) + " values but only " + std::to_string(left) +
-                         " bytes follow: the file is truncated");
+        throw InputError(quoted_mesh(source_) + ": " + where(line_start_) + ": " + what +
+                         " declares " + std::to_string(count) + " values but only " +
+                         std::to_string(left) + " bytes follow: the file is truncated");
     }
 
     void read_points() {

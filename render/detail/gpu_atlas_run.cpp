@@ -5,6 +5,7 @@
 #include "mesh/error.h"
 #include "render/detail/backend.h"
 #include "render/detail/vk_check.h"
+#include "render/detail/vk_compute.h"
 #include "spirv/bindings.h"
 
 #include <algorithm>
@@ -18,19 +19,6 @@
 namespace glint::detail {
 namespace {
 
-constexpr VkMemoryPropertyFlags kHostMemory =
-    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-
-/// One global memory barrier (the call sites say what it protects).
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
-             VkPipelineStageFlags dst, VkAccessFlags dst_access) {
-    VkMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
 void begin(VkCommandBuffer cmd) {
     GLINT_VK_CHECK(vkResetCommandBuffer(cmd, 0));
     VkCommandBufferBeginInfo info{};
@@ -38,8 +26,6 @@ void begin(VkCommandBuffer cmd) {
     info.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     GLINT_VK_CHECK(vkBeginCommandBuffer(cmd, &info));
 }
-
-std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
 
 /// Rows (R_r0, R_r1, R_r2, t_r) of an isometry.
 void rows_of(const Rigid& t, double* out) {

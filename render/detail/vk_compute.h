@@ -9,6 +9,7 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <cstdint>
 
 namespace glint::detail {
 
@@ -27,6 +28,15 @@ AtlasPipelines make_atlas_pipelines(VkDevice device, VkPipelineLayout graphics_l
 
 /// Destroys and resets; null handles are skipped.
 void destroy_atlas_pipelines(VkDevice device, AtlasPipelines& pipelines) noexcept;
+
+/// One global memory barrier (the call sites say what it protects).
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
+             VkPipelineStageFlags dst, VkAccessFlags dst_access);
+
+/// Work groups of `size` invocations that cover `count` items.
+inline std::uint32_t groups(std::uint32_t count, std::uint32_t size) {
+    return (count + size - 1) / size;
+}
 
 /// A compute pipeline of one embedded shader (entry point main). \throw DeviceError.
 VkPipeline make_compute_pipeline(VkDevice device, VkPipelineLayout layout, ShaderId shader);

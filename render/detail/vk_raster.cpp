@@ -12,21 +12,6 @@
 #include <vector>
 
 namespace glint::detail {
-namespace {
-
-/// One global memory barrier (the call sites say what it protects).
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkAccessFlags src_access,
-             VkPipelineStageFlags dst, VkAccessFlags dst_access) {
-    VkMemoryBarrier b{};
-    b.sType = VK_STRUCTURE_TYPE_MEMORY_BARRIER;
-    b.srcAccessMask = src_access;
-    b.dstAccessMask = dst_access;
-    vkCmdPipelineBarrier(cmd, src, dst, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
-
-}  // namespace
 
 RasterPipelines make_raster_pipelines(VkDevice device, const VkPhysicalDeviceLimits& limits) {
     RasterPipelines p;

@@ -12,9 +12,9 @@ namespace glint::detail {
 
 namespace {
 
-constexpr int kFont = 13;
-constexpr int kLine = 19;  // px per footer line
-constexpr int kPad = 8;    // px above the first line and below the last
+constexpr int kFooterFont = 13;
+constexpr int kFooterLine = 19;  // px per footer line
+constexpr int kPad = 8;          // px above the first line and below the last
 
 std::string unit_of(const AnalysisResult& r) { return r.unit.empty() ? "units" : r.unit; }
 
@@ -79,17 +79,17 @@ std::string utc_date_now() {
     return b;
 }
 
-int footer_height(std::size_t lines) { return 2 * kPad + static_cast<int>(lines) * kLine; }
+int footer_height(std::size_t lines) { return 2 * kPad + static_cast<int>(lines) * kFooterLine; }
 
 Canvas with_footer(const Canvas& sheet, const std::vector<std::string>& lines) {
     const int w = sheet.width(), h = sheet.height();
     Canvas out = canvas(w, h + footer_height(lines.size()));
     out.paste(sheet, 0, 0);
     draw_box(out, 0, h, w - 1, h, kDimText, true);  // a rule between the picture and its footer
-    int y = h + kPad + kFont;
+    int y = h + kPad + kFooterFont;
     for (const auto& line : lines) {
-        draw_text(out, 8, y, line, kFont, kDimText);
-        y += kLine;
+        draw_text(out, 8, y, line, kFooterFont, kDimText);
+        y += kFooterLine;
     }
     return out;
 }

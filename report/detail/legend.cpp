@@ -11,12 +11,12 @@ namespace glint::detail {
 
 namespace {
 
-constexpr int kFont = 13;
-constexpr int kLine = 18;  // px per text line
+constexpr int kLegendFont = 13;
+constexpr int kLegendLine = 18;  // px per text line
 constexpr int kBarWidth = 20;
 constexpr int kMinBar = 120;
 constexpr int kMaxBar = 260;
-constexpr int kSwatchStep = kLine + 6;  // px from one swatch row to the next
+constexpr int kSwatchStep = kLegendLine + 6;  // px from one swatch row to the next
 
 // Height of the swatch rows: four; six for a view's own measurement.
 int swatches_height(const LegendContent& c) {
@@ -42,8 +42,8 @@ void draw_bar(Canvas& dst, int x, int top, int height, const LegendContent& c) {
         const double v = c.limit * k / 2.0;
         const int row = bar_row(v, c.limit, top, height);
         draw_line(dst, x + kBarWidth, row, x + kBarWidth + 5, row, kText);
-        draw_text(dst, x + kBarWidth + 9, row + kFont / 2 - 1,
-                  format_number(v, true) + (k == 2 ? unit : ""), kFont);
+        draw_text(dst, x + kBarWidth + 9, row + kLegendFont / 2 - 1,
+                  format_number(v, true) + (k == 2 ? unit : ""), kLegendFont);
     }
     if (c.shape_floor > 0 && c.shape_floor < c.limit) {
         // The shape floor: below it a change is not told apart from tessellation and noise.
@@ -56,7 +56,7 @@ void draw_bar(Canvas& dst, int x, int top, int height, const LegendContent& c) {
 
 // A swatch hatched as the pictures hatch: rising stripes (or falling) every 7 px.
 void hatched_swatch(Canvas& dst, int x, int y, Rgb plain, Rgb stripe, bool rising) {
-    const int s = kLine - 4;
+    const int s = kLegendLine - 4;
     for (int j = 0; j < s; ++j)
         for (int i = 0; i < s; ++i) {
             const bool on = rising ? (i + j) % 7 < 2 : (i + 7 * s - j) % 7 < 2;
@@ -67,12 +67,12 @@ void hatched_swatch(Canvas& dst, int x, int y, Rgb plain, Rgb stripe, bool risin
 
 // The rows of a view's own measurement: nothing behind, examined only, pale within the floor.
 int draw_measured_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
-    const int s = kLine - 4;
+    const int s = kLegendLine - 4;
     hatched_swatch(dst, x, y, kNothingBehind, kNothingBehindStripe, true);
-    draw_text(dst, x + s + 8, y + s - 2, "no examined surface behind it", kFont);
+    draw_text(dst, x + s + 8, y + s - 2, "no examined surface behind it", kLegendFont);
     y += kSwatchStep;
     draw_box(dst, x, y, x + s, y + s, kExaminedOnly, true);
-    draw_text(dst, x + s + 8, y + s - 2, "examined surface only", kFont);
+    draw_text(dst, x + s + 8, y + s - 2, "examined surface only", kLegendFont);
     y += kSwatchStep;
     const DivergingTable& colours = DivergingTable::get();
     const Rgb loss = colours(static_cast<float>(-c.limit), c.limit);
@@ -81,40 +81,40 @@ int draw_measured_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     for (int k = 0; k < 3; ++k) pale[k] += kWithinFloorPale * (white[k] - pale[k]);
     draw_box(dst, x, y, x + s / 2, y + s, loss, true);
     draw_box(dst, x + s / 2 + 1, y, x + s, y + s, pale, true);
-    draw_text(dst, x + s + 8, y + s - 2, "paler: within the floor", kFont);
+    draw_text(dst, x + s + 8, y + s - 2, "paler: within the floor", kLegendFont);
     return y + kSwatchStep;
 }
 
 void draw_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
-    const int s = kLine - 4;
+    const int s = kLegendLine - 4;
     if (c.measured) {
         y = draw_measured_swatches(dst, x, y, c);
     } else {
         // Unseen: the hatching the pictures use.
         hatched_swatch(dst, x, y, kUnseen, kUnseenStripe, true);
         draw_text(dst, x + s + 8, y + s - 2,
-                  c.roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kFont);
+                  c.roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kLegendFont);
         y += kSwatchStep;
     }
     // Not compared: hatched the other way.
     hatched_swatch(dst, x, y, kNotCompared, kNotComparedStripe, false);
     draw_text(dst, x + s + 8, y + s - 2,
               c.measured ? "not compared (edge, border)" : "not compared (border, unscanned, thin)",
-              kFont);
+              kLegendFont);
     const int y2 = y + kSwatchStep;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
     draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);
-    draw_tag(dst, x + s + 14, y2 + s / 2, "1", kFont - 2);
-    draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kFont);
+    draw_tag(dst, x + s + 14, y2 + s / 2, "1", kLegendFont - 2);
+    draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kLegendFont);
     // An open surface seen from behind: its normals face away, so the light leaves it dark.
     const int y3 = y2 + kSwatchStep;
     draw_box(dst, x, y3, x + s, y3 + s, back_face_colour(), true);
-    draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kFont);
+    draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kLegendFont);
     if (!c.plane_line) return;
     const int y4 = y3 + kSwatchStep;
     draw_box(dst, x, y4 + s / 2 - 1, x + s, y4 + s / 2, kSymmetryPlane, true);
-    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (its residual: report)", kFont);
+    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (its residual: report)", kLegendFont);
 }
 
 }  // namespace
@@ -157,7 +157,7 @@ std::vector<NoteLine> note_lines(const LegendContent& c) {
                          (c.shape_floor < c.limit ? " (marked on the bar)" : ""));
     std::vector<NoteLine> out;
     for (const auto& l : lines) {
-        const auto parts = wrap_text(l, kFont - 1, kLegendWidth - 20, kLegendWidth - 30);
+        const auto parts = wrap_text(l, kLegendFont - 1, kLegendWidth - 20, kLegendWidth - 30);
         for (std::size_t i = 0; i < parts.size(); ++i) out.push_back({parts[i], i > 0});
     }
     return out;
@@ -166,53 +166,53 @@ std::vector<NoteLine> note_lines(const LegendContent& c) {
 }  // namespace
 
 int legend_min_height(const LegendContent& c) {
-    return 10 + 2 * kLine + kMinBar + kLine + 12 + swatches_height(c) +
-           static_cast<int>(note_lines(c).size()) * kLine + 2 * kLine + 10;
+    return 10 + 2 * kLegendLine + kMinBar + kLegendLine + 12 + swatches_height(c) +
+           static_cast<int>(note_lines(c).size()) * kLegendLine + 2 * kLegendLine + 10;
 }
 
 void draw_legend(Canvas& dst, int x, int y, int height, const LegendContent& c) {
     const int x0 = x + 12;
-    int cy = y + 10 + kFont;
+    int cy = y + 10 + kLegendFont;
     const std::string what = c.measured ? "signed depth, this view ("
                              : c.mirror ? "this side − mirrored other ("
                                         : "signed shape change (";
-    draw_text(dst, x0, cy, what + c.unit + ")", kFont + 1);
-    cy += kLine;
+    draw_text(dst, x0, cy, what + c.unit + ")", kLegendFont + 1);
+    cy += kLegendLine;
     draw_text(dst, x0, cy, c.mirror ? "more than the mirrored other side (bump)" : "gain (bump)",
-              kFont, {0.94f, 0.55f, 0.50f});
+              kLegendFont, {0.94f, 0.55f, 0.50f});
     cy += 8;
     const int fixed = legend_min_height(c) - kMinBar;
-    const int bar =
-        std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLine, kMinBar, kMaxBar);
+    const int bar = std::clamp(height - fixed - static_cast<int>(c.regions.size()) * kLegendLine,
+                               kMinBar, kMaxBar);
     draw_bar(dst, x0 + 4, cy, bar, c);
-    cy += bar + kLine;
+    cy += bar + kLegendLine;
     draw_text(dst, x0, cy, c.mirror ? "less than the mirrored other side (dent)" : "loss (dent)",
-              kFont, {0.55f, 0.72f, 0.95f});
+              kLegendFont, {0.55f, 0.72f, 0.95f});
     cy += 12;
     draw_swatches(dst, x0, cy, c);
-    cy += swatches_height(c) + kLine;
+    cy += swatches_height(c) + kLegendLine;
     // A note too wide for the panel goes on as many lines as it needs (never left out).
     for (const auto& l : note_lines(c)) {
-        draw_text(dst, l.continued ? x0 + 10 : x0, cy, l.text, kFont - 1, kDimText);
-        cy += kLine - 2;
+        draw_text(dst, l.continued ? x0 + 10 : x0, cy, l.text, kLegendFont - 1, kDimText);
+        cy += kLegendLine - 2;
     }
     if (c.regions.empty()) {
-        draw_text(dst, x0, cy + 4, "no region", kFont);
+        draw_text(dst, x0, cy + 4, "no region", kLegendFont);
         return;
     }
     cy += 4;
     for (std::size_t i = 0; i < c.regions.size(); ++i) {
-        if (cy + 2 * kLine > y + height && i + 1 < c.regions.size()) {
+        if (cy + 2 * kLegendLine > y + height && i + 1 < c.regions.size()) {
             // Regions come largest first: what is cut is the smaller ones, listed in full
             // where there is room for them.
             draw_text(dst, x0, cy,
                       "+ " + std::to_string(c.regions.size() - i) +
                           " smaller: all in report.html, regions.csv",
-                      kFont - 1);
+                      kLegendFont - 1);
             break;
         }
-        draw_text(dst, x0, cy, c.regions[i], kFont - 1);
-        cy += kLine - 1;
+        draw_text(dst, x0, cy, c.regions[i], kLegendFont - 1);
+        cy += kLegendLine - 1;
     }
 }
 

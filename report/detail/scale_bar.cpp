@@ -7,7 +7,7 @@ namespace glint::detail {
 
 namespace {
 
-constexpr int kLabelFont = 12;
+constexpr int kScaleLabelFont = 12;
 constexpr int kMargin = 10;  // px from the picture's right and bottom edges
 
 }  // namespace
@@ -50,7 +50,7 @@ void draw_scale_bar(Canvas& dst, int right, int bottom, const ScaleBar& bar) {
     // A dark border so the bar reads on white (no change) and on the background alike.
     draw_box(dst, left - 1, top - 1, right + 1, bottom + 1, kOutline, true);
     draw_box(dst, left, top, right, bottom, kScaleBarColour, true);
-    draw_text(dst, right, top - 5, bar.label, kLabelFont, kText, TextAlign::Right, 2);
+    draw_text(dst, right, top - 5, bar.label, kScaleLabelFont, kText, TextAlign::Right, 2);
 }
 
 PixelBox view_scale_bar_box(const View& view, const std::string& unit) {
@@ -58,8 +58,8 @@ PixelBox view_scale_bar_box(const View& view, const std::string& unit) {
     if (bar.pixels < 1) return {};
     const int right = view.camera.width - kMargin, bottom = view.camera.height - kMargin;
     const int top = bottom - kScaleBarThickness + 1;
-    const int left = right - std::max(bar.pixels, text_width(bar.label, kLabelFont));
-    return {left - 3, top - 5 - kLabelFont - 3, right + 3, bottom + 3};
+    const int left = right - std::max(bar.pixels, text_width(bar.label, kScaleLabelFont));
+    return {left - 3, top - 5 - kScaleLabelFont - 3, right + 3, bottom + 3};
 }
 
 void draw_view_scale_bar(Canvas& dst, int x0, int y0, const View& view, const std::string& unit) {

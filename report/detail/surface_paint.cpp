@@ -13,8 +13,6 @@ namespace glint::detail {
 
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 // What one pixel shows of the per-vertex fields.
 struct PixelFields {
     std::vector<float> distance;

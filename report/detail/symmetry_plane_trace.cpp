@@ -10,12 +10,11 @@ namespace glint::detail {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Two neighbouring pixels on one surface lie this many footprints apart along the plane's
 // normal at most (a steep slope); farther, one occludes the other and the plane does not run
 // between them.
 constexpr double kNeighbourFootprints = 8.0;
-constexpr int kLabelFont = 12;
+constexpr int kTraceLabelFont = 12;
 
 enum class PixelKind : std::uint8_t { None, Surface, Background };
 
@@ -30,7 +29,7 @@ struct PlaneDistances {
 PlaneDistances plane_distances(const Frame& frame, const View& view, const MirrorPictures& plane,
                                bool edge_on) {
     const Camera& camera = view.camera;
-    PlaneDistances out{std::vector<double>(frame.pixel_count(), kNaN),
+    PlaneDistances out{std::vector<double>(frame.pixel_count(), double(kNaN)),
                        std::vector<PixelKind>(frame.pixel_count(), PixelKind::None)};
     for (int y = 0; y < frame.height; ++y)
         for (int x = 0; x < frame.width; ++x) {
@@ -69,7 +68,7 @@ bool near_any(std::span<const PixelBox> boxes, int x, int y) {
 std::optional<PlaneLabel> label_place(const std::vector<std::uint8_t>& line,
                                       const PlaneDistances& d, int width, int height,
                                       std::span<const PixelBox> keep_clear) {
-    const int w = text_width(kSymmetryPlaneLabel, kLabelFont);
+    const int w = text_width(kSymmetryPlaneLabel, kTraceLabelFont);
     const auto clear = [&](int x0, int y0, int x1, int y1) {
         if (x0 < 4 || y0 < 24 || x1 > width - 4 || y1 > height - 30) return false;
         for (const PixelBox& b : keep_clear)
@@ -90,7 +89,7 @@ std::optional<PlaneLabel> label_place(const std::vector<std::uint8_t>& line,
         for (int x = 0; x < width; ++x) {
             if (!line[static_cast<std::size_t>(y * width + x)]) continue;
             for (const PlaneLabel& l : places(x, y))
-                if (clear(l.x - 2, l.y - kLabelFont, l.x + w + 2, l.y + 4)) return l;
+                if (clear(l.x - 2, l.y - kTraceLabelFont, l.x + w + 2, l.y + 4)) return l;
         }
     return std::nullopt;
 }

@@ -15,7 +15,7 @@ constexpr int kTop = 24;     // px: the row title above the grid
 constexpr int kBottom = 92;  // px: column labels, column title, colour key
 constexpr int kKeyWidth = 220;
 constexpr int kMinWidth = 440;  // px: the key's caption fits
-constexpr int kFont = 12;
+constexpr int kChartFont = 12;
 
 // viridis at 256 + 1 evenly spaced points of [0, 1], from ImageBufAlgo::color_map.
 const std::vector<Rgb>& viridis_table() {
@@ -53,19 +53,20 @@ void draw_cell(Canvas& img, int x, int y, const ChartCell& cell, double top) {
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i)
                 img.set(x + i, y + j, (i + j) % 7 < 2 ? kUnseenStripe : kUnseen);
-        draw_text(img, x + w / 2, y + h / 2 + 4, "n/a", kFont - 1, kOutline, TextAlign::Center);
+        draw_text(img, x + w / 2, y + h / 2 + 4, "n/a", kChartFont - 1, kOutline,
+                  TextAlign::Center);
         return;
     }
     const Rgb c = chart_colour(cell.share, top);
     draw_box(img, x, y, x + w - 1, y + h - 1, c, true);
     const float luminance = 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
-    draw_text(img, x + w / 2, y + h - 6, percent(cell.share), kFont - 1,
+    draw_text(img, x + w / 2, y + h - 6, percent(cell.share), kChartFont - 1,
               luminance > 0.45f ? kOutline : kText, TextAlign::Center);
     if (cell.best_of.empty()) return;
     // A region's best view: framed in white, the regions' ids on a tag.
     draw_box(img, x, y, x + w - 1, y + h - 1, {1, 1, 1}, false);
     draw_box(img, x + 1, y + 1, x + w - 2, y + h - 2, {1, 1, 1}, false);
-    draw_tag(img, x + w / 2, y + 10, joined_ids(cell.best_of), kFont - 2);
+    draw_tag(img, x + w / 2, y + 10, joined_ids(cell.best_of), kChartFont - 2);
 }
 
 void draw_key(Canvas& img, int x, int y, double top) {
@@ -73,9 +74,9 @@ void draw_key(Canvas& img, int x, int y, double top) {
         const Rgb c = chart_colour(top * i / (kKeyWidth - 1), top);
         draw_box(img, x + i, y, x + i, y + 9, c, true);
     }
-    draw_text(img, x - 6, y + 10, "0 %", kFont, kText, TextAlign::Right);
-    draw_text(img, x + kKeyWidth + 6, y + 10, percent(top), kFont);
-    draw_text(img, x, y + 28, "share of the view's compared pixels beyond the floor", kFont,
+    draw_text(img, x - 6, y + 10, "0 %", kChartFont, kText, TextAlign::Right);
+    draw_text(img, x + kKeyWidth + 6, y + 10, percent(top), kChartFont);
+    draw_text(img, x, y + 28, "share of the view's compared pixels beyond the floor", kChartFont,
               kDimText);
 }
 
@@ -116,14 +117,15 @@ Canvas view_chart(const ChartInput& in) {
     const int width = std::max(kMinWidth, kLeft + grid_w + 12);
     Canvas img = canvas(width, kTop + grid_h + kBottom);
     const double top = chart_top(in.cells);
-    draw_text(img, kLeft - 6, kTop - 8, in.row_title, kFont, kDimText, TextAlign::Right);
+    draw_text(img, kLeft - 6, kTop - 8, in.row_title, kChartFont, kDimText, TextAlign::Right);
     for (int r = 0; r < rows; ++r)
         draw_text(img, kLeft - 6, kTop + r * kChartCellHeight + kChartCellHeight / 2 + 4,
-                  in.row_labels[static_cast<std::size_t>(r)], kFont, kText, TextAlign::Right);
+                  in.row_labels[static_cast<std::size_t>(r)], kChartFont, kText, TextAlign::Right);
     for (int c = 0; c < cols; ++c)
         draw_text(img, kLeft + c * kChartCellWidth + kChartCellWidth / 2, kTop + grid_h + 14,
-                  in.column_labels[static_cast<std::size_t>(c)], kFont, kText, TextAlign::Center);
-    draw_text(img, kLeft + grid_w / 2, kTop + grid_h + 32, in.column_title, kFont, kDimText,
+                  in.column_labels[static_cast<std::size_t>(c)], kChartFont, kText,
+                  TextAlign::Center);
+    draw_text(img, kLeft + grid_w / 2, kTop + grid_h + 32, in.column_title, kChartFont, kDimText,
               TextAlign::Center);
     for (const auto& cell : in.cells)
         if (cell.column >= 0 && cell.column < cols && cell.row >= 0 && cell.row < rows) {

@@ -27,8 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
 Rgb pixel(const OIIO::ImageBuf& image, int x, int y) {
     Rgb c{};
     image.getpixel(x, y, c.data(), 3);

@@ -36,7 +36,7 @@ struct ResultHeader {
 constexpr std::uint32_t kMagic = 0x676c6476;  // "vdlg"
 enum Outcome : std::uint32_t { kVolume = 1, kInputError, kIoError, kOutOfMemory, kOtherError };
 
-std::string quoted(const fs::path& p) {
+std::string quoted_source(const fs::path& p) {
     std::error_code ec;
     return (fs::is_directory(p, ec) ? "DICOM folder \"" : "volume \"") + p.string() + "\"";
 }
@@ -187,7 +187,7 @@ std::string signal_name(int s) {
 }
 
 RawVolume read_result(int fd, const fs::path& input) {
-    const std::string where = quoted(input);
+    const std::string where = quoted_source(input);
     ResultHeader h;
     if (!read_all(fd, 0, &h, sizeof h) || h.magic != kMagic)
         throw InputError(where +
@@ -228,23 +228,24 @@ RawVolume read_result(int fd, const fs::path& input) {
 RawVolume read_in_child(const fs::path& input, const std::function<RawVolume()>& read) {
     const Descriptor result(::memfd_create("glint-dicom-volume", MFD_CLOEXEC));
     if (result.get() < 0)
-        throw IoError(quoted(input) +
+        throw IoError(quoted_source(input) +
                       ": cannot make a memory file for the DICOM reader: " + std::strerror(errno));
     const ChildTemp temp;
     finish_background_loads();  // no other thread inside dlopen while the child is made
     const pid_t child = ::fork();
     if (child < 0)
-        throw IoError(quoted(input) +
+        throw IoError(quoted_source(input) +
                       ": cannot start the DICOM reader process: " + std::strerror(errno));
     if (child == 0) run_child(result.get(), temp.path(), read);
     const int status = wait_for(child);
     if (WIFSIGNALED(status))
-        throw InputError(quoted(input) + ": the DICOM reader (GDCM) crashed on it (" +
+        throw InputError(quoted_source(input) + ": the DICOM reader (GDCM) crashed on it (" +
                          signal_name(WTERMSIG(status)) +
                          ", in a child process: nothing else was affected); expected a DICOM "
                          "series it can read");
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-        throw InputError(quoted(input) + ": the DICOM reader (GDCM) stopped with exit code " +
+        throw InputError(quoted_source(input) +
+                         ": the DICOM reader (GDCM) stopped with exit code " +
                          std::to_string(WEXITSTATUS(status)) +
                          " (in a child process); expected a DICOM series it can read");
     return read_result(result.get(), input);

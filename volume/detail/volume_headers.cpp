@@ -25,11 +25,7 @@ namespace glint::detail {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string quoted(const fs::path& p) { return "volume \"" + p.string() + "\""; }
-
-}  // namespace
+namespace {}  // namespace
 
 // A direction matrix (m[row][column], columns the axes) must be finite with columns of
 // non-zero length that span 3D. (Plain arrays: this file sees ITK's bundled Eigen, not ours.)
@@ -51,7 +47,7 @@ void check_direction(const Matrix3& m, const fs::path& path) {
                           : 0.0;
     if (!(std::abs(det) > 1e-6)) {
         std::ostringstream text;
-        text << quoted(path) << ": direction matrix [";
+        text << quoted_volume(path.string()) << ": direction matrix [";
         for (std::size_t r = 0; r < 3; ++r)
             text << (r ? "; " : "") << m[r][0] << " " << m[r][1] << " " << m[r][2];
         text << "], expected finite axes that span 3D";
@@ -138,15 +134,16 @@ void check_nifti_header(const fs::path& path) {
     static constexpr std::array<std::int32_t, 16> kDatatypes{
         2, 4, 8, 16, 32, 64, 128, 256, 512, 768, 1024, 1280, 1536, 1792, 2048, 2304};
     if (n->dim0 < 1 || n->dim0 > 7 || n->dim1 < 1)
-        throw InputError(quoted(path) + ": NIfTI dim[0] = " + std::to_string(n->dim0) +
-                         ", dim[1] = " + std::to_string(n->dim1) +
+        throw InputError(quoted_volume(path.string()) + ": NIfTI dim[0] = " +
+                         std::to_string(n->dim0) + ", dim[1] = " + std::to_string(n->dim1) +
                          ", expected 1 to 7 dimensions of at least one voxel");
     if (std::find(kDatatypes.begin(), kDatatypes.end(), n->datatype) == kDatatypes.end())
-        throw InputError(quoted(path) + ": NIfTI datatype " + std::to_string(n->datatype) +
-                         ", expected one of NIfTI's codes");
+        throw InputError(quoted_volume(path.string()) + ": NIfTI datatype " +
+                         std::to_string(n->datatype) + ", expected one of NIfTI's codes");
     auto refuse = [&](const std::string& field, double value, const std::string& expected) {
         std::ostringstream text;
-        text << quoted(path) << ": NIfTI " << field << " = " << value << ", expected " << expected;
+        text << quoted_volume(path.string()) << ": NIfTI " << field << " = " << value
+             << ", expected " << expected;
         throw InputError(text.str());
     };
     for (std::size_t k = 0; k < 3; ++k)
@@ -193,7 +190,8 @@ void check_data_file_value(const fs::path& path, const std::string& value) {
     const bool parsed = !in.fail() && !(in >> rest);
     if (!parsed || step <= 0 || last < first)
         throw InputError(
-            quoted(path) + ": ElementDataFile = \"" + printable(value.substr(0, 60)) +
+            quoted_volume(path.string()) + ": ElementDataFile = \"" +
+            printable(value.substr(0, 60)) +
             "\", expected LOCAL, LIST, a file name or a slice pattern 'name%d first last step' "
             "(first <= last, step > 0)");
 }
@@ -213,8 +211,9 @@ void check_metaimage_header(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
     std::string line;
     auto refuse = [&](int n, const std::string& found) {
-        throw InputError(quoted(path) + ": MetaImage header line " + std::to_string(n + 1) + " " +
-                         found + ", expected text lines 'Key = Value' up to ElementDataFile");
+        throw InputError(quoted_volume(path.string()) + ": MetaImage header line " +
+                         std::to_string(n + 1) + " " + found +
+                         ", expected text lines 'Key = Value' up to ElementDataFile");
     };
     auto trim = [](std::string t) {
         t.erase(0, t.find_first_not_of(" \t\r"));
@@ -254,11 +253,13 @@ void check_metaimage_header(const fs::path& path) {
         int dims = 0;
         const auto r = std::from_chars(value.data(), value.data() + value.size(), dims);
         if (r.ec != std::errc() || r.ptr != value.data() + value.size() || dims < 1 || dims > 4)
-            throw InputError(quoted(path) + ": NDims = \"" + printable(value.substr(0, 40)) +
+            throw InputError(quoted_volume(path.string()) + ": NDims = \"" +
+                             printable(value.substr(0, 40)) +
                              "\", expected an integer from 1 to 4");
     }
     throw InputError(
-        quoted(path) + ": no ElementDataFile within the first " + std::to_string(kMaxLines) +
+        quoted_volume(path.string()) + ": no ElementDataFile within the first " +
+        std::to_string(kMaxLines) +
         " lines of the MetaImage header, expected 'ElementDataFile = LOCAL' or a file name");
 }
 

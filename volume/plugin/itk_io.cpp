@@ -53,8 +53,6 @@ bool ends_with(const std::string& s, const std::string& suffix) {
            });
 }
 
-std::string quoted(const fs::path& p) { return "volume \"" + p.string() + "\""; }
-
 // ITK's messages span several lines and start with the source location: keep one line.
 std::string one_line(const itk::ExceptionObject& e) {
     std::string text = e.GetDescription();
@@ -76,7 +74,7 @@ itk::ImageIOBase::Pointer image_io_for(const fs::path& path) {
     if (format == "nrrd") return itk::NrrdImageIO::New().GetPointer();
     if (format == "dicom") return itk::GDCMImageIO::New().GetPointer();
     throw InputError(
-        quoted(path) +
+        quoted_volume(path.string()) +
         ": unknown volume format, expected .mhd .mha .nii .nii.gz .nrrd .nhdr .dcm or a "
         "DICOM folder");
 }
@@ -92,20 +90,21 @@ std::string size_text(const itk::ImageIOBase& io) {
 void check_header(const itk::ImageIOBase& io, const fs::path& path) {
     const unsigned dims = io.GetNumberOfDimensions();
     if (dims == 2)
-        throw InputError(quoted(path) + ": a 2D image (" + size_text(io) +
+        throw InputError(quoted_volume(path.string()) + ": a 2D image (" + size_text(io) +
                          "), expected a 3D volume");
     if (dims == 4 && io.GetDimensions(3) != 1)
-        throw InputError(quoted(path) + ": a 4D image (" + size_text(io) +
+        throw InputError(quoted_volume(path.string()) + ": a 4D image (" + size_text(io) +
                          "), expected a 3D volume");
     if (dims < 2 || dims > 4)
-        throw InputError(quoted(path) + ": a " + std::to_string(dims) +
+        throw InputError(quoted_volume(path.string()) + ": a " + std::to_string(dims) +
                          "D image, expected a 3D volume");
     if (io.GetNumberOfComponents() != 1)
-        throw InputError(quoted(path) + ": " + std::to_string(io.GetNumberOfComponents()) +
+        throw InputError(quoted_volume(path.string()) + ": " +
+                         std::to_string(io.GetNumberOfComponents()) +
                          " components per voxel, expected a scalar volume");
     for (unsigned d = 0; d < 3; ++d)
         if (io.GetDimensions(d) < 2)
-            throw InputError(quoted(path) + ": size " + size_text(io) +
+            throw InputError(quoted_volume(path.string()) + ": size " + size_text(io) +
                              ", expected at least 2 voxels along every axis");
     // The geometry ITK would hand to the image: a non-finite or singular one makes its matrix
     // code abort the process (vnl), so it is refused here, before the voxels are read.
@@ -115,8 +114,8 @@ void check_header(const itk::ImageIOBase& io, const fs::path& path) {
         if (!plausible(spacing, kMaxAxisMm) || spacing == 0.0 ||
             !plausible(origin, kMaxPositionMm)) {
             std::ostringstream text;
-            text << quoted(path) << ": spacing " << spacing << " and origin " << origin
-                 << " along axis " << d
+            text << quoted_volume(path.string()) << ": spacing " << spacing << " and origin "
+                 << origin << " along axis " << d
                  << ", expected a spacing other than 0 up to 1e6 mm and an origin within 1e9 mm";
             throw InputError(text.str());
         }
@@ -143,27 +142,27 @@ void require_slice_files(const itk::ImageIOBase& io, const fs::path& header,
     // note: the pattern comes from the file: only one integer conversion (%d, %03d, …) may
     // reach snprintf, anything else (%s, %n, two conversions) is refused as bad input.
     if (!std::regex_match(format, std::regex("[^%]*%0?[0-9]{0,3}d[^%]*")))
-        throw InputError(quoted(header) + ": file pattern \"" + format +
+        throw InputError(quoted_volume(header.string()) + ": file pattern \"" + format +
                          "\", expected a name with one %d");
     if (io.GetDimensions(2) == 0) return;
     const auto slice_bytes =
         static_cast<std::uintmax_t>(io.GetImageSizeInBytes()) / io.GetDimensions(2);
     if (first < 0 || last > 1'000'000)
-        throw InputError(quoted(header) + ": file pattern \"" + pattern + "\" numbers slices " +
-                         std::to_string(first) + " to " + std::to_string(last) +
-                         ", expected 0 to 1000000");
+        throw InputError(quoted_volume(header.string()) + ": file pattern \"" + pattern +
+                         "\" numbers slices " + std::to_string(first) + " to " +
+                         std::to_string(last) + ", expected 0 to 1000000");
     for (long n = first; n <= last; n += step) {
         char name[1024];
         std::snprintf(name, sizeof name, format.c_str(), static_cast<int>(n));
         const fs::path slice = header.parent_path() / name;
         std::error_code ec;
         if (!fs::exists(slice, ec))
-            throw InputError(quoted(header) + ": slice file \"" + slice.string() +
+            throw InputError(quoted_volume(header.string()) + ": slice file \"" + slice.string() +
                              "\" is missing (pattern \"" + pattern + "\")");
         const auto found = fs::file_size(slice, ec);
         if (!ec && found != slice_bytes)
-            throw InputError(quoted(header) + ": slice file \"" + slice.string() + "\" holds " +
-                             std::to_string(found) + " bytes, one slice needs " +
+            throw InputError(quoted_volume(header.string()) + ": slice file \"" + slice.string() +
+                             "\" holds " + std::to_string(found) + " bytes, one slice needs " +
                              std::to_string(slice_bytes));
     }
 }
@@ -185,7 +184,7 @@ void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     if (data_name == "LIST") return;
     if (data_name == "LOCAL") {
         if (!layout.data_offset)
-            throw InputError(quoted(header) +
+            throw InputError(quoted_volume(header.string()) +
                              ": no voxels follow its header (ElementDataFile = LOCAL ends the "
                              "file), expected " +
                              std::to_string(stored.expected) + " bytes of them");
@@ -193,11 +192,11 @@ void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
         // note: MetaIO reads LOCAL compressed voxels only as far as CompressedDataSize says;
         // without it the volume came back as uninitialised memory.
         if (stored.compressed && !stored.compressed_bytes)
-            throw InputError(quoted(header) +
+            throw InputError(quoted_volume(header.string()) +
                              ": CompressedData = True without CompressedDataSize, expected the "
                              "count of compressed bytes that follow the header");
         if (const std::string problem = metaimage_voxel_problem(header, stored); !problem.empty())
-            throw InputError(quoted(header) + ": " + problem);
+            throw InputError(quoted_volume(header.string()) + ": " + problem);
         return;
     }
     if (data_name.find(' ') != std::string::npos) {
@@ -207,17 +206,20 @@ void require_data_size(const itk::ImageIOBase& io, const fs::path& header) {
     const fs::path data = header.parent_path() / data_name;
     std::error_code ec;
     if (!fs::exists(data, ec))
-        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" is missing");
+        throw InputError(quoted_volume(header.string()) + ": data file \"" + data.string() +
+                         "\" is missing");
     if (stored.compressed) {
         if (const std::string problem = metaimage_voxel_problem(data, stored); !problem.empty())
-            throw InputError(quoted(header) + ": data file \"" + data.string() + "\": " + problem);
+            throw InputError(quoted_volume(header.string()) + ": data file \"" + data.string() +
+                             "\": " + problem);
         return;
     }
     const auto found = fs::file_size(data, ec);
     const auto expected = static_cast<std::uintmax_t>(io.GetImageSizeInBytes());
     if (!ec && found != expected)
-        throw InputError(quoted(header) + ": data file \"" + data.string() + "\" holds " +
-                         std::to_string(found) + " bytes, the header (" + size_text(io) + " " +
+        throw InputError(quoted_volume(header.string()) + ": data file \"" + data.string() +
+                         "\" holds " + std::to_string(found) + " bytes, the header (" +
+                         size_text(io) + " " +
                          itk::ImageIOBase::GetComponentTypeAsString(io.GetComponentType()) +
                          ") needs " + std::to_string(expected));
 }
@@ -272,8 +274,9 @@ void require_data_fits(const itk::ImageIOBase& io, const fs::path& path, const s
         voxels *= static_cast<long double>(io.GetDimensions(d));
     voxels *= static_cast<long double>(io.GetNumberOfComponents());
     if (voxels > static_cast<long double>(max_voxels))
-        throw InputError(quoted(path) + ": size " + size_text(io) + " is " + count_text(voxels) +
-                         " voxels, more than the limit " + std::to_string(max_voxels));
+        throw InputError(quoted_volume(path.string()) + ": size " + size_text(io) + " is " +
+                         count_text(voxels) + " voxels, more than the limit " +
+                         std::to_string(max_voxels));
     fs::path holder = path;
     bool compressed = false;
     if (format == "nifti") {
@@ -300,8 +303,8 @@ void require_data_fits(const itk::ImageIOBase& io, const fs::path& path, const s
     const long double room =
         static_cast<long double>(available) * (compressed ? kMaxCompressionRatio : 1.0);
     if (needed > room)
-        throw InputError(quoted(path) + ": size " + size_text(io) + " needs " + count_text(needed) +
-                         " bytes of voxels, " +
+        throw InputError(quoted_volume(path.string()) + ": size " + size_text(io) + " needs " +
+                         count_text(needed) + " bytes of voxels, " +
                          (compressed ? "more than a compressed " : "more than the ") +
                          std::to_string(available) + "-byte file \"" + holder.filename().string() +
                          "\" can hold");
@@ -312,7 +315,7 @@ RawVolume read_file(const fs::path& path, std::size_t max_voxels) {
     const std::string format = volume_format(path);
     io->SetFileName(path.string());
     if (!io->CanReadFile(path.string().c_str()))
-        throw InputError(quoted(path) + ": not a readable " + format + " file");
+        throw InputError(quoted_volume(path.string()) + ": not a readable " + format + " file");
     if (format == "nifti") check_nifti_header(path);
     if (format == "metaimage") check_metaimage_header(path);
     io->ReadImageInformation();
@@ -333,7 +336,8 @@ RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
     names->SetUseSeriesDetails(true);
     names->SetDirectory(checked.path().string());
     const auto& uids = names->GetSeriesUIDs();
-    if (uids.empty()) throw InputError(quoted(folder) + ": a folder with no DICOM series in it");
+    if (uids.empty())
+        throw InputError(quoted_volume(folder.string()) + ": a folder with no DICOM series in it");
     // note: the series with the most slices; a folder often also holds a scout or a dose report.
     std::vector<std::string> files;
     for (const auto& uid : uids) {
@@ -341,7 +345,8 @@ RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
         if (f.size() > files.size()) files = f;
     }
     if (files.size() < 2)
-        throw InputError(quoted(folder) + ": the DICOM series has " + std::to_string(files.size()) +
+        throw InputError(quoted_volume(folder.string()) + ": the DICOM series has " +
+                         std::to_string(files.size()) +
                          " slice, expected a 3D volume (2 or more slices)");
     auto io = itk::GDCMImageIO::New();
     io->SetFileName(files.front());
@@ -349,8 +354,8 @@ RawVolume read_dicom_folder(const fs::path& folder, std::size_t max_voxels) {
     const long double voxels =
         static_cast<long double>(io->GetDimensions(0)) * io->GetDimensions(1) * files.size();
     if (voxels > static_cast<long double>(max_voxels))
-        throw InputError(quoted(folder) + ": " + std::to_string(files.size()) + " slices of " +
-                         std::to_string(io->GetDimensions(0)) + " x " +
+        throw InputError(quoted_volume(folder.string()) + ": " + std::to_string(files.size()) +
+                         " slices of " + std::to_string(io->GetDimensions(0)) + " x " +
                          std::to_string(io->GetDimensions(1)) + " voxels, more than the limit " +
                          std::to_string(max_voxels));
     auto reader = itk::ImageSeriesReader<FloatImage>::New();
@@ -427,14 +432,14 @@ RawVolume read(const fs::path& path, std::size_t max_voxels) {
         if (fs::is_directory(path, ec)) return read_dicom_folder(path, max_voxels);
         if (volume_format(path) == "dicom")
             if (const std::string problem = dicom_file_problem(path); !problem.empty())
-                throw InputError(quoted(path) + ": " + problem);
+                throw InputError(quoted_volume(path.string()) + ": " + problem);
         return read_file(path, max_voxels);
     } catch (const itk::ExceptionObject& e) {
         const std::string reason = chatter.first_line();
         if (!reason.empty() && volume_format(path) == "metaimage")
-            throw InputError(quoted(path) + ": MetaImage header: " + reason +
+            throw InputError(quoted_volume(path.string()) + ": MetaImage header: " + reason +
                              "; expected a header MetaIO can read");
-        throw InputError(quoted(path) + ": " + one_line(e));
+        throw InputError(quoted_volume(path.string()) + ": " + one_line(e));
     }
 }
 
@@ -449,7 +454,7 @@ void write(const RawVolume& volume, const fs::path& path) {
                                   ends_with(path.string(), ".nhdr"));
         writer->Update();
     } catch (const itk::ExceptionObject& e) {
-        throw IoError(quoted(path) + ": cannot write: " + one_line(e));
+        throw IoError(quoted_volume(path.string()) + ": cannot write: " + one_line(e));
     }
 }
 
