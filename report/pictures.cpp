@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
+#include "mesh/mesh.h"
 #include "render/renderer.h"
 #include "report/detail/atlas_overview.h"
 #include "report/detail/canvas.h"

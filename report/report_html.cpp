@@ -3,6 +3,7 @@
 #include "image/sampled_maps.h"
 #include "mesh/decimate.h"
 #include "mesh/error.h"
+#include "mesh/mesh.h"
 #include "mesh/normals.h"
 #include "report/asymmetry_html.h"
 #include "report/atlas_fields.h"

@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "mesh/mesh.h"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>

@@ -1,6 +1,7 @@
 #include "scanner/compare.h"
 
 #include "mesh/error.h"
+#include "mesh/mesh.h"
 
 #include <algorithm>
 #include <cmath>

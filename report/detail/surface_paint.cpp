@@ -1,6 +1,7 @@
 #include "report/detail/surface_paint.h"
 
 #include "mesh/error.h"
+#include "mesh/mesh.h"
 #include "render/shade.h"
 #include "report/view_measurements.h"
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <vector>
+#include "mesh/mesh.h"
 
 namespace glint::detail {
 
