@@ -33,6 +33,9 @@ struct Region {
     /// bound of the loss.
     bool hole = false;
     std::string evidence;  ///< why the decision admitted it (filled by decision/decision.cpp)
+
+    /// Surface gone in a hole: a loss whose depth is a lower bound (`hole` above).
+    [[nodiscard]] bool is_hole_loss() const { return kind == RegionKind::Dent && hole; }
 };
 
 /// Per reference vertex fields the statistics read (each one value per vertex; optional

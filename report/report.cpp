@@ -65,7 +65,7 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         j["mean_depth"] = nullptr;
         j["volume"] = nullptr;
         j["depth_note"] = std::string(kMissingSurfaceNote);
-    } else if (r.kind == RegionKind::Dent && r.hole) {
+    } else if (r.is_hole_loss()) {
         j["depth_note"] = std::string(kHoleLossNote);
     }
     if (r.best_view >= 0 && static_cast<std::size_t>(r.best_view) < plan.views.size()) {

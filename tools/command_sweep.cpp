@@ -100,9 +100,7 @@ void print_summary(const Inspection& inspection, bool pictures) {
                 "%.2f%s, centroid (%.3f, %.3f, %.3f) %s\n",
                 g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
                 with_unit(g.peak_depth, u, 1, "%+.4g").c_str(),
-                g.kind == RegionKind::Dent && g.hole
-                    ? " (surface gone in a hole: at least this deep)"
-                    : "",
+                g.is_hole_loss() ? " (surface gone in a hole: at least this deep)" : "",
                 g.max_value, sym.c_str(), g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(),
                 g.centroid.z(), u.empty() ? "units" : u.c_str());
     }

@@ -289,7 +289,7 @@ void describe_evidence(RegionResult& regions, const DecisionEvidence& e,
     const MetricDescriptor& m = describe(e.metric);
     for (auto& r : regions.regions) {
         char text[400];
-        if (r.kind == RegionKind::Dent && r.hole)
+        if (r.is_hole_loss())
             std::snprintf(text, sizeof text,
                           "surface gone: no examined surface on %.0f%% of it, a hole the examined "
                           "scan covers around; a loss at least as deep as the reference stood "
