@@ -583,4 +583,11 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
     return d;
 }
 
+std::vector<float> decided_shape(const std::vector<float>& distance, const ZoomDecision& d) {
+    if (d.comparison.in_hole.size() != distance.size()) return distance;
+    return region_shape(
+        distance, d.comparison,
+        gone_depth(d.comparison, d.rule == DecisionRule::Fused ? d.shape.value : 0.0));
+}
+
 }  // namespace glint

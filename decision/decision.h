@@ -179,4 +179,11 @@ struct ZoomDecision {
 [[nodiscard]] ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
                                   const DecisionOptions& options);
 
+/// The shape change a zoom's regions read, one value per reference vertex (mesh units): the
+/// signed `distance`, and in a hole of `d.comparison` the depth of the surface gone (the hole's
+/// depth where it is a loss or reaches the shape floor, 0 where no loss is measurable). In a
+/// hole the signed distance only measures to the rim or the far side, so pictures paint this.
+[[nodiscard]] std::vector<float> decided_shape(const std::vector<float>& distance,
+                                               const ZoomDecision& d);
+
 }  // namespace glint

@@ -135,9 +135,12 @@ class PictureWriter {
                                  .surface_index = result.reference_index}),
           measured_(measured) {
         const std::size_t n = reference.vertex_count();
-        distance_ = result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
+        const std::vector<float> distance =
+            result.distance.size() == n ? result.distance : std::vector<float>(n, kNaN);
         masks_.resize(result.sweep.zooms.size());
+        shapes_.reserve(result.sweep.zooms.size());
         for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
+            shapes_.push_back(decided_shape(distance, result.decisions[z]));
             const auto& seen = result.sweep.zooms[z].coverage.seen;
             const auto& comparison = result.decisions[z].comparison;
             auto& shown = masks_[z];
@@ -224,7 +227,9 @@ class PictureWriter {
     int threads_ = 0;  ///< workers (RenderOptions::threads: 0 = the machine's)
     Renderer renderer_;
     const ViewMeasurements* measured_ = nullptr;
-    std::vector<float> distance_;
+    /// Per zoom, the shape change painted: the signed distance, and in a hole the depth of
+    /// the surface gone (decided_shape), so a hole shows its loss, not the distance to its rim.
+    std::vector<std::vector<float>> shapes_;
     std::vector<ZoomContent> zooms_;
     // Per zoom: 0 unseen, 1 compared, 2 seen but not compared (the pictures' fields point here).
     std::vector<std::vector<std::uint8_t>> masks_ = {};
@@ -271,7 +276,7 @@ void PictureWriter::share_on_compared_surface() {
 
 ZoomContent PictureWriter::zoom_content(std::size_t z) const {
     const auto& d = result_.decisions[z];
-    ZoomContent c{.fields = {distance_, d.regions.region_of_vertex, masks_[z]},
+    ZoomContent c{.fields = {shapes_[z], d.regions.region_of_vertex, masks_[z]},
                   .legend = legend_for(result_, z, scale_, options_.mirror.has_value()),
                   .measured_legend = {}};
     c.measured_legend = c.legend;

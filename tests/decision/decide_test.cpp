@@ -380,5 +380,32 @@ TEST(Decide, WithoutShapeEvidenceTheFusedRuleFallsBackToTheNormalRuleAndSaysSo) 
     EXPECT_NE(d.warnings[0].find("normal rule decided alone"), std::string::npos);
 }
 
+// What a picture paints: the signed distance outside holes; in a hole the depth of the surface
+// gone where it is a loss or reaches the shape floor, 0 where no loss is measurable.
+TEST(DecidedShape, PaintsAHoleWithTheDepthGoneNotTheDistanceToItsRim) {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    ZoomDecision d;
+    d.rule = DecisionRule::Fused;
+    d.shape.value = 0.1;
+    // vertex 0 outside holes; 1 a loss hole shallower than the floor; 2 a hole deeper than
+    // the floor; 3 a shallow hole that is no loss (a one-view scan's flat patch).
+    d.comparison.in_hole = {0, 1, 1, 1};
+    d.comparison.hole_depth = {nan, -0.02f, -0.3f, -0.05f};
+    d.comparison.hole_loss = {0, 1, 0, 0};
+    const std::vector<float> distance = {0.04f, 0.37f, 0.2f, 0.3f};
+    const std::vector<float> shape = decided_shape(distance, d);
+    ASSERT_EQ(shape.size(), 4u);
+    EXPECT_FLOAT_EQ(shape[0], 0.04f);   // outside: the signed distance
+    EXPECT_FLOAT_EQ(shape[1], -0.02f);  // a loss: its depth, a lower bound
+    EXPECT_FLOAT_EQ(shape[2], -0.3f);   // beyond the floor
+    EXPECT_FLOAT_EQ(shape[3], 0.0f);    // no measurable loss
+    // The normal rule has no shape floor: every hole's depth shows.
+    d.rule = DecisionRule::Normal;
+    EXPECT_FLOAT_EQ(decided_shape(distance, d)[3], -0.05f);
+    // No comparison (no holes known): the distance as it is.
+    d.comparison = Comparison{};
+    EXPECT_EQ(decided_shape(distance, d), distance);
+}
+
 }  // namespace
 }  // namespace glint
