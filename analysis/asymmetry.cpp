@@ -175,7 +175,13 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
 
 void as_side_against_mirror(AnalysisResult& result) {
     for (float& d : result.distance) d = -d;
-    for (auto& decision : result.decisions)
+    for (auto& decision : result.decisions) {
+        // Where the mirror has a hole the other side has no surface: no depth of this side
+        // was gone there (the pictures and the atlas field show no value, not a loss).
+        Comparison& c = decision.comparison;
+        for (std::size_t v = 0; v < c.in_hole.size() && v < c.hole_depth.size(); ++v)
+            if (c.in_hole[v]) c.hole_depth[v] = std::numeric_limits<float>::quiet_NaN();
+        std::fill(c.hole_loss.begin(), c.hole_loss.end(), std::uint8_t{0});
         for (Region& r : decision.regions.regions) {
             // A hole of the mirror is no loss of this side: the other side has no surface there.
             if (r.hole) r.kind = RegionKind::MissingSurface;
@@ -191,6 +197,7 @@ void as_side_against_mirror(AnalysisResult& result) {
                 sign = sign == '+' ? '-' : sign == '-' ? '+' : sign;
             }
         }
+    }
 }
 
 std::string describe(const AsymmetryFinding& f, const std::string& side_name,

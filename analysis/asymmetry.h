@@ -102,7 +102,8 @@ struct AsymmetryFindings {
 /// The result of the surface analysed against its mirror, turned to say this side against the
 /// mirrored other side (the findings' terms): the signed distance, each region's depths and
 /// volume negated (and the sign in their evidence sentence), dents and bumps swapped (a dent:
-/// this side has less). Missing surface stays.
+/// this side has less). Missing surface stays, and a hole of the mirror has no depth (its
+/// hole_depth unknown, no hole a loss: decided_shape paints no value there).
 /// \pre not yet turned (pair_findings reads the result as analyse() made it).
 void as_side_against_mirror(AnalysisResult& result);
 

@@ -187,7 +187,7 @@ std::vector<float> gone_depth(const Comparison& c, double floor) {
     std::vector<float> gone(c.hole_depth.size(), std::numeric_limits<float>::quiet_NaN());
     const bool have_loss = c.hole_loss.size() == gone.size();
     for (std::size_t v = 0; v < gone.size(); ++v) {
-        if (!c.in_hole[v]) continue;
+        if (!c.in_hole[v] || std::isnan(c.hole_depth[v])) continue;  // unknown stays unknown
         const bool loss = have_loss && c.hole_loss[v];
         gone[v] = loss || c.hole_depth[v] <= -floor ? c.hole_depth[v] : 0.0f;
     }

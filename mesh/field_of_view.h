@@ -39,7 +39,8 @@ struct FieldOfView {
     [[nodiscard]] bool empty() const { return boxes.empty() && balls.empty(); }
     /// The smallest signed depth inside over the boxes and balls (+∞ when there are none).
     [[nodiscard]] double depth_inside(const Eigen::Vector3d& p) const;
-    /// new_from_old applied to every box (transform_mesh).
+    /// new_from_old applied to every box (transform_mesh); an orthogonal linear part with
+    /// determinant −1 (a reflection, reflect_mesh) is applied the same way.
     void transform(const Eigen::Isometry3d& new_from_old);
     /// Every length times `factor` (a unit conversion).
     void scale(double factor);

@@ -236,7 +236,8 @@ void bind_analysis_class(py::module_& m) {
             [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
             "per-vertex numpy arrays by name, each named with its unit (README: the atlas "
             "fields): shape_change_mm (signed distance to the fitted examined surface, negative "
-            "= loss; _units when the unit is unknown), shape_tolerance_mm, and per zoom k: "
+            "= loss, in a hole of the examined surface the depth gone; _units when the unit is "
+            "unknown), shape_tolerance_mm, and per zoom k: "
             "seen_z<k> (1 seen, 0 unseen), angle_mean_deg_z<k>, angle_max_deg_z<k>, "
             "missing_fraction_z<k> (0 where unseen), pixels_z<k>, region_id_z<k>")
         .def_property_readonly(

@@ -238,6 +238,12 @@ Mesh reflect_mesh(const Mesh& mesh, const SymmetryPlane& plane) {
     for (auto& p : out.positions) p = (s * p.cast<double>()).cast<float>();
     for (auto& n : out.normals) n = (l * n.cast<double>()).cast<float>();
     for (auto& t : out.triangles) std::swap(t[1], t[2]);
+    // Where the acquisition saw, and its grid, are reflected with the surface: the mirror of a
+    // scan cut at one side is cut at the other (the comparison reads both, beyond_view).
+    if (out.voxel_axes) *out.voxel_axes = l * *out.voxel_axes;
+    Eigen::Isometry3d improper = Eigen::Isometry3d::Identity();
+    improper.matrix() = s.matrix();
+    out.field_of_view.transform(improper);
     return out;
 }
 

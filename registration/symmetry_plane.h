@@ -60,7 +60,8 @@ struct SymmetryPlane {
 
 /// The mesh reflected about the plane: positions and normals reflected, every triangle's
 /// winding flipped (so the normals stay outward); vertex i of the result is the image of vertex
-/// i, and every per-vertex array follows.
+/// i, and every per-vertex array follows. The field of view and the voxel axes of a surface from
+/// a volume are reflected too.
 [[nodiscard]] Mesh reflect_mesh(const Mesh& mesh, const SymmetryPlane& plane);
 
 struct SymmetryPlaneOptions {

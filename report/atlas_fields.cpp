@@ -1,5 +1,6 @@
 #include "report/atlas_fields.h"
 
+#include "decision/decision.h"
 #include "mesh/units.h"
 #include "report/images.h"
 #include "report/pictures.h"
@@ -57,6 +58,11 @@ void add_zoom_fields(Mesh& atlas, const AnalysisResult& result, std::size_t z) {
 std::string shape_change_field(const std::string& unit) {
     return "shape_change" + unit_suffix(unit);
 }
+std::vector<float> shape_change_values(const AnalysisResult& result) {
+    if (result.decisions.empty()) return result.distance;
+    return decided_shape(result.distance, result.decisions[0]);
+}
+
 std::string shape_tolerance_field(const std::string& unit) {
     return "shape_tolerance" + unit_suffix(unit);
 }
@@ -81,21 +87,22 @@ Mesh make_atlas_mesh(const Mesh& reference, const AnalysisResult& result) {
     atlas.scalars.clear();
     atlas.labels.clear();
     const std::size_t n = reference.vertex_count();
-    if (result.distance.size() == n)
-        atlas.set_scalar(shape_change_field(result.unit), finite_copy(result.distance));
+    const std::vector<float> shape =
+        result.distance.size() == n ? shape_change_values(result) : std::vector<float>{};
+    if (!shape.empty()) atlas.set_scalar(shape_change_field(result.unit), finite_copy(shape));
     if (result.tolerance.size() == n)
         atlas.set_scalar(shape_tolerance_field(result.unit), finite_copy(result.tolerance));
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) add_zoom_fields(atlas, result, z);
-    if (!result.sweep.zooms.empty() && result.distance.size() == n) {
+    if (!result.sweep.zooms.empty() && !shape.empty()) {
         // The pictures' colours (report/pictures.h): signed shape change, blue loss, red gain,
-        // symmetric range; grey where zoom 0 saw nothing.
-        const ShapeScale shape = shape_scale(result);
-        std::vector<float> shown(result.distance);
+        // symmetric range; grey where zoom 0 saw nothing or a hole's depth is unknown.
+        const ShapeScale scale = shape_scale(result);
+        std::vector<float> shown(shape);
         for (std::size_t v = 0; v < n; ++v)
             if (!result.sweep.zooms[0].coverage.seen[v])
                 shown[v] = std::numeric_limits<float>::quiet_NaN();
-        atlas.colors = colorize(shown, ColorScale{.low = -shape.limit,
-                                                  .high = shape.limit,
+        atlas.colors = colorize(shown, ColorScale{.low = -scale.limit,
+                                                  .high = scale.limit,
                                                   .map = "diverging",
                                                   .no_data_grey = 0.6f});
     }

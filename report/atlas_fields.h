@@ -6,7 +6,9 @@
 // mesh/units.h unit_suffix), the metric in its own ("_deg"), counts and flags in theirs.
 // The decision field comes first (the active scalar of every format):
 //   shape_change_<u>        signed distance to the fitted examined surface, negative = loss;
-//                           measured at every vertex, seen or not
+//                           measured at every vertex, seen or not; in a hole of the examined
+//                           surface the depth of the surface gone (what the regions read,
+//                           as atlas.png paints it), 0 where that depth is unknown
 //   shape_tolerance_<u>     the tessellation tolerance at the vertex (analysis/fit.h)
 // then per zoom k:
 //   seen_z<k>               1 seen by a view of zoom k, 0 unseen
@@ -27,11 +29,18 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace glint {
 
 /// "shape_change_mm" (the decision field: signed shape change in the run's unit).
 [[nodiscard]] std::string shape_change_field(const std::string& unit);
+/// The values of that field per reference vertex: the signed distance, and in a hole of the
+/// examined surface the depth of the surface gone that the regions read (zoom 0's
+/// decided_shape, decision/decision.h; NaN where unknown). The distance in a hole reaches only
+/// the hole's rim or the far side, so a worn cusp would read as a gain in a viewer. Empty when
+/// no distance was measured.
+[[nodiscard]] std::vector<float> shape_change_values(const AnalysisResult& result);
 /// "shape_tolerance_mm".
 [[nodiscard]] std::string shape_tolerance_field(const std::string& unit);
 /// "seen_z0".

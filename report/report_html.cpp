@@ -111,11 +111,12 @@ json fields_json(const ShownMesh& shown, const AnalysisResult& result, const Sha
     const Metric metric = result.sweep.options.metric;
     json fields = json::array();
     if (!result.distance.empty()) {
+        const std::vector<float> shape = shape_change_values(result);
         std::vector<float> distance(n);
-        for (std::size_t k = 0; k < n; ++k) distance[k] = result.distance[shown.vertex(k)];
+        for (std::size_t k = 0; k < n; ++k) distance[k] = shape[shown.vertex(k)];
         fields.push_back(field_json(shape_change_field(result.unit),
-                                    "shape change (signed distance)", "signed", unit, -1, distance,
-                                    -scale.limit, scale.limit));
+                                    "shape change (signed distance; in a hole the depth gone)",
+                                    "signed", unit, -1, distance, -scale.limit, scale.limit));
     }
     for (std::size_t z = 0; z < result.sweep.zooms.size(); ++z) {
         const auto& a = result.sweep.zooms[z].atlas;

@@ -106,7 +106,8 @@ SlicerGroup outputs_group() {
           .label = "Damage atlas",
           .description =
               "The reference with the atlas fields, shown first shape_change_mm (signed distance "
-              "to the examined surface in the run's unit, negative = loss), then "
+              "to the examined surface in the run's unit, negative = loss; in a hole of the "
+              "examined surface the depth gone), then "
               "shape_tolerance_mm, per zoom seen_z0 (1 seen, 0 unseen), angle_mean_deg_z0 and "
               "angle_max_deg_z0 (normal deviation, 0 where unseen), missing_fraction_z0, "
               "pixels_z0, region_id_z0 (README: the atlas fields). In the reference's space "

@@ -21,7 +21,7 @@ namespace glint {
 namespace {
 
 std::string quoted_volume_of(const Volume& v) {
-    return "volume \"" + (v.path.empty() ? std::string("(generated)") : v.path.string()) + "\"";
+    return quoted_volume(v.path.empty() ? std::string("(generated)") : v.path.string());
 }
 
 std::string num(double x) {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 
 namespace glint {
@@ -144,6 +145,29 @@ TEST(Asymmetry, PairsOppositeRegionsAtMirrorImagesIntoOneFinding) {
               std::string::npos);
     EXPECT_FLOAT_EQ(f.field[0], -0.3f);    // the surface minus its mirror: less
     EXPECT_NEAR(f.floor.max, 0.01, 1e-6);  // only the vertex in no region
+}
+
+TEST(Asymmetry, AHoleOfTheMirrorIsNoLossOfThisSide) {
+    // Vertex 1 lies in a hole of the mirror that the decision read as a loss 0.4 deep: the
+    // other side has no surface there, so this side against it has no value, not "less".
+    AnalysisResult r;
+    r.distance = {0.2f, 0.9f};
+    ZoomDecision d;
+    d.rule = DecisionRule::Fused;
+    d.shape.value = 0.1;
+    d.comparison.in_hole = {0, 1};
+    d.comparison.hole_depth = {std::numeric_limits<float>::quiet_NaN(), -0.4f};
+    d.comparison.hole_loss = {0, 1};
+    d.regions.region_of_vertex = {0, 1};
+    d.regions.regions = {Region{.id = 1, .peak_depth = -0.4, .kind = RegionKind::Dent}};
+    d.regions.regions[0].hole = true;
+    r.decisions.push_back(d);
+    ASSERT_FLOAT_EQ(decided_shape(r.distance, r.decisions[0])[1], -0.4f);  // before: a loss
+    as_side_against_mirror(r);
+    const std::vector<float> shape = decided_shape(r.distance, r.decisions[0]);
+    EXPECT_FLOAT_EQ(shape[0], -0.2f);  // outside the hole: this side minus its mirror
+    EXPECT_TRUE(std::isnan(shape[1]));
+    EXPECT_EQ(r.decisions[0].regions.regions[0].kind, RegionKind::MissingSurface);
 }
 
 TEST(Asymmetry, SymmetricShapeHasNoFindingAndAQuietFloor) {

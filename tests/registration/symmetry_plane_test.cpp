@@ -105,6 +105,25 @@ TEST(SymmetryPlane, ReflectedMeshKeepsNormalsOutward) {
         EXPECT_LT((back.positions[v] - m.positions[v]).norm(), 1e-4f);
 }
 
+TEST(SymmetryPlane, ReflectedMeshCarriesItsFieldOfViewAndGridAcross) {
+    // A surface from a volume that saw x in [−60, 40]: its mirror about x = 0 saw [−40, 60], so
+    // a point at x = −50 lies in the scan's view and beyond the mirror's, x = 50 the reverse.
+    Mesh m = one_plane_shape();
+    m.field_of_view.boxes.push_back({.origin = {-60, -60, -60}, .extent = {100, 120, 120}});
+    m.field_of_view.balls.push_back({.center = {10, 0, 0}, .radius = 80});
+    m.voxel_axes = Eigen::Vector3d(0.5, 0.6, 0.7).asDiagonal().toDenseMatrix();
+    const Mesh r = reflect_mesh(m, plane_through({0, 0, 0}, {1, 0, 0}));
+    ASSERT_EQ(r.field_of_view.boxes.size(), 1u);
+    EXPECT_NEAR(m.field_of_view.depth_inside({-50, 0, 0}), 10.0, 1e-9);
+    EXPECT_NEAR(r.field_of_view.depth_inside({-50, 0, 0}), -10.0, 1e-9);
+    EXPECT_NEAR(m.field_of_view.depth_inside({50, 0, 0}), -10.0, 1e-9);
+    EXPECT_NEAR(r.field_of_view.depth_inside({50, 0, 0}), 10.0, 1e-9);
+    EXPECT_NEAR(r.field_of_view.balls[0].center.x(), -10.0, 1e-9);
+    ASSERT_TRUE(r.voxel_axes.has_value());
+    EXPECT_NEAR((*r.voxel_axes)(0, 0), -0.5, 1e-12);
+    EXPECT_NEAR((*r.voxel_axes)(1, 1), 0.6, 1e-12);
+}
+
 TEST(SymmetryPlane, ParsesEveryWayToGiveAPlane) {
     const SymmetryPlane x = parse_plane_spec("x=2.5");
     EXPECT_EQ(x.normal, Vec3d::UnitX());

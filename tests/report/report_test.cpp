@@ -4,6 +4,8 @@
 // unseen patches, regions, histogram and timings.
 #include "report/report.h"
 
+#include "report/atlas_fields.h"
+
 #include "mesh/damage.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
@@ -17,6 +19,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <string>
@@ -136,6 +139,28 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     EXPECT_LT(lost["peak_depth"].get<double>(), 0.0);
     EXPECT_EQ(lost["depth_note"], std::string(kHoleLossNote));
     EXPECT_TRUE(h["zooms"][0]["comparison"]["holes"].contains("losses"));
+    // Its atlas field and colours give the depth gone, as atlas.png paints it, not the distance
+    // to the hole's rim (which may be positive: a worn cusp read as a gain in a viewer).
+    Comparison& hc = hole.decisions[0].comparison;
+    const std::size_t n = ref.vertex_count();
+    hc.in_hole.assign(n, 0);
+    hc.hole_depth.assign(n, std::numeric_limits<float>::quiet_NaN());
+    hc.hole_loss.assign(n, 0);
+    std::size_t worn = 0;
+    while (!hole.sweep.zooms[0].coverage.seen[worn]) ++worn;
+    hc.in_hole[worn] = 1;
+    hc.hole_depth[worn] = -0.6f;
+    hc.hole_loss[worn] = 1;
+    hole.distance[worn] = 0.35f;
+    const Mesh holed = make_atlas_mesh(ref, hole);
+    const auto& shape = holed.scalars.front();
+    EXPECT_EQ(shape.name, shape_change_field(hole.unit));
+    EXPECT_FLOAT_EQ(shape.values[worn], -0.6f);
+    for (std::size_t v = 0; v < n; v += 41) {
+        if (v == worn) continue;
+        EXPECT_EQ(shape.values[v], std::isfinite(hole.distance[v]) ? hole.distance[v] : 0.0f);
+    }
+    EXPECT_GT(holed.colors[worn][2], holed.colors[worn][0]);  // blue (loss), not red
 
     // regions.csv says the same: the dent's depths and volume as numbers, the missing surface's
     // cells empty (peak_depth, mean_depth, volume are the 10th to 12th columns).
