@@ -182,6 +182,8 @@ void as_side_against_mirror(AnalysisResult& result) {
         for (std::size_t v = 0; v < c.in_hole.size() && v < c.hole_depth.size(); ++v)
             if (c.in_hole[v]) c.hole_depth[v] = std::numeric_limits<float>::quiet_NaN();
         std::fill(c.hole_loss.begin(), c.hole_loss.end(), std::uint8_t{0});
+        c.lost_holes = 0;  // report.json's holes.losses: none on this side
+        c.lost_hole_area = 0.0;
         for (Region& r : decision.regions.regions) {
             // A hole of the mirror is no loss of this side: the other side has no surface there.
             if (r.hole) r.kind = RegionKind::MissingSurface;

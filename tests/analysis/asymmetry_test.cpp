@@ -158,6 +158,8 @@ TEST(Asymmetry, AHoleOfTheMirrorIsNoLossOfThisSide) {
     d.comparison.in_hole = {0, 1};
     d.comparison.hole_depth = {std::numeric_limits<float>::quiet_NaN(), -0.4f};
     d.comparison.hole_loss = {0, 1};
+    d.comparison.lost_holes = 1;
+    d.comparison.lost_hole_area = 0.5;
     d.regions.region_of_vertex = {0, 1};
     d.regions.regions = {Region{.id = 1, .peak_depth = -0.4, .kind = RegionKind::Dent}};
     d.regions.regions[0].hole = true;
@@ -167,6 +169,8 @@ TEST(Asymmetry, AHoleOfTheMirrorIsNoLossOfThisSide) {
     const std::vector<float> shape = decided_shape(r.distance, r.decisions[0]);
     EXPECT_FLOAT_EQ(shape[0], -0.2f);  // outside the hole: this side minus its mirror
     EXPECT_TRUE(std::isnan(shape[1]));
+    EXPECT_EQ(r.decisions[0].comparison.lost_holes, 0u);
+    EXPECT_EQ(r.decisions[0].comparison.lost_hole_area, 0.0);
     EXPECT_EQ(r.decisions[0].regions.regions[0].kind, RegionKind::MissingSurface);
 }
 
