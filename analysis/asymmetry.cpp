@@ -170,6 +170,8 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
         out.findings.push_back(f);
     }
     out.floor = floor_of(out.field, rr.region_of_vertex);
+    out.floor.min_depth = result.decisions[zoom].scale.min_depth;
+    out.floor.min_area = result.decisions[zoom].scale.min_area;
     return out;
 }
 

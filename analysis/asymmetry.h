@@ -19,6 +19,7 @@
 #include "analysis/analysis.h"
 #include "registration/symmetry_plane.h"
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +82,11 @@ struct SymmetryFloor {
     double rms = 0.0;
     double p95 = 0.0;
     double max = 0.0;
+    /// The smallest one-sided change the decision can tell from that asymmetry (its evidence
+    /// scale, decision.h EvidenceScale): deeper than this, over at least this area (mesh
+    /// units, units²; NaN: not stated).
+    double min_depth = std::numeric_limits<double>::quiet_NaN();
+    double min_area = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct AsymmetryFindings {

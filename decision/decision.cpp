@@ -65,8 +65,9 @@ std::string stated_estimate(const Floor& f, const MetricDescriptor& m) {
 // the missing surface is no part of the majority whose quiet the scale is chosen for).
 Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const MetricDescriptor& m,
                    bool with_surface_only = false) {
-    const double plausible =
+    const double limit =
         o.max_plausible_threshold_deg * m.color_max / describe(Metric::AngleDeg).color_max;
+    const double plausible = o.natural_floors ? std::numeric_limits<double>::infinity() : limit;
     Floor f;
     if (o.threshold) {
         f.value = *o.threshold;
@@ -86,6 +87,16 @@ Floor normal_floor(const DecisionEvidence& e, const DecisionOptions& o, const Me
     f.rule = "median + " + general(o.noise_k) + "·1.4826·MAD of the per-vertex mean " +
              std::string(m.name) + " over seen vertices, at least " + general(o.min_threshold) +
              std::string(m.symbol);
+    if (o.natural_floors && f.value > limit) {
+        // decision.h natural_floors: no corroboration where the normals differ this much
+        // by nature; the shape floor (above the natural spread) decides alone.
+        f.low = o.min_threshold;
+        f.corroborates = false;
+        f.note = "the surface's normals differ from its mirror image's by nature (median " +
+                 fixed(f.median, 2) + std::string(m.symbol) + ", floor " + stated_estimate(f, m) +
+                 ", beyond " + fixed(limit, 1) + std::string(m.symbol) +
+                 "): the normal field cannot corroborate a change; the shape decides alone";
+    }
     if (f.implausible)
         f.note = "the estimated floor " + stated_estimate(f, m) + " exceeds the plausible " +
                  fixed(plausible, 1) + std::string(m.symbol) +
@@ -123,7 +134,8 @@ Floor shape_floor(const DecisionEvidence& e, const std::vector<float>& excess,
     const Floor spread =
         robust_floor(distance, all, o.shape_k, 0.0, std::numeric_limits<double>::infinity());
     const double minimum = o.min_shape_fraction * e.size;
-    const double plausible = o.max_plausible_shape_fraction * e.size;
+    const double plausible = o.natural_floors ? std::numeric_limits<double>::infinity()
+                                              : o.max_plausible_shape_fraction * e.size;
     f.k = o.shape_k;
     f.minimum = minimum;
     f.mad = spread.mad;
@@ -165,6 +177,14 @@ std::vector<float> shape_excess(const DecisionEvidence& e) {
 }
 
 std::string fused_rule_text(const ZoomDecision& d, const MetricDescriptor& m) {
+    if (!d.normal.corroborates)
+        return "fused, shape alone: a region holds a shape change beyond the tessellation "
+               "tolerance of at least " +
+               general(d.shape.value) + " (grown from " + general(d.shape.low) +
+               "); the normal field cannot corroborate (the normal floor " +
+               fixed(d.normal.value, 2) + std::string(m.symbol) +
+               " is the surface's nature) and marks no missing surface; its extent reaches a "
+               "tenth of its peak shape change";
     return "fused: a region holds a shape change beyond the tessellation tolerance of at least " +
            general(d.shape.value) + " (grown from " + general(d.shape.low) +
            ") and a per-vertex mean " + std::string(m.name) + " of at least " +
@@ -580,6 +600,9 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
     }
     if (d.rule == DecisionRule::Fused) decide_fused(reference, e, compared, o, region_options, d);
     else decide_normal(reference, e, region_options, d);
+    // A natural floor is no fault of the run, but the user must know what it leaves out.
+    if (o.natural_floors && !d.normal.implausible && !d.normal.note.empty())
+        d.warnings.push_back("normal evidence floor: " + d.normal.note);
     return d;
 }
 

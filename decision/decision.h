@@ -83,6 +83,15 @@ struct DecisionOptions {
     double grow_fraction = 0.1;
     std::size_t min_region_vertices = 3;
     bool fill_holes = true;
+    /// The differences the floors are measured from are the surface's own nature, not noise
+    /// of two acquisitions of one object: a surface against its mirror image (analysis/
+    /// asymmetry.h), whose natural asymmetry is what a one-sided change must stand above.
+    /// Nothing is capped then (a cap below the natural spread would make all of it damage);
+    /// the smallest detectable change says what the run can tell. Where the sides' normals
+    /// differ beyond `max_plausible_threshold_deg` the normal field cannot corroborate a
+    /// change, and the shape decides alone (its floor already stands above the natural
+    /// spread). Set by the asymmetry run, not a user option.
+    bool natural_floors = false;
 
     /// \throw InputError naming the field, its value and the rule.
     void validate() const;
@@ -105,6 +114,11 @@ struct Floor {
     double estimate = 0.0;     ///< median + k·1.4826·MAD before the minimum and the cap
     bool given = false;        ///< set by the user, not estimated
     bool implausible = false;  ///< the estimate exceeded the plausible limit and was capped
+    /// Normal floors only. false: a natural floor beyond the plausible limit
+    /// (DecisionOptions::natural_floors): the normal field neither corroborates a shape change
+    /// nor marks missing surface (the metric's missing value is normal evidence too); the
+    /// shape decides alone.
+    bool corroborates = true;
     FloorSource source = FloorSource::Measured;
     std::string rule;  ///< one line: how it was obtained
     std::string note;  ///< why it is implausible (empty otherwise)

@@ -76,7 +76,12 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
     plane_json["normal_towards"] = o.name(plane.plane.normal);
     return {{"plane", std::move(plane_json)},
             {"symmetry_floor",
-             {{"rms", f.floor.rms}, {"p95", f.floor.p95}, {"max", f.floor.max}, {"unit", unit}}},
+             {{"rms", f.floor.rms},
+              {"p95", f.floor.p95},
+              {"max", f.floor.max},
+              {"min_detectable_depth", f.floor.min_depth},
+              {"min_detectable_area", f.floor.min_area},
+              {"unit", unit}}},
             {"findings", findings},
             {"caveat", std::string(kOneScanCaveat)},
             {"field",

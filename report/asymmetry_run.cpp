@@ -25,6 +25,8 @@ AsymmetryInspection inspect_asymmetry(const Mesh& mesh, AsymmetryPlane plane,
                                      "mirror image of the reference about its symmetry plane");
     record.add(mirror);
     AsymmetryInspection out;
+    // The floors are the surface's natural asymmetry (decision.h natural_floors).
+    options.analysis.decision.natural_floors = true;
     options.addition = [&](const AnalysisResult& r) {
         out.findings = pair_findings(mesh, plane.plane.plane, r);
         out.json = asymmetry_json(plane.plane, out.findings, orientation, r.unit);

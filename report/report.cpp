@@ -116,6 +116,7 @@ json floor_json(const Floor& f) {
             {"minimum", f.minimum},
             {"given", f.given},
             {"implausible", f.implausible},
+            {"corroborates", f.corroborates},
             {"source", to_string(f.source)},
             {"rule", f.rule},
             {"note", f.note}};

@@ -40,6 +40,12 @@ FindingKindSide read_finding(TableReader& r) {
     const auto side = r.optional<std::string>("side", "a string (+x, -x, …, or left, right, …)");
     if (!side) r.fail(nullptr, "side", "missing: the side as report.json names it (+x, left, …)");
     f.side = *side;
+    if (auto c = r.numbers("center", 3, 3)) f.center = Vec3d((*c)[0], (*c)[1], (*c)[2]);
+    f.max_distance = r.positive("max_distance");
+    if (f.center.has_value() != f.max_distance.has_value()) {
+        const char* key = f.center ? "center" : "max_distance";
+        r.fail(r.get(key), key, "center = [x, y, z] and max_distance go together");
+    }
     r.finish();
     return f;
 }
@@ -106,10 +112,8 @@ void read_asymmetry_scenario(TableReader& top, Scenario& sc) {
         top.fail(top.get("examined"), "examined",
                  "asymmetry = true analyses the one surface of [reference]; [examined] names a "
                  "second one (mesh, phantom, scheme, resolution or size): remove it");
-    if (sc.resample_volume)
-        top.fail(top.get("examined"), "examined",
-                 "asymmetry = true analyses one surface; a resampled examined volume (pivot, "
-                 "erode, voxel_size, scan noise) is a second scan");
+    // note: a resampled examined volume (erode, pose about a pivot, voxel_size, noise) is
+    // how the one scan is made from the reference's volume: that scan is analysed.
 }
 
 std::pair<double, double> plane_difference(const SymmetryPlane& found,
@@ -148,18 +152,28 @@ void check_asymmetry_expect(const AsymmetryExpect& x, const AsymmetryOutcome& o,
     std::vector<bool> used(o.findings.size(), false);
     for (const FindingKindSide& e : x.each) {
         std::size_t i = 0;
-        while (i < o.findings.size() &&
-               (used[i] || o.findings[i].kind != e.kind || o.findings[i].side != e.side))
-            ++i;
+        auto matches = [&](const FindingKindSide& f) {
+            if (f.kind != e.kind || f.side != e.side) return false;
+            return !e.center || (f.center && (*f.center - *e.center).norm() <= *e.max_distance);
+        };
+        while (i < o.findings.size() && (used[i] || !matches(o.findings[i]))) ++i;
         if (i < o.findings.size()) {
             used[i] = true;
             continue;
         }
         std::string found;
+        auto place = [](const Vec3d& c) {
+            char b[96];
+            std::snprintf(b, sizeof b, " at (%.1f, %.1f, %.1f)", c.x(), c.y(), c.z());
+            return std::string(b);
+        };
         for (const auto& f : o.findings)
-            found += (found.empty() ? "" : ", ") + f.kind + " on the " + f.side + " side";
-        failures.push_back("no finding '" + e.kind + "' on the " + e.side +
-                           " side (found: " + (found.empty() ? "none" : found) + ")");
+            found += (found.empty() ? "" : ", ") + f.kind + " on the " + f.side + " side" +
+                     (e.center && f.center ? place(*f.center) : "");
+        failures.push_back(
+            "no finding '" + e.kind + "' on the " + e.side + " side" +
+            (e.center ? place(*e.center) + number(" within %.3g", *e.max_distance) : "") +
+            " (found: " + (found.empty() ? "none" : found) + ")");
     }
     if (x.plane && o.plane_angle_deg && *o.plane_angle_deg > *x.max_plane_angle_deg)
         failures.push_back(number("plane angle = %.4f°", *o.plane_angle_deg) +

@@ -8,6 +8,7 @@
 //                                restricts the plane's fit as --fit-roi does
 //   [expect] findings, min_findings, max_findings, plane = "x=0", max_plane_angle_deg,
 //            max_plane_offset, no_plane = true, [[expect.finding]] kind = "less", side = "+x"
+//            (optionally center = [x, y, z] with max_distance: where the finding lies)
 #pragma once
 
 #include "registration/symmetry_plane.h"
@@ -35,6 +36,10 @@ struct AsymmetrySpec {
 struct FindingKindSide {
     std::string kind;
     std::string side;
+    /// Outcome: the finding's centroid; [[expect.finding]] center: where it must lie, within
+    /// `max_distance` (both in the reference's frame, mesh units).
+    std::optional<Vec3d> center = std::nullopt;
+    std::optional<double> max_distance = std::nullopt;
 };
 
 struct AsymmetryExpect {

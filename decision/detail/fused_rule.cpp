@@ -227,7 +227,7 @@ void grow(const Neighbourhood& near, const DecisionEvidence& e,
     for (auto& ex : extents) {
         for (const auto u : ex.vertices)
             ex.max_normal = std::max(ex.max_normal, e.atlas->value_mean[u]);
-        if (ex.max_normal >= normal.low)
+        if (!normal.corroborates || ex.max_normal >= normal.low)
             for (const auto u : ex.vertices) damaged[u] = 1;
     }
 }
@@ -274,8 +274,11 @@ std::vector<std::uint8_t> fused_mask(const Mesh& reference, const DecisionEviden
     one_sign(reference, near, e, excess, missing, +1.0f, normal, shape, o, damaged);
     // Step 5: missing surface counts as damage wherever the views saw the reference there
     // (its normal evidence is the metric's missing value, far above any floor).
-    for (std::size_t v = 0; v < n; ++v)
-        if (missing[v] && e.atlas->value_mean[v] >= normal.value) damaged[v] = 1;
+    // Not where the normal field cannot tell (Floor::corroborates): the missing value is its
+    // evidence, and surface the other side lacks by nature is no change of this one.
+    if (normal.corroborates)
+        for (std::size_t v = 0; v < n; ++v)
+            if (missing[v] && e.atlas->value_mean[v] >= normal.value) damaged[v] = 1;
     return damaged;
 }
 

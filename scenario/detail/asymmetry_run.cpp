@@ -108,7 +108,10 @@ std::vector<Region> run_asymmetry(const Scenario& sc, const ScenarioRunOptions& 
     // undone) so that [expect] can name it whatever the motion.
     const auto& undo = meshes.true_reference_from_examined.linear();
     for (const AsymmetryFinding& f : r.findings.findings)
-        out.asymmetry->findings.push_back({finding_kind(f), orientation.name(undo * f.side)});
+        out.asymmetry->findings.push_back(
+            {.kind = finding_kind(f),
+             .side = orientation.name(undo * f.side),
+             .center = meshes.true_reference_from_examined * f.centroid});
     const nlohmann::json json = nlohmann::json::parse(r.json);
     for (const auto& f : json["findings"])
         out.asymmetry->texts.push_back(f["text"].get<std::string>());

@@ -370,6 +370,51 @@ TEST(Decide, WhereNoScaleQuietsTheMajorityNoRegionIsReported) {
     EXPECT_NE(d.warnings.back().find("no regions are reported"), std::string::npos);
 }
 
+// One surface against its mirror image (DecisionOptions::natural_floors): nothing is capped,
+// and where the normals differ beyond the plausible limit by nature they neither corroborate
+// nor mark missing surface; the shape decides alone, against its measured floor.
+TEST(Decide, NaturalFloorsDecideOnShapeAloneWhereTheNormalsDifferByNature) {
+    Evidence e;
+    for (int y = 0; y <= kN; ++y)
+        for (int x = 0; x <= kN; ++x)  // median 35°, MAD 30°: beyond 20° by nature
+            e.atlas.value_mean[vid(x, y)] = 5.0f + 30.0f * static_cast<float>((x + y) % 3);
+    e.change(20, 20, 6.0, -1.0f, 5.0f);  // a loss whose normals turned less than the nature
+    for (int y = 30; y <= 33; ++y)
+        for (int x = 4; x <= 7; ++x) {  // the mirror has no surface here (its own hole)
+            e.atlas.missing[vid(x, y)] = 1.0f;
+            e.atlas.value_mean[vid(x, y)] = 90.0f;
+        }
+    DecisionOptions natural;
+    natural.natural_floors = true;
+    const ZoomDecision d = decide(e.mesh, e.view(), natural);
+    EXPECT_FALSE(d.normal.implausible);
+    EXPECT_FALSE(d.shape.implausible);
+    EXPECT_FALSE(d.normal.corroborates);
+    EXPECT_FALSE(d.scale.searched);  // nothing implausible, no voxel: each vertex's own scale
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_EQ(d.regions.regions[0].kind, RegionKind::Dent);
+    EXPECT_TRUE(vertices_of(d, d.regions.regions[0].id).contains(vid(20, 20)));
+    EXPECT_EQ(d.regions.region_of_vertex[vid(5, 31)], 0);  // the mirror's hole: no finding
+    EXPECT_TRUE(d.rule_text.starts_with("fused, shape alone")) << d.rule_text;
+    ASSERT_FALSE(d.warnings.empty());
+    EXPECT_NE(d.warnings.back().find("the shape decides alone"), std::string::npos)
+        << d.warnings.back();
+
+    // The same evidence as a pair of scans: the normal floor is implausible (capped), and the
+    // missing patch, normal evidence beyond it, is missing surface.
+    const ZoomDecision pair = decide(e.mesh, e.view(), DecisionOptions{});
+    EXPECT_TRUE(pair.normal.implausible || pair.scale.searched);
+    EXPECT_TRUE(pair.normal.corroborates);
+
+    // Where the normals are quiet by nature they still corroborate: a shape change whose
+    // normals did not turn is no region (as FusedRuleNeedsTheNormalFieldToCorroborate…).
+    Evidence quiet;
+    quiet.change(20, 20, 8.0, -1.0f, 1.0f);
+    const ZoomDecision q = decide(quiet.mesh, quiet.view(), natural);
+    EXPECT_TRUE(q.normal.corroborates);
+    EXPECT_TRUE(q.regions.regions.empty());
+}
+
 TEST(Decide, WithoutShapeEvidenceTheFusedRuleFallsBackToTheNormalRuleAndSaysSo) {
     Evidence e;
     DecisionEvidence view = e.view();

@@ -57,6 +57,8 @@ side = "+x"
 [[expect.finding]]
 kind = "more"
 side = "left"
+center = [1.0, 2.0, 3.0]
+max_distance = 4.0
 )"),
         {});
     ASSERT_TRUE(sc.asymmetry.enabled);
@@ -70,6 +72,10 @@ side = "left"
     ASSERT_EQ(x.each.size(), 2u);
     EXPECT_EQ(x.each[0].kind, "less");
     EXPECT_EQ(x.each[1].side, "left");
+    EXPECT_FALSE(x.each[0].center);
+    ASSERT_TRUE(x.each[1].center && x.each[1].max_distance);
+    EXPECT_EQ(*x.each[1].center, Vec3d(1, 2, 3));
+    EXPECT_DOUBLE_EQ(*x.each[1].max_distance, 4.0);
     EXPECT_DOUBLE_EQ(*x.max_plane_angle_deg, 0.2);
     EXPECT_DOUBLE_EQ(*x.max_plane_offset, 0.1);
     EXPECT_FALSE(x.no_plane);
@@ -103,6 +109,28 @@ TEST(AsymmetryScenario, BadInputNamesTheKeyAndLine) {
                  {"expect.finding[0].kind: \"dent\": expected less, more or no mirrored surface"});
     expect_error("asymmetry = true\n" + s + "[[expect.finding]]\nkind = \"less\"\n",
                  {"expect.finding[0].side: missing"});
+    expect_error("asymmetry = true\n" + s +
+                     "[[expect.finding]]\nkind = \"less\"\nside = \"+x\"\ncenter = [1, 2, 3]\n",
+                 {"expect.finding[0].center: center = [x, y, z] and max_distance go together"});
+}
+
+// The one scan may be made from a volume as a pair's examined scan is (an erosion, a motion
+// about a pivot, another voxel size, noise): that scan is the surface analysed.
+TEST(AsymmetryScenario, OneScanMayBeAnEditedVolume) {
+    const Scenario sc = load_scenario(write_scenario(R"(asymmetry = true
+[reference]
+mesh = "scan.mha"
+iso = 1250.0
+[examined]
+erode = [157.0, 113.0, 130.0, 16.0]
+erode_to = 1040.0
+[expect]
+findings = 1
+)"),
+                                      {});
+    EXPECT_TRUE(sc.asymmetry.enabled);
+    EXPECT_TRUE(sc.resample_volume);
+    ASSERT_EQ(sc.erosions.size(), 1u);
 }
 
 TEST(AsymmetryScenario, PlaneDifferenceIsAngleAndOffsetEitherSign) {
@@ -136,6 +164,24 @@ TEST(AsymmetryScenario, ChecksNameWhatDidNotHold) {
     // One finding cannot answer two expectations.
     EXPECT_EQ(failures[1], "no finding 'less' on the +x side (found: less on the +x side)");
     EXPECT_EQ(failures[2], "plane angle = 0.5000°, expected at most 0.2000°");
+
+    // A finding of the right kind and side, but elsewhere, does not answer a placed one.
+    AsymmetryExpect placed;
+    placed.each = {
+        {.kind = "more", .side = "right", .center = Vec3d(55, 108, 134), .max_distance = 5.0}};
+    AsymmetryOutcome far;
+    far.plausible = true;
+    far.findings = {{.kind = "more", .side = "right", .center = Vec3d(55, 40, 170)}};
+    failures.clear();
+    check_asymmetry_expect(placed, far, failures);
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(failures[0],
+              "no finding 'more' on the right side at (55.0, 108.0, 134.0) within 5 (found: more "
+              "on the right side at (55.0, 40.0, 170.0))");
+    far.findings[0].center = Vec3d(57, 109, 132);
+    failures.clear();
+    check_asymmetry_expect(placed, far, failures);
+    EXPECT_TRUE(failures.empty()) << failures.front();
 
     failures.clear();
     o.plausible = false;
