@@ -180,10 +180,17 @@ void bind_asymmetry_class(py::module_& m) {
             "symmetry_floor",
             [](const AsymmetryHandle& a) {
                 const SymmetryFloor& f = a.findings.floor;
+                auto stated = [](double v) -> py::object {
+                    return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none());
+                };
                 return py::dict(py::arg("rms") = f.rms, py::arg("p95") = f.p95,
-                                py::arg("max") = f.max);
+                                py::arg("max") = f.max,
+                                py::arg("min_detectable_depth") = stated(f.min_depth),
+                                py::arg("min_detectable_area") = stated(f.min_area));
             },
-            "|field| outside the findings: rms, p95, max (mesh units)")
+            "|field| outside the findings: rms, p95, max (mesh units); the smallest one-sided "
+            "change the decision can tell from it: min_detectable_depth (mesh units) over "
+            "min_detectable_area (units²), None when not stated")
         .def_property_readonly("caveat", [](const AsymmetryHandle&) { return kOneScanCaveat; })
         .def_property_readonly("unit",
                                [](const AsymmetryHandle& a) -> py::object {

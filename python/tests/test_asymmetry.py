@@ -92,6 +92,13 @@ def test_one_sided_dent_is_one_finding_on_its_side(tmp_path):
     assert result.output == tmp_path / "asym"
     report = result.report["asymmetry"]
     assert report["findings"][0]["kind"] == "less"
+    # The smallest one-sided change the run can tell, as report.json states it: the dent
+    # (0.6 deep) stands above it.
+    floor = result.symmetry_floor
+    assert 0 < floor["min_detectable_depth"] < 0.6, floor
+    assert floor["min_detectable_area"] > 0
+    assert floor["min_detectable_depth"] == pytest.approx(
+        report["symmetry_floor"]["min_detectable_depth"])
     assert (tmp_path / "asym" / "report.json").exists()
 
 
