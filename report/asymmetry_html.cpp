@@ -97,7 +97,7 @@ std::string asymmetry_section_html(const json& report) {
                 with_unit(fl.value("rms", 0.0), unit) + " RMS, 95 % below " +
                 with_unit(fl.value("p95", 0.0), unit) + "." +
                 (fl.value("min_detectable_depth", json()).is_number()
-                     ? " The smallest one-sided change it lets tell: " +
+                     ? " The smallest one-sided change that can be told from it: " +
                            with_unit(fl["min_detectable_depth"].get<double>(), unit) +
                            " deep over " +
                            with_unit(fl["min_detectable_area"].get<double>(), unit, 2, "%.3g") + "."

@@ -63,7 +63,7 @@ void print_findings(const nlohmann::json& a, std::size_t regions, const std::str
                 with_unit(fl["p95"].get<double>(), u).c_str());
     // note: null (not stated) when no decision ran, e.g. nothing could be compared
     if (fl.value("min_detectable_depth", nlohmann::json()).is_number())
-        std::printf("smallest one-sided change it lets tell: %s deep over %s\n",
+        std::printf("smallest one-sided change that can be told from it: %s deep over %s\n",
                     with_unit(fl["min_detectable_depth"].get<double>(), u).c_str(),
                     with_unit(fl["min_detectable_area"].get<double>(), u, 2, "%.3g").c_str());
     std::printf("%zu finding(s) from %zu region(s); %s\n", a["findings"].size(), regions,
