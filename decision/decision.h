@@ -121,7 +121,7 @@ struct Floor {
     bool corroborates = true;
     FloorSource source = FloorSource::Measured;
     std::string rule;  ///< one line: how it was obtained
-    std::string note;  ///< why it is implausible (empty otherwise)
+    std::string note;  ///< why it is implausible, or why it cannot corroborate; empty otherwise
 };
 
 /// Robust floor of values[i] over use[i] != 0 (see file comment), capped at `plausible_max`.

@@ -90,19 +90,14 @@ std::string asymmetry_section_html(const json& report) {
     if (a.contains("plane")) s += plane_table(a["plane"], unit);
     if (a.contains("symmetry_floor")) {
         const json& fl = a["symmetry_floor"];
-        s +=
-            "<p id=\"asymmetry-floor\">" +
-            escape_markup(
-                "Floor: the rest of the surface differs from its mirror image by " +
-                with_unit(fl.value("rms", 0.0), unit) + " RMS, 95 % below " +
-                with_unit(fl.value("p95", 0.0), unit) + "." +
-                (fl.value("min_detectable_depth", json()).is_number()
-                     ? " The smallest one-sided change that can be told from it: " +
-                           with_unit(fl["min_detectable_depth"].get<double>(), unit) +
-                           " deep over " +
-                           with_unit(fl["min_detectable_area"].get<double>(), unit, 2, "%.3g") + "."
-                     : std::string())) +
-            "</p>\n";
+        s += "<p id=\"asymmetry-floor\">" +
+             escape_markup("Floor: the rest of the surface against its mirror image: " +
+                           fl.value("spread_text", std::string()) + "." +
+                           (fl.contains("min_detectable_text")
+                                ? " The smallest one-sided change that can be told from it: " +
+                                      fl["min_detectable_text"].get<std::string>() + "."
+                                : std::string())) +
+             "</p>\n";
     }
     s += "<h3>Findings, side by side</h3>\n";
     s += findings_table(a.value("findings", json::array()), unit);

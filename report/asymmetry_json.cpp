@@ -74,14 +74,21 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
     plane_json["frame"] = o.space == PatientSpace::Unknown ? "mesh coordinates (no patient space)"
                                                            : to_string(o.space);
     plane_json["normal_towards"] = o.name(plane.plane.normal);
+    // The floor's numbers and, once, their words: the terminal and report.html print these.
+    nlohmann::json floor = {{"rms", f.floor.rms},
+                            {"p95", f.floor.p95},
+                            {"max", f.floor.max},
+                            {"min_detectable_depth", f.floor.min_depth},
+                            {"min_detectable_area", f.floor.min_area},
+                            {"unit", unit},
+                            {"spread_text", "|asymmetry| RMS " + with_unit(f.floor.rms, unit) +
+                                                ", 95 % below " + with_unit(f.floor.p95, unit)}};
+    // note: not stated (null) when no decision ran, e.g. nothing could be compared
+    if (std::isfinite(f.floor.min_depth) && std::isfinite(f.floor.min_area))
+        floor["min_detectable_text"] = with_unit(f.floor.min_depth, unit) + " deep over " +
+                                       with_unit(f.floor.min_area, unit, 2, "%.3g");
     return {{"plane", std::move(plane_json)},
-            {"symmetry_floor",
-             {{"rms", f.floor.rms},
-              {"p95", f.floor.p95},
-              {"max", f.floor.max},
-              {"min_detectable_depth", f.floor.min_depth},
-              {"min_detectable_area", f.floor.min_area},
-              {"unit", unit}}},
+            {"symmetry_floor", std::move(floor)},
             {"findings", findings},
             {"caveat", std::string(kOneScanCaveat)},
             {"field",

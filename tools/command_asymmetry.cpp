@@ -56,16 +56,13 @@ void print_plane(const SymmetryPlaneResult& r, const std::string& u) {
         axis_angle_deg(p.normal, 0), r.verdict.c_str());
 }
 
-void print_findings(const nlohmann::json& a, std::size_t regions, const std::string& u) {
+void print_findings(const nlohmann::json& a, std::size_t regions) {
+    // note: the floor's words are report.json's (report/asymmetry_json.h), as report.html's
     const auto& fl = a["symmetry_floor"];
-    std::printf("rest of the surface: |asymmetry| RMS %s, 95%% below %s\n",
-                with_unit(fl["rms"].get<double>(), u).c_str(),
-                with_unit(fl["p95"].get<double>(), u).c_str());
-    // note: null (not stated) when no decision ran, e.g. nothing could be compared
-    if (fl.value("min_detectable_depth", nlohmann::json()).is_number())
-        std::printf("smallest one-sided change that can be told from it: %s deep over %s\n",
-                    with_unit(fl["min_detectable_depth"].get<double>(), u).c_str(),
-                    with_unit(fl["min_detectable_area"].get<double>(), u, 2, "%.3g").c_str());
+    std::printf("rest of the surface: %s\n", fl["spread_text"].get<std::string>().c_str());
+    if (fl.contains("min_detectable_text"))
+        std::printf("smallest one-sided change that can be told from it: %s\n",
+                    fl["min_detectable_text"].get<std::string>().c_str());
     std::printf("%zu finding(s) from %zu region(s); %s\n", a["findings"].size(), regions,
                 std::string(kOneScanCaveat).c_str());
     for (const auto& f : a["findings"]) std::printf("  %s\n", f["text"].get<std::string>().c_str());
@@ -126,7 +123,7 @@ void run(AsymmetryArgs& a) {
     const nlohmann::json report = nlohmann::json::parse(run.json);
     print_plane(fitted, result.analysis.unit);
     const auto& d = result.analysis.decisions;
-    print_findings(report, d.empty() ? 0 : d[0].regions.regions.size(), result.analysis.unit);
+    print_findings(report, d.empty() ? 0 : d[0].regions.regions.size());
     std::printf("atlas (field asymmetry), %sreport in %s\n",
                 a.options.exports.write_pictures ? "pictures and " : "no pictures, ",
                 result.output.string().c_str());

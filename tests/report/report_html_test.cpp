@@ -430,6 +430,17 @@ TEST(ReportHtml, AsymmetrySectionAndOutputsSpeakOfTheFinding) {
     EXPECT_NE(section.find(p["residual_text"].get<std::string>()), std::string::npos);
     EXPECT_NE(section.find("normal</th><td>(1, 0, 0)"), std::string::npos) << section;
     EXPECT_NE(section.find(escape_markup(std::string(kOneScanCaveat))), std::string::npos);
+    // The floor in report.json's words (the terminal prints the same): its spread and the
+    // smallest one-sided change that can be told from it.
+    const nlohmann::json& floor = report["asymmetry"]["symmetry_floor"];
+    ASSERT_TRUE(floor.contains("min_detectable_text")) << floor.dump(1);
+    EXPECT_EQ(floor["spread_text"].get<std::string>().rfind("|asymmetry| RMS ", 0), 0u);
+    EXPECT_NE(section.find(escape_markup(floor["spread_text"].get<std::string>())),
+              std::string::npos);
+    EXPECT_NE(section.find(escape_markup("can be told from it: " +
+                                         floor["min_detectable_text"].get<std::string>())),
+              std::string::npos)
+        << section;
     const std::regex row(
         "<tr data-finding=\"(\\d+)\" data-region=\"(\\d+)\"><td>([^<]*)</td><td>([^<]*)</td>"
         "<td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td><td>([^<]*)</td></tr>");
