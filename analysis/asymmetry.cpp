@@ -2,11 +2,13 @@
 
 #include "mesh/error.h"
 #include "mesh/units.h"
+#include "registration/closest_point.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 
 namespace glint {
 
@@ -78,13 +80,10 @@ SymmetryFloor floor_of(const std::vector<float>& field, const std::vector<std::i
     return f;
 }
 
-// How irregularly the surface bends over each region: the spread (standard deviation) of the
-// umbrella curvature (the mean of a vertex's edges along its normal over their mean squared
-// length) over the region's vertices, by region id. A smooth surface bends evenly; a dent, a
-// bump or a flattening on it turns its curvature over within the region.
-std::vector<double> region_roughness(const Mesh& mesh, const RegionResult& rr) {
-    std::vector<double> out(rr.regions.size() + 1, 0.0);
-    if (!mesh.has_normals() || rr.region_of_vertex.size() != mesh.vertex_count()) return out;
+// The umbrella curvature of each vertex: the mean of its edges along its normal over their mean
+// squared length (NaN where it has no edge or the mesh no normals; empty without normals).
+std::vector<double> umbrella_curvature(const Mesh& mesh) {
+    if (!mesh.has_normals()) return {};
     const std::size_t n = mesh.vertex_count();
     std::vector<Vec3d> sum(n, Vec3d::Zero());
     std::vector<double> length2(n, 0.0);
@@ -97,25 +96,68 @@ std::vector<double> region_roughness(const Mesh& mesh, const RegionResult& rr) {
             length2[a] += d.squaredNorm();
             length2[b] += d.squaredNorm();
         }
-    struct Moments {
-        double sum = 0.0, sum2 = 0.0, count = 0.0;
-    };
-    std::vector<Moments> m(out.size());
-    for (std::size_t v = 0; v < n; ++v) {
-        const auto r = rr.region_of_vertex[v];
-        if (r <= 0 || std::size_t(r) >= out.size() || !(length2[v] > 0)) continue;
-        const double k = sum[v].dot(mesh.normals[v].cast<double>()) / length2[v];
-        Moments& a = m[std::size_t(r)];
-        a.sum += k;
-        a.sum2 += k * k;
-        a.count += 1.0;
+    std::vector<double> k(n, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t v = 0; v < n; ++v)
+        if (length2[v] > 0) k[v] = sum[v].dot(mesh.normals[v].cast<double>()) / length2[v];
+    return k;
+}
+
+// How irregularly the surface bends over a set of vertices: the spread (standard deviation) of
+// their umbrella curvature. A smooth surface bends evenly; a dent, a bump or a flattening on it
+// turns its curvature over within the region.
+double spread_of(const std::vector<double>& curvature, const std::vector<std::uint32_t>& vertices) {
+    double sum = 0.0, sum2 = 0.0, count = 0.0;
+    for (const auto v : vertices) {
+        if (v >= curvature.size() || !std::isfinite(curvature[v])) continue;
+        sum += curvature[v];
+        sum2 += curvature[v] * curvature[v];
+        count += 1.0;
     }
-    for (std::size_t r = 1; r < out.size(); ++r) {
-        const Moments& a = m[r];
-        if (a.count > 1)
-            out[r] = std::sqrt(std::max(0.0, a.sum2 / a.count - std::pow(a.sum / a.count, 2)));
+    return count > 1 ? std::sqrt(std::max(0.0, sum2 / count - std::pow(sum / count, 2))) : 0.0;
+}
+
+// The vertices of each region, by region id.
+std::vector<std::vector<std::uint32_t>> vertices_of(const RegionResult& rr, std::size_t regions) {
+    std::vector<std::vector<std::uint32_t>> out(regions + 1);
+    for (std::size_t v = 0; v < rr.region_of_vertex.size(); ++v) {
+        const auto r = rr.region_of_vertex[v];
+        if (r > 0 && std::size_t(r) < out.size()) out[std::size_t(r)].push_back(std::uint32_t(v));
     }
     return out;
+}
+
+// The surface at the mirror image of `vertices`: for each mirrored vertex the nearest vertex of
+// the triangle its closest surface point lies on, each once.
+std::vector<std::uint32_t> mirror_image_vertices(const ClosestPointIndex& index,
+                                                 const SymmetryPlane& plane,
+                                                 const std::vector<std::uint32_t>& vertices) {
+    const Mesh& mesh = index.mesh();
+    std::vector<Vec3d> queries;
+    queries.reserve(vertices.size());
+    const Eigen::Affine3d reflection = plane.reflection();
+    for (const auto v : vertices) queries.push_back(reflection * mesh.positions[v].cast<double>());
+    std::vector<std::uint32_t> out;
+    out.reserve(vertices.size());
+    for (const ClosestPoint& c : index.closest(queries)) {
+        if (!c.found) continue;
+        Eigen::Index corner = 0;
+        c.barycentric.maxCoeff(&corner);
+        out.push_back(mesh.triangles[c.triangle][std::size_t(corner)]);
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// The finding of a lone region shown at its mirror image: this side against the mirrored other
+// side there is minus the region's side against its mirror.
+AsymmetryFinding at_mirror_image(AsymmetryFinding f, const SymmetryPlane& plane) {
+    f.side = -f.side;
+    f.centroid = plane.reflection() * f.centroid;
+    f.depth = -f.depth;
+    f.volume = -f.volume;
+    f.at_mirror_image = true;
+    return f;
 }
 
 }  // namespace
@@ -144,25 +186,64 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
     }
     const RegionResult& rr = result.decisions[zoom].regions;
     const std::vector<Region>& regions = rr.regions;
-    const std::vector<double> rough = region_roughness(mesh, rr);
+    const std::vector<double> curvature = rr.region_of_vertex.size() == mesh.vertex_count()
+                                              ? umbrella_curvature(mesh)
+                                              : std::vector<double>();
+    const auto members = vertices_of(rr, regions.size());
+    std::vector<double> rough(members.size(), 0.0);
+    for (std::size_t r = 1; r < members.size(); ++r) rough[r] = spread_of(curvature, members[r]);
+    const auto clearly_rougher = [](double a, double b) {
+        return std::max(a, b) > kRoughnessRatio * std::min(a, b);
+    };
+    // The surface's closest points, for lone regions' mirror images: the run's BVH when it kept
+    // one of this surface, else one built when first needed.
+    std::optional<ClosestPointIndex> index;
+    const auto surface = [&]() -> const ClosestPointIndex& {
+        if (!index) {
+            if (result.reference_index && result.reference_index->indexes(mesh))
+                index.emplace(mesh, result.reference_index);
+            else index.emplace(ClosestPointIndex::borrowing(mesh));
+        }
+        return *index;
+    };
     std::vector<std::uint8_t> paired(regions.size(), 0);
     for (std::size_t i = 0; i < regions.size(); ++i) {
         if (paired[i]) continue;
         const int j = partner_of(regions, i, plane, paired);
         paired[i] = 1;
+        const Region& r = regions[i];
         if (j < 0) {
-            out.findings.push_back(finding_of(regions[i], nullptr, plane));
+            AsymmetryFinding f = finding_of(r, nullptr, plane);
+            if (f.mirror_missing || curvature.empty() || std::size_t(r.id) >= members.size() ||
+                members[std::size_t(r.id)].empty()) {
+                out.findings.push_back(f);
+                continue;
+            }
+            // Weighed as a pair is, against the surface at its mirror image.
+            const double own = rough[std::size_t(r.id)];
+            const double image = spread_of(
+                curvature, mirror_image_vertices(surface(), plane, members[std::size_t(r.id)]));
+            const bool by_shape = clearly_rougher(own, image);
+            const bool show_own = by_shape ? own > image : sign_of(r) < 0;
+            f.roughness = own;
+            f.mirror_roughness = image;
+            f.side_by_shape = by_shape;
+            if (!show_own) {
+                f = at_mirror_image(f, plane);
+                std::swap(f.roughness, f.mirror_roughness);
+            }
+            out.findings.push_back(f);
             continue;
         }
         paired[std::size_t(j)] = 1;
         // Shown on the side that bends less evenly there, when clearly so; else where the
         // surface has less than the mirrored other side.
-        const double ri = rough[std::size_t(regions[i].id)];
+        const double ri = rough[std::size_t(r.id)];
         const double rj = rough[std::size_t(regions[std::size_t(j)].id)];
-        const bool by_shape = std::max(ri, rj) > kRoughnessRatio * std::min(ri, rj);
-        const bool show_i = by_shape ? ri > rj : sign_of(regions[i]) < 0;
-        const Region& shown = show_i ? regions[i] : regions[std::size_t(j)];
-        const Region& image = show_i ? regions[std::size_t(j)] : regions[i];
+        const bool by_shape = clearly_rougher(ri, rj);
+        const bool show_i = by_shape ? ri > rj : sign_of(r) < 0;
+        const Region& shown = show_i ? r : regions[std::size_t(j)];
+        const Region& image = show_i ? regions[std::size_t(j)] : r;
         AsymmetryFinding f = finding_of(shown, &image, plane);
         f.roughness = show_i ? ri : rj;
         f.mirror_roughness = show_i ? rj : ri;
@@ -210,14 +291,16 @@ std::string describe(const AsymmetryFinding& f, const std::string& side_name,
         return side_name + ": no mirrored " + other_name +
                " surface to compare with (missing, or outside the scan), area " +
                with_unit(f.area, unit, 2, "%.3g") + " (region " + std::to_string(f.region) + ")";
+    const std::string id = std::to_string(f.region);
     return side_name + ": " + with_unit(std::abs(f.depth), unit, 1, "%.3g") +
            (f.depth < 0 ? " less" : " more") + " than the mirrored " + other_name + ", area " +
            with_unit(f.area, unit, 2, "%.3g") + ", volume " +
            with_unit(std::abs(f.volume), unit, 3, "%.3g") +
-           (f.mirror_region
-                ? " (region " + std::to_string(f.region) + ", its mirror image region " +
-                      std::to_string(f.mirror_region) + ")"
-                : " (region " + std::to_string(f.region) + ", no mirror-image region found)");
+           (f.at_mirror_image ? " (seen as region " + id + " at its mirror image on the " +
+                                    other_name + "; none of its own on this side)"
+            : f.mirror_region ? " (region " + id + ", its mirror image region " +
+                                    std::to_string(f.mirror_region) + ")"
+                              : " (region " + id + ", no mirror-image region found)");
 }
 
 }  // namespace glint

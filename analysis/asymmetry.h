@@ -9,8 +9,11 @@
 //   pair_findings: a one-sided change shows twice, at its place and at its mirror image, with
 //   opposite signs; each pair is one finding, shown on the side whose surface bends less evenly
 //   there (the changed side, on a smooth surface), else on the side that has less; the other
-//   member is named as its mirror. One scan cannot prove which side changed (a dent on one side
-//   is the same asymmetry as a bump on the other), only that the sides differ.
+//   member is named as its mirror. A region whose mirror image made no region of its own (the
+//   change's crater lies near other mirrored structures) is weighed the same way against the
+//   surface at its mirror image, and may be shown there. One scan cannot prove which side
+//   changed (a dent on one side is the same asymmetry as a bump on the other), only that the
+//   sides differ.
 //
 // Signs: the asymmetry field is the surface minus the mirror of the other side, along the
 // outward normal (negative: this side lies inside the mirrored other side, "less").
@@ -49,7 +52,9 @@ struct AsymmetryPlane {
 
 /// One asymmetry: a pair of regions (or a lone region) reported once.
 struct AsymmetryFinding {
-    std::int32_t region = 0;         ///< the region reported (its side has less), 1-based
+    /// The region reported, 1-based: on the finding's side, or (at_mirror_image) its mirror
+    /// image on the other side.
+    std::int32_t region = 0;
     std::int32_t mirror_region = 0;  ///< the region at its mirror image, 0 when none was found
     Vec3d side{0, 0, 0};             ///< unit: the plane's normal towards the region's side
     double depth = 0.0;              ///< this side minus the mirrored other side, peak (mesh units)
@@ -65,6 +70,11 @@ struct AsymmetryFinding {
     double roughness = 0.0;
     double mirror_roughness = 0.0;
     bool side_by_shape = false;
+    /// A lone region shown at its mirror image: the finding's side, centroid, depth and volume
+    /// are the mirror image's (this side against the mirrored other), and `region` lies on the
+    /// other side. mirror_roughness is then the region's own, roughness the surface's at its
+    /// mirror image (the mirrored region's vertices' nearest surface vertices).
+    bool at_mirror_image = false;
 };
 
 /// A pair is shown on the side whose surface bends less evenly over its region when that
@@ -100,8 +110,11 @@ struct AsymmetryFindings {
 /// the mirror image of its centroid, within twice the larger region's radius (√(area/π)). The
 /// pair is shown on the side where the surface bends less evenly (a change on a smooth surface
 /// turns its curvature over; its intact mirror image does not), when clearly so
-/// (kRoughnessRatio); else on the side that has less. Either way one scan cannot prove which
-/// side changed: the choice is a reading of the shape, said so in the report.
+/// (kRoughnessRatio); else on the side that has less. A dent or bump without a partner is weighed
+/// the same way against the surface at its mirror image (the vertices nearest its mirrored
+/// vertices): shown there (at_mirror_image) when that side bends less evenly, or, neither clearly
+/// so, when the region's own side has more. Either way one scan cannot prove which side
+/// changed: the choice is a reading of the shape, said so in the report.
 [[nodiscard]] AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
                                               const AnalysisResult& result, std::size_t zoom = 0);
 

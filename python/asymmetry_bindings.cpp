@@ -74,6 +74,7 @@ py::list findings_list(const AsymmetryHandle& a) {
                                               : "the side with less";
         d["region"] = f.region;
         d["mirror_region"] = f.mirror_region;
+        d["at_mirror_image"] = f.at_mirror_image;
         out.append(d);
     }
     return out;
@@ -167,7 +168,8 @@ void bind_asymmetry_class(py::module_& m) {
             "else '+x', …), kind ('less', 'more' than the mirrored other side, or 'no mirrored "
             "surface'), depth (peak, mesh units; NaN without a mirror), area, volume (mesh "
             "units², ³; negative = less), sentence (as glint asymmetry prints it), "
-            "side_direction, centroid, side_chosen_by, region, mirror_region")
+            "side_direction, centroid, side_chosen_by, region, mirror_region, at_mirror_image "
+            "(True: a lone region shown at its mirror image; `region` lies on the other side)")
         .def_property_readonly(
             "field",
             [](const AsymmetryHandle& a) {

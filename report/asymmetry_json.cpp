@@ -66,7 +66,8 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
              {"volume", x.volume},
              {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
              {"region", x.region},
-             {"mirror_region", x.mirror_region}});
+             {"mirror_region", x.mirror_region},
+             {"at_mirror_image", x.at_mirror_image}});
     }
     nlohmann::json plane_json = plane_object(plane, unit);
     // The plane's numbers are in the surface's coordinates: a volume's physical frame as its

@@ -147,6 +147,74 @@ TEST(Asymmetry, PairsOppositeRegionsAtMirrorImagesIntoOneFinding) {
     EXPECT_NEAR(f.floor.max, 0.01, 1e-6);  // only the vertex in no region
 }
 
+// A lone region (its mirror image made no region of its own) is weighed as a pair is, against
+// the surface at its mirror image: on a smooth shape neither side bends clearly less evenly, so
+// a region where this side has more is shown at its mirror image as less; a region whose own
+// surface is rough stays where it is; a region where this side has less stays too.
+TEST(Asymmetry, ALoneRegionIsWeighedAgainstTheSurfaceAtItsMirrorImage) {
+    const Mesh smooth = one_plane_shape();
+    // The region's centre: the surface's vertex nearest (18, 8, 6).
+    Vec3d c = smooth.positions[0].cast<double>();
+    for (const auto& p : smooth.positions)
+        if ((p.cast<double>() - Vec3d(18, 8, 6)).norm() < (c - Vec3d(18, 8, 6)).norm())
+            c = p.cast<double>();
+    const auto lone = [&c](const Mesh& m, RegionKind kind, double peak) {
+        AnalysisResult r;
+        r.distance.assign(m.vertex_count(), 0.0f);
+        ZoomDecision d;
+        d.regions.region_of_vertex.assign(m.vertex_count(), 0);
+        for (std::size_t v = 0; v < m.vertex_count(); ++v)
+            if ((m.positions[v].cast<double>() - c).norm() < 4.0) d.regions.region_of_vertex[v] = 1;
+        d.regions.regions = {Region{.id = 1,
+                                    .area = 50,
+                                    .peak_depth = peak,
+                                    .volume = 10 * peak,
+                                    .centroid = c,
+                                    .kind = kind}};
+        r.decisions.push_back(d);
+        return pair_findings(m, parse_plane_spec("x=0"), r);
+    };
+    // The mirror lies inside the region (a dent of the mirror): this side has more there.
+    AsymmetryFindings f = lone(smooth, RegionKind::Dent, -0.5);
+    ASSERT_EQ(f.findings.size(), 1u);
+    const AsymmetryFinding& moved = f.findings[0];
+    EXPECT_TRUE(moved.at_mirror_image);
+    EXPECT_FALSE(moved.side_by_shape) << moved.roughness << " vs " << moved.mirror_roughness;
+    EXPECT_EQ(moved.side, -Vec3d::UnitX()) << "shown on the other side";
+    EXPECT_EQ(moved.region, 1);
+    EXPECT_DOUBLE_EQ(moved.depth, -0.5) << "less than the mirrored +x";
+    EXPECT_DOUBLE_EQ(moved.volume, -5.0);
+    EXPECT_LT(moved.centroid.x(), -17.0) << "the mirror image of the region's centroid";
+    EXPECT_GT(moved.roughness, 0.0);
+    EXPECT_GT(moved.mirror_roughness, 0.0);
+    EXPECT_NE(describe(moved, "-x side", "+x side", "mm")
+                  .find("-x side: 0.5 mm less than the mirrored +x side, area 50 mm², volume 5 "
+                        "mm³ (seen as region 1 at its mirror image on the +x side"),
+              std::string::npos)
+        << describe(moved, "-x side", "+x side", "mm");
+
+    // The same region where this side has less stays where it is.
+    f = lone(smooth, RegionKind::Bump, 0.5);
+    ASSERT_EQ(f.findings.size(), 1u);
+    EXPECT_FALSE(f.findings[0].at_mirror_image);
+    EXPECT_EQ(f.findings[0].side, Vec3d::UnitX());
+    EXPECT_DOUBLE_EQ(f.findings[0].depth, -0.5);
+
+    // A region whose own surface turns its curvature over (a bump made there) is the changed
+    // side by its shape: it stays, though it has more.
+    Mesh rough = one_plane_shape();
+    apply_damage(rough,
+                 {DamageSpec{.kind = DamageKind::Bump, .center = c, .radius = 3, .depth = 0.8}});
+    compute_vertex_normals(rough);
+    f = lone(rough, RegionKind::Dent, -0.5);
+    ASSERT_EQ(f.findings.size(), 1u);
+    EXPECT_FALSE(f.findings[0].at_mirror_image);
+    EXPECT_TRUE(f.findings[0].side_by_shape);
+    EXPECT_GT(f.findings[0].roughness, kRoughnessRatio * f.findings[0].mirror_roughness);
+    EXPECT_EQ(f.findings[0].side, Vec3d::UnitX());
+    EXPECT_DOUBLE_EQ(f.findings[0].depth, 0.5);
+}
+
 TEST(Asymmetry, AHoleOfTheMirrorIsNoLossOfThisSide) {
     // Vertex 1 lies in a hole of the mirror that the decision read as a loss 0.4 deep: the
     // other side has no surface there, so this side against it has no value, not "less".
