@@ -225,13 +225,10 @@ AsymmetryFindings pair_findings(const Mesh& mesh, const SymmetryPlane& plane,
                 curvature, mirror_image_vertices(surface(), plane, members[std::size_t(r.id)]));
             const bool by_shape = clearly_rougher(own, image);
             const bool show_own = by_shape ? own > image : sign_of(r) < 0;
-            f.roughness = own;
-            f.mirror_roughness = image;
+            if (!show_own) f = at_mirror_image(f, plane);
+            f.roughness = show_own ? own : image;
+            f.mirror_roughness = show_own ? image : own;
             f.side_by_shape = by_shape;
-            if (!show_own) {
-                f = at_mirror_image(f, plane);
-                std::swap(f.roughness, f.mirror_roughness);
-            }
             out.findings.push_back(f);
             continue;
         }

@@ -70,8 +70,7 @@ py::list findings_list(const AsymmetryHandle& a) {
         d["sentence"] = describe(f, side + " side", other + " side", a.unit);
         d["side_direction"] = Eigen::Vector3d(f.side);
         d["centroid"] = Eigen::Vector3d(f.centroid);
-        d["side_chosen_by"] = f.side_by_shape ? "the side whose surface bends less evenly there"
-                                              : "the side with less";
+        d["side_chosen_by"] = side_chosen_by(f);
         d["region"] = f.region;
         d["mirror_region"] = f.mirror_region;
         d["at_mirror_image"] = f.at_mirror_image;

@@ -51,23 +51,21 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
     nlohmann::json findings = nlohmann::json::array();
     for (const auto& x : f.findings) {
         const std::string side = o.name(x.side), other = o.name(-x.side);
-        findings.push_back(
-            {{"side", side},
-             {"text", describe(x, side + " side", other + " side", unit)},
-             {"kind", finding_kind(x)},
-             {"less", x.depth < 0},
-             {"mirror_missing", x.mirror_missing},
-             {"side_chosen_by", x.side_by_shape ? "the side whose surface bends less evenly there"
-                                                : "the side with less"},
-             {"roughness", x.roughness},
-             {"mirror_roughness", x.mirror_roughness},
-             {"depth", x.depth},
-             {"area", x.area},
-             {"volume", x.volume},
-             {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
-             {"region", x.region},
-             {"mirror_region", x.mirror_region},
-             {"at_mirror_image", x.at_mirror_image}});
+        findings.push_back({{"side", side},
+                            {"text", describe(x, side + " side", other + " side", unit)},
+                            {"kind", finding_kind(x)},
+                            {"less", x.depth < 0},
+                            {"mirror_missing", x.mirror_missing},
+                            {"side_chosen_by", side_chosen_by(x)},
+                            {"roughness", x.roughness},
+                            {"mirror_roughness", x.mirror_roughness},
+                            {"depth", x.depth},
+                            {"area", x.area},
+                            {"volume", x.volume},
+                            {"centroid", {x.centroid.x(), x.centroid.y(), x.centroid.z()}},
+                            {"region", x.region},
+                            {"mirror_region", x.mirror_region},
+                            {"at_mirror_image", x.at_mirror_image}});
     }
     nlohmann::json plane_json = plane_object(plane, unit);
     // The plane's numbers are in the surface's coordinates: a volume's physical frame as its
@@ -104,6 +102,11 @@ nlohmann::json asymmetry_object(const SymmetryPlaneResult& plane, const Asymmetr
 
 MirrorPictures mirror_pictures(const SymmetryPlaneResult& plane) {
     return {.normal = plane.plane.normal, .offset = plane.plane.offset, .residual = plane.rms};
+}
+
+std::string side_chosen_by(const AsymmetryFinding& finding) {
+    return finding.side_by_shape ? "the side whose surface bends less evenly there"
+                                 : "the side with less";
 }
 
 std::string finding_kind(const AsymmetryFinding& finding) {

@@ -27,6 +27,10 @@ namespace glint {
 /// The plane and its residual as the pictures draw them (report/mirror_pictures.h).
 [[nodiscard]] MirrorPictures mirror_pictures(const SymmetryPlaneResult& plane);
 
+/// How the finding's side was chosen, in words (analysis/asymmetry.h pair_findings): "the side
+/// whose surface bends less evenly there" or "the side with less".
+[[nodiscard]] std::string side_chosen_by(const AsymmetryFinding& finding);
+
 /// A finding in one word: "less" or "more" than the mirrored other side, or "no mirrored
 /// surface".
 [[nodiscard]] std::string finding_kind(const AsymmetryFinding& finding);
