@@ -5,26 +5,33 @@
 # note: the Debian packages serve Debian's interpreter, /usr/bin/python3. Another python3
 # earlier on PATH (pyenv, a venv) sees none of them, so Debian's is chosen when present;
 # -DPython3_EXECUTABLE=… picks another (it then needs numpy and pytest of its own).
-if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
-  set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Python interpreter of the glint module and its tests")
-endif()
-find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
-if(Python3_FOUND)
-  find_package(pybind11 2.6 CONFIG QUIET)
-endif()
-# The module hands out numpy arrays: numpy must import in that interpreter.
-set(glint_numpy_found FALSE)
-if(Python3_FOUND)
-  execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy" RESULT_VARIABLE numpy_missing
-                  OUTPUT_QUIET ERROR_QUIET)
-  if(numpy_missing EQUAL 0)
-    set(glint_numpy_found TRUE)
+# note: a build with neither the module nor the tests (preset app, tools/demo) needs no Python and
+# looks for none: probing would run the interpreter, which reads whatever Python packages the
+# machine holds, and make configure touch packages the app set does not install (issue 51).
+set(glint_python_default OFF)
+if(NOT (DEFINED GLINT_BUILD_PYTHON AND NOT GLINT_BUILD_PYTHON AND DEFINED GLINT_BUILD_TESTS
+        AND NOT GLINT_BUILD_TESTS))
+  if(NOT DEFINED Python3_EXECUTABLE AND EXISTS /usr/bin/python3)
+    set(Python3_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Python interpreter of the glint module and its tests")
   endif()
-endif()
-if(Python3_FOUND AND pybind11_FOUND AND glint_numpy_found)
-  set(glint_python_default ON)
-else()
-  set(glint_python_default OFF)
+  find_package(Python3 QUIET COMPONENTS Interpreter Development.Module)
+  if(Python3_FOUND)
+    find_package(pybind11 2.6 CONFIG QUIET)
+  endif()
+  # The module hands out numpy arrays: numpy must import in that interpreter.
+  set(glint_numpy_found FALSE)
+  if(Python3_FOUND)
+    execute_process(COMMAND ${Python3_EXECUTABLE} -c "import numpy" RESULT_VARIABLE numpy_missing
+                    OUTPUT_QUIET ERROR_QUIET)
+    if(numpy_missing EQUAL 0)
+      set(glint_numpy_found TRUE)
+    endif()
+  endif()
+  if(Python3_FOUND AND pybind11_FOUND AND glint_numpy_found)
+    set(glint_python_default ON)
+  else()
+    set(glint_python_default OFF)
+  endif()
 endif()
 option(GLINT_BUILD_PYTHON "Build the glint Python module (python/)" ${glint_python_default})
 if(GLINT_BUILD_PYTHON)
