@@ -152,6 +152,14 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     if (result.units.examined_scale != 1.0) scale_to_analysis_unit(examined, result.units);
     result.size = bounds(reference).diagonal();
     result.warnings = result.units.warnings;
+    // Bounded before any ray exists: a voxel larger than the whole surface leaves nothing to
+    // compare, and a huge one (1e38) put rays' origins beyond what Embree accepts (issue 52).
+    if (const auto& r = options.decision.resolution; r && !(*r <= result.size))
+        throw OptionError("decision.resolution", *r,
+                          "must be at most the reference's size, its bounding-box diagonal of " +
+                              std::to_string(result.size) +
+                              " mesh units (a voxel larger than the "
+                              "surface leaves nothing to compare)");
     // The render device is opened while the fit runs: choosing it loads the Vulkan drivers
     // (lavapipe brings LLVM), 0.05-0.1 s on a CPU machine and more where a GPU starts. The
     // sweep takes the same shared context (render/context.h); a failure here is left for the

@@ -46,13 +46,36 @@ Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::fil
     }
 }
 
+// A motion read from a file must bring the examined surface onto the reference: one that
+// leaves it far away (a translation of 1e9 mm, a file of other units or the inverse direction)
+// ran a registration for over 200 s, or a sweep that compared nothing for 30 s and then
+// misled (issue 52). Refused before any work when the moved examined surface's centre lies
+// more than ten sizes (the larger bounding diagonal) from the reference's.
+Rigid checked_motion(const Mesh& reference, const Mesh& examined,
+                     const Rigid& reference_from_examined, const std::string& what,
+                     const std::string& file) {
+    const Bounds r = bounds(reference), e = bounds(examined);
+    const Vec3d moved = reference_from_examined * e.center().cast<double>();
+    const double apart = (moved - r.center().cast<double>()).norm();
+    const double size = std::max<double>(r.diagonal(), e.diagonal());
+    if (!reference_from_examined.matrix().allFinite() || !(apart <= 10.0 * size))
+        throw InputError(what + " \"" + file + "\": moves the examined surface's centre " +
+                         std::to_string(apart) +
+                         " mesh units from the reference's, more than ten " + "times their size (" +
+                         std::to_string(size) +
+                         "); expected a motion that brings it onto the reference (check the "
+                         "file's units and that it maps examined to reference)");
+    return reference_from_examined;
+}
+
 FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options,
                              const std::shared_ptr<const SurfaceIndex>& reference_index) {
     RegistrationOptions o = options.registration;
     RegistrationSources sources;
     if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
     if (!options.init_file.empty()) {
-        o.initial = read_fit(options.init_file.string());
+        o.initial = checked_motion(reference, examined, read_fit(options.init_file.string()),
+                                   "initial pose", options.init_file.string());
         sources.init_file = options.init_file.string();
     }
     if (!options.landmarks_file.empty()) {
@@ -140,7 +163,9 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             return out;
         }
         case FitMode::File:
-            out.reference_from_examined = read_fit(options.fit_file.string());
+            out.reference_from_examined =
+                checked_motion(reference, examined, read_fit(options.fit_file.string()), "fit",
+                               options.fit_file.string());
             out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
             return out;
         case FitMode::Register:

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <system_error>
 
@@ -117,16 +118,115 @@ void protect_input(const fs::path& path) {
     protected_inputs().insert(resolved(path));
 }
 
+namespace {
+
+// note: a header names at most this many data files (one per slice); more is a runaway pattern
+// ("%d 1 2000000000 1"), which the volume reader refuses anyway.
+constexpr long kMaxDataFiles = 100000;
+
+// One number put into a slice pattern's single conversion (%d, %i, %u with an optional
+// zero flag and width; %% is a literal %). Empty when the pattern is not of that form: the
+// pattern is the user's text and never reaches printf.
+std::string format_slice(const std::string& pattern, long number) {
+    std::string out;
+    int conversions = 0;
+    for (std::size_t i = 0; i < pattern.size(); ++i) {
+        if (pattern[i] != '%') {
+            out += pattern[i];
+            continue;
+        }
+        if (i + 1 < pattern.size() && pattern[i + 1] == '%') {
+            out += '%';
+            ++i;
+            continue;
+        }
+        std::size_t j = i + 1;
+        const bool zero = j < pattern.size() && pattern[j] == '0';
+        int width = 0;
+        while (j < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[j])) &&
+               width < 100)
+            width = 10 * width + (pattern[j++] - '0');
+        if (j >= pattern.size() || (pattern[j] != 'd' && pattern[j] != 'i' && pattern[j] != 'u') ||
+            ++conversions > 1)
+            return {};
+        std::string digits = std::to_string(number < 0 ? -number : number);
+        if (number < 0) digits.insert(0, "-");
+        if (static_cast<int>(digits.size()) < width)
+            digits.insert(0, static_cast<std::size_t>(width) - digits.size(), zero ? '0' : ' ');
+        out += digits;
+        i = j;
+    }
+    return conversions == 1 ? out : std::string{};
+}
+
+// The lines of a header after the one that starts with `key` (a LIST's file names).
+std::vector<std::string> lines_after(const fs::path& header, const std::string& key) {
+    std::ifstream in(header);
+    std::string line;
+    std::vector<std::string> names;
+    bool after = false;
+    while (std::getline(in, line) && static_cast<long>(names.size()) < kMaxDataFiles) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        if (after) {
+            if (!line.empty() && line[0] != '#') names.push_back(line);
+        } else if (line.compare(0, key.size(), key) == 0) {
+            after = true;
+        }
+    }
+    return names;
+}
+
+// The data files a header's value names: one file, a LIST (the lines after the key), or a
+// slice pattern "FORMAT MIN MAX STEP [SUBDIM]" (MetaImage and NRRD spell it alike).
+std::vector<fs::path> data_files(const fs::path& header, const std::string& key,
+                                 const std::string& value) {
+    std::vector<fs::path> files;
+    const fs::path dir = header.parent_path();
+    const auto local = [&](const std::string& name) {
+        const fs::path p(name);
+        return p.is_absolute() ? p : dir / p;
+    };
+    if (value.empty() || value == "LOCAL") return files;
+    if (value.rfind("LIST", 0) == 0) {
+        for (const std::string& name : lines_after(header, key)) files.push_back(local(name));
+        return files;
+    }
+    std::istringstream words(value);
+    std::string format;
+    long first = 0, last = 0, step = 0;
+    words >> format;
+    if ((words >> first >> last >> step) && step != 0 && format.find('%') != std::string::npos) {
+        const long count = (last - first) / step + 1;
+        if (count <= 0 || count > kMaxDataFiles) return files;
+        for (long n = 0; n < count; ++n) {
+            const std::string name = format_slice(format, first + n * step);
+            if (name.empty()) break;
+            files.push_back(local(name));
+        }
+        return files;
+    }
+    files.push_back(local(value));
+    return files;
+}
+
+}  // namespace
+
 std::vector<fs::path> input_files(const fs::path& path) {
     std::vector<fs::path> files{path};
     const std::string name = lower_name(path);
-    std::string data;
-    if (ends_with(name, ".mhd")) data = header_value(path, "ElementDataFile", '=');
-    else if (ends_with(name, ".nhdr")) data = header_value(path, "data file", ':');
-    // LOCAL: the data follows the header; LIST and patterns name several files (not followed).
-    if (!data.empty() && data != "LOCAL" && data.find("LIST") != 0 &&
-        data.find('%') == std::string::npos && data.find(' ') == std::string::npos)
-        files.push_back(path.parent_path() / data);
+    std::vector<fs::path> data;
+    if (ends_with(name, ".mhd")) {
+        data = data_files(path, "ElementDataFile", header_value(path, "ElementDataFile", '='));
+    } else if (ends_with(name, ".nhdr")) {
+        std::string value = header_value(path, "data file", ':');
+        const char* key = "data file";
+        if (value.empty()) {
+            value = header_value(path, "datafile", ':');
+            key = "datafile";
+        }
+        data = data_files(path, key, value);
+    }
+    files.insert(files.end(), data.begin(), data.end());
     return files;
 }
 

@@ -18,8 +18,9 @@ namespace glint {
 /// it, a folder holding it and a path inside it.
 void protect_input(const std::filesystem::path& path);
 
-/// The files an input consists of: the path itself and, for a header naming a separate data
-/// file (.mhd ElementDataFile, .nhdr "data file"), that data file too.
+/// The files an input consists of: the path itself and, for a header naming separate data
+/// (.mhd ElementDataFile, .nhdr "data file"), every file it names: one file, a LIST (the
+/// header's following lines) or a slice pattern "FORMAT MIN MAX STEP" (issue 52).
 [[nodiscard]] std::vector<std::filesystem::path> input_files(const std::filesystem::path& path);
 
 /// The files an output consists of: the path itself and, for .mhd / .nhdr, the data files ITK

@@ -2,6 +2,7 @@
 
 #include "mesh/error.h"
 #include "mesh/input_path.h"
+#include "mesh/output_guard.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -57,6 +58,7 @@ std::string read_small_file(const std::filesystem::path& path, const std::string
         throw InputError(where + ": " + std::to_string(size) + " bytes, expected at most " +
                          size_text(max_bytes));
     }
+    protect_input(path);  // never an output of this process (issue 52: every file a run reads)
     std::string text(size, '\0');
     std::size_t done = 0;
     while (done < size) {

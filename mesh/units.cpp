@@ -112,6 +112,12 @@ std::string unit_from_header(std::span<const char> head, const std::string& exte
                              (vtk && line_no == 1) || (line_no == 0 && line.starts_with("solid"));
         if (!comment) continue;
         if (std::string u = unit_in_line(line); !u.empty()) return u;
+        // 3D Slicer writes its models' coordinates in millimetres and says so only by naming
+        // the patient space ("3D Slicer output. SPACE=LPS"): a skull exported from Slicer was
+        // reported in "units" (issue 51).
+        const std::string l = lower_ascii(line);
+        if (l.find("space=lps") != std::string::npos || l.find("space=ras") != std::string::npos)
+            return "mm";
     }
     return "";
 }

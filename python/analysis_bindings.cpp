@@ -65,6 +65,7 @@ FitMode fit_mode(bool do_register, const std::optional<std::filesystem::path>& f
 
 FitHandle register_pair(const MeshLike& reference, const MeshLike& examined,
                         const py::object& output_value, const py::kwargs& kwargs) {
+    const CallScope call;  // a cancel while the inputs load stops the whole call
     const std::optional<std::filesystem::path> output =
         path_argument(output_value, "register", "output");
     Keywords k;
@@ -108,6 +109,7 @@ RunInput run_input(const char* role, const MeshHandle& h) {
 AnalysisHandle analyse_pair(const MeshLike& reference, const MeshLike& examined,
                             const py::object& register_value, const py::object& fit_value,
                             const py::object& output_value, const py::kwargs& kwargs) {
+    const CallScope call;  // a cancel while the inputs load stops the whole call
     const bool do_register = bool_argument(register_value, "analyse", "register");
     const std::optional<std::filesystem::path> fit_file =
         path_argument(fit_value, "analyse", "fit");

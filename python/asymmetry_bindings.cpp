@@ -114,6 +114,7 @@ std::optional<std::string> optional_text(const py::object& value, const char* ke
 AsymmetryHandle run_asymmetry(const MeshLike& mesh, const py::object& plane_value,
                               const py::object& fit_roi_value, const py::object& output_value,
                               const py::kwargs& kwargs) {
+    const CallScope call;  // a cancel while the input loads stops the whole call
     const std::optional<std::filesystem::path> output =
         path_argument(output_value, "asymmetry", "output");
     const std::optional<std::string> plane = optional_text(plane_value, "plane");

@@ -13,6 +13,12 @@
 
 namespace glint::python {
 
+/// The unit of a mesh made in Python from arrays, or from Open3D's or PyVista's (which state
+/// none): millimetres, the unit of CT-derived surfaces, so that an analysis writes the same
+/// field names (shape_change_mm) whichever way its meshes came (issue 51). glint.Mesh takes
+/// unit=None for a mesh whose unit is unknown.
+inline constexpr const char* kArrayUnit = "mm";
+
 /// How errors name the arrays of one mesh argument: "reference", "reference[0] (vertices)",
 /// "reference[1] (triangles)".
 struct ArrayLabels {

@@ -108,8 +108,20 @@ void warn(const std::vector<std::string>& messages) {
             throw py::error_already_set();  // a filter turned the warning into an error
 }
 
+namespace {
+std::atomic<int> g_call_depth{0};
+}  // namespace
+
+CallScope::CallScope() {
+    if (g_call_depth.fetch_add(1) == 0) reset_cancel();
+}
+
+CallScope::~CallScope() {
+    if (g_call_depth.fetch_sub(1) == 1) reset_cancel();
+}
+
 void run_interruptible(const std::function<void()>& work) {
-    reset_cancel();
+    const CallScope scope;  // a call of its own unless a public function's scope holds it
     std::mutex mutex;
     std::condition_variable finished;
     bool done = false;
@@ -142,7 +154,6 @@ void run_interruptible(const std::function<void()>& work) {
         }
     }
     worker.join();
-    reset_cancel();
     if (signalled)
         throw py::error_already_set();  // the handler's exception, set by PyErr_CheckSignals
     if (failure) std::rethrow_exception(failure);

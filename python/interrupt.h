@@ -11,7 +11,9 @@
 // re-raises the handler's exception.
 //
 // note: the cancellation flag is process-wide: Ctrl-C stops every glint call in progress, and
-// each call clears the flag when it starts.
+// each call clears the flag when it starts. A call is the whole public function (CallScope):
+// a request that arrives while it loads its inputs (glint.cancel() from another thread) stops
+// its analysis, not only the load (issue 52: it was cleared when the analysis began).
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -27,6 +29,16 @@ namespace glint::python {
 
 /// How often a waiting call looks for Python signals: Ctrl-C is seen within this.
 inline constexpr std::chrono::milliseconds kPollInterval{50};
+
+/// The span of one public call (glint.analyse, glint.load, …): the cancellation flag is cleared
+/// when the outermost scope begins and ends, not by each run_interruptible() inside it.
+class CallScope {
+  public:
+    CallScope();
+    ~CallScope();
+    CallScope(const CallScope&) = delete;
+    CallScope& operator=(const CallScope&) = delete;
+};
 
 /// Runs `work` on a worker thread (see file comment). Call with the GIL held; `work` must not
 /// touch Python objects. Rethrows what `work` threw (translated by the module's exception

@@ -67,8 +67,8 @@ std::shared_ptr<MeshHandle> load(const std::filesystem::path& path, const Surfac
     });
 }
 
-// glint.Mesh(positions, triangles, unit=None): copies of the arrays, checked as a loaded
-// mesh is, with vertex normals.
+// glint.Mesh(positions, triangles, unit="mm"): copies of the arrays, checked as a loaded
+// mesh is, with vertex normals. The unit defaults to millimetres (kArrayUnit, python/convert.h).
 std::shared_ptr<MeshHandle> from_arrays(const py::object& positions, const py::object& triangles,
                                         const std::optional<std::string>& unit) {
     auto handle = std::make_shared<MeshHandle>();
@@ -147,7 +147,7 @@ void bind_mesh_arrays(MeshClass& mesh) {
 // Copies, moves, pickling and the other libraries' meshes (python/convert.h).
 void bind_mesh_conversions(MeshClass& mesh) {
     mesh.def_static("from_numpy", &from_arrays, py::arg("positions"), py::arg("triangles"),
-                    py::arg("unit") = py::none(),
+                    py::arg("unit") = kArrayUnit,
                     "The same as glint.Mesh(positions, triangles, unit).")
         .def("to_numpy", &to_numpy,
              "(positions, triangles) as new writable arrays: N×3 float64 and M×3 int64 (numpy's "
@@ -275,9 +275,12 @@ mesh also takes a path, a (vertices, triangles) pair of arrays or a mesh of Open
 PyVista.)");
     mesh.def(
         py::init(&from_arrays), py::arg("positions"), py::arg("triangles"),
-        py::arg("unit") = py::none(),
+        py::arg("unit") = kArrayUnit,
         "A mesh from an N×3 array of positions and an M×3 array of vertex ids (counter-clockwise seen from "
-        "outside); copied, checked as a loaded mesh is, vertex normals computed.");
+        "outside); copied, checked as a loaded mesh is, vertex normals computed. unit: the "
+        "coordinates' length unit, \"mm\" unless given (CT-derived surfaces are in millimetres), "
+        "so that the atlas fields keep their names (shape_change_mm); None for a mesh whose unit "
+        "is unknown (the fields then end in _units).");
     bind_mesh_arrays(mesh);
     mesh.def_property_readonly(
             "unit", [](const MeshHandle& h) { return optional_string(h.mesh.unit); },

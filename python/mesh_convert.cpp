@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 namespace py = pybind11;
 
@@ -62,21 +63,29 @@ std::vector<Triangle> triangles_from(py::handle value, std::size_t vertices,
                          text_of(any.dtype()));
     if (any.ndim() != 2 || any.shape(1) != 3)
         throw InputError(label + " must be an M×3 array, found shape " + shape_of(any));
-    // note: the converted array must outlive the view (unchecked() does not hold it).
-    const auto ids =
-        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(any);
-    const auto t = ids.unchecked<2>();
-    std::vector<Triangle> out(static_cast<std::size_t>(t.shape(0)));
-    for (py::ssize_t i = 0; i < t.shape(0); ++i)
-        for (py::ssize_t c = 0; c < 3; ++c) {
-            const std::int64_t v = t(i, c);
-            if (v < 0 || v >= static_cast<std::int64_t>(vertices))
-                throw InputError(owner + ": triangle " + std::to_string(i) + " uses vertex " +
-                                 std::to_string(v) + ", mesh has " + std::to_string(vertices) +
-                                 " vertices");
-            out[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
-                static_cast<std::uint32_t>(v);
-        }
+    // note: unsigned arrays are read as unsigned: uint64 2^63+1 cast to int64 was printed as
+    // a negative vertex (issue 52).
+    std::vector<Triangle> out;
+    const auto fill = [&](auto ids) {
+        // note: the converted array must outlive the view (unchecked() does not hold it).
+        const auto t = ids.template unchecked<2>();
+        out.resize(static_cast<std::size_t>(t.shape(0)));
+        for (py::ssize_t i = 0; i < t.shape(0); ++i)
+            for (py::ssize_t c = 0; c < 3; ++c) {
+                const auto v = t(i, c);
+                bool negative = false;
+                if constexpr (std::is_signed_v<std::remove_cv_t<decltype(v)>>) negative = v < 0;
+                if (negative || static_cast<std::uint64_t>(v) >= vertices)
+                    throw InputError(owner + ": triangle " + std::to_string(i) + " uses vertex " +
+                                     std::to_string(v) + ", mesh has " + std::to_string(vertices) +
+                                     " vertices");
+                out[static_cast<std::size_t>(i)][static_cast<std::size_t>(c)] =
+                    static_cast<std::uint32_t>(v);
+            }
+    };
+    if (kind == 'u')
+        fill(py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(any));
+    else fill(py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(any));
     return out;
 }
 
@@ -155,6 +164,7 @@ std::optional<std::shared_ptr<MeshHandle>> converted_mesh(py::handle value,
                              std::to_string(items.size()) + " items");
         handle->mesh = mesh_from_arrays(items[0], items[1],
                                         {role, role + "[0] (vertices)", role + "[1] (triangles)"});
+        handle->mesh.unit = kArrayUnit;
         handle->source = "arrays";
         return handle;
     }
@@ -165,7 +175,10 @@ std::optional<std::shared_ptr<MeshHandle>> converted_mesh(py::handle value,
     handle->mesh =
         mesh_from_arrays(arrays->first, arrays->second,
                          {role, role + names.substr(0, bar), role + names.substr(bar + 1)});
-    // trimesh states its unit ("millimeters"); glint keeps it when it knows the word.
+    // trimesh states its unit ("millimeters"); glint keeps it when it knows the word. Open3D
+    // and PyVista state none: millimetres, as glint.Mesh takes arrays (kArrayUnit), so that an
+    // analysis of their meshes writes the same field names (issue 51: shape_change_units).
+    handle->mesh.unit = kArrayUnit;
     if (py::hasattr(value, "units") && py::isinstance<py::str>(py::getattr(value, "units")))
         handle->mesh.unit = canonical_unit(text_of(py::getattr(value, "units")));
     handle->source = type_name(value);

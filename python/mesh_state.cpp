@@ -5,6 +5,7 @@
 
 #include "mesh/error.h"
 #include "mesh/normals.h"
+#include "mesh/validate.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -136,6 +137,22 @@ std::shared_ptr<MeshHandle> mesh_from_state(const py::tuple& state) {
     }
     x.unit = py::cast<std::string>(state[7]);
     h->source = py::cast<std::string>(state[8]);
+    // A pickle is bytes from anywhere: a triangle index changed to 4e9 was accepted and
+    // .transform() then wrote past the vertices (issue 52). The state is checked as a loaded
+    // file is, and every per-vertex array must have one value per vertex.
+    check_mesh(x, "glint.Mesh (unpickled)");
+    const std::size_t n = x.vertex_count();
+    const auto per_vertex = [&](std::size_t size, const std::string& what) {
+        if (size != 0 && size != n)
+            throw InputError("glint.Mesh (unpickled): " + std::to_string(size) + " " + what +
+                             " for " + std::to_string(n) + " vertices; expected one per vertex");
+    };
+    per_vertex(x.normals.size(), "normals");
+    per_vertex(x.colors.size(), "colours");
+    per_vertex(x.labels.size(), "labels");
+    for (const ScalarField& f : x.scalars)
+        per_vertex(f.values.size(), "values of '" + f.name + "'");
+    if (x.normals.empty()) compute_vertex_normals(x);
     return h;
 }
 

@@ -1,6 +1,7 @@
 #include "registration/fit_io.h"
 
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/small_file.h"
 
@@ -83,13 +84,13 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
           {"landmarks_file", sources.landmarks_file}}},
         {"log", log},
     };
-    return j.dump(2) + "\n";
+    return json_text(j, 2) + "\n";
 }
 
 namespace {
 std::string row_text(const nlohmann::json& row) {
     std::string text;
-    for (const auto& v : row) text += (text.empty() ? "" : " ") + v.dump();
+    for (const auto& v : row) text += (text.empty() ? "" : " ") + json_text(v);
     return text;
 }
 }  // namespace

@@ -301,9 +301,26 @@ SymmetryPlaneResult check_symmetry_plane(const Mesh& mesh, const SymmetryPlane& 
                                          const SymmetryPlaneOptions& o) {
     o.validate();
     if (mesh.triangles.empty()) throw InputError("symmetry plane: the mesh has no triangles");
+    // A plane that does not cut the surface's box has no mirror image to fit: --plane x=1e12
+    // spent 15-50 s in closest-point queries deaf to SIGINT, then said "do not overlap … check
+    // the fit" (issue 52). Refused before any query, in words about the plane.
+    const Bounds box = bounds(mesh);
+    double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d p((corner & 1 ? box.max : box.min).x(), (corner & 2 ? box.max : box.min).y(),
+                      (corner & 4 ? box.max : box.min).z());
+        lowest = std::min(lowest, plane.distance(p));
+        highest = std::max(highest, plane.distance(p));
+    }
+    if (!(lowest <= 0 && highest >= 0))
+        throw InputError("symmetry plane " + to_string(plane) + ": lies " +
+                         std::to_string(std::min(std::fabs(lowest), std::fabs(highest))) +
+                         " mesh units off the surface (its bounding box, " +
+                         std::to_string(box.diagonal()) +
+                         " across, lies wholly on one side); expected a plane through the surface");
     const Vec3d centroid = principal_axes(mesh).first;
     SymmetryPlaneResult r;
-    r.size = bounds(mesh).diagonal();
+    r.size = box.diagonal();
     r.source = "given";
     r.plane = plane;
     const MirrorFit f = fit_mirror(mesh, plane, centroid, o, nullptr, false);

@@ -51,8 +51,11 @@ void ViewSpec::validate() const {
     // maxImageDimension2D is ≥ 4096 everywhere, 16384 on lavapipe and desktop GPUs).
     if (width < 1 || width > 16384) throw InputError(field_error("width", width, "1..16384"));
     if (height < 1 || height > 16384) throw InputError(field_error("height", height, "1..16384"));
-    if (!std::isfinite(azimuth_deg))
-        throw InputError(field_error("azimuth_deg", azimuth_deg, "finite"));
+    // note: ten turns either way is more than any plan or view file needs; beyond it the angle in
+    // radians loses its fraction, and at 1e308 it overflowed to inf, the camera to NaN and
+    // Embree aborted (issue 52).
+    if (!(std::abs(azimuth_deg) <= 3600.0))
+        throw InputError(field_error("azimuth_deg", azimuth_deg, "-3600..3600 degrees"));
     if (!std::isfinite(elevation_deg) || elevation_deg < -90.0 || elevation_deg > 90.0) {
         throw InputError(field_error("elevation_deg", elevation_deg, "-90..90"));
     }

@@ -1,5 +1,6 @@
 #include "report/asymmetry_json.h"
 
+#include "mesh/json_text.h"
 #include "mesh/units.h"
 
 #include <nlohmann/json.hpp>
@@ -115,12 +116,12 @@ std::string finding_kind(const AsymmetryFinding& finding) {
 }
 
 std::string symmetry_plane_json(const SymmetryPlaneResult& plane, const std::string& unit) {
-    return plane_object(plane, unit).dump();
+    return json_text(plane_object(plane, unit));
 }
 
 std::string asymmetry_json(const SymmetryPlaneResult& plane, const AsymmetryFindings& findings,
                            const Orientation& orientation, const std::string& unit) {
-    return asymmetry_object(plane, findings, orientation, unit).dump();
+    return json_text(asymmetry_object(plane, findings, orientation, unit));
 }
 
 }  // namespace glint

@@ -2,6 +2,7 @@
 #include "report/calibration_file.h"
 
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/small_file.h"
 
@@ -24,7 +25,7 @@ std::string to_json(const Calibration& c) {
         {"threshold_deg", c.threshold_deg},
         {"referential", c.referential},
         {"ladder", ladder}};
-    return j.dump(2) + "\n";
+    return json_text(j, 2) + "\n";
 }
 
 Calibration read_calibration(const std::filesystem::path& path) {

@@ -5,6 +5,8 @@
 #include "mesh/atomic_file.h"
 #include "mesh/cancel.h"
 #include "mesh/fault_injection.h"
+#include "mesh/json_text.h"
+#include "mesh/output_guard.h"
 #include "mesh/stopwatch.h"
 #include "report/output_folder.h"
 #include "report/report.h"
@@ -51,7 +53,7 @@ void add_to_outputs(ReportAddition addition, ExportOptions& exports, std::string
     if (addition.key.empty()) return;
     nlohmann::json j = nlohmann::json::parse(report);
     j[addition.key] = nlohmann::json::parse(addition.json);
-    report = j.dump(2) + "\n";  // as report_json writes it
+    report = json_text(j, 2) + "\n";  // as report_json writes it
 }
 
 }  // namespace
@@ -67,6 +69,11 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
     options.validate();
     // The output location is checked (and its staging folder made) before the long work.
     std::optional<OutputFolder> folder;
+    // Files the options name are inputs before they are read (a mask is read during the fit or
+    // the sweep): the output folder below refuses to be, hold or lie inside one (issue 52).
+    for (const std::optional<Roi>* roi :
+         {&options.analysis.fit.registration.roi, &options.analysis.sweep.plan.roi})
+        if (*roi && (*roi)->shape == Roi::Shape::VertexMask) protect_input((*roi)->mask_file);
     if (!options.exports.output.empty()) {
         folder.emplace(options.exports.output, options.exports.replace_existing);
         // A missing image plugin stops the run now, not after the sweep; a run that draws no

@@ -4,6 +4,7 @@
 #include "report/export_options.h"
 
 #include "analysis/option_registry.h"
+#include "mesh/json_text.h"
 #include "report/detail/options_json.h"
 
 #include <nlohmann/json.hpp>
@@ -64,7 +65,7 @@ nlohmann::json options_object(const AnalysisOptions& o, const ExportOptions& e) 
 namespace glint {
 
 std::string to_json(const AnalysisOptions& o, const ExportOptions& e) {
-    return detail::options_object(o, e).dump(2);
+    return json_text(detail::options_object(o, e), 2);
 }
 
 }  // namespace glint

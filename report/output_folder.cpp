@@ -119,6 +119,38 @@ int rename2(const fs::path& from, const fs::path& to, unsigned flags) {
 
 bool no_flags_here(int err) { return err == EINVAL || err == ENOSYS || err == ENOTSUP; }
 
+// Whether an existing folder may be replaced by --force: it is empty, or it is a result glint
+// wrote (its report.json names the glint version that wrote it). Anything else is the user's:
+// "-o . --force" in a home folder, "-o .." (issue 52).
+bool is_glint_result(const fs::path& folder) {
+    std::error_code ec;
+    if (fs::is_empty(folder, ec) && !ec) return true;
+    const fs::path report = folder / "report.json";
+    if (!fs::is_regular_file(fs::symlink_status(report, ec))) return false;
+    // note: report.json's keys are sorted, so "glint_version" may follow the regions; read in
+    // blocks, keeping the tail of each so a key across two blocks is still found.
+    const std::string key = "\"glint_version\"";
+    std::ifstream in(report, std::ios::binary);
+    std::string block(1 << 16, '\0'), tail;
+    while (in) {
+        in.read(block.data(), static_cast<std::streamsize>(block.size()));
+        const std::string text = tail + block.substr(0, static_cast<std::size_t>(in.gcount()));
+        if (text.find(key) != std::string::npos) return true;
+        tail = text.size() > key.size() ? text.substr(text.size() - key.size()) : text;
+    }
+    return false;
+}
+
+void refuse_foreign_folder(const fs::path& target) {
+    std::error_code ec;
+    if (fs::is_directory(fs::symlink_status(target, ec)) && !is_glint_result(target))
+        throw InputError("output folder \"" + target.string() +
+                         "\" exists and holds files glint did not write (no report.json of a glint "
+                         "run); expected an empty folder or an earlier glint result (nothing was "
+                         "replaced, " +
+                         spell_flag("force") + " or not: choose another output folder)");
+}
+
 }  // namespace
 
 OutputFolder::OutputFolder(fs::path target, bool replace_existing)
@@ -133,9 +165,14 @@ OutputFolder::OutputFolder(fs::path target, bool replace_existing)
                       parent.string() + "\" does not exist");
     if (fs::exists(target_, ec) && !fs::is_directory(target_, ec))
         throw InputError("output \"" + target_.string() + "\" exists and is not a folder");
+    if (fs::is_symlink(target_, ec))
+        throw InputError("output \"" + target_.string() +
+                         "\" is a symbolic link; expected a folder or no file at all (nothing was "
+                         "written)");
     if (!replace_existing && fs::exists(target_, ec))
         throw InputError("output folder \"" + target_.string() + "\" exists; give " +
                          spell_flag("force") + " to replace it");
+    if (replace_existing) refuse_foreign_folder(target_);
     remove_leftovers(target_);
     wrapper_ = make_wrapper(target_);
     track_staged(wrapper_);  // removed by the watchdog when a step never comes back
@@ -221,8 +258,15 @@ void OutputFolder::commit() {
     // point of no return; one that comes after is reported by the command line (exit 130,
     // the results kept and complete).
     throw_if_cancelled();
-    if (replace_existing_) commit_replacing();
-    else commit_new();
+    // Every file the run read is an input by now (the loaders register what they open: masks,
+    // slices, buffers read after this folder was made): the results never replace one.
+    refuse_output_over_inputs(target_);
+    if (replace_existing_) {
+        refuse_foreign_folder(target_);
+        commit_replacing();
+    } else {
+        commit_new();
+    }
     fault_point("committed");
     remove_wrapper(wrapper_);  // the marker, and with --force the replaced results
 }

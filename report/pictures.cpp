@@ -77,9 +77,17 @@ detail::LegendContent legend_for(const AnalysisResult& result, std::size_t z,
                             .mirror = mirror,
                             .plane_line = mirror};
     char b[160];
-    std::snprintf(b, sizeof b, "normal floor %.3g%s (%s, %s rule)", d.normal.value,
-                  detail::picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit).c_str(),
-                  to_string(d.normal.source).c_str(), to_string(d.rule).c_str());
+    const std::string normal_unit =
+        detail::picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit);
+    // note: two normals differ by at most 180°; a "floor" past 90° bounds nothing a surface can
+    // show, so the legend says the shape decided instead of printing "normal floor 170°" (issue 51).
+    if (normal_unit == "°" && d.normal.value > 90.0)
+        std::snprintf(b, sizeof b, "normals: no floor (they differ by %.3g° by nature; %s rule)",
+                      d.normal.value, to_string(d.rule).c_str());
+    else
+        std::snprintf(b, sizeof b, "normal floor %.3g%s (%s, %s rule)", d.normal.value,
+                      normal_unit.c_str(), to_string(d.normal.source).c_str(),
+                      to_string(d.rule).c_str());
     c.lines.emplace_back(b);
     std::snprintf(b, sizeof b, "zoom %zu: %s %s/px, coverage %.0f %%, compared %.0f %%", z,
                   detail::format_number(result.sweep.plan.footprints[z]).c_str(), u.c_str(),

@@ -3,6 +3,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/checksum.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/units.h"
 #include "mesh/version.h"
 #include "mesh/write.h"
@@ -337,7 +338,7 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
           {"total", result.total_seconds}}},
         {"warnings", result.warnings},
     };
-    return report.dump(2) + "\n";
+    return json_text(report, 2) + "\n";
 }
 
 std::string regions_csv(const AnalysisResult& result) {

@@ -3,6 +3,7 @@
 #include "image/sampled_maps.h"
 #include "mesh/decimate.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/mesh.h"
 #include "mesh/normals.h"
 #include "report/asymmetry_html.h"
@@ -414,7 +415,7 @@ std::string report_html(ReportPageData page, const std::string& report_json,
     return fill_template(asset("report.html.in"), {{"TITLE", escape_markup(title)},
                                                    {"THREE_JS", asset("three.min.js")},
                                                    {"ORBIT_CONTROLS_JS", asset("OrbitControls.js")},
-                                                   {"DATA_JSON", script_safe(data.dump())},
+                                                   {"DATA_JSON", script_safe(json_text(data))},
                                                    {"LIVE_JS", asset("live.js")},
                                                    {"EVIDENCE_JS", asset("evidence.js")},
                                                    {"OVERLAYS_JS", asset("overlays.js")},

@@ -144,14 +144,38 @@ class ViewStream {
 
 }  // namespace
 
+// A reference drawn on fewer pixels than this in every view is a speck in its frame.
+constexpr std::size_t kFewPixels = 16;
+
 void require_overlap(const std::vector<ViewSummary>& views) {
-    std::size_t compared = 0;
-    for (const auto& v : views) compared += v.compared;
-    if (compared == 0)
-        throw InputError(
-            "sweep: the reference and the fitted examined surface do not overlap in any of the " +
-            std::to_string(views.size()) + " views (no pixel shows both); check the fit (" +
-            spell_option("fit", "FILE") + ", " + spell_flag("register") + ", landmarks)");
+    std::size_t compared = 0, examined = 0, largest = 0;
+    for (const auto& v : views) {
+        compared += v.compared;
+        examined += v.examined_only;
+        largest = std::max(largest, v.reference_pixels);
+    }
+    if (compared > 0) return;
+    const std::string n = std::to_string(views.size());
+    // note: which of the surfaces the views saw tells the causes apart (issue 52: parts far
+    // apart, coordinates too large and a fit far off all read "check the fit").
+    if (largest < kFewPixels)
+        throw InputError("sweep: the reference covers at most " + std::to_string(largest) +
+                         " pixels of any of the " + n +
+                         " views: it is too small in the frame, whose size its whole extent sets "
+                         "(parts far apart from each other); expected a surface that fills the "
+                         "views (analyse one part, or raise " +
+                         spell_option("size", "PIXELS") + ")");
+    if (examined == 0)
+        throw InputError("sweep: the fitted examined surface appears in none of the " + n +
+                         " views, the reference in up to " + std::to_string(largest) +
+                         " pixels of each; expected the examined surface on the reference: check "
+                         "the fit (" +
+                         spell_option("fit", "FILE") + ", " + spell_flag("register") +
+                         ", landmarks)");
+    throw InputError(
+        "sweep: the reference and the fitted examined surface do not overlap in any of the " + n +
+        " views (no pixel shows both); check the fit (" + spell_option("fit", "FILE") + ", " +
+        spell_flag("register") + ", landmarks)");
 }
 
 SweepResult run_sweep(const Mesh& reference, const Mesh& examined, const SweepPlan& plan,

@@ -336,12 +336,17 @@ void read_identity(TableReader& top, const fs::path& file, Scenario& sc) {
     sc.name = top.optional<std::string>("name", "a string").value_or(file.stem().string());
     // The name is a folder under -o: a plain name, so a scenario never writes elsewhere.
     if (sc.name.empty() || sc.name == "." || sc.name == ".." ||
-        sc.name.find_first_of(std::string("/\\\0", 3)) != std::string::npos)
+        sc.name.find_first_of(std::string("/\\\0", 3)) != std::string::npos) {
+        // note: a NUL is shown as \x00: an error's what() is a C string, cut at the first NUL
+        // (issue 52: a name "a\u0000b" gave the message `name: "a`).
+        std::string shown;
+        for (const char c : sc.name) shown += c == '\0' ? std::string("\\x00") : std::string(1, c);
         top.fail(
             top.get("name"), "name",
-            "\"" + sc.name +
+            "\"" + shown +
                 "\": expected a plain folder name (not empty, no \"/\" or \"\\\", not \".\" or "
                 "\"..\")");
+    }
     sc.description = top.optional<std::string>("description", "a string").value_or("");
     if (const toml::node* tags = top.get("tags")) {
         const auto* arr = tags->as_array();

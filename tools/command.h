@@ -32,6 +32,34 @@ struct GlobalFlags {
 };
 GlobalFlags& global_flags();
 
+/// `text` as a terminal may show it: control bytes (ESC, BEL, NUL, …; C0, DEL and C1 in
+/// UTF-8) written as \xNN, so a file name such as $'\e]0;PWNED\a.ply' retitles no window and a
+/// NUL cuts no message (issue 52). Other bytes, UTF-8 included, pass unchanged.
+inline std::string terminal_safe(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    const auto escape = [&out](unsigned char c) {
+        static const char* hex = "0123456789abcdef";
+        out += "\\x";
+        out += hex[c >> 4];
+        out += hex[c & 15];
+    };
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        const auto next = static_cast<unsigned char>(i + 1 < text.size() ? text[i + 1] : '\0');
+        if ((c < 0x20 && c != '\t') || c == 0x7f) {
+            escape(c);
+        } else if (c == 0xc2 && next >= 0x80 && next <= 0x9f) {  // C1 controls (CSI, OSC …)
+            escape(c);
+            escape(next);
+            ++i;
+        } else {
+            out += static_cast<char>(c);
+        }
+    }
+    return out;
+}
+
 /// Every warning a report holds, on stderr as "warning: …", one per line. Printed with --quiet
 /// and --json too: a warning says the result may not mean what it seems (a capped floor, a
 /// scale chosen for the evidence, a poor fit), which is no chatter.
@@ -39,8 +67,8 @@ GlobalFlags& global_flags();
 inline void print_warnings(const std::vector<std::string>& warnings,
                            const std::string& prefix = "") {
     for (const auto& w : warnings)
-        std::fprintf(stderr, "warning: %s%s%s\n", prefix.c_str(), prefix.empty() ? "" : ": ",
-                     w.c_str());
+        std::fprintf(stderr, "warning: %s%s%s\n", terminal_safe(prefix).c_str(),
+                     prefix.empty() ? "" : ": ", terminal_safe(w).c_str());
 }
 
 /// An output path as --json prints it: absolute and normalised, so a script that started glint

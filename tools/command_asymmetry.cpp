@@ -2,6 +2,7 @@
 // symmetry plane, then the surface swept against its own mirror image, findings side by side.
 #include "analysis/asymmetry.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/roi.h"
 #include "mesh/units.h"
@@ -90,10 +91,11 @@ void run(AsymmetryArgs& a) {
         print_warnings(input.warnings);
         // The result (the plane and its verdict) before the check fails (tools/main.cpp).
         if (global_flags().json)
-            std::cout << nlohmann::json{{"asymmetry",
-                                         {{"plane", nlohmann::json::parse(
-                                                        symmetry_plane_json(plane.plane, unit))}}}}
-                             .dump(2)
+            std::cout << json_text(
+                             nlohmann::json{{"asymmetry",
+                                             {{"plane", nlohmann::json::parse(symmetry_plane_json(
+                                                            plane.plane, unit))}}}},
+                             2)
                       << '\n';
         else print_plane(plane.plane, unit);
         throw CheckFailed("\"" + a.mesh + "\": " + plane.plane.verdict +
@@ -117,7 +119,7 @@ void run(AsymmetryArgs& a) {
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::parse(result.report_json);
         j["output"] = absolute_output(result.output);
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j, 2) << '\n';
         return;
     }
     const nlohmann::json report = nlohmann::json::parse(run.json);

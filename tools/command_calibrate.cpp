@@ -2,6 +2,7 @@
 // deformation stops showing; `glint sweep --calibration` then flags only larger ones.
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
@@ -49,7 +50,7 @@ void run(const CalibrateArgs& a) {
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::parse(to_json(c));
         j["output"] = absolute_output(a.output);
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j, 2) << '\n';
     } else {
         const std::string unit = !analysis.units.unit.empty()
                                      ? canonical_unit(analysis.units.unit)

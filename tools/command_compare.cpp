@@ -1,6 +1,7 @@
 // glint compare FRAME_A FRAME_B -o diff.exr|png: per-pixel comparison of two frames rendered
 // earlier by `glint render` (EXR), same size and view.
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "report/frame_file.h"
 #include "report/images.h"
@@ -10,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -26,6 +28,13 @@ struct CompareArgs {
 };
 
 void run(const CompareArgs& a) {
+    // A share above 1 compared no pixel and still exited 0; NaN drew an empty scale (issue 52).
+    if (!(a.min_coverage >= 0.0f && a.min_coverage <= 1.0f))
+        throw InputError("--min-coverage = " + std::to_string(a.min_coverage) +
+                         ": expected a share of the pixel in [0, 1]");
+    if (!(a.color_max_deg > 0 && std::isfinite(a.color_max_deg)))
+        throw InputError("--color-max = " + std::to_string(a.color_max_deg) +
+                         ": expected finite degrees > 0");
     guard_outputs({a.output}, {a.reference, a.examined});
     const Frame ref = read_frame_exr(a.reference);
     const Frame exa = read_frame_exr(a.examined);
@@ -54,7 +63,7 @@ void run(const CompareArgs& a) {
         {"compared_pixels", d.compared},      {"reference_only", d.reference_only},
         {"examined_only", d.examined_only},   {"max_angle_deg", d.max_angle_deg},
         {"mean_angle_deg", d.mean_angle_deg}, {"output", absolute_output(a.output)}};
-    if (global_flags().json) std::cout << j.dump(2) << '\n';
+    if (global_flags().json) std::cout << json_text(j, 2) << '\n';
     else
         std::cout << "compared " << d.compared << " pixels: max " << d.max_angle_deg << "°, mean "
                   << d.mean_angle_deg << "°; silhouette: " << d.reference_only

@@ -1,6 +1,7 @@
 // glint devices: the Vulkan devices glint sees, whether each is usable (and why not), which
 // one a default Vulkan renderer picks, and what --backend auto would choose.
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "render/renderer.h"
 #include "tools/command.h"
 
@@ -38,7 +39,7 @@ void run() {
                                       {"gpu_atlas_reason", d.gpu_atlas_reason}});
         }
         if (!vulkan_error.empty()) out["vulkan_error"] = vulkan_error;
-        std::cout << out.dump(2) << '\n';
+        std::cout << json_text(out, 2) << '\n';
     } else {
         if (!vulkan_error.empty()) std::cout << "Vulkan: " << vulkan_error << '\n';
         for (const auto& d : devices) {

@@ -1,6 +1,7 @@
 // glint info MESH…: what a mesh file holds, what loading repaired, what validation found.
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "mesh/units.h"
 #include "mesh/validate.h"
 #include "tools/command.h"
@@ -55,9 +56,9 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
 }
 
 void print_text(const nlohmann::json& j) {
-    auto num = [](const nlohmann::json& x) { return x.dump(); };
+    auto num = [](const nlohmann::json& x) { return json_text(x); };
     const std::string unit = j["unit"].get<std::string>();
-    std::cout << j["path"].get<std::string>() << '\n'
+    std::cout << terminal_safe(j["path"].get<std::string>()) << '\n'
               << "  format      " << j["format"].get<std::string>() << ", unit "
               << (unit.empty() ? "unknown (the file states none; give --unit to sweep/register/run)"
                                : unit)
@@ -83,11 +84,11 @@ void print_text(const nlohmann::json& j) {
               << num(r["degenerate_triangles"]) << " degenerate + " << num(r["duplicate_triangles"])
               << " duplicate triangles and " << num(r["unused_vertices"])
               << " unused vertices, split " << num(r["split_polygons"]) << " polygons\n";
-    if (!j["scalars"].empty()) std::cout << "  scalars     " << j["scalars"].dump() << '\n';
+    if (!j["scalars"].empty()) std::cout << "  scalars     " << json_text(j["scalars"]) << '\n';
     for (const auto& f : j["findings"])
-        std::cout << "  finding     " << f.get<std::string>() << '\n';
+        std::cout << "  finding     " << terminal_safe(f.get<std::string>()) << '\n';
     for (const auto& w : j["warnings"])
-        std::cout << "  warning     " << w.get<std::string>() << '\n';
+        std::cout << "  warning     " << terminal_safe(w.get<std::string>()) << '\n';
 }
 
 nlohmann::json volume_json(const Volume& v) {
@@ -115,7 +116,7 @@ void print_volume(const nlohmann::json& j) {
         "%s\n  format      %s volume, %s voxels\n  size        %zu x %zu x %zu\n"
         "  spacing     %.6g x %.6g x %.6g mm\n  origin      (%.6g, %.6g, %.6g) mm\n"
         "  direction   [%.4g %.4g %.4g; %.4g %.4g %.4g; %.4g %.4g %.4g]\n  range       %.6g … %.6g\n",
-        j["path"].get<std::string>().c_str(), j["format"].get<std::string>().c_str(),
+        terminal_safe(j["path"].get<std::string>()).c_str(), j["format"].get<std::string>().c_str(),
         j["stored_type"].get<std::string>().c_str(), j["size"][0].get<std::size_t>(),
         j["size"][1].get<std::size_t>(), j["size"][2].get<std::size_t>(),
         j["spacing_mm"][0].get<double>(), j["spacing_mm"][1].get<double>(),
@@ -176,7 +177,7 @@ void setup(CLI::App& app) {
             all.push_back(to_json(loaded, v));
             if (!global_flags().json) print_text(all.back());
         }
-        if (global_flags().json) std::cout << all.dump(2) << '\n';
+        if (global_flags().json) std::cout << json_text(all, 2) << '\n';
     });
 }
 

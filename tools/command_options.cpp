@@ -3,6 +3,7 @@
 // Python keyword and Slicer name, type, default, unit, accepted values and meaning.
 #include "analysis/analysis.h"
 #include "analysis/option_registry.h"
+#include "mesh/json_text.h"
 #include "report/export_options.h"
 #include "tools/command.h"
 
@@ -85,7 +86,7 @@ void run() {
     nlohmann::json out = nlohmann::json::array();
     describe_table(analysis_option_table(), out);
     describe_table(export_option_table(), out);
-    if (global_flags().json) std::cout << out.dump(2) << '\n';
+    if (global_flags().json) std::cout << json_text(out, 2) << '\n';
 }
 
 void setup(CLI::App& app) {

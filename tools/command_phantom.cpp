@@ -4,6 +4,7 @@
 #include "mesh/damage.h"
 #include "mesh/error.h"
 #include "mesh/file_set.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/phantom.h"
 #include "mesh/validate.h"
@@ -44,11 +45,16 @@ void run(const PhantomArgs& a) {
     options.scheme = parse_scheme(a.scheme);
     options.resolution = a.resolution;
     if (!a.size.empty()) {
+        // A torus has two sizes, as the help says (issue 52: "--size 20 5" was refused).
+        const bool torus = options.kind == PhantomKind::Torus;
         if (a.size.size() == 1) options.radii = Vec3d::Constant(a.size[0]);
-        else if (a.size.size() == 3) options.radii = {a.size[0], a.size[1], a.size[2]};
+        else if (torus && a.size.size() == 2) options.radii = {a.size[0], a.size[1], a.size[1]};
+        else if (!torus && a.size.size() == 3) options.radii = {a.size[0], a.size[1], a.size[2]};
         else
-            throw InputError("--size: expected 1 or 3 numbers, found " +
-                             std::to_string(a.size.size()));
+            throw InputError("--size: expected " +
+                             std::string(torus ? "1 or 2 numbers (major, minor radius)"
+                                               : "1 or 3 numbers (radius, or three semi-axes)") +
+                             ", found " + std::to_string(a.size.size()));
     }
     Mesh mesh = make_phantom(options);
     std::vector<DamageSpec> specs;
@@ -79,7 +85,7 @@ void run(const PhantomArgs& a) {
         {"damaged_vertices", damaged},
         {"mesh", std::filesystem::path(a.output).filename().string()},
     };
-    files.add(sidecar_path, sidecar.dump(2) + "\n");
+    files.add(sidecar_path, json_text(sidecar, 2) + "\n");
     files.commit();
     if (global_flags().json) {
         // The sidecar's content and where both files are (the sidecar names the mesh only by
@@ -87,7 +93,7 @@ void run(const PhantomArgs& a) {
         nlohmann::json printed = sidecar;
         printed["output"] = absolute_output(a.output);
         printed["sidecar"] = absolute_output(sidecar_path);
-        std::cout << printed.dump(2) << '\n';
+        std::cout << json_text(printed, 2) << '\n';
     } else {
         std::cout << "wrote " << a.output << " (" << v.vertices << " vertices, " << v.triangles
                   << " triangles, " << damaged << " damaged vertices) and " << sidecar_path << '\n';

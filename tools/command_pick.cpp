@@ -1,6 +1,7 @@
 // glint pick MESH --azimuth A --elevation E --pixel u,v: which surface point a pixel shows.
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "registration/closest_point.h"
 #include "tools/command.h"
 #include "tools/view_flags.h"
@@ -27,7 +28,7 @@ void run(const PickArgs& a) {
         j["normal"] = {hit.normal.x(), hit.normal.y(), hit.normal.z()};
         j["distance"] = hit.t;
     }
-    if (global_flags().json) std::cout << j.dump(2) << '\n';
+    if (global_flags().json) std::cout << json_text(j, 2) << '\n';
     else if (!hit.hit)
         std::cout << "pixel (" << a.pixel[0] << ", " << a.pixel[1] << ") shows no surface\n";
     else

@@ -6,6 +6,7 @@
 #include "mesh/error.h"
 #include "mesh/file_set.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "mesh/write.h"
@@ -86,7 +87,7 @@ void run(RegisterArgs& a) {
         nlohmann::json j = nlohmann::json::parse(outcome.json);
         j["output"] = absolute_output(a.output);
         if (!a.apply.empty()) j["applied"] = absolute_output(a.apply);
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j, 2) << '\n';
     } else print_result(r, a.output, units.unit);
     if (!r.converged) throw CheckFailed("registration did not converge: " + r.termination_detail);
 }

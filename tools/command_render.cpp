@@ -7,6 +7,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -77,7 +78,7 @@ void run(const RenderArgs& a) {
                                  {"warnings", info.warnings},
                                  {"load_warnings", loaded.report.warnings},
                                  {"frames", written}};
-        std::cout << report.dump(2) << '\n';
+        std::cout << json_text(report, 2) << '\n';
     } else {
         if (!global_flags().quiet)
             for (const auto& w : info.warnings) std::cerr << "glint: note: " << w << '\n';

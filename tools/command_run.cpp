@@ -2,6 +2,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/error.h"
 #include "mesh/input_path.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "scenario/run_scenario.h"
 #include "scenario/scenario.h"
@@ -253,7 +254,7 @@ void run_command(const RunArgs& a) {
     if (global_flags().json) {
         nlohmann::json j = nlohmann::json::array();
         for (const auto& o : outcomes) j.push_back(outcome_json(o));
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j, 2) << '\n';
     }
     check(outcomes);
 }
@@ -329,9 +330,9 @@ void eval_command(const RunArgs& a) {
             << (o.baseline ? std::to_string(o.baseline->tally.false_regions) : "-") << ','
             << o.compared << '\n';
     }
-    write_file_atomically(fs::path(a.output) / "eval.json", all.dump(2) + "\n");
+    write_file_atomically(fs::path(a.output) / "eval.json", json_text(all, 2) + "\n");
     write_file_atomically(fs::path(a.output) / "eval.csv", csv.str());
-    if (global_flags().json) std::cout << all.dump(2) << '\n';
+    if (global_flags().json) std::cout << json_text(all, 2) << '\n';
     else std::cout << table.str() << "eval.json and eval.csv in " << a.output << '\n';
     check(outcomes);
 }

@@ -1,5 +1,6 @@
 // glint surface VOLUME --iso VALUE [-o mesh.ply] …: the bone surface of a CT (or any
 // iso-surface of a volume) in physical coordinates (mm), with a report of what was done.
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/write.h"
 #include "tools/command.h"
@@ -47,7 +48,7 @@ void run(const SurfaceArgs& a) {
     const ExtractedSurface s = extract_surface(volume, a.options);
     if (!a.output.empty()) write_mesh(s.mesh, a.output);
     if (global_flags().json) {
-        std::cout << to_json(s.report, a.volume, a.output).dump(2) << '\n';
+        std::cout << json_text(to_json(s.report, a.volume, a.output), 2) << '\n';
         return;
     }
     std::printf("%s\n", describe(s.report).c_str());

@@ -3,6 +3,7 @@
 #include "analysis/analysis.h"
 #include "mesh/error.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
@@ -153,7 +154,7 @@ void run(SweepArgs& a) {
         // folder may be moved).
         nlohmann::json j = nlohmann::json::parse(result.report_json);
         j["output"] = absolute_output(result.output);
-        std::cout << j.dump(2) << '\n';
+        std::cout << json_text(j, 2) << '\n';
     } else print_summary(result, options.exports.write_pictures);
 }
 

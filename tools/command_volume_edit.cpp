@@ -5,6 +5,7 @@
 #include "mesh/atomic_file.h"
 #include "mesh/damage.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
 #include "mesh/output_guard.h"
 #include "tools/command.h"
 #include "volume/edit.h"
@@ -80,9 +81,9 @@ void run(const EditArgs& a) {
     const std::string truth = a.output + ".json";
     write_file_atomically(truth, edit_json(edit));
     if (global_flags().json)
-        std::cout << nlohmann::json{{"output", absolute_output(a.output)},
-                                    {"truth", absolute_output(truth)}}
-                         .dump(2)
+        std::cout << json_text(nlohmann::json{{"output", absolute_output(a.output)},
+                                              {"truth", absolute_output(truth)}},
+                               2)
                   << '\n';
     else std::printf("wrote %s and %s (ground truth)\n", a.output.c_str(), truth.c_str());
 }

@@ -3,6 +3,7 @@
 #include "mesh/error.h"
 #include "mesh/input_path.h"
 #include "mesh/io.h"
+#include "mesh/json_text.h"
 #include "mesh/memory_limits.h"
 #include "mesh/plugin_library.h"
 #include "mesh/version.h"
@@ -60,9 +61,10 @@ using namespace glint::cli;
 // One line on stderr, "glint: <kind>: <message>"; with --json also {"error": …} on stdout, so
 // a script reading stdout learns why there is no result.
 int fail(int code, const std::string& kind, const std::string& message) {
-    std::cerr << "glint: " << kind << ": " << message << '\n';
+    std::cerr << "glint: " << kind << ": " << terminal_safe(message) << '\n';
     if (global_flags().json)
-        std::cout << nlohmann::json{{"error", message}, {"kind", kind}, {"exit_code", code}}.dump()
+        std::cout << glint::json_text(
+                         nlohmann::json{{"error", message}, {"kind", kind}, {"exit_code", code}})
                   << '\n';
     return code;
 }

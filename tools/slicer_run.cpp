@@ -7,6 +7,7 @@
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/geometry.h"
+#include "mesh/json_text.h"
 #include "mesh/parse.h"
 #include "mesh/roi.h"
 #include "registration/icp.h"
@@ -297,7 +298,7 @@ void landmarks_from_markups(const SlicerCall& c, FitOptions& fit, const fs::path
     for (std::size_t i = 0; i < reference.size(); ++i)
         pairs.push_back({{"examined", {examined[i].x(), examined[i].y(), examined[i].z()}},
                          {"reference", {reference[i].x(), reference[i].y(), reference[i].z()}}});
-    write_file_atomically(file, nlohmann::json{{"pairs", pairs}}.dump(1));
+    write_file_atomically(file, json_text(nlohmann::json{{"pairs", pairs}}, 1));
     fit.landmarks_file = file;
 }
 

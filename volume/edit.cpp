@@ -113,6 +113,24 @@ VolumeGeometry crop_to_field_of_view(const VolumeGeometry& out, const VolumeGeom
 }  // namespace
 
 Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
+    // Every number of the edit is checked before any voxel: a NaN value became a bare `nan` in
+    // the truth JSON and a volume of NaN (issue 52).
+    for (std::size_t i = 0; i < edit.erosions.size(); ++i) {
+        const Erosion& e = edit.erosions[i];
+        const std::string where = "volume edit: erosion " + std::to_string(i + 1) + ": ";
+        if (!e.center.allFinite() || !(e.radius > 0 && std::isfinite(e.radius)))
+            throw InputError(where + "centre and radius must be finite and the radius > 0 mm");
+        if (!std::isfinite(e.value))
+            throw InputError(where + "the value eroded material takes is " +
+                             std::to_string(e.value) + "; expected a finite value");
+    }
+    if (!(edit.noise_sigma >= 0 && std::isfinite(edit.noise_sigma)))
+        throw InputError("volume edit: noise σ is " + std::to_string(edit.noise_sigma) +
+                         "; expected a finite value ≥ 0");
+    if (edit.spacing && !(edit.spacing->allFinite() && edit.spacing->minCoeff() > 0))
+        throw InputError("volume edit: voxel size must be finite and > 0 mm on every axis");
+    if (!edit.moved_from_original.matrix().allFinite())
+        throw InputError("volume edit: the motion holds a number that is not finite");
     Volume out;
     const Rigid original_from_moved = edit.moved_from_original.inverse();
     // Sub-sample offsets (in output voxels): one at the centre, or 2 × 2 × 2 over the voxel.

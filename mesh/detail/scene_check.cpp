@@ -2,13 +2,18 @@
 
 #include "mesh/detail/scan.h"
 #include "mesh/error.h"
+#include "mesh/json_text.h"
+#include "mesh/output_guard.h"
 
 #include <nlohmann/json.hpp>
+
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string_view>
 #include <unordered_map>
@@ -225,6 +230,61 @@ std::vector<std::size_t> scene_roots(const json& doc, const std::vector<Node>& n
     return roots;
 }
 
+// A glTF uri's %XX escapes decoded (RFC 3986); a malformed escape is kept as written.
+std::string percent_decoded(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        unsigned value = 0;
+        if (uri[i] == '%' && i + 2 < uri.size() &&
+            std::from_chars(uri.data() + i + 1, uri.data() + i + 3, value, 16).ptr ==
+                uri.data() + i + 3) {
+            out += static_cast<char>(value);
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// The files a glTF's buffers name (issue 52). assimp opens each buffer uri relative to the
+// glTF: one naming "/etc/passwd" was read as a buffer, one naming a FIFO blocked `glint info`,
+// and one in the output folder was deleted by `-o … --force`. A buffer is read only from the
+// glTF's folder or a folder below it, only when it is a regular file, and it becomes an input
+// of the run (mesh/output_guard.h). `data:` URIs are embedded and read by assimp alone.
+void check_buffer_uris(const json& doc, const std::string& source) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::path(source).parent_path();
+    const auto buffers = elements(member(doc, "buffers"));
+    for (std::size_t b = 0; b < buffers.size(); ++b) {
+        const json& uri = member(*buffers[b], "uri");
+        if (!uri.is_string()) continue;
+        const std::string text = uri.get<std::string>();
+        if (text.rfind("data:", 0) == 0) continue;
+        const std::string where = quoted_mesh(source) + ": glTF buffer " + std::to_string(b) +
+                                  " uri \"" + printable(text) + "\"";
+        const std::string name = percent_decoded(text);
+        const fs::path relative = fs::path(name).lexically_normal();
+        const bool outside = name.empty() || name.find('\0') != std::string::npos ||
+                             relative.is_absolute() || relative.has_root_name() ||
+                             name.find(':') != std::string::npos ||
+                             (!relative.empty() && *relative.begin() == "..");
+        if (outside)
+            throw InputError(where +
+                             " names a file outside the glTF's folder; expected a buffer file "
+                             "beside the glTF or in a folder below it");
+        const fs::path file = folder / relative;
+        struct stat st {};
+        if (::stat(file.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+            throw InputError(where + ": \"" + file.string() + "\" is " +
+                             (S_ISFIFO(st.st_mode)  ? "a FIFO"
+                              : S_ISDIR(st.st_mode) ? "a folder"
+                                                    : "not a regular file") +
+                             ", expected a buffer file");
+        protect_input(file);
+    }
+}
+
 }  // namespace
 
 void check_gltf_json(std::span<const char> text, const std::string& source,
@@ -246,9 +306,10 @@ void check_gltf_json(std::span<const char> text, const std::string& source,
     if (!version || !version->is_string() || version->get<std::string>().empty() ||
         (version->get<std::string>()[0] != '1' && version->get<std::string>()[0] != '2'))
         throw InputError(quoted_mesh(source) + ": glTF JSON has " +
-                         (version ? "asset.version " + printable(version->dump().substr(0, 40))
+                         (version ? "asset.version " + printable(json_text(*version).substr(0, 40))
                                   : std::string("no asset.version")) +
                          ", expected \"1.0\" or \"2.0\"");
+    check_buffer_uris(doc, source);
     std::vector<Node> nodes = read_nodes(doc, source);
     std::uint64_t instances = 0, triangles = 0;
     for (std::size_t root : scene_roots(doc, nodes)) {

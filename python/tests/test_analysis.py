@@ -199,6 +199,24 @@ def test_analyse_releases_the_gil(dent_pair):
     assert ticks > 20
 
 
+def test_cancel_while_the_inputs_load_stops_the_whole_call(dent_pair):
+    """Issue 52: glint.cancel() in the first seconds of analyse, while its inputs loaded, was
+    cleared when the analysis began; the call then ran to its end."""
+    ref, exa, _ = dent_pair
+
+    class CancelsWhileRead:  # a mesh of another library whose arrays are read as the call starts
+        vertices = ref.positions
+
+        @property
+        def triangles(self):
+            glint.cancel()
+            return ref.triangles
+
+    with pytest.raises(KeyboardInterrupt, match="SIGINT received: stopped"):
+        glint.analyse(CancelsWhileRead(), exa, size=128, views=False, exr=False)
+    assert glint.analyse(ref, ref, register=False, **SMALL_SWEEP).regions == []
+
+
 def test_cancel_from_another_thread_raises_keyboard_interrupt(dent_pair):
     ref, exa, _ = dent_pair
     timer = threading.Timer(0.3, glint.cancel)

@@ -104,6 +104,22 @@ def test_duck_typed_meshes_become_glint_meshes():
     assert glint.as_mesh(FakeTrimesh(TETRA_V, TETRA_F)).source.endswith("FakeTrimesh")
 
 
+def test_meshes_made_in_python_are_in_millimetres_unless_told(dent_pair):
+    """Issue 51: an Open3D mesh without unit= renamed the atlas field to shape_change_units.
+    Meshes from arrays or another library default to mm (as help(glint.Mesh) says); unit=None
+    keeps a mesh of unknown unit."""
+    for other in (FakePolyData(TETRA_V, flat_faces(TETRA_F)), (TETRA_V, TETRA_F),
+                  FakeTrimesh(TETRA_V, TETRA_F)):
+        assert glint.as_mesh(other).unit == "mm"
+    assert glint.Mesh(TETRA_V, TETRA_F).unit == "mm"
+    assert glint.Mesh(TETRA_V, TETRA_F, unit=None).unit is None
+    assert "\"mm\" unless given" in glint.Mesh.__init__.__doc__
+    ref = dent_pair[0]
+    arrays = (np.array(ref.positions), np.array(ref.triangles))
+    atlas = glint.analyse(arrays, arrays, register=False, **SMALL_SWEEP).atlas
+    assert "shape_change_mm" in atlas.scalars
+
+
 def test_pyvista_faces_that_are_not_triangles_are_refused():
     quad = FakePolyData(TETRA_V, np.array([4, 0, 1, 2, 3]))
     with pytest.raises(ValueError, match=r"examined\.faces holds faces that are not triangles.*triangulate"):
@@ -273,6 +289,24 @@ def test_pickle_round_trip_keeps_every_array(dent_pair):
     for name, values in atlas.scalars.items():
         np.testing.assert_array_equal(again.scalars[name], values)
     np.testing.assert_array_equal(again.colors, atlas.colors)
+
+
+def test_unpickling_checks_the_state_as_a_file_is_checked():
+    """Issue 52: a pickled Mesh with a triangle index changed to 4e9 was accepted, and
+    .transform() then wrote past the vertices (a segfault that killed the interpreter)."""
+    state = list(tetra().__getstate__())
+    triangles = np.array(state[2], copy=True)
+    triangles[1, 2] = 4_000_000_000
+    bad = glint.Mesh.__new__(glint.Mesh)
+    with pytest.raises(ValueError, match=r"triangle 1 .*4000000000.*4 vertices"):
+        bad.__setstate__(tuple(state[:2] + [triangles] + state[3:]))
+    positions = np.array(state[1], copy=True)
+    positions[0, 0] = np.nan
+    with pytest.raises(ValueError, match="not finite|non-finite|NaN|nan"):
+        glint.Mesh.__new__(glint.Mesh).__setstate__(tuple(state[:1] + [positions] + state[2:]))
+    with pytest.raises(ValueError, match="2 normals for 4 vertices"):
+        glint.Mesh.__new__(glint.Mesh).__setstate__(
+            tuple(state[:3] + [np.asarray(state[3])[:2]] + state[4:]))
 
 
 # --- saving -------------------------------------------------------------------------------

@@ -61,6 +61,12 @@ def test_mesh_from_arrays_rejects_a_vertex_out_of_range():
         glint.Mesh(np.eye(3), [[0, 1, 2], [0, 1, 9]])
 
 
+def test_mesh_from_arrays_names_a_huge_unsigned_index_as_it_is():
+    # Issue 52: a uint64 index 2^63+1 was printed negative.
+    with pytest.raises(glint.InputError, match="triangle 1 uses vertex 9223372036854775809, mesh has 3 vertices"):
+        glint.Mesh(np.eye(3), np.array([[0, 1, 2], [0, 1, 2**63 + 1]], dtype=np.uint64))
+
+
 def test_mesh_from_arrays_refuses_float_indices():
     # Issue 23 item 15: 1.7 was truncated to vertex 1 without a word.
     with pytest.raises(glint.InputError, match="triangles must be an array of integers.*float64"):

@@ -305,8 +305,10 @@
     if (uri) {
       img.src = uri;
       img.style.display = "block";
+      // views/ exists only when the run wrote per-view pictures (--views; issue 51).
+      const views = ((REPORT.analysis || {}).exports || {}).views === true;
       cap.textContent = "region " + r.id + ": best view " + viewName(r.best_view) + " (azimuth " + fmt(r.best_view_azimuth_deg) +
-        "°, elevation " + fmt(r.best_view_elevation_deg) + "°), views/ holds every view";
+        "°, elevation " + fmt(r.best_view_elevation_deg) + "°)" + (views ? "; views/ holds every view" : "");
     } else {
       img.style.display = "none";
       const drawn = ((REPORT.analysis || {}).exports || {}).pictures !== false;

@@ -128,6 +128,49 @@ TEST(OutputGuard, AHeaderInputProtectsItsDataFile) {
     EXPECT_NE(refusal(dir / "w.mhd", {dir / "v.mhd"}).find("w.raw"), std::string::npos);
 }
 
+// Issue 52: data named by a slice pattern or a LIST was not followed: `-o slices --force`
+// deleted all 113 slices of CThead.mhd, and volume-edit -o s1.mhd overwrote the slice s1.raw.
+TEST(OutputGuard, AHeaderInputProtectsEverySliceItsPatternOrListNames) {
+    const fs::path dir = base("patterns");
+    fs::create_directories(dir / "slices");
+    fs::create_directories(dir / "hdr");
+    write_file_atomically(dir / "hdr" / "ct.mhd",
+                          "NDims = 3\nElementDataFile = ../slices/CThead.%d 1 113 1\n");
+    auto files = input_files(dir / "hdr" / "ct.mhd");
+    ASSERT_EQ(files.size(), 114u);
+    EXPECT_EQ(files[1], dir / "hdr" / "../slices/CThead.1");
+    EXPECT_EQ(files[113], dir / "hdr" / "../slices/CThead.113");
+    EXPECT_NE(refusal(dir / "slices", {dir / "hdr" / "ct.mhd"}).find("contains the input"),
+              std::string::npos);
+    // Zero-padded, with a step.
+    write_file_atomically(dir / "p.mhd", "ElementDataFile = s%03d.raw 2 6 2\n");
+    files = input_files(dir / "p.mhd");
+    ASSERT_EQ(files.size(), 4u);
+    EXPECT_EQ(files[1], dir / "s002.raw");
+    EXPECT_EQ(files[3], dir / "s006.raw");
+    // A LIST: the header's following lines.
+    write_file_atomically(dir / "l.mhd", "NDims = 3\nElementDataFile = LIST 2D\na.raw\nb.raw\n");
+    files = input_files(dir / "l.mhd");
+    ASSERT_EQ(files.size(), 3u);
+    EXPECT_EQ(files[2], dir / "b.raw");
+    // NRRD: a pattern with its sub-dimension, and a LIST.
+    write_file_atomically(dir / "n.nhdr",
+                          "NRRD0004\ntype: short\ndata file: ../sl/s%d.raw 1 3 1 2\n");
+    files = input_files(dir / "n.nhdr");
+    ASSERT_EQ(files.size(), 4u);
+    EXPECT_EQ(files[3], dir / "../sl/s3.raw");
+    write_file_atomically(dir / "m.nhdr", "NRRD0004\ndata file: LIST\nx1.raw\nx2.raw\n");
+    files = input_files(dir / "m.nhdr");
+    ASSERT_EQ(files.size(), 3u);
+    EXPECT_EQ(files[1], dir / "x1.raw");
+    // volume-edit p.mhd -o s1.mhd: s1.mhd writes s1.raw, an input's slice of a pattern s%d.raw.
+    write_file_atomically(dir / "q.mhd", "ElementDataFile = s%d.raw 1 2 1\n");
+    EXPECT_NE(refusal(dir / "s1.mhd", {dir / "q.mhd"}).find("s1.raw"), std::string::npos);
+    // A pattern is never handed to printf: other conversions name no file.
+    write_file_atomically(dir / "bad.mhd", "ElementDataFile = %s%n 1 3 1\n");
+    EXPECT_EQ(input_files(dir / "bad.mhd").size(), 1u);
+}
+
 TEST(OutputGuard, WriteAtomicallyRefusesARegisteredInput) {
     const fs::path dir = base("registered");
     write_file_atomically(dir / "S.toml", "name = \"s\"\n");

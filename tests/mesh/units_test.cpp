@@ -45,6 +45,13 @@ TEST(Units, ReadFromTheCommentsFormatsCarry) {
             ".stl"),
         "mm");
     EXPECT_EQ(unit_from_header(text("{}"), ".gltf"), "m");  // glTF 2.0: metres
+    // 3D Slicer's models are in millimetres; its header names only the patient space (issue 51).
+    EXPECT_EQ(
+        unit_from_header(text("# vtk DataFile Version 4.2\n3D Slicer output. SPACE=LPS\nBINARY\n"),
+                         ".vtk"),
+        "mm");
+    EXPECT_EQ(unit_from_header(text("solid ascii\n"), ".stl"), "");
+    EXPECT_EQ(unit_from_header(text("# SPACE=RAS\nv 0 0 0\n"), ".obj"), "mm");
 }
 
 TEST(Units, NotGuessedFromDataOrOtherWords) {

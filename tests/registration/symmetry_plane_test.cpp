@@ -204,6 +204,23 @@ TEST(SymmetryPlane, GivenPlaneIsCheckedNotMoved) {
     EXPECT_LT(angle_deg(o.hypotheses[0].plane.normal, Vec3d::UnitX()), 0.2);
 }
 
+// Issue 52: --plane x=1e12 spent 15-50 s in closest-point queries deaf to SIGINT and then said
+// "do not overlap … check the fit". A plane off the surface is refused at once, in its words.
+TEST(SymmetryPlane, AGivenPlaneOffTheSurfaceIsRefusedAtOnce) {
+    const Mesh m = one_plane_shape();
+    for (const char* spec : {"x=1e12", "x=1e6", "y=-1e30"}) {
+        try {
+            (void)check_symmetry_plane(m, parse_plane_spec(spec));
+            ADD_FAILURE() << spec << " accepted";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("off the surface"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("expected a plane through the surface"),
+                      std::string::npos)
+                << e.what();
+        }
+    }
+}
+
 // jaw_smooth.obj is mirror-symmetric in x within tessellation (its mirrored vertices lie on
 // it: RMS 0.0005 mm, largest 0.015 mm on 118 mm).
 TEST(SymmetryPlane, RealJawMovedAndRetessellated) {

@@ -47,12 +47,22 @@ constexpr int kSteps = 14;
 
 extern "C" void request_cancel_on_signal(int signal) { request_cancel(signal); }
 
-// A run's complete output: three files, one of them in a sub-folder, each naming the run.
+// A run's complete output: four files, one of them in a sub-folder, each naming the run; its
+// report.json names the glint version, as every glint result's does.
 Files run_output(int run) {
     const std::string id = std::to_string(run);
     return {{"part1.txt", "run " + id + " part 1"},
+            {"report.json", "{\"glint_version\": \"run " + id + "\"}"},
             {"run.txt", "run " + id},
             {"views/a.txt", "run " + id + " view a"}};
+}
+
+// Whether a --force run may replace the target: absent, empty, or a glint result (its
+// report.json names the glint version); a folder of the user's is never replaced (issue 52).
+bool replaceable(const std::optional<Files>& target) {
+    if (!target || target->empty()) return true;
+    const auto report = target->find("report.json");
+    return report != target->end() && report->second.find("\"glint_version\"") != std::string::npos;
 }
 
 void write_text(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
@@ -153,7 +163,7 @@ class Interleaving {
     void user_writes_into_target();
     void user_makes_decoy();
     void user_removes_something();
-    void commit_outcome(const PendingRun& run, bool target_before, int code);
+    void commit_outcome(const PendingRun& run, bool may_commit, int code);
     bool belongs_to_pending_run(const std::string& name) const;
     void check(const std::string& after);
 
@@ -215,7 +225,7 @@ void Interleaving::start_run() {
     char staged = 0;
     const bool started = ::read(report[0], &staged, 1) == 1;
     ::close(report[0]);
-    const bool may_start = force || !expected_;
+    const bool may_start = !expected_ || (force && replaceable(expected_));
     if (!started) {
         const int code = wait_exit(pid);
         ::close(go[1]);
@@ -225,33 +235,34 @@ void Interleaving::start_run() {
         return check("the refusal of " + what);
     }
     log_ += what + " staged (pid " + std::to_string(pid) + ")\n";
-    EXPECT_TRUE(may_start) << what << " started over an existing target without force";
+    EXPECT_TRUE(may_start) << what << " started over a target it may not replace";
     pending_.push_back({id, force, pid, go[1]});
     leftovers_.clear();  // the run started: the wrappers of killed runs must be gone
     check("the start of " + what);
 }
 
 // What a run that ended with `code` after being told to commit must have done.
-void Interleaving::commit_outcome(const PendingRun& run, bool target_before, int code) {
+void Interleaving::commit_outcome(const PendingRun& run, bool may_commit, int code) {
     const std::string what = "run " + std::to_string(run.id);
     log_ += what + " ended with exit " + std::to_string(code) + "\n";
-    if (run.force || !target_before) {
+    if (may_commit) {
         EXPECT_EQ(code, 0) << what << " should have committed";
         if (code == 0) expected_ = run_output(run.id);
     } else {
-        EXPECT_EQ(code, 2) << what << " without force must refuse the target that appeared";
+        EXPECT_EQ(code, 2) << what << " must refuse the target that appeared (without force, "
+                           << "or a folder glint did not write)";
     }
 }
 
 void Interleaving::commit_run(std::size_t index) {
     const PendingRun run = pending_[index];
     pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(index));
-    const bool target_before = expected_.has_value();
+    const bool may_commit = !expected_ || (run.force && replaceable(expected_));
     log_ += "commit run " + std::to_string(run.id) + "\n";
     const bool told = ::write(run.go_fd, "g", 1) == 1;
     ::close(run.go_fd);
     ASSERT_TRUE(told);
-    commit_outcome(run, target_before, wait_exit(run.pid));
+    commit_outcome(run, may_commit, wait_exit(run.pid));
     check("the commit of run " + std::to_string(run.id));
 }
 
@@ -260,7 +271,7 @@ void Interleaving::commit_run(std::size_t index) {
 void Interleaving::kill_run(std::size_t index, bool while_committing) {
     const PendingRun run = pending_[index];
     pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(index));
-    const bool target_before = expected_.has_value();
+    const bool may_commit = !expected_ || (run.force && replaceable(expected_));
     log_ += "SIGKILL run " + std::to_string(run.id) +
             (while_committing ? " while committing\n" : " while staged\n");
     if (while_committing) {
@@ -271,10 +282,9 @@ void Interleaving::kill_run(std::size_t index, bool while_committing) {
     ::close(run.go_fd);
     if (code != 128 + SIGKILL) {
         EXPECT_TRUE(while_committing) << "run " << run.id << " outlived SIGKILL: " << code;
-        commit_outcome(run, target_before, code);
+        commit_outcome(run, may_commit, code);
         return check("the end of run " + std::to_string(run.id));
     }
-    const bool may_commit = run.force || !target_before;
     if (while_committing && may_commit && fs::is_directory(target()) &&
         read_tree(target()) == run_output(run.id))
         expected_ = run_output(run.id);  // killed after its commit's rename

@@ -18,6 +18,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// What a glint result's report.json holds that marks it as one (report/output_folder.cpp).
+std::string glint_report(const std::string& run) { return "{\"glint_version\": \"" + run + "\"}"; }
+
 fs::path base(const std::string& name) {
     const fs::path dir = fs::path(GLINT_TEST_OUTPUT_DIR) / "output_folder" / name;
     fs::remove_all(dir);
@@ -43,7 +46,7 @@ TEST(OutputFolder, InterruptedRunLeavesNothingAndKeepsThePreviousResults) {
     const fs::path dir = base("interrupted");
     {
         OutputFolder first(dir / "atlas");
-        write_file_atomically(first.file("report.json"), "old");
+        write_file_atomically(first.file("report.json"), glint_report("old"));
         first.commit();
     }
     try {
@@ -55,7 +58,7 @@ TEST(OutputFolder, InterruptedRunLeavesNothingAndKeepsThePreviousResults) {
     std::ifstream in(dir / "atlas" / "report.json");
     std::string text;
     std::getline(in, text);
-    EXPECT_EQ(text, "old");
+    EXPECT_EQ(text, glint_report("old"));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }
 
@@ -65,7 +68,7 @@ TEST(OutputFolder, ASignalBeforeTheCommitStopsItAndKeepsThePreviousResults) {
     const fs::path dir = base("cancel_before_commit");
     {
         OutputFolder first(dir / "atlas");
-        write_file_atomically(first.file("report.json"), "old");
+        write_file_atomically(first.file("report.json"), glint_report("old"));
         first.commit();
     }
     {
@@ -78,7 +81,7 @@ TEST(OutputFolder, ASignalBeforeTheCommitStopsItAndKeepsThePreviousResults) {
     std::ifstream in(dir / "atlas" / "report.json");
     std::string text;
     std::getline(in, text);
-    EXPECT_EQ(text, "old");
+    EXPECT_EQ(text, glint_report("old"));
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator{}), 1);
 }
 
@@ -122,13 +125,13 @@ TEST(OutputFolder, ReplacesAnEarlierRunOnCommit) {
     const fs::path dir = base("replace");
     for (const char* content : {"one", "two"}) {
         OutputFolder out(dir / "atlas", /*replace_existing=*/true);
-        write_file_atomically(out.file("report.json"), content);
+        write_file_atomically(out.file("report.json"), glint_report(content));
         out.commit();
     }
     std::ifstream in(dir / "atlas" / "report.json");
     std::string text;
     std::getline(in, text);
-    EXPECT_EQ(text, "two");
+    EXPECT_EQ(text, glint_report("two"));
 }
 
 TEST(OutputFolder, MissingParentIsAnIoErrorNamingIt) {
@@ -278,11 +281,82 @@ TEST(OutputFolder, ReplacingLeavesNoStagingOrAsideFolders) {
     const fs::path dir = base("exchange");
     for (const char* content : {"one", "two"}) {
         OutputFolder out(dir / "atlas", /*replace_existing=*/true);
-        write_file_atomically(out.file("report.json"), content);
+        write_file_atomically(out.file("report.json"), glint_report(content));
         out.commit();
     }
-    EXPECT_EQ(read_text(dir / "atlas" / "report.json"), "two");
+    EXPECT_EQ(read_text(dir / "atlas" / "report.json"), glint_report("two"));
     EXPECT_EQ(entries(dir), 1u);
+}
+
+// Issue 52: `-o . --force` or `-o .. --force` replaced any folder that held no input. A folder
+// glint did not write is never replaced, with --force or without; an empty one or an earlier
+// result (its report.json names the glint version) is.
+TEST(OutputFolder, NeverReplacesAFolderGlintDidNotWrite) {
+    const fs::path dir = base("foreign");
+    write_new(dir / "home" / "thesis.tex", "years of work");
+    write_new(dir / "home" / "report.json", "{\"author\": \"me\"}");  // a report, not glint's
+    try {
+        OutputFolder out(dir / "home", /*replace_existing=*/true);
+        FAIL() << "a folder glint did not write was accepted for replacing";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("holds files glint did not write"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_EQ(read_text(dir / "home" / "thesis.tex"), "years of work");
+    EXPECT_EQ(entries(dir), 1u);  // nothing staged beside it
+    // An empty folder and an earlier result are replaced.
+    fs::create_directories(dir / "empty");
+    for (const char* target : {"empty", "result"}) {
+        if (std::string(target) == "result")
+            write_new(dir / "result" / "report.json",
+                      "{\"device\": {}, " + glint_report("0.9").substr(1));
+        OutputFolder out(dir / target, /*replace_existing=*/true);
+        write_file_atomically(out.file("report.json"), glint_report("new"));
+        out.commit();
+        EXPECT_EQ(read_text(dir / target / "report.json"), glint_report("new")) << target;
+    }
+}
+
+// The folder became someone else's while the run worked: its commit refuses and keeps it.
+TEST(OutputFolder, ForceRefusesAtCommitAFolderThatBecameTheUsers) {
+    const fs::path dir = base("became_foreign");
+    OutputFolder out(dir / "atlas", /*replace_existing=*/true);
+    write_file_atomically(out.file("report.json"), glint_report("mine"));
+    write_new(dir / "atlas" / "notes.txt", "the user's");
+    EXPECT_THROW(out.commit(), InputError);
+    EXPECT_EQ(read_text(dir / "atlas" / "notes.txt"), "the user's");
+}
+
+// Issue 52: a file read after the folder was made (a ROI mask read during the sweep, a slice,
+// a glTF buffer) is an input by commit time: the results never replace the folder holding it.
+TEST(OutputFolder, CommitRefusesAFolderHoldingAFileReadDuringTheRun) {
+    const fs::path dir = base("read_later");
+    {
+        OutputFolder first(dir / "m");
+        write_file_atomically(first.file("report.json"), glint_report("old"));
+        first.commit();
+    }
+    write_new(dir / "m" / "m.ply", "the mask");
+    OutputFolder out(dir / "m", /*replace_existing=*/true);
+    write_file_atomically(out.file("report.json"), glint_report("new"));
+    protect_input(dir / "m" / "m.ply");  // as the mask's loader does when it reads it
+    try {
+        out.commit();
+        FAIL() << "the commit replaced a folder holding an input";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("contains the input"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_text(dir / "m" / "m.ply"), "the mask");
+    EXPECT_EQ(read_text(dir / "m" / "report.json"), glint_report("old"));
+}
+
+// A symbolic link at the output's place is named at once, not after the whole analysis.
+TEST(OutputFolder, RefusesASymbolicLinkAtItsPlace) {
+    const fs::path dir = base("symlink");
+    fs::create_symlink(dir / "nowhere", dir / "out");
+    EXPECT_THROW(OutputFolder(dir / "out", /*replace_existing=*/true), InputError);
+    EXPECT_THROW(OutputFolder(dir / "out"), InputError);
+    EXPECT_TRUE(fs::is_symlink(dir / "out"));
 }
 
 }  // namespace

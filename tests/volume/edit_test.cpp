@@ -145,6 +145,27 @@ TEST(EditVolume, RefusesAVoxelSizeThatIsNoSize) {
     EXPECT_THROW((void)edit_volume(in, tiny), InputError);
 }
 
+// Issue 52: --erode-to nan was accepted and the truth JSON held a bare nan.
+TEST(EditVolume, RefusesNumbersThatAreNotFinite) {
+    const Volume in = sphere_volume();
+    const float nan = std::nanf("");
+    for (const Erosion& bad : {Erosion{{0, 0, 10}, 3, nan}, Erosion{{0, 0, 10}, nan, 0},
+                               Erosion{{nan, 0, 10}, 3, 0}, Erosion{{0, 0, 10}, -1, 0}}) {
+        VolumeEdit edit;
+        edit.erosions = {bad};
+        try {
+            (void)edit_volume(in, edit);
+            ADD_FAILURE() << "accepted erosion at " << bad.center.transpose() << " r " << bad.radius
+                          << " to " << bad.value;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("erosion 1"), std::string::npos) << e.what();
+        }
+    }
+    VolumeEdit noisy;
+    noisy.noise_sigma = std::nan("");
+    EXPECT_THROW((void)edit_volume(in, noisy), InputError);
+}
+
 TEST(EditVolume, TheTruthFileRecordsTheAcquisition) {
     VolumeEdit edit;
     edit.spacing = Vec3d(0.8, 0.8, 0.8);

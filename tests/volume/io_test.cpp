@@ -320,6 +320,27 @@ TEST(ReadVolume, ReadsADicomSeriesBesideATruncatedFile) {
     EXPECT_EQ(back.voxels, v.voxels);
 }
 
+// Issue 52: a series with a slice missing, or one refused as truncated, was read at 2.111 mm
+// spacing instead of 2 mm without a word. It is refused, naming the gap.
+TEST(ReadVolume, RefusesADicomSeriesWithASliceMissingOrCut) {
+    const Volume v = small_volume();
+    for (const bool cut : {false, true}) {
+        const fs::path dir = fresh_dir(cut ? "dicom_gap_cut" : "dicom_gap") / "series";
+        write_dicom_series(v, dir);
+        if (cut) fs::resize_file(dir / "slice0007.dcm", 200);
+        else fs::remove(dir / "slice0007.dcm");
+        try {
+            (void)read_volume(dir);
+            ADD_FAILURE() << "a series with a gap was read";
+        } catch (const InputError& e) {
+            const std::string m = e.what();
+            EXPECT_NE(m.find("the DICOM series has a gap: slices 7 and 8 of 15"), std::string::npos)
+                << m;
+            EXPECT_NE(m.find("2.6 mm apart, the others 1.3 mm"), std::string::npos) << m;
+        }
+    }
+}
+
 TEST(DicomCheck, NamesWhatIsWrongWithACutFile) {
     const Volume v = small_volume();
     const fs::path dir = fresh_dir("dicom_cut") / "series";
