@@ -6,6 +6,7 @@
 #include "mesh/normals.h"
 #include "mesh/scan_view.h"
 #include "mesh/stopwatch.h"
+#include "mesh/winding.h"
 #include "render/context.h"
 
 #include <algorithm>
@@ -135,6 +136,55 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
 
 }  // namespace
 
+namespace {
+
+// An open surface faces inward when its outward score (mesh/winding.h) is below -kInsideOut
+// while its pair's is above +kInsideOut: the open patches of the evaluation score 0.5-0.8
+// facing outward (a condyle crop, teeth, range scans). A closed one faces inward whenever its
+// score is below -kClosedInsideOut: its score is 3 × its enclosed volume over its spread, so
+// its sign is the answer, small as it may be for thin shapes (the CBCT jaw scores +0.21).
+constexpr double kInsideOut = 0.3;
+
+// The largest --resolution, in sizes of the reference (its bounding-box diagonal).
+constexpr double kMaxResolutionSizes = 1000.0;
+constexpr double kClosedInsideOut = 0.01;
+
+struct InsideOut {
+    bool reference = false;  ///< the reference must be turned (the examined is turned here)
+    std::vector<std::string> warnings;
+};
+
+// Turns the examined surface when it is inside out; says whether the reference must be.
+InsideOut turn_inside_out_inputs(const Mesh& reference, Mesh& examined) {
+    InsideOut out;
+    const double r = outward_score(reference), e = outward_score(examined);
+    const auto inside_out = [](const Mesh& m, double own, double other) {
+        return (own <= -kInsideOut && other >= kInsideOut) ||
+               (own <= -kClosedInsideOut && is_closed(m));
+    };
+    const auto said = [&](const char* which, double own, double other, const char* what) {
+        char text[400];
+        std::snprintf(text, sizeof text,
+                      "the %s surface is inside out (its triangles are wound clockwise seen from "
+                      "outside: outward score %+.2f, the other surface's %+.2f): turned for the "
+                      "analysis, so that dents and bumps keep their sign%s",
+                      which, own, other, what);
+        return std::string(text);
+    };
+    if (inside_out(examined, e, r)) {
+        reverse_winding(examined);
+        out.warnings.push_back(said("examined", e, r, ""));
+    }
+    if (inside_out(reference, r, e)) {
+        out.reference = true;
+        out.warnings.push_back(
+            said("reference", r, e, "; the atlas files carry its triangles turned"));
+    }
+    return out;
+}
+
+}  // namespace
+
 AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOptions& options,
                        const AnalysisObserver& observer) {
     const auto t_start = Clock::now();
@@ -144,22 +194,37 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
         with_normals = reference_in;
         compute_vertex_normals(*with_normals);
     }
+    AnalysisResult result;
+    // Inside-out inputs (issue 53): a surface whose triangles are all wound the other way (as
+    // some STL exporters write them) has every normal reversed; the fit found no compatible
+    // pairs and a dent would read as a bump. It is turned for the analysis, and said so.
+    {
+        const Mesh& ref = with_normals ? *with_normals : reference_in;
+        const InsideOut turned = turn_inside_out_inputs(ref, examined);
+        if (turned.reference) {
+            if (!with_normals) with_normals = reference_in;
+            reverse_winding(*with_normals);
+        }
+        result.warnings = turned.warnings;
+    }
     const Mesh& reference = with_normals ? *with_normals : reference_in;
     // Units and sizes, checked before the long work.
-    AnalysisResult result;
     result.units = resolve_units(reference, examined, options.units);
     result.unit = result.units.unit;
     if (result.units.examined_scale != 1.0) scale_to_analysis_unit(examined, result.units);
     result.size = bounds(reference).diagonal();
-    result.warnings = result.units.warnings;
-    // Bounded before any ray exists: a voxel larger than the whole surface leaves nothing to
-    // compare, and a huge one (1e38) put rays' origins beyond what Embree accepts (issue 52).
-    if (const auto& r = options.decision.resolution; r && !(*r <= result.size))
+    result.warnings.insert(result.warnings.begin(), result.units.warnings.begin(),
+                           result.units.warnings.end());
+    // Bounded before any ray exists: a resolution of 1e38 put the below-resolution rays'
+    // origins beyond what Embree accepts (it aborted, issue 52). A voxel larger than the
+    // surface is meaningful (nothing is compared, and the run says so); one over 1000 times
+    // its size is a number gone wrong.
+    if (const auto& r = options.decision.resolution;
+        r && !(*r <= kMaxResolutionSizes * result.size))
         throw OptionError("decision.resolution", *r,
-                          "must be at most the reference's size, its bounding-box diagonal of " +
-                              std::to_string(result.size) +
-                              " mesh units (a voxel larger than the "
-                              "surface leaves nothing to compare)");
+                          "must be at most 1000 times the reference's size (its bounding-box "
+                          "diagonal is " +
+                              std::to_string(result.size) + " mesh units)");
     // The render device is opened while the fit runs: choosing it loads the Vulkan drivers
     // (lavapipe brings LLVM), 0.05-0.1 s on a CPU machine and more where a GPU starts. The
     // sweep takes the same shared context (render/context.h); a failure here is left for the

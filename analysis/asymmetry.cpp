@@ -293,8 +293,12 @@ std::string describe(const AsymmetryFinding& f, const std::string& side_name,
            (f.depth < 0 ? " less" : " more") + " than the mirrored " + other_name + ", area " +
            with_unit(f.area, unit, 2, "%.3g") + ", volume " +
            with_unit(std::abs(f.volume), unit, 3, "%.3g") +
-           (f.at_mirror_image ? " (seen as region " + id + " at its mirror image on the " +
-                                    other_name + "; none of its own on this side)"
+           // note: the region lies on the other side, at this place's mirror image: said in
+           // that order, so that a reader who finds the region there is not told it is here
+           // (issue 51).
+           (f.at_mirror_image ? " (found as region " + id + " on the " + other_name +
+                                    ", the mirror image of this place; this side has no region "
+                                    "of its own)"
             : f.mirror_region ? " (region " + id + ", its mirror image region " +
                                     std::to_string(f.mirror_region) + ")"
                               : " (region " + id + ", no mirror-image region found)");

@@ -74,7 +74,8 @@ const std::vector<std::string>& up_choices() {
 }
 
 std::string Orientation::name(const Vec3d& direction) const {
-    const Vec3d d = direction.normalized();
+    Vec3d d = direction.normalized();
+    if (space != PatientSpace::Unknown) d.z() *= superior_sign;
     std::vector<std::pair<double, const char*>> parts;
     for (const auto& a : kAxes) {
         const double c = d.dot(a.direction);
@@ -90,7 +91,9 @@ std::string Orientation::name(const Vec3d& direction) const {
     return out;
 }
 
-std::string Orientation::letter(const Vec3d& direction) const {
+std::string Orientation::letter(const Vec3d& direction_in) const {
+    Vec3d direction = direction_in;
+    if (space != PatientSpace::Unknown) direction.z() *= superior_sign;
     const AxisName* best = &kAxes[0];
     for (const auto& a : kAxes)
         if (direction.dot(a.direction) > direction.dot(best->direction)) best = &a;
@@ -111,9 +114,18 @@ Orientation resolve_orientation(PatientSpace space, std::string_view up) {
         o.up = parse_up(up);
         o.up_known = true;
         o.source = "drawn with " + std::string(up) + " up, as given";
-        if (space != PatientSpace::Unknown && o.up.dot(named_axis(space, "superior")) < 0.5) {
-            // The file's space and the given up disagree (a header written by hand, like
-            // CThead's, whose slices run downwards): neither names directions then.
+        const Vec3d superior = named_axis(space, "superior");
+        if (space != PatientSpace::Unknown && o.up.dot(superior) < -0.5) {
+            // The given up is the space's inferior: a header written by hand whose slices run
+            // downwards (CThead's). The head is upside down in the file, not turned: up is
+            // named superior and left, right, anterior and posterior keep their names.
+            o.superior_sign = -1.0;
+            o.source += "; the reference states " + stated +
+                        " patient space with its slices running downwards, so " + std::string(up) +
+                        " is named superior and the other directions as stated";
+        } else if (space != PatientSpace::Unknown && o.up.dot(superior) < 0.5) {
+            // The file's space and the given up disagree otherwise (turned axes): neither
+            // names directions then.
             o.space = PatientSpace::Unknown;
             o.source += "; the reference states " + stated + " patient space, where " +
                         o.name(o.up) + " is not superior, so directions are named by axis";

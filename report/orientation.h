@@ -49,7 +49,10 @@ struct Orientation {
     Vec3d front{1.0, 0.0, 0.0};  ///< unit, ⟂ up: the first overview panel looks from here
     PatientSpace space = PatientSpace::Unknown;
     bool up_known = false;  ///< the up direction is stated (a patient space or --up), not assumed
-    std::string source;     ///< how it was decided, one sentence (report.json, warnings)
+    /// +1, or −1 where --up named the space's inferior axis: a header whose slices run
+    /// downwards (CThead's), so the given up is superior and the other names stay (issue 51).
+    double superior_sign = 1.0;
+    std::string source;  ///< how it was decided, one sentence (report.json, warnings)
 
     /// "superior", "left", … in a patient space, else "+z", "-x", … for a unit axis direction;
     /// an oblique direction is named by its main components ("anterior-left", "+x+z").

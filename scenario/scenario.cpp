@@ -1,5 +1,6 @@
 #include "scenario/scenario.h"
 
+#include "mesh/winding.h"
 #include "scenario/pose_conf.h"
 
 #include "mesh/error.h"
@@ -252,6 +253,10 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
         sc.remesh_iterations = static_cast<int>(*v);
     }
     if (auto v = r.optional<bool>("shuffle", "true or false")) sc.shuffle = *v;
+    if (auto v = r.optional<bool>("reverse_winding", "true or false")) sc.reverse_winding = *v;
+    if (sc.reverse_winding && !sc.examined_derived)
+        r.fail(r.get("reverse_winding"), "reverse_winding",
+               "turns an examined surface derived from the reference");
     if (auto v = r.integer("seed", 0, 4294967295)) sc.shuffle_seed = static_cast<std::uint32_t>(*v);
     if ((sc.remesh || sc.shuffle) && (!sc.examined_derived || sc.reference.phantom))
         r.fail(r.get(sc.remesh ? "remesh" : "shuffle"), sc.remesh ? "remesh" : "shuffle",
@@ -483,6 +488,12 @@ void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
         noise.sigma = sc.noise_sigma;
         noise.seed = sc.noise_seed;
         apply_damage(out.examined, {noise});  // labels and gt_displacement of the damages are kept
+    }
+    if (sc.reverse_winding) {
+        // As some STL exporters write a surface: every triangle wound the other way, the same
+        // geometry inside out (issue 53).
+        reverse_winding(out.examined);
+        out.notes.push_back("examined: every triangle's winding reversed (inside out)");
     }
     transform_mesh(out.examined, sc.pose);
     out.true_reference_from_examined = sc.pose.inverse();

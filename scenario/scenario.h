@@ -108,6 +108,9 @@ struct Scenario {
     std::optional<double> remesh;
     int remesh_iterations = 3;
     bool shuffle = false;  ///< shuffle vertex and triangle order
+    /// reverse_winding = true: every examined triangle wound the other way (inside out, as
+    /// some STL exporters write it), applied before the pose
+    bool reverse_winding = false;
     std::uint32_t shuffle_seed = 1;
     /// The plain distance threshold glint's decision is compared with (mesh units); default
     /// 10 % of the smallest damage depth.

@@ -127,8 +127,6 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
     if (!(edit.noise_sigma >= 0 && std::isfinite(edit.noise_sigma)))
         throw InputError("volume edit: noise σ is " + std::to_string(edit.noise_sigma) +
                          "; expected a finite value ≥ 0");
-    if (edit.spacing && !(edit.spacing->allFinite() && edit.spacing->minCoeff() > 0))
-        throw InputError("volume edit: voxel size must be finite and > 0 mm on every axis");
     if (!edit.moved_from_original.matrix().allFinite())
         throw InputError("volume edit: the motion holds a number that is not finite");
     Volume out;

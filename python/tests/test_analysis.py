@@ -203,6 +203,7 @@ def test_cancel_while_the_inputs_load_stops_the_whole_call(dent_pair):
     """Issue 52: glint.cancel() in the first seconds of analyse, while its inputs loaded, was
     cleared when the analysis began; the call then ran to its end."""
     ref, exa, _ = dent_pair
+    ref = glint.load(ref)
 
     class CancelsWhileRead:  # a mesh of another library whose arrays are read as the call starts
         vertices = ref.positions
@@ -213,7 +214,7 @@ def test_cancel_while_the_inputs_load_stops_the_whole_call(dent_pair):
             return ref.triangles
 
     with pytest.raises(KeyboardInterrupt, match="SIGINT received: stopped"):
-        glint.analyse(CancelsWhileRead(), exa, size=128, views=False, exr=False)
+        glint.analyse(CancelsWhileRead(), exa, register=True, size=128, views=False, exr=False)
     assert glint.analyse(ref, ref, register=False, **SMALL_SWEEP).regions == []
 
 

@@ -114,7 +114,7 @@ def test_meshes_made_in_python_are_in_millimetres_unless_told(dent_pair):
     assert glint.Mesh(TETRA_V, TETRA_F).unit == "mm"
     assert glint.Mesh(TETRA_V, TETRA_F, unit=None).unit is None
     assert "\"mm\" unless given" in glint.Mesh.__init__.__doc__
-    ref = dent_pair[0]
+    ref = glint.load(dent_pair[0])
     arrays = (np.array(ref.positions), np.array(ref.triangles))
     atlas = glint.analyse(arrays, arrays, register=False, **SMALL_SWEEP).atlas
     assert "shape_change_mm" in atlas.scalars

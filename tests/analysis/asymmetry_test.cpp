@@ -189,7 +189,8 @@ TEST(Asymmetry, ALoneRegionIsWeighedAgainstTheSurfaceAtItsMirrorImage) {
     EXPECT_GT(moved.mirror_roughness, 0.0);
     EXPECT_NE(describe(moved, "-x side", "+x side", "mm")
                   .find("-x side: 0.5 mm less than the mirrored +x side, area 50 mm², volume 5 "
-                        "mm³ (seen as region 1 at its mirror image on the +x side"),
+                        "mm³ (found as region 1 on the +x side, the mirror image of this place; "
+                        "this side has no region of its own)"),
               std::string::npos)
         << describe(moved, "-x side", "+x side", "mm");
 

@@ -5,12 +5,14 @@
 
 #include "mesh/damage.h"
 #include "mesh/phantom.h"
+#include "mesh/winding.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -205,6 +207,48 @@ TEST(Sweep, FindsADentOfKnownSizeWhereItIsAndNowhereElse) {
         }
     EXPECT_LT((regions[0].centroid - c / area).norm(), 0.3);
     EXPECT_NEAR(r.sweep.zooms[0].coverage.fraction, 1.0, 0.02);
+}
+
+// Issue 53: an examined surface whose triangles are all wound the other way (as some STL
+// exporters write them) failed the fit ("low overlap") and would read a dent as a bump. It is
+// turned, said so, and its dent found as a dent; an inside-out reference likewise.
+TEST(Sweep, AnInsideOutSurfaceIsTurnedAndItsDentStaysADent) {
+    const Mesh ref = condyle(TessellationScheme::Ico, 5);
+    Mesh exa = condyle(TessellationScheme::Uv, 64);
+    apply_damage(
+        exa,
+        {DamageSpec{.kind = DamageKind::Dent, .center = {10, 0, 3}, .radius = 2.5, .depth = 0.4}});
+    Rigid moved = Rigid::Identity();
+    moved.rotate(Eigen::AngleAxisd(3.0 * std::numbers::pi / 180, Vec3d(0.3, 1, 0.2).normalized()));
+    moved.translation() = Vec3d(0.4, -0.3, 0.2);
+    transform_mesh(exa, moved);
+    AnalysisOptions o = options_with(0.12);
+    o.fit.mode = FitMode::Register;
+    for (const bool turn_reference : {false, true}) {
+        Mesh r = ref, e = exa;
+        reverse_winding(turn_reference ? r : e);
+        EXPECT_LT(outward_score(turn_reference ? r : e), -0.9);
+        const AnalysisResult result = analyse(r, e, o);
+        const std::string which = turn_reference ? "reference" : "examined";
+        EXPECT_TRUE(std::any_of(result.warnings.begin(), result.warnings.end(),
+                                [&](const std::string& w) {
+                                    return w.find("the " + which + " surface is inside out") !=
+                                           std::string::npos;
+                                }))
+            << which;
+        ASSERT_TRUE(result.fit.registration) << which;
+        // The fit recovers the motion as it does for an outward pair.
+        const Rigid error = result.fit.reference_from_examined * moved;
+        EXPECT_LT(rotation_angle_deg(error), 0.05) << which;
+        const auto& regions = result.decisions[0].regions.regions;
+        ASSERT_EQ(regions.size(), 1u) << which;
+        EXPECT_EQ(regions[0].kind, RegionKind::Dent) << which;
+        EXPECT_LT(regions[0].peak_depth, -0.2) << which;
+    }
+    // Surfaces that face outward are left as they are.
+    EXPECT_GT(outward_score(ref), 0.5);
+    const AnalysisResult plain = analyse(ref, exa, o);
+    for (const auto& w : plain.warnings) EXPECT_EQ(w.find("inside out"), std::string::npos) << w;
 }
 
 template <typename T>

@@ -63,12 +63,24 @@ TEST(Orientation, UpAsGivenWinsAndIsNamedTop) {
     // A right-handed display frame: from the front, turning towards up × front.
     expect_near(panel_direction(o, 90, 0), -Vec3d::UnitY());
     expect_near(resolve_orientation(PatientSpace::Unknown, "y").up, Vec3d::UnitY());
-    // An up that contradicts the file's patient space (CThead's hand-written header, whose
-    // slices run downwards): the picture obeys, directions are named by axis, the source says so.
+    // Up along the file's inferior axis (CThead's hand-written header, whose slices run
+    // downwards): the picture obeys and the labels stay anatomical, -z named superior (issue 51:
+    // --up -z turned every label into an axis name).
     const Orientation ct = resolve_orientation(PatientSpace::LPS, "-z");
-    EXPECT_EQ(ct.space, PatientSpace::Unknown);
-    EXPECT_NE(ct.source.find("-z is not superior"), std::string::npos) << ct.source;
-    EXPECT_EQ(ct.name(panel_direction(ct, 0, 90)), "-z");
+    EXPECT_EQ(ct.space, PatientSpace::LPS);
+    EXPECT_NE(ct.source.find("slices running downwards, so -z is named superior"),
+              std::string::npos)
+        << ct.source;
+    EXPECT_EQ(ct.name(panel_direction(ct, 0, 90)), "superior");
+    EXPECT_EQ(ct.letter(-Vec3d::UnitZ()), "S");
+    EXPECT_EQ(ct.name(Vec3d::UnitZ()), "inferior");
+    EXPECT_EQ(ct.name(Vec3d::UnitX()), "left");
+    EXPECT_EQ(ct.name(-Vec3d::UnitY()), "anterior");
+    EXPECT_EQ(ct.name(panel_direction(ct, 0, 0)), "anterior");
+    // An up along another axis than the space's S-I contradicts it: named by axis, said so.
+    const Orientation turned = resolve_orientation(PatientSpace::LPS, "+y");
+    EXPECT_EQ(turned.space, PatientSpace::Unknown);
+    EXPECT_NE(turned.source.find("is not superior"), std::string::npos) << turned.source;
     // An up that agrees keeps the anatomical names.
     EXPECT_EQ(resolve_orientation(PatientSpace::RAS, "+z").name(Vec3d::UnitX()), "right");
 }
