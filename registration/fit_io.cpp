@@ -65,6 +65,8 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
         {"termination", r.termination},
         {"termination_detail", r.termination_detail},
         {"coarse", r.coarse},
+        {"matched", r.reference_on_examined ? "reference samples on the examined surface"
+                                            : "examined samples on the reference"},
         {"options",
          {{"loss", to_string(o.loss)},
           {"samples", o.samples},

@@ -6,10 +6,16 @@
 #include "registration/detail/icp_core.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <optional>
 #include <sstream>
 
 namespace glint {
+
+namespace {
+// The examined surface's area, in reference areas, above which the reference is matched on it.
+constexpr double kTurnRoles = 1.5;
+}  // namespace
 
 RobustLoss parse_loss(const std::string& text) {
     if (text == "none") return RobustLoss::None;
@@ -94,7 +100,40 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     run.result.reference_from_examined = run.t;
     run.result.examined_from_reference = run.t.inverse();
     run.result.coarse = coarse;
-    return run.result;
+    // note: an examined surface that covers far more than the reference (a reference cropped
+    // around one condyle against the whole jaw, issue 53) leaves most of its samples with no
+    // reference surface near them: the fit found "overlap 0.018 < 0.2". When the fit above
+    // failed so, the roles turn: the reference's samples are matched on the examined surface
+    // (what the reference shows, the examined surface covers) and the motion found is
+    // inverted; the better of the two is kept. Not with an ROI (it selects reference surface
+    // to match on) nor the symmetric fit (it matches both ways already).
+    const double reference_area = surface_area(reference), examined_area = surface_area(exam);
+    if (run.result.converged || o.roi || o.symmetric ||
+        !(examined_area > kTurnRoles * reference_area))
+        return run.result;
+    const Mesh& ref = ref_index.mesh();
+    const ClosestPointIndex onto = ClosestPointIndex::borrowing(exam);
+    const auto ref_samples_only = detail::sample_surface(ref, o.samples, o.seed);
+    Rigid turned_start = o.initial ? o.initial->inverse() : Rigid::Identity();
+    std::string turned_coarse = o.initial ? "given initial pose" : "identity";
+    if (o.coarse && !o.initial) {
+        const CoarseAlignment c = detail::coarse_align(onto, ref, ref_samples_only, o, diagonal);
+        turned_start = c.reference_from_examined;  // here: examined from reference
+        turned_coarse = c.description;
+    }
+    detail::IcpRun turned = detail::run_icp(ref_samples_only, {}, onto, nullptr, turned_start, o,
+                                            o.max_iterations, diagonal);
+    if (!turned.result.converged && turned.result.overlap <= run.result.overlap) return run.result;
+    turned.result.reference_from_examined = turned.t.inverse();
+    turned.result.examined_from_reference = turned.t;
+    char why[200];
+    std::snprintf(why, sizeof why,
+                  "; the reference's samples matched on the examined surface (it covers %.1f× "
+                  "the reference's area; matched the other way, overlap %.3f)",
+                  examined_area / reference_area, run.result.overlap);
+    turned.result.coarse = turned_coarse + why;
+    turned.result.reference_on_examined = true;
+    return turned.result;
 }
 
 }  // namespace glint

@@ -101,6 +101,10 @@ struct RegistrationResult {
     std::string termination;
     std::string termination_detail;  ///< one line with the numbers behind `termination`
     std::string coarse;              ///< which coarse hypothesis was kept
+    /// The reference's samples were matched on the examined surface: the examined surface
+    /// covers more than 1.5× the reference's area and the fit the usual way round found too
+    /// little overlap. The evidence above is measured the turned way round.
+    bool reference_on_examined = false;
     std::vector<IcpIteration> log;
 };
 
