@@ -236,7 +236,7 @@ void bind_analysis_class(py::module_& m) {
         .def_property_readonly(
             "fields",
             [](const AnalysisHandle& a) -> py::object { return py::cast(a.atlas).attr("scalars"); },
-            "per-vertex numpy arrays by name, each named with its unit (README: the atlas "
+            "per-vertex numpy arrays by name, each named with its unit (docs/outputs.md: the atlas "
             "fields): shape_change_mm (signed distance to the fitted examined surface, negative "
             "= loss, in a hole of the examined surface the depth gone; _units when the unit is "
             "unknown), shape_tolerance_mm, and per zoom k: "

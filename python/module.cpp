@@ -1,5 +1,4 @@
-// import glint: the Python face of the glint library (python/README in the repository's
-// README, section "Python").
+// import glint: the Python face of the glint library (docs/python.md in the repository).
 #include "mesh/cancel.h"
 #include "mesh/front_end.h"
 #include "mesh/plugin_library.h"

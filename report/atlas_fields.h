@@ -1,6 +1,6 @@
 // The per-vertex fields of the atlas: one list of names shared by atlas.ply / .vtk / .vtp,
 // report.html's field selector and glint.Analysis.fields, so every reader sees the same
-// field under the same name (README "The atlas fields").
+// field under the same name (docs/outputs.md, "The atlas fields").
 //
 // Every name carries its unit: lengths in the run's unit ("_mm"; "_units" when unknown,
 // mesh/units.h unit_suffix), the metric in its own ("_deg"), counts and flags in theirs.

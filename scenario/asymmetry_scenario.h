@@ -1,7 +1,7 @@
 // Scenarios with asymmetry = true (issue 27): the one surface a scenario makes (its
 // [reference], with any [[damage]], noise, pose or re-meshing of [examined] applied) compared
 // with its own mirror image (report/asymmetry_run.h), and the [expect] keys that check it.
-// The keys are documented in README.md ("Scenario files"):
+// The keys are documented in docs/inputs.md ("Scenario files"):
 //
 //   asymmetry = true             top level; plane = "x=0" (the syntax of glint asymmetry
 //                                --plane) gives the plane by hand; [registration] fit_roi

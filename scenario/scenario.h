@@ -1,6 +1,6 @@
 // Scenarios: a TOML file that says which surfaces, which damage, which misalignment, which
 // sweep and what outcome is expected, so that a run can be repeated, shared and scored.
-// The format is documented in README.md ("Scenario files"); every key is checked: an unknown
+// The format is documented in docs/inputs.md ("Scenario files"); every key is checked: an unknown
 // key or a wrong type is an InputError naming the file, the key, its line and what was
 // expected.
 #pragma once

@@ -112,8 +112,9 @@ void setup(CLI::App& app) {
     cmd->add_option("--size", args.size,
                     "Radius, or three semi-axes (torus: major minor); mesh units (mm)")
         ->expected(1, 3);
-    cmd->add_option("--damage", args.damages,
-                    "Damage spec, repeatable (see README: dent:center=x,y,z;radius=R;depth=D)");
+    cmd->add_option(
+        "--damage", args.damages,
+        "Damage spec, repeatable (docs/commands.md: dent:center=x,y,z;radius=R;depth=D)");
     cmd->add_option("--pose", args.pose, "Rigid pose 'rx,ry,rz,tx,ty,tz' (degrees, mesh units)");
     cmd->add_option(
            "-o,--output", args.output,

@@ -110,7 +110,7 @@ SlicerGroup outputs_group() {
               "examined surface the depth gone), then "
               "shape_tolerance_mm, per zoom seen_z0 (1 seen, 0 unseen), angle_mean_deg_z0 and "
               "angle_max_deg_z0 (normal deviation, 0 where unseen), missing_fraction_z0, "
-              "pixels_z0, region_id_z0 (README: the atlas fields). In the reference's space "
+              "pixels_z0, region_id_z0 (docs/outputs.md: the atlas fields). In the reference's space "
               "(LPS, as Slicer writes models and volumes).",
           .type = "model",
           .file_extensions = ".vtp"},

@@ -49,9 +49,16 @@ std::string floors_line(const AnalysisResult& r) {
     const MetricDescriptor& m = describe(r.sweep.options.metric);
     const std::string normal_unit = picture_unit_suffix(d.scale.radius > 0 ? "deg" : m.unit);
     char b[240];
-    std::snprintf(b, sizeof b, "floors (zoom 0, %s rule): normal %s%s (%s)",
-                  to_string(d.rule).c_str(), format_number(d.normal.value).c_str(),
-                  normal_unit.c_str(), to_string(d.normal.source).c_str());
+    // note: past 90° two normals bound nothing a surface shows; the legend says the same
+    // (report/pictures.cpp, issue 51).
+    if (normal_unit == "\u00b0" && d.normal.value > 90.0)
+        std::snprintf(b, sizeof b,
+                      "floors (zoom 0, %s rule): normals none (they differ by %s° by nature)",
+                      to_string(d.rule).c_str(), format_number(d.normal.value).c_str());
+    else
+        std::snprintf(b, sizeof b, "floors (zoom 0, %s rule): normal %s%s (%s)",
+                      to_string(d.rule).c_str(), format_number(d.normal.value).c_str(),
+                      normal_unit.c_str(), to_string(d.normal.source).c_str());
     std::string line = b;
     if (d.rule == DecisionRule::Fused) {
         std::snprintf(b, sizeof b, ", shape %s %s (%s)", format_number(d.shape.value).c_str(),

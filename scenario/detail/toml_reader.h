@@ -126,7 +126,8 @@ class TableReader {
         for (const auto& [k, node] : table_) {
             const std::string key(k.str());
             if (!seen_.count(key))
-                fail(&node, key, "unknown key (check its spelling; README lists every key)");
+                fail(&node, key,
+                     "unknown key (check its spelling; docs/inputs.md lists every key)");
         }
     }
 

@@ -65,6 +65,16 @@ TEST(Footer, NamesInputsDateFitAndFloorsWithTheirSources) {
     EXPECT_TRUE(holds(detail::footer_lines(r, {})[1], "given (fit file), rotation 0.00\u00b0"));
 }
 
+// Issue 51: a "normal floor 170°" was printed; past 90° two normals bound nothing a surface
+// shows (an asymmetry run on a surface whose sides differ by nature), so it is named no floor.
+TEST(Footer, NeverCallsANormalSpreadPast90DegreesAFloor) {
+    AnalysisResult r = decided_result();
+    r.decisions[0].normal.value = 170.0;
+    const std::string line = detail::footer_lines(r, {})[2];
+    EXPECT_TRUE(holds(line, "normals none (they differ by 170° by nature)")) << line;
+    EXPECT_FALSE(holds(line, "normal 170")) << line;
+}
+
 TEST(Footer, AddsItsAreaBelowThePictureWithTheLinesDrawn) {
     const Canvas sheet = detail::canvas(300, 100);
     const std::vector<std::string> lines{"reference a.ply", "fit: identity", "floors"};

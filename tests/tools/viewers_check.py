@@ -2,7 +2,7 @@
 """Checks what real viewers read from a glint atlas against the values glint wrote.
 
 The truth is atlas.ply as written, parsed here with nothing but the standard library. Every
-mode first checks the atlas itself (README "The atlas fields"): its first field is the signed
+mode first checks the atlas itself (docs/outputs.md, "The atlas fields"): its first field is the signed
 shape change named with its unit (shape_change_mm), written once as scalar_<name> (no other
 copy but MeshLab's `quality`, which holds the same values), no field holds NaN, and some
 vertices are unseen (seen_z0 = 0, their angles 0), so the viewers meet the sentinel.
