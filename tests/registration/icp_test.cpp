@@ -307,9 +307,10 @@ TEST(RegisterMeshes, FitsAReferenceThatIsAPartOfTheExaminedSurface) {
             << r.coarse;
         EXPECT_GT(r.overlap, 0.9);
         const Errors e = errors(r, truth.inverse());
-        std::printf("part of the examined: rotation error %.2e deg, translation error %.2e mm, "
-                    "overlap %.3f\n",
-                    e.rotation_deg, e.translation, r.overlap);
+        std::printf(
+            "part of the examined: rotation error %.2e deg, translation error %.2e mm, "
+            "overlap %.3f\n",
+            e.rotation_deg, e.translation, r.overlap);
         EXPECT_LT(e.rotation_deg, 0.05) << r.termination_detail;
         EXPECT_LT(e.translation, 0.01 * kSize);
     }

@@ -286,8 +286,7 @@ TEST(ReadNpyMask, RefusesLyingLengthsBeforeAllocating) {
         file += static_cast<char>(header.size() & 0xFF);
         file += static_cast<char>(header.size() >> 8);
         // note: one file per shape: a file this process read is an input it never writes.
-        expect_refused("huge_shape_" + shape + ".npy", file + header + "\x01",
-                       "the file holds 1");
+        expect_refused("huge_shape_" + shape + ".npy", file + header + "\x01", "the file holds 1");
     }
 }
 
