@@ -102,6 +102,25 @@ TEST(VtkReader, ReadsTheVtk51OffsetsAndConnectivityLayout) {
     EXPECT_EQ(loaded.report.split_polygons, 1u);
 }
 
+// A fuzz_vtk finding (UBSan: the first of no words): a blank line between a cell section's
+// header and its OFFSETS. The reader looks past blank lines there as it does elsewhere.
+TEST(VtkReader, ABlankLineBeforeOffsetsIsSkipped) {
+    const auto path =
+        write_text("v51_blank.vtk",
+                   "# vtk DataFile Version 5.1\nnew\nASCII\nDATASET POLYDATA\n"
+                   "POINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+                   "POLYGONS 2 4\n\nOFFSETS vtktypeint64\n0 4\n\nCONNECTIVITY vtktypeint64\n0 1 2 "
+                   "3\n");
+    EXPECT_EQ(load_mesh(path, kAsStored).mesh.triangle_count(), 2u);
+    // The finding itself: refused with a message, whatever it says.
+    const auto found =
+        write_text("v51_finding.vtk",
+                   "# vtk DataFile Version 5.1File Version 5.1\nt\nASCII\n"
+                   "DATASET POLYDATA\nPOINTS 3 double\n0 0 0 1 0 0 0 1 0\n"
+                   "POLYGONS  0 0 1 0\n\nOFFSETS vtktypeint64\n0 3\npeint64\n0 1 2\n");
+    EXPECT_THROW((void)load_mesh(found, kAsStored), InputError);
+}
+
 fs::path shared(const std::string& rel) { return fs::path(GLINT_SHARED_DATA_DIR) / rel; }
 
 struct RealVtk {
