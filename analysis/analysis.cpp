@@ -6,6 +6,7 @@
 #include "mesh/normals.h"
 #include "mesh/scan_view.h"
 #include "mesh/stopwatch.h"
+#include "mesh/voxel_grid.h"
 #include "mesh/winding.h"
 #include "render/context.h"
 
@@ -121,6 +122,7 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
             .scan_view = result.scan_view ? &*result.scan_view : nullptr,
             .below_resolution = &result.resolution.below,
             .beyond_view = &result.beyond_examined_view,
+            .sampling = &result.resolution.sampling,
             .voxel = result.voxel,
             .metric = options.sweep.metric,
             .size = result.size,
@@ -215,6 +217,24 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.size = bounds(reference).diagonal();
     result.warnings.insert(result.warnings.begin(), result.units.warnings.begin(),
                            result.units.warnings.end());
+    // A mesh file exported from a CT segmentation without smoothing tells the grid it was
+    // extracted on (mesh/voxel_grid.h): it is then read as the volume's surface would be, thin
+    // plates and gaps below that grid not compared (issue 50). --resolution overrides.
+    std::optional<Eigen::Matrix3d> reference_grid;
+    bool examined_grid_detected = false;
+    if (!options.decision.resolution) {
+        if (!reference.voxel_axes)
+            if (const auto g = detect_voxel_grid(reference))
+                reference_grid = Eigen::Matrix3d(g->spacing.asDiagonal());
+        if (!examined.voxel_axes)
+            if (const auto g = detect_voxel_grid(examined)) {
+                examined.voxel_axes = Eigen::Matrix3d(g->spacing.asDiagonal());
+                examined_grid_detected = true;
+                // Where the volume's edge cut it: beyond, the scan saw nothing (not a loss).
+                if (examined.field_of_view.empty())
+                    examined.field_of_view = field_of_view_of_cut(examined, *g);
+            }
+    }
     // Bounded before any ray exists: a resolution of 1e38 put the below-resolution rays'
     // origins beyond what Embree accepts (it aborted, issue 52). A voxel larger than the
     // surface is meaningful (nothing is compared, and the run says so); one over 1000 times
@@ -260,9 +280,13 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.facing_away = std::move(shape.facing_away);
     result.scan_view = one_view_scan(fitted);
     result.beyond_examined_view = beyond_view(reference, fitted);
-    if (const ResolutionGrids grids =
-            resolution_grids(reference, fitted, options.decision.resolution);
-        grids.reference || grids.examined) {
+    ResolutionGrids grids = resolution_grids(reference, fitted, options.decision.resolution);
+    grids.examined_detected = examined_grid_detected;
+    if (!grids.reference && reference_grid) {
+        grids.reference = reference_grid;
+        grids.reference_detected = true;
+    }
+    if (grids.reference || grids.examined) {
         for (const auto& grid : {grids.reference, grids.examined})
             if (grid) result.voxel = std::max(result.voxel, grid->colwise().norm().maxCoeff());
         if (!reference_index) reference_index = index_surface(reference);

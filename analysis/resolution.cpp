@@ -88,11 +88,12 @@ bool faint_here(const Mesh& reference, const Mesh& fitted, const ClosestPointInd
 }
 
 std::string rule_text(const ResolutionGrids& grids) {
-    const auto grid = [&](const std::optional<Eigen::Matrix3d>& a) {
+    const auto grid = [&](const std::optional<Eigen::Matrix3d>& a, bool detected) {
         if (!a) return std::string("no grid (a mesh file)");
         std::ostringstream s;
         s.precision(3);
         s << a->col(0).norm() << " × " << a->col(1).norm() << " × " << a->col(2).norm();
+        if (detected) s << ", the marching-cubes grid its vertices lie on";
         return s.str();
     };
     std::ostringstream s;
@@ -100,8 +101,9 @@ std::string rule_text(const ResolutionGrids& grids) {
          "than "
       << kResolutionVoxels << " voxel(s) of the coarser grid seen along that normal, or the "
       << "reference's own far side closer along one of " << kConeRays << " rays tilted "
-      << kConeTiltDeg << "° inward (reference " << grid(grids.reference) << ", examined "
-      << grid(grids.examined) << (grids.given ? "; --resolution for a mesh file" : "")
+      << kConeTiltDeg << "° inward (reference " << grid(grids.reference, grids.reference_detected)
+      << ", examined " << grid(grids.examined, grids.examined_detected)
+      << (grids.given ? "; --resolution for a mesh file" : "")
       << "): a thin plate, a thin process's tip or a narrow gap, where partial volume decides "
          "each scan's surface; or either scan's surface faint there (its volume within "
       << kContrastSigmas
@@ -144,6 +146,7 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
     out.below.assign(n, 0);
     std::vector<std::uint8_t> faint(n, 0);
     out.clearance.assign(n, std::numeric_limits<float>::infinity());
+    out.sampling.assign(n, 0.0f);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                           for (std::size_t v = r.begin(); v != r.end(); ++v) {
@@ -151,6 +154,7 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               const Vec3d nv = reference.normals[v].cast<double>();
                               if (!(nv.squaredNorm() > 0.5)) continue;
                               const double voxel = voxel_width(grids, nv);
+                              out.sampling[v] = static_cast<float>(voxel);
                               const double c = std::min(reference_clearance(ref, p, nv, skip),
                                                         examined_clearance(exa, p, nv, skip));
                               out.clearance[v] = static_cast<float>(c);

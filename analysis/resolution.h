@@ -63,6 +63,10 @@ struct ResolutionEvidence {
     std::vector<std::uint8_t> below;
     /// The smaller of the two clearances (mesh units; +inf where nothing lies along the line).
     std::vector<float> clearance;
+    /// The coarser grid's width along each reference vertex's normal (mesh units; 0 where the
+    /// vertex has no normal): where a face lies across the slices its staircase is that wide,
+    /// and two scans on different grids differ by more there (decision.h DecisionEvidence).
+    std::vector<float> sampling;
     double flagged_area = 0.0;  ///< area of the flagged vertices (mesh units²)
     /// Of those, the area flagged because either scan's surface is faint there (its volume
     /// within a few noise σ of the iso value beside it: volume/contrast.h, Mesh::faint).
@@ -76,6 +80,9 @@ struct ResolutionGrids {
     std::optional<Eigen::Matrix3d> reference;
     std::optional<Eigen::Matrix3d> examined;
     bool given = false;  ///< a grid came from the option, not from a volume
+    /// A grid read from a mesh file's own vertices (mesh/voxel_grid.h: marching-cubes output).
+    bool reference_detected = false;
+    bool examined_detected = false;
 };
 [[nodiscard]] ResolutionGrids resolution_grids(const Mesh& reference, const Mesh& examined,
                                                std::optional<double> given);

@@ -313,6 +313,84 @@ void read_at_scale(const Mesh& reference, const DecisionEvidence& e, double r, E
     s.evidence.metric = Metric::AngleDeg;
 }
 
+// Faces across thick slices (DecisionEvidence::sampling): a scan's surface is a staircase as
+// wide as the grid along its normal, and two scans on different grids (a motion, another voxel
+// size) differ there by more than where faces lie along the grid: on CThead's 1 x 1 x 2 mm
+// grid the distance's spread doubles from faces along the slices to faces across them. One
+// floor over all would either call the terraces of a skull's vault damage or be blind
+// elsewhere. So the null is measured per band of that width, on the pair itself: the compared
+// vertices with an examined surface fall into kSamplingBands bands of equal count; in each,
+// the distance's median and robust spread (1.4826·MAD); the distance (and its tolerance) is
+// then read in units of the quietest band's spread, centred on its band's median. A change
+// stands out when it stands out from the surface that was sampled as it was.
+constexpr std::size_t kSamplingBands = 8;
+// Fewer vertices per band than this measure no spread worth trusting: no bands then.
+constexpr std::size_t kMinBandVertices = 400;
+// Bands whose spreads differ by less than this ratio are one population: left as it is.
+constexpr double kMinBandRatio = 1.25;
+
+struct SamplingBands {
+    std::vector<float> edges;  ///< kSamplingBands − 1 inner edges (mesh units)
+    std::vector<double> median;
+    std::vector<double> sigma;
+    double quietest = 0.0;  ///< the smallest band spread (the unit the distance is read in)
+    double loudest = 0.0;
+    bool used = false;
+
+    [[nodiscard]] std::size_t band(float width) const {
+        return static_cast<std::size_t>(std::upper_bound(edges.begin(), edges.end(), width) -
+                                        edges.begin());
+    }
+};
+
+SamplingBands sampling_bands(const DecisionEvidence& e, const Coverage& compared,
+                             const std::vector<float>& distance) {
+    SamplingBands b;
+    if (!e.sampling || e.sampling->size() != distance.size()) return b;
+    const auto& w = *e.sampling;
+    std::vector<float> widths;
+    for (std::size_t v = 0; v < distance.size(); ++v)
+        if (compared.seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(distance[v]) &&
+            w[v] > 0.0f)
+            widths.push_back(w[v]);
+    if (widths.size() < kSamplingBands * kMinBandVertices) return b;
+    std::sort(widths.begin(), widths.end());
+    for (std::size_t k = 1; k < kSamplingBands; ++k)
+        b.edges.push_back(widths[k * widths.size() / kSamplingBands]);
+    std::vector<std::vector<float>> in(kSamplingBands);
+    for (std::size_t v = 0; v < distance.size(); ++v)
+        if (compared.seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(distance[v]) &&
+            w[v] > 0.0f)
+            in[b.band(w[v])].push_back(distance[v]);
+    b.quietest = std::numeric_limits<double>::infinity();
+    for (auto& x : in) {
+        // note: bands of equal width (a grid-aligned box) may leave one band nearly empty.
+        if (x.size() < kMinBandVertices) return SamplingBands{};
+        const double med = median_of(x);
+        for (auto& d : x) d = static_cast<float>(std::abs(d - med));
+        const double sigma = 1.4826 * median_of(x);
+        if (!(sigma > 0.0)) return SamplingBands{};
+        b.median.push_back(med);
+        b.sigma.push_back(sigma);
+        b.quietest = std::min(b.quietest, sigma);
+        b.loudest = std::max(b.loudest, sigma);
+    }
+    b.used = b.loudest > kMinBandRatio * b.quietest;
+    return b;
+}
+
+// The distance and its tolerance read in units of the quietest band (above).
+void read_in_bands(const SamplingBands& b, const std::vector<float>& width,
+                   std::vector<float>& distance, std::vector<float>& tolerance) {
+    if (!b.used) return;
+    for (std::size_t v = 0; v < distance.size(); ++v) {
+        const std::size_t k = b.band(width[v]);
+        const double scale = b.quietest / b.sigma[k];
+        distance[v] = static_cast<float>((distance[v] - b.median[k]) * scale);
+        if (v < tolerance.size()) tolerance[v] = static_cast<float>(tolerance[v] * scale);
+    }
+}
+
 std::string own_scale_text(const FusedAtScale& f) {
     std::string t = "the floors at each vertex's own scale are implausible (";
     if (f.normal.implausible) t += "normal: " + f.normal.note;
@@ -335,6 +413,7 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
                                         : "the scans' voxels reach " + with_unit(e.voxel, e.unit) +
                                               ": the evidence is read no finer than a voxel";
     EvidenceAtScale at;
+    SamplingBands bands;
     std::vector<double> ladder = detail::scale_ladder(reference, e.size);
     // note: no rung below the voxel — unless none reaches it (a coarse mesh of a fine scan).
     if (std::any_of(ladder.begin(), ladder.end(), [&](double r) { return r >= e.voxel; }))
@@ -342,6 +421,8 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     for (const double r : ladder) {
         s.tried.push_back(r);
         read_at_scale(reference, e, r, at);
+        bands = sampling_bands(at.evidence, compared, at.scaled.distance);
+        read_in_bands(bands, *e.sampling, at.scaled.distance, at.scaled.tolerance);
         f = fused_floors(at.evidence, compared, o, true);
         if (f.normal.implausible || f.shape.implausible) continue;
         s.quiet = true;
@@ -370,6 +451,24 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     state_detectable(reference, at.evidence, o, d.shape, s);
     d.rule_text = fused_rule_text(d, describe(Metric::AngleDeg)) +
                   "; evidence read over a radius of " + with_unit(s.radius, e.unit);
+    if (bands.used) {
+        // The floors above are in units of the quietest band: where faces lie across the
+        // slices the same floor is a deeper change.
+        const double across = bands.loudest / bands.quietest;
+        s.min_depth_across = s.min_depth * across;
+        s.sampling_bands = bands.sigma;
+        s.text += " (up to " + with_unit(s.min_depth_across, e.unit) +
+                  " deep where faces lie across the grid's thickest slices)";
+        d.rule_text += "; the distance is read per band of the grid's width along the normal (" +
+                       std::to_string(kSamplingBands) +
+                       " bands of equal count, each centred on its median and scaled by its "
+                       "spread: from " +
+                       with_unit(bands.quietest, e.unit) + " to " +
+                       with_unit(bands.loudest, e.unit) +
+                       "), so that a face across thick slices, whose staircase is wider, is "
+                       "judged against surface sampled as it was; floors in units of the "
+                       "quietest band";
+    }
     const std::string read =
         own + "; the evidence was read over a radius of " + with_unit(s.radius, e.unit) +
         ", where the undamaged majority is quiet (normal floor " + fixed(d.normal.value, 2) +

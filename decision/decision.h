@@ -147,6 +147,11 @@ struct DecisionEvidence {
     const std::vector<std::uint8_t>* below_resolution = nullptr;
     /// 1: beyond the examined scan's field of view (decision/comparison.h; may be null: unknown).
     const std::vector<std::uint8_t>* beyond_view = nullptr;
+    /// Per reference vertex, the coarser scan grid's width along its normal (mesh units; may be
+    /// null or empty: no grid). Where it is wide (faces across thick slices) the staircase of
+    /// each scan's surface is, and the distance between two scans on different grids spreads
+    /// more: the fused rule measures the spread per band of this width (decision.cpp).
+    const std::vector<float>* sampling = nullptr;
     /// The coarser scan's voxel, its longest edge (mesh units; 0: unknown, meshes from files
     /// without --resolution). The fused rule reads the evidence no finer than it: within a
     /// voxel, noise and partial volume, not the object, shape a scan's surface.
@@ -166,9 +171,14 @@ struct EvidenceScale {
     /// The floors at the vertices' own scale were implausible, or the scans' voxel is known
     /// (DecisionEvidence::voxel): the evidence was read over a radius.
     bool searched = false;
-    bool quiet = true;          ///< false: no scale tried made the majority quiet (no regions)
-    double min_depth = 0.0;     ///< smallest detectable depth there (mesh units)
-    double min_area = 0.0;      ///< smallest detectable area there (mesh units²)
+    bool quiet = true;       ///< false: no scale tried made the majority quiet (no regions)
+    double min_depth = 0.0;  ///< smallest detectable depth there (mesh units)
+    double min_area = 0.0;   ///< smallest detectable area there (mesh units²)
+    /// Where the distance was read per band of the grid's width along the normal (decision.cpp
+    /// SamplingBands): the smallest detectable depth where faces lie across the thickest
+    /// slices (min_depth holds it for the quietest band), and each band's spread (mesh units).
+    double min_depth_across = 0.0;
+    std::vector<double> sampling_bands;
     std::vector<double> tried;  ///< radii tried, in order
     Floor own_normal;           ///< the floors at the vertices' own scale (when searched)
     Floor own_shape;

@@ -257,6 +257,11 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
     if (sc.reverse_winding && !sc.examined_derived)
         r.fail(r.get("reverse_winding"), "reverse_winding",
                "turns an examined surface derived from the reference");
+    if (auto v = r.optional<bool>("as_mesh_files", "true or false")) sc.as_mesh_files = *v;
+    if (sc.as_mesh_files && !sc.resample_volume && !sc.reference.acquisition.any())
+        r.fail(r.get("as_mesh_files"), "as_mesh_files",
+               "hands on the surfaces of a volume pair (a volume reference with pose, erode, "
+               "voxel_size or volume_noise) as mesh files");
     if (auto v = r.integer("seed", 0, 4294967295)) sc.shuffle_seed = static_cast<std::uint32_t>(*v);
     if ((sc.remesh || sc.shuffle) && (!sc.examined_derived || sc.reference.phantom))
         r.fail(r.get(sc.remesh ? "remesh" : "shuffle"), sc.remesh ? "remesh" : "shuffle",
@@ -523,6 +528,16 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
         extract_surface(detail::acquire(volume, edit, sc.examined.acquisition), examined_surface)
             .mesh;
     detail::cut_pair(sc, out, edit.moved_from_original);
+    if (sc.as_mesh_files) {
+        // What an STL/PLY export of each segmentation keeps: positions (as float) and triangles.
+        for (Mesh* m : {&out.reference, &out.examined}) {
+            m->voxel_axes.reset();
+            m->field_of_view = {};
+            m->faint.clear();
+        }
+        out.notes.push_back(
+            "both surfaces handed on as mesh files: no grid, field of view or contrast flags");
+    }
     out.truth.assign(out.reference.vertex_count(), 0);
     for (std::size_t v = 0; v < out.truth.size(); ++v)
         for (const Erosion& e : sc.erosions)

@@ -111,6 +111,10 @@ struct Scenario {
     /// reverse_winding = true: every examined triangle wound the other way (inside out, as
     /// some STL exporters write it), applied before the pose
     bool reverse_winding = false;
+    /// as_mesh_files = true (a volume pair): both extracted surfaces are handed on as mesh files
+    /// exported from a segmentation would be (STL, PLY: vertices and triangles only), without
+    /// the grid, field of view and contrast flags a volume's surface carries (issue 50)
+    bool as_mesh_files = false;
     std::uint32_t shuffle_seed = 1;
     /// The plain distance threshold glint's decision is compared with (mesh units); default
     /// 10 % of the smallest damage depth.

@@ -201,6 +201,13 @@ voxel_size = [0.8, 0.0, 0.8]
     EXPECT_EQ(*sc.examined.acquisition.voxel_size, Vec3d(0.8, 0.9, 1.0));
     EXPECT_EQ(sc.examined.acquisition.noise_seed, 9u);
     EXPECT_TRUE(sc.resample_volume);
+    // Surfaces handed on as mesh files (issue 50): only a volume pair has any to hand on.
+    std::string files = kValid;
+    files.replace(files.find("[examined]"), 10, "[examined]\nas_mesh_files = true");
+    expect_error(files, {"as_mesh_files", "volume pair"});
+    std::string volume_files = good;
+    volume_files.replace(volume_files.find("[examined]"), 10, "[examined]\nas_mesh_files = true");
+    EXPECT_TRUE(load_scenario(write_scenario("files", volume_files), {}).as_mesh_files);
 }
 
 TEST(LoadScenario, AResampledExaminedScanTakesItsOwnFieldOfViewButNoOtherSurfaceKey) {
