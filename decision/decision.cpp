@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 namespace glint {
@@ -273,9 +275,21 @@ std::vector<std::uint8_t> off_borders(const Mesh& reference, std::vector<std::ui
     return mask;
 }
 
+// The median edge length of a mesh (0 for none).
+double median_edge_of(const Mesh& m) {
+    std::vector<float> edge;
+    edge.reserve(m.triangle_count());
+    for (const auto& t : m.triangles)
+        edge.push_back((m.positions[t[0]] - m.positions[t[1]]).norm());
+    return edge.empty() ? 0.0 : median_of(edge);
+}
+
 // The smallest damage the rule can tell at a scale: a change deeper than the shape floor
 // beyond the typical tessellation tolerance, at least as wide as the smoothing disc (at the
-// vertices' own scale: the smallest region kept).
+// vertices' own scale: the smallest region kept). Never stated below the data's resolution
+// (issue 50): half the reference's median edge, the finest its surface samples the object (a
+// CT surface's edges are about a voxel; a floor measured on two copies of one tessellation
+// can be a thousandth of that).
 void state_detectable(const Mesh& reference, const DecisionEvidence& e, const DecisionOptions& o,
                       const Floor& shape, EvidenceScale& s) {
     std::vector<float> tol;
@@ -283,6 +297,8 @@ void state_detectable(const Mesh& reference, const DecisionEvidence& e, const De
         for (std::size_t v = 0; v < e.tolerance->size(); ++v)
             if (e.coverage->seen[v]) tol.push_back((*e.tolerance)[v]);
     s.min_depth = shape.value + (tol.empty() ? 0.0 : median_of(tol));
+    s.resolution_depth = 0.5 * median_edge_of(reference);
+    s.min_depth = std::max(s.min_depth, s.resolution_depth);
     const double vertex_area = surface_area(reference) / static_cast<double>(std::max<std::size_t>(
                                                              1, reference.vertex_count()));
     s.min_area = s.radius > 0 ? std::numbers::pi * s.radius * s.radius
@@ -290,7 +306,10 @@ void state_detectable(const Mesh& reference, const DecisionEvidence& e, const De
     s.text = (s.radius > 0 ? "evidence read over a radius of " + with_unit(s.radius, e.unit)
                            : std::string("each vertex's own evidence")) +
              "; the smallest detectable damage: " + with_unit(s.min_depth, e.unit) + " deep over " +
-             with_unit(s.min_area, e.unit, 2, "%.3g");
+             with_unit(s.min_area, e.unit, 2, "%.3g") +
+             (s.min_depth <= s.resolution_depth
+                  ? " (the data's resolution: half the surface's median edge)"
+                  : "");
 }
 
 // The evidence of `e` read over radius r: the fit's distance, tolerance and tilt (the tilt as
@@ -319,12 +338,13 @@ void read_at_scale(const Mesh& reference, const DecisionEvidence& e, double r, E
 // grid the distance's spread doubles from faces along the slices to faces across them. One
 // floor over all would either call the terraces of a skull's vault damage or be blind
 // elsewhere. So the null is measured per band of that width, on the pair itself: the compared
-// vertices with an examined surface fall into kSamplingBands bands of equal count; in each,
+// vertices with an examined surface fall into up to kSamplingBands bands of equal count (a
+// band of fewer than kMinBandVertices joins its neighbour); in each,
 // the distance's median and robust spread (1.4826·MAD); the distance (and its tolerance) is
 // then read in units of the quietest band's spread, centred on its band's median. A change
 // stands out when it stands out from the surface that was sampled as it was.
 constexpr std::size_t kSamplingBands = 8;
-// Fewer vertices per band than this measure no spread worth trusting: no bands then.
+// Fewer vertices per band than this measure no spread worth trusting: the band joins the next.
 constexpr std::size_t kMinBandVertices = 400;
 // Bands whose spreads differ by less than this ratio are one population: left as it is.
 constexpr double kMinBandRatio = 1.25;
@@ -348,24 +368,39 @@ SamplingBands sampling_bands(const DecisionEvidence& e, const Coverage& compared
     SamplingBands b;
     if (!e.sampling || e.sampling->size() != distance.size()) return b;
     const auto& w = *e.sampling;
+    const auto usable = [&](std::size_t v) {
+        return compared.seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(distance[v]) &&
+               w[v] > 0.0f;
+    };
     std::vector<float> widths;
     for (std::size_t v = 0; v < distance.size(); ++v)
-        if (compared.seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(distance[v]) &&
-            w[v] > 0.0f)
-            widths.push_back(w[v]);
-    if (widths.size() < kSamplingBands * kMinBandVertices) return b;
+        if (usable(v)) widths.push_back(w[v]);
+    if (widths.size() < 2 * kMinBandVertices) return b;
     std::sort(widths.begin(), widths.end());
-    for (std::size_t k = 1; k < kSamplingBands; ++k)
-        b.edges.push_back(widths[k * widths.size() / kSamplingBands]);
-    std::vector<std::vector<float>> in(kSamplingBands);
+    // Edges at the quantiles, each once (a grid-aligned surface has few distinct widths); a band
+    // left with too few vertices joins the next.
+    for (std::size_t k = 1; k < kSamplingBands; ++k) {
+        const float edge = widths[k * widths.size() / kSamplingBands];
+        if (b.edges.empty() || edge > b.edges.back()) b.edges.push_back(edge);
+    }
+    for (bool merged = true; merged && !b.edges.empty();) {
+        merged = false;
+        std::vector<std::size_t> count(b.edges.size() + 1, 0);
+        for (const float x : widths) ++count[b.band(x)];
+        for (std::size_t k = 0; k < count.size(); ++k)
+            if (count[k] < kMinBandVertices) {
+                b.edges.erase(b.edges.begin() +
+                              static_cast<std::ptrdiff_t>(std::min(k, b.edges.size() - 1)));
+                merged = true;
+                break;
+            }
+    }
+    if (b.edges.empty()) return SamplingBands{};
+    std::vector<std::vector<float>> in(b.edges.size() + 1);
     for (std::size_t v = 0; v < distance.size(); ++v)
-        if (compared.seen[v] && e.atlas->missing[v] <= 0.5f && std::isfinite(distance[v]) &&
-            w[v] > 0.0f)
-            in[b.band(w[v])].push_back(distance[v]);
+        if (usable(v)) in[b.band(w[v])].push_back(distance[v]);
     b.quietest = std::numeric_limits<double>::infinity();
     for (auto& x : in) {
-        // note: bands of equal width (a grid-aligned box) may leave one band nearly empty.
-        if (x.size() < kMinBandVertices) return SamplingBands{};
         const double med = median_of(x);
         for (auto& d : x) d = static_cast<float>(std::abs(d - med));
         const double sigma = 1.4826 * median_of(x);
@@ -389,6 +424,70 @@ void read_in_bands(const SamplingBands& b, const std::vector<float>& width,
         distance[v] = static_cast<float>((distance[v] - b.median[k]) * scale);
         if (v < tolerance.size()) tolerance[v] = static_cast<float>(tolerance[v] * scale);
     }
+}
+
+// Where the evidence reaches the stated limit but no region holds it (issue 50, item 5): the
+// compared vertices outside every region whose shape excess at the chosen scale reaches the
+// shape floor, grouped by sign through mesh edges; a group at least as large as the smallest
+// detectable area is a change the statement says the run can tell, which it did not report.
+// One warning names the largest such group, where it lies and why it is no region.
+std::optional<std::string> unreported_change(const Mesh& reference, const Coverage& compared,
+                                             const DecisionEvidence& at,
+                                             const std::vector<float>& excess,
+                                             const std::vector<float>& raw, const ZoomDecision& d,
+                                             const std::string& unit) {
+    const std::size_t n = reference.vertex_count();
+    if (excess.size() != n || raw.size() != n || d.regions.region_of_vertex.size() != n)
+        return std::nullopt;
+    const auto area = vertex_areas(reference);
+    struct Group {
+        double area = 0.0, peak = 0.0, tilt = 0.0;
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    };
+    Group best;
+    std::size_t groups = 0;
+    for (const double sign : {-1.0, 1.0}) {
+        std::vector<std::uint8_t> mask(n, 0);
+        for (std::size_t v = 0; v < n; ++v)
+            mask[v] = compared.seen[v] && d.regions.region_of_vertex[v] == 0 &&
+                      (d.comparison.in_hole.size() != n || !d.comparison.in_hole[v]) &&
+                      at.atlas->missing[v] <= 0.5f && sign * excess[v] >= d.shape.value;
+        std::vector<std::int32_t> component;
+        const std::size_t count = masked_components(reference, mask, component);
+        std::vector<Group> g(count);
+        for (std::size_t v = 0; v < n; ++v) {
+            if (component[v] < 0) continue;
+            Group& x = g[static_cast<std::size_t>(component[v])];
+            x.area += area[v];
+            x.centroid += area[v] * reference.positions[v].cast<double>();
+            if (std::abs(raw[v]) > std::abs(x.peak)) x.peak = raw[v];
+            x.tilt = std::max(x.tilt, static_cast<double>(at.atlas->value_mean[v]));
+        }
+        for (auto& x : g) {
+            if (!(x.area >= d.scale.min_area)) continue;
+            ++groups;
+            if (x.area > best.area) {
+                x.centroid /= x.area;
+                best = x;
+            }
+        }
+    }
+    if (groups == 0) return std::nullopt;
+    char where[160];
+    std::snprintf(where, sizeof where, "(%.1f, %.1f, %.1f)", best.centroid.x(), best.centroid.y(),
+                  best.centroid.z());
+    const std::string why =
+        d.normal.corroborates && best.tilt < d.normal.low
+            ? "the examined surface's tilt there (at most " + fixed(best.tilt, 1) +
+                  "°) stays below the normal floor's lower level " + fixed(d.normal.low, 1) +
+                  "°, so the normal field does not corroborate it"
+            : "the growth rule or a border's band left less than the smallest detectable area "
+              "of it compared";
+    return std::to_string(groups) + " place(s) where the shape change reaches the smallest " +
+           "detectable damage hold no region; the largest, " +
+           with_unit(best.area, unit, 2, "%.3g") + " around " + where + " " +
+           (unit.empty() ? "units" : unit) + " (" + "peak " + with_unit(best.peak, unit) +
+           " in the atlas), is not reported because " + why + ": look at the atlas there";
 }
 
 std::string own_scale_text(const FusedAtScale& f) {
@@ -460,7 +559,7 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
         s.text += " (up to " + with_unit(s.min_depth_across, e.unit) +
                   " deep where faces lie across the grid's thickest slices)";
         d.rule_text += "; the distance is read per band of the grid's width along the normal (" +
-                       std::to_string(kSamplingBands) +
+                       std::to_string(bands.sigma.size()) +
                        " bands of equal count, each centred on its median and scaled by its "
                        "spread: from " +
                        with_unit(bands.quietest, e.unit) + " to " +
@@ -497,6 +596,9 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
                     detail::fused_mask(reference, at.evidence, f.excess, d.normal, d.shape, o), d),
         e.coverage->seen, fields.fields, at_scale);
     detail::describe_evidence(d.regions, at.evidence, f.excess, d.normal, d.shape);
+    if (auto w =
+            unreported_change(reference, compared, at.evidence, f.excess, *e.distance, d, e.unit))
+        d.warnings.push_back(*w);
 }
 
 void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Coverage& compared,

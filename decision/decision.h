@@ -178,6 +178,9 @@ struct EvidenceScale {
     /// SamplingBands): the smallest detectable depth where faces lie across the thickest
     /// slices (min_depth holds it for the quietest band), and each band's spread (mesh units).
     double min_depth_across = 0.0;
+    /// The data's resolution, below which no depth is stated detectable: half the reference's
+    /// median edge (mesh units).
+    double resolution_depth = 0.0;
     std::vector<double> sampling_bands;
     std::vector<double> tried;  ///< radii tried, in order
     Floor own_normal;           ///< the floors at the vertices' own scale (when searched)

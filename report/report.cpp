@@ -131,7 +131,14 @@ json scale_json(const EvidenceScale& s) {
               {"min_detectable_depth", s.min_depth},
               {"min_detectable_area", s.min_area},
               {"radii_tried", s.tried},
+              {"resolution_depth", s.resolution_depth},
               {"text", s.text}};
+    // The distance read per band of the grid's width along the normal (decision.cpp): each
+    // band's spread, and the smallest detectable depth where faces lie across thick slices.
+    if (!s.sampling_bands.empty()) {
+        j["sampling_band_spreads"] = s.sampling_bands;
+        j["min_detectable_depth_across_slices"] = s.min_depth_across;
+    }
     if (s.searched) {
         j["own_scale_normal_floor"] = floor_json(s.own_normal);
         j["own_scale_shape_floor"] = floor_json(s.own_shape);

@@ -351,6 +351,118 @@ TEST(Decide, AKnownVoxelReadsTheEvidenceNoFinerThanAVoxel) {
     ASSERT_EQ(own.regions.regions.size(), 1u);
 }
 
+// A change the statement says the run can tell, left without a region, is warned about with
+// where it lies and why (issue 50): here the normals never turned, so nothing corroborates it.
+TEST(Decide, AChangeBeyondTheStatedLimitWithoutARegionIsWarnedAboutWithItsPlace) {
+    // 0.2 deep over a radius of 9: the surface tilts by 1.3°, under the normal floor's 2°.
+    Evidence e;
+    e.change(20, 20, 9.0, -0.2f, 1.0f);
+    DecisionEvidence view = e.view();
+    view.size = 200.0;
+    view.voxel = 3.0;
+    view.unit = "mm";
+    const ZoomDecision d = decide(e.mesh, view, DecisionOptions{});
+    EXPECT_TRUE(d.regions.regions.empty());
+    ASSERT_EQ(d.warnings.size(), 1u);
+    const std::string& w = d.warnings[0];
+    EXPECT_NE(w.find("1 place(s) where the shape change reaches"), std::string::npos) << w;
+    EXPECT_NE(w.find("around (20.0, 20.0, 0.0) mm"), std::string::npos) << w;
+    EXPECT_NE(w.find("does not corroborate"), std::string::npos) << w;
+    // Corroborated, the same change is a region and nothing is left to warn about.
+    Evidence turned;
+    turned.change(20, 20, 9.0, -3.0f, 30.0f);
+    view.atlas = &turned.atlas;
+    view.distance = &turned.distance;
+    const ZoomDecision found = decide(turned.mesh, view, DecisionOptions{});
+    EXPECT_EQ(found.regions.regions.size(), 1u);
+    EXPECT_TRUE(found.warnings.empty()) << found.warnings.front();
+}
+
+// Faces across thick slices stand on wider terraces (DecisionEvidence::sampling): the spread
+// of the distance is measured per band of the grid's width along the normal, and a change is
+// judged against surface sampled as it was. Two equal bumps (4 high), one where the grid is 1
+// unit wide along the normal and the surface's terraces differ by ±0.05, one where it is 2
+// units wide and they differ by ±0.5: only the first stands out from its own band.
+TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
+    constexpr int n = 80;
+    Mesh m;
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) m.positions.emplace_back(float(x), float(y), 0.f);
+    auto id = [](int x, int y) { return static_cast<std::uint32_t>(y * (n + 1) + x); };
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            m.triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+            m.triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+        }
+    const std::size_t count = m.vertex_count();
+    ZoomAtlas atlas;
+    atlas.value_mean.assign(count, 1.0f);
+    atlas.value_max.assign(count, 1.0f);
+    atlas.missing.assign(count, 0.0f);
+    atlas.depth_mean.assign(count, 0.0f);
+    atlas.max_view.assign(count, 0);
+    Coverage coverage;
+    coverage.seen.assign(count, 1);
+    coverage.fraction = 1.0;
+    std::vector<float> distance(count), tolerance(count, 0.0f), sampling(count);
+    std::vector<std::uint8_t> at_border(count, 0);
+    std::uint32_t state = 777;
+    auto uniform = [&state] {  // in [-0.5, 0.5)
+        state = state * 1664525u + 1013904223u;
+        return static_cast<float>(state >> 8) / static_cast<float>(1u << 24) - 0.5f;
+    };
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) {
+            const bool across = x >= n / 2;
+            sampling[id(x, y)] = across ? 2.0f : 1.0f;
+            // terraces: plateaus 16 rows wide, ±0.5 where the grid is thick along the normal,
+            // ±0.05 where it is thin, with a speck of noise
+            const float terrace = (y / 16) % 2 ? 1.0f : -1.0f;
+            distance[id(x, y)] = (across ? 0.5f : 0.05f) * terrace + 0.01f * uniform();
+        }
+    for (const int cx : {20, 60})
+        for (int y = 0; y <= n; ++y)
+            for (int x = 0; x <= n; ++x) {
+                const double r = std::hypot(x - cx, y - 54);
+                if (r < 10) distance[id(x, y)] += static_cast<float>(4.0 * (1 - r / 10));
+            }
+    DecisionEvidence view{.atlas = &atlas,
+                          .coverage = &coverage,
+                          .distance = &distance,
+                          .tolerance = &tolerance,
+                          .at_border = &at_border,
+                          .sampling = &sampling,
+                          .voxel = 3.0,
+                          .metric = Metric::AngleDeg,
+                          .size = 400.0,
+                          .unit = "mm"};
+    const ZoomDecision d = decide(m, view, DecisionOptions{});
+    ASSERT_EQ(d.scale.sampling_bands.size(), 2u) << "two widths: two bands";
+    EXPECT_GT(d.scale.min_depth_across, 3.0 * d.scale.min_depth);
+    EXPECT_NE(d.scale.text.find("where faces lie across"), std::string::npos) << d.scale.text;
+    ASSERT_EQ(d.regions.regions.size(), 1u);
+    EXPECT_NEAR(d.regions.regions[0].centroid.x(), 20.0, 2.0);
+    EXPECT_NEAR(d.regions.regions[0].centroid.y(), 54.0, 2.0);
+    // Without the widths, one floor over both halves: the bump on the loud half's raised terrace
+    // stands out from it as well.
+    view.sampling = nullptr;
+    const ZoomDecision one = decide(m, view, DecisionOptions{});
+    EXPECT_TRUE(one.scale.sampling_bands.empty());
+    EXPECT_EQ(one.regions.regions.size(), 2u);
+}
+
+// Two copies of one tessellation differ by a thousandth of an edge: the floor measured there
+// is no depth the data could resolve. The stated limit is never below half the median edge.
+TEST(Decide, TheSmallestDetectableDepthIsNeverBelowTheDatasResolution) {
+    Evidence e;  // distance ±0.001 on a grid of unit and diagonal edges
+    const ZoomDecision d = decide(e.mesh, e.view(), DecisionOptions{});
+    EXPECT_GE(d.scale.resolution_depth, 0.5);
+    EXPECT_LE(d.scale.resolution_depth, 0.5 * std::sqrt(2.0) + 1e-6);
+    EXPECT_LT(d.shape.value, 0.1 * d.scale.resolution_depth) << "the floor itself stays measured";
+    EXPECT_DOUBLE_EQ(d.scale.min_depth, d.scale.resolution_depth);
+    EXPECT_NE(d.scale.text.find("the data's resolution"), std::string::npos) << d.scale.text;
+}
+
 TEST(Decide, WhereNoScaleQuietsTheMajorityNoRegionIsReported) {
     // Waves 1.5 deep and 24 long over the whole grid: coherent at every scale tried (at most
     // 8 % of the size), so no floor becomes plausible.
