@@ -1,5 +1,6 @@
 #include "analysis/analysis.h"
 
+#include "analysis/region_views.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
@@ -262,12 +263,18 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     announce(observer, "fit");
     auto t = Clock::now();
     if (options.fit.mode == FitMode::Register) reference_index = index_surface(reference);
-    result.fit = fit_or_refuse(reference, examined, options.fit, reference_index);
+    FitOptions fit_options = options.fit;
+    // Sizes apart beyond kMaxScaleRatio (allowed by --allow-scale-mismatch) and no unit to say
+    // by how much: a similarity fit starts from the ratio of the sizes (issue 53).
+    if (fit_options.registration.fit_scale)
+        fit_options.registration.initial_scale *= starting_scale(result.units);
+    result.fit = fit_or_refuse(reference, examined, fit_options, reference_index);
     for (const auto& w : result.fit.warnings) result.warnings.push_back(w);
-    const double examined_area = surface_area(examined);
-    // The examined mesh becomes the fitted one in place (it is this call's own copy).
+    // The examined mesh becomes the fitted one in place (it is this call's own copy), at the
+    // fit's scale when it has one.
     Mesh& fitted = examined;
-    transform_mesh(fitted, result.fit.reference_from_examined);
+    apply_fit(fitted, result.fit);
+    const double examined_area = surface_area(fitted);
     result.fit_seconds = seconds_since(t);
 
     announce(observer, "distance");
@@ -313,6 +320,19 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     announce(observer, "decide");
     t = Clock::now();
     decide_step(reference, options, result);
+    // Each region's views: the sweep view and the direction all round that see the most of it
+    // face on and unoccluded (analysis/region_views.h).
+    {
+        std::shared_ptr<const SurfaceIndex> index =
+            result.reference_index ? result.reference_index : reference_index;
+        for (std::size_t k = 0; k < result.decisions.size(); ++k) {
+            RegionResult& found = result.decisions[k].regions;
+            if (found.regions.empty()) continue;
+            if (!index) index = index_surface(reference);
+            choose_region_views(reference, index, result.sweep.plan, static_cast<int>(k),
+                                found.region_of_vertex, found.regions);
+        }
+    }
     result.decision_seconds = seconds_since(t);
     // note: the fitted copy lives through the decision (its regions say which part of it a
     // decimated copy keeps whole); it is released before the exports, which need the memory.

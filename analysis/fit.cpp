@@ -1,9 +1,11 @@
 #include "analysis/fit.h"
 
 #include "analysis/landmarks.h"
+#include "analysis/units.h"
 #include "mesh/components.h"
 #include "mesh/error.h"
 #include "mesh/front_end.h"
+#include "mesh/json_text.h"
 #include "registration/closest_point.h"
 #include "registration/fit_io.h"
 #include "registration/landmarks.h"
@@ -13,6 +15,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace glint {
 
@@ -51,11 +54,12 @@ Rigid landmark_start(const Mesh& reference, const Mesh& examined, const std::fil
 // ran a registration for over 200 s, or a sweep that compared nothing for 30 s and then
 // misled (issue 52). Refused before any work when the moved examined surface's centre lies
 // more than ten sizes (the larger bounding diagonal) from the reference's.
-Rigid checked_motion(const Mesh& reference, const Mesh& examined,
-                     const Rigid& reference_from_examined, const std::string& what,
-                     const std::string& file) {
+FittedMotion checked_motion(const Mesh& reference, const Mesh& examined, const FittedMotion& motion,
+                            const std::string& what, const std::string& file) {
+    const Rigid& reference_from_examined = motion.reference_from_examined;
     const Bounds r = bounds(reference), e = bounds(examined);
-    const Vec3d moved = reference_from_examined * e.center().cast<double>();
+    const Vec3d moved =
+        reference_from_examined * (motion.examined_scale * e.center().cast<double>());
     const double apart = (moved - r.center().cast<double>()).norm();
     const double size = std::max<double>(r.diagonal(), e.diagonal());
     if (!reference_from_examined.matrix().allFinite() || !(apart <= 10.0 * size))
@@ -65,7 +69,25 @@ Rigid checked_motion(const Mesh& reference, const Mesh& examined,
                          std::to_string(size) +
                          "); expected a motion that brings it onto the reference (check the "
                          "file's units and that it maps examined to reference)");
-    return reference_from_examined;
+    return motion;
+}
+
+// A rigid fit between two scanners of different calibration leaves the signed distance growing
+// with the distance from the centre: said, with the scale it measures, and the remedy.
+void warn_of_scale_trend(const RegistrationResult& r, const RegistrationOptions& o,
+                         std::vector<std::string>& warnings) {
+    if (o.fit_scale || !r.converged) return;
+    const double trend = r.scale_trend, se = r.scale_trend_uncertainty;
+    if (!(std::abs(trend) >= kScaleTrendWarning && std::abs(trend) >= kScaleTrendSignificance * se))
+        return;
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "the rigid fit leaves a scale-like pattern: the signed distance grows with the "
+                  "distance from the centre as if the examined surface were %.2f %% %s (scale "
+                  "%.4f ± %.2g); scanners calibrated apart? give %s to fit the scale",
+                  100.0 * std::abs(trend), trend < 0 ? "too large" : "too small", 1.0 + trend, se,
+                  spell_flag("fit_scale").c_str());
+    warnings.emplace_back(line);
 }
 
 FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const FitOptions& options,
@@ -74,8 +96,11 @@ FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const 
     RegistrationSources sources;
     if (o.roi && o.roi->needs_mask()) read_roi_mask(*o.roi, reference.vertex_count());
     if (!options.init_file.empty()) {
-        o.initial = checked_motion(reference, examined, read_fit(options.init_file.string()),
-                                   "initial pose", options.init_file.string());
+        const FittedMotion m =
+            checked_motion(reference, examined, read_fit(options.init_file.string()),
+                           "initial pose", options.init_file.string());
+        o.initial = m.reference_from_examined;
+        o.initial_scale *= m.examined_scale;
         sources.init_file = options.init_file.string();
     }
     if (!options.landmarks_file.empty()) {
@@ -86,11 +111,13 @@ FitOutcome register_examined(const Mesh& reference, const Mesh& examined, const 
     out.mode = FitMode::Register;
     const RegistrationResult r = register_meshes(reference, examined, o, reference_index);
     out.reference_from_examined = r.reference_from_examined;
+    out.examined_scale = r.examined_scale;
     out.converged = r.converged;
     out.json = to_json(r, o, sources);
     out.registration = r;
     if (!r.converged)
         out.warnings.push_back("registration did not converge: " + r.termination_detail);
+    warn_of_scale_trend(r, o, out.warnings);
     return out;
 }
 
@@ -153,8 +180,10 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             return out;
         case FitMode::Truth: {
             out.reference_from_examined = options.truth;
+            out.examined_scale = options.truth_scale;
             RegistrationResult r;
             r.reference_from_examined = options.truth;
+            r.examined_scale = options.truth_scale;
             r.examined_from_reference = options.truth.inverse();
             r.converged = true;
             r.termination = "known transform (scenario ground truth)";
@@ -162,16 +191,25 @@ FitOutcome fit_examined(const Mesh& reference, const Mesh& examined, const FitOp
             out.registration = r;
             return out;
         }
-        case FitMode::File:
-            out.reference_from_examined =
+        case FitMode::File: {
+            const FittedMotion m =
                 checked_motion(reference, examined, read_fit(options.fit_file.string()), "fit",
                                options.fit_file.string());
-            out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() + "\"}";
+            out.reference_from_examined = m.reference_from_examined;
+            out.examined_scale = m.examined_scale;
+            out.json = R"({"mode": "file", "path": ")" + options.fit_file.string() +
+                       "\", \"examined_scale\": " + json_text(m.examined_scale) + "}";
             return out;
+        }
         case FitMode::Register:
             return register_examined(reference, examined, options, reference_index);
     }
     return out;
+}
+
+void apply_fit(Mesh& examined, const FitOutcome& fit) {
+    scale_examined(examined, fit.examined_scale);
+    transform_mesh(examined, fit.reference_from_examined);
 }
 
 namespace {

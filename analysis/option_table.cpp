@@ -116,6 +116,16 @@ std::vector<Field> fit_fields() {
              .help = "Registration: symmetric ICP (both directions)"},
             [](auto& o) -> auto& { return o.fit.registration.symmetric; }),
         F::flag(
+            {.name = "fit_scale",
+             .section = "registration",
+             .key = "fit_scale",
+             .slicer = "fitScale",
+             .group = kFitGroup,
+             .label = "Fit the scale",
+             .help = "Registration: also fit one scale factor of the examined surface (scanners "
+                     "calibrated apart; a similarity fit), reported with its uncertainty"},
+            [](auto& o) -> auto& { return o.fit.registration.fit_scale; }),
+        F::flag(
             {.name = "coarse",
              .section = "registration",
              .key = "coarse",

@@ -26,7 +26,13 @@ struct Region {
     double volume = 0.0;      ///< Σ area·shape change (mesh units³; neg = volume lost)
     double missing_fraction = 0.0;  ///< area share whose observations found no examined surface
     Vec3d centroid{0, 0, 0};        ///< area-weighted, reference coordinates
-    std::int32_t best_view = -1;    ///< view where the region's strongest deviation was seen
+    /// The sweep view that sees the most of the region face on and unoccluded
+    /// (analysis/region_views.h); before that choice, the view of its strongest deviation.
+    std::int32_t best_view = -1;
+    /// The direction (unit, from the region towards the viewer) that sees the most of it face on
+    /// and unoccluded, and the share of its area seen projected from there (0: not chosen).
+    Vec3d view_direction{0, 0, 0};
+    double visible_fraction = 0.0;
     RegionKind kind = RegionKind::Dent;
     /// The region lies mostly in a hole (RegionFields::gone): the examined surface holds none
     /// there, and a dent's depth is what the reference stood above the hole's rim, a lower

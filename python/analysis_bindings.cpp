@@ -84,7 +84,10 @@ FitHandle register_pair(const MeshLike& reference, const MeshLike& examined,
         unit_warnings = units.warnings;
         Mesh moved = exa->mesh;
         scale_to_analysis_unit(moved, units);
-        FitHandle fitted{fit_examined(ref->mesh, moved, fit), units.unit};
+        FitOptions scaled_fit = fit;
+        if (scaled_fit.registration.fit_scale)
+            scaled_fit.registration.initial_scale *= starting_scale(units);
+        FitHandle fitted{fit_examined(ref->mesh, moved, scaled_fit), units.unit};
         if (output) write_file_atomically(*output, fitted.outcome.json);
         return fitted;
     });
@@ -149,13 +152,33 @@ AnalysisHandle analyse_pair(const MeshLike& reference, const MeshLike& examined,
 
 void bind_fit(py::module_& m) {
     py::class_<FitHandle>(m, "Fit",
-                          "A rigid fit of the examined mesh onto the reference, with its evidence.")
+                          "A fit of the examined mesh onto the reference (rigid, or a similarity "
+                          "with fit_scale=True), with its evidence.")
         .def_property_readonly(
             "matrix",
             [](const FitHandle& f) {
                 return Eigen::Matrix4d(f.outcome.reference_from_examined.matrix());
             },
-            "4×4 float64 reference_from_examined (maps examined points into the reference frame)")
+            "4×4 float64 reference_from_examined (maps examined points, after multiplying them "
+            "by `scale`, into the reference frame)")
+        .def_property_readonly(
+            "scale", [](const FitHandle& f) { return f.outcome.examined_scale; },
+            "the examined surface's fitted scale (1.0 unless fit_scale=True or a fit file says "
+            "otherwise)")
+        .def_property_readonly(
+            "scale_uncertainty",
+            [](const FitHandle& f) {
+                return evidence(f, [](const RegistrationResult& r) { return r.scale_uncertainty; });
+            },
+            "one standard error of `scale` (jackknife over the surface's octants); None without "
+            "a registration")
+        .def_property_readonly(
+            "scale_trend",
+            [](const FitHandle& f) {
+                return evidence(f, [](const RegistrationResult& r) { return r.scale_trend; });
+            },
+            "the relative scale a similarity step would still add at the fitted pose (the "
+            "radial trend of the signed distance; -0.01: the examined stands 1 % too large)")
         .def_property_readonly(
             "rotation",
             [](const FitHandle& f) {

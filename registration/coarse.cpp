@@ -88,6 +88,7 @@ CoarseAlignment coarse_align(const ClosestPointIndex& reference, const Mesh& exa
     RegistrationOptions quick = o;
     quick.samples = std::min(o.samples, 2000);
     quick.symmetric = false;
+    quick.fit_scale = false;  // the hypotheses are ranked by a rigid fit; the fine fit scales
     const auto quick_samples = sample_surface(examined, quick.samples, o.seed + 3);
     CoarseAlignment out;
     // The hypotheses' short runs are independent: one task each (Ceres single-threaded in

@@ -29,7 +29,8 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
                        {"loss_scale", l.loss_scale},
                        {"overlap", l.overlap},
                        {"rotation_step_deg", l.rotation_step_deg},
-                       {"translation_step", l.translation_step}});
+                       {"translation_step", l.translation_step},
+                       {"scale_step", l.scale_step}});
     auto vec = [](const Vec3d& v) { return nlohmann::json::array({v.x(), v.y(), v.z()}); };
     nlohmann::json roi;
     if (!o.roi) {
@@ -49,9 +50,22 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
     }
     const nlohmann::json initial = o.initial ? matrix(*o.initial) : nlohmann::json(nullptr);
     const Eigen::AngleAxisd aa(Eigen::Matrix3d(r.reference_from_examined.linear()));
+    // The similarity as one 4×4 matrix (what other tools read): the rigid part with its linear
+    // block times the scale.
+    Eigen::Matrix4d similarity = r.reference_from_examined.matrix();
+    similarity.topLeftCorner<3, 3>() *= r.examined_scale;
+    nlohmann::json similarity_rows = nlohmann::json::array();
+    for (int i = 0; i < 4; ++i)
+        similarity_rows.push_back(
+            {similarity(i, 0), similarity(i, 1), similarity(i, 2), similarity(i, 3)});
     const nlohmann::json j = {
         {"reference_from_examined", matrix(r.reference_from_examined)},
         {"examined_from_reference", matrix(r.examined_from_reference)},
+        {"examined_scale", r.examined_scale},
+        {"examined_scale_uncertainty", r.scale_uncertainty},
+        {"similarity_reference_from_examined", similarity_rows},
+        {"scale_trend", r.scale_trend},
+        {"scale_trend_uncertainty", r.scale_trend_uncertainty},
         {"rotation_deg", aa.angle() * 180.0 / std::numbers::pi},
         {"rotation_axis", {aa.axis().x(), aa.axis().y(), aa.axis().z()}},
         {"translation",
@@ -73,6 +87,8 @@ std::string to_json(const RegistrationResult& r, const RegistrationOptions& o,
           {"max_iterations", o.max_iterations},
           {"max_normal_angle_deg", o.max_normal_angle_deg},
           {"symmetric", o.symmetric},
+          {"fit_scale", o.fit_scale},
+          {"initial_scale", o.initial_scale},
           {"rotation_tolerance_deg", o.rotation_tolerance_deg},
           {"translation_tolerance", o.translation_tolerance},
           {"cost_tolerance", o.cost_tolerance},
@@ -97,7 +113,7 @@ std::string row_text(const nlohmann::json& row) {
 }
 }  // namespace
 
-Rigid read_fit(const std::string& path) {
+FittedMotion read_fit(const std::string& path) {
     const std::string text = read_small_file(path, "fit");
     protect_input(path);  // never an output of this process
     nlohmann::json j;
@@ -144,7 +160,15 @@ Rigid read_fit(const std::string& path) {
         throw InputError(
             "fit \"" + path +
             "\": reference_from_examined is not a rigid motion (rotation part not orthonormal)");
-    return t;
+    FittedMotion out{t, 1.0};
+    if (j.contains("examined_scale")) {
+        const auto& v = j["examined_scale"];
+        if (!v.is_number() || !(v.get<double>() > 0) || !std::isfinite(v.get<double>()))
+            throw InputError("fit \"" + path + "\": examined_scale is " + json_text(v) +
+                             ", expected a finite number > 0");
+        out.examined_scale = v.get<double>();
+    }
+    return out;
 }
 
 }  // namespace glint

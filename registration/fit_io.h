@@ -21,8 +21,16 @@ struct RegistrationSources {
                                   const RegistrationOptions& options,
                                   const RegistrationSources& sources = {});
 
-/// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix).
+/// A motion read from a fit file: reference point = reference_from_examined × (examined_scale ×
+/// examined point).
+struct FittedMotion {
+    Rigid reference_from_examined = Rigid::Identity();
+    double examined_scale = 1.0;
+};
+
+/// reference_from_examined from a fit.json (or any JSON with that 4×4 matrix), and
+/// "examined_scale" when the file has one (a similarity fit; 1 otherwise).
 /// \throw IoError, InputError naming the file and what is missing.
-[[nodiscard]] Rigid read_fit(const std::string& path);
+[[nodiscard]] FittedMotion read_fit(const std::string& path);
 
 }  // namespace glint

@@ -6,6 +6,7 @@
 #include "registration/detail/icp_core.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -15,6 +16,45 @@ namespace glint {
 namespace {
 // The examined surface's area, in reference areas, above which the reference is matched on it.
 constexpr double kTurnRoles = 1.5;
+
+// x ↦ rigid(scale · x): the fitted motion with the examined surface's scale about the origin.
+struct Similarity {
+    Rigid rigid = Rigid::Identity();
+    double scale = 1.0;
+
+    [[nodiscard]] Similarity inverse() const {
+        // x = R s p + T  ⇒  p = Rᵀ((1/s) x) − (1/s) Rᵀ T.
+        Similarity out;
+        out.rigid.linear() = rigid.linear().transpose();
+        out.rigid.translation() = -(rigid.linear().transpose() * rigid.translation()) / scale;
+        out.scale = 1.0 / scale;
+        return out;
+    }
+};
+
+// An ICP run's motion (samples scaled about its centre, then moved) about the origin, applied to
+// a surface first scaled by `initial`: x ↦ t(c + S(s0 p − c)) = R(S s0 p) + R(1 − S)c + T.
+Similarity similarity_of(const detail::IcpRun& run, double initial) {
+    Similarity out;
+    out.rigid = run.t;
+    out.rigid.translation() += run.t.linear() * ((1.0 - run.scale) * run.center);
+    out.scale = run.scale * initial;
+    return out;
+}
+
+void set_motion(RegistrationResult& r, const Similarity& s) {
+    r.reference_from_examined = s.rigid;
+    r.examined_from_reference = s.rigid.inverse();
+    r.examined_scale = s.scale;
+}
+
+// The examined surface at `initial` × its size (a copy only when it differs from 1).
+const Mesh& scaled_examined(const Mesh& exam, double initial, std::optional<Mesh>& storage) {
+    if (initial == 1.0) return exam;
+    storage = exam;
+    for (auto& p : storage->positions) p *= static_cast<float>(initial);
+    return *storage;
+}
 }  // namespace
 
 RobustLoss parse_loss(const std::string& text) {
@@ -49,6 +89,8 @@ void RegistrationOptions::validate() const {
         throw OptionError("min_overlap", min_overlap, "must be in [0, 1]");
     if (!(overlap_distance > 0))
         throw OptionError("overlap_distance", overlap_distance, "must be > 0");
+    if (!(initial_scale > 0) || !std::isfinite(initial_scale))
+        throw OptionError("initial_scale", initial_scale, "must be a finite number > 0");
 }
 
 RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
@@ -77,8 +119,9 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     // The examined samples carry vertex normals (angle-weighted ones computed when the mesh has
     // none). Its closest-point index only for a symmetric fit, the one that queries it: the
     // BVH of a 2M-triangle mesh takes about half a second to build.
-    std::optional<Mesh> with_normals;
-    const Mesh& exam = detail::with_vertex_normals(examined, with_normals);
+    std::optional<Mesh> with_normals, at_initial_scale;
+    const Mesh& exam = scaled_examined(detail::with_vertex_normals(examined, with_normals),
+                                       o.initial_scale, at_initial_scale);
     std::optional<ClosestPointIndex> exa_index;
     if (o.symmetric) exa_index.emplace(ClosestPointIndex::borrowing(exam));
     const double diagonal = std::max(bounds(reference).diagonal(), bounds(exam).diagonal());
@@ -97,8 +140,13 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     detail::IcpRun run =
         detail::run_icp(samples, ref_samples, ref_index, exa_index ? &*exa_index : nullptr, start,
                         o, o.max_iterations, diagonal);
-    run.result.reference_from_examined = run.t;
-    run.result.examined_from_reference = run.t.inverse();
+    set_motion(run.result, similarity_of(run, o.initial_scale));
+    const detail::ScaleTrend trend = o.measure_scale
+                                         ? detail::scale_trend(samples, ref_index, run, o, diagonal)
+                                         : detail::ScaleTrend{};
+    run.result.scale_trend = trend.scale;
+    run.result.scale_trend_uncertainty = trend.uncertainty;
+    if (o.fit_scale) run.result.scale_uncertainty = trend.uncertainty * run.result.examined_scale;
     run.result.coarse = coarse;
     // note: an examined surface that covers far more than the reference (a reference cropped
     // around one condyle against the whole jaw, issue 53) leaves most of its samples with no
@@ -124,8 +172,19 @@ RegistrationResult register_meshes(const Mesh& reference, const Mesh& examined,
     detail::IcpRun turned = detail::run_icp(ref_samples_only, {}, onto, nullptr, turned_start, o,
                                             o.max_iterations, diagonal);
     if (!turned.result.converged && turned.result.overlap <= run.result.overlap) return run.result;
-    turned.result.reference_from_examined = turned.t.inverse();
-    turned.result.examined_from_reference = turned.t;
+    // The turned run scaled and moved the reference onto the (initially scaled) examined surface.
+    Similarity exam_from_ref = similarity_of(turned, 1.0);
+    Similarity ref_from_exam = exam_from_ref.inverse();
+    ref_from_exam.scale *= o.initial_scale;
+    set_motion(turned.result, ref_from_exam);
+    // The trend measured the turned way round is the reference's scale against the examined.
+    const detail::ScaleTrend turned_trend =
+        o.measure_scale ? detail::scale_trend(ref_samples_only, onto, turned, o, diagonal)
+                        : detail::ScaleTrend{};
+    turned.result.scale_trend = 1.0 / (1.0 + turned_trend.scale) - 1.0;
+    turned.result.scale_trend_uncertainty = turned_trend.uncertainty;
+    if (o.fit_scale)
+        turned.result.scale_uncertainty = turned_trend.uncertainty * turned.result.examined_scale;
     char why[200];
     std::snprintf(why, sizeof why,
                   "; the reference's samples matched on the examined surface (it covers %.1f× "

@@ -65,6 +65,16 @@ struct RegistrationOptions {
     double overlap_distance = 0.01;
     bool coarse = true;      ///< try principal-axis hypotheses first (not with landmarks/init)
     bool symmetric = false;  ///< also pull reference samples onto the examined mesh
+    /// A similarity fit: the fine fit also estimates one scale factor of the examined surface
+    /// (scanners calibrated apart, a mesh in other units). Off: the fit is rigid, and the
+    /// scale a similarity would still add is measured and reported (scale_trend).
+    bool fit_scale = false;
+    /// The examined surface's scale to start from (multiplies its positions before anything
+    /// else; with fit_scale the fit refines it). 1: none.
+    double initial_scale = 1.0;
+    /// Measure scale_trend and the scale's uncertainty at the end (nine small solves; off for
+    /// fits where a scale means nothing, as a surface against its own mirror image).
+    bool measure_scale = true;
     /// Fit only on this region of the reference (a stable region, mesh/roi.h); a vertex
     /// mask must already be read (Roi::needs_mask() false). Empty: the whole surface.
     std::optional<Roi> roi;
@@ -83,6 +93,7 @@ struct IcpIteration {
     double overlap = 0.0;     ///< share of samples with an accepted pair
     double rotation_step_deg = 0.0;
     double translation_step = 0.0;
+    double scale_step = 0.0;  ///< |ln| of the step's scale (similarity fit; 0 when rigid)
 };
 
 struct RegistrationResult {
@@ -101,6 +112,20 @@ struct RegistrationResult {
     std::string termination;
     std::string termination_detail;  ///< one line with the numbers behind `termination`
     std::string coarse;              ///< which coarse hypothesis was kept
+    /// The fitted motion is a similarity: reference point = reference_from_examined ×
+    /// (examined_scale × examined point); examined_from_reference is the inverse of the
+    /// rigid part alone (it maps onto the scaled examined surface). 1 for a rigid fit.
+    double examined_scale = 1.0;
+    /// One standard error of examined_scale (0 for a rigid fit): the jackknife over the
+    /// surface's eight octants about its centre, so that spatially correlated residuals
+    /// (noise, damage) widen it as they should; see docs/method.md.
+    double scale_uncertainty = 0.0;
+    /// At the final pose, the relative scale one similarity step would still add (−0.01: the
+    /// examined surface stands 1 % too large), with its jackknife standard error: the radial
+    /// trend of the signed distance that a rigid fit between scanners of different
+    /// calibration leaves. About 0 after a similarity fit.
+    double scale_trend = 0.0;
+    double scale_trend_uncertainty = 0.0;
     /// The reference's samples were matched on the examined surface: the examined surface
     /// covers more than 1.5× the reference's area and the fit the usual way round found too
     /// little overlap. The evidence above is measured the turned way round.

@@ -77,6 +77,9 @@ MirrorFit fit_mirror(const Mesh& mesh, const SymmetryPlane& plane, const Vec3d& 
     }
     r.coarse = false;
     r.initial = Rigid::Identity();
+    r.fit_scale = false;  // a mirror image has the surface's own size
+    r.initial_scale = 1.0;
+    r.measure_scale = false;
     const Mesh mirrored = reflect_mesh(mesh, plane);
     MirrorFit out;
     out.fit = register_meshes(mesh, mirrored, r, index);

@@ -74,6 +74,12 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         j["best_view_azimuth_deg"] = v.azimuth_deg;
         j["best_view_elevation_deg"] = v.elevation_deg;
     }
+    // The direction its close-up looks from (analysis/region_views.h): the most of it face on
+    // and unoccluded, the share of its area seen projected from there.
+    if (r.view_direction.norm() > 0.5) {
+        j["view_direction"] = vec_json(r.view_direction);
+        j["visible_fraction"] = r.visible_fraction;
+    }
     return j;
 }
 

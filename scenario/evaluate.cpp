@@ -43,9 +43,11 @@ DetectionScore score_detection(const Mesh& reference, const std::vector<std::int
     return s;
 }
 
-PoseError pose_error(const Rigid& estimated, const Rigid& truth) {
+PoseError pose_error(const Rigid& estimated, const Rigid& truth, double estimated_scale,
+                     double true_scale) {
     const Rigid delta = truth.inverse() * estimated;
-    return {rotation_angle_deg(delta), delta.translation().norm()};
+    return {rotation_angle_deg(delta), delta.translation().norm(),
+            std::abs(estimated_scale - true_scale)};
 }
 
 }  // namespace glint

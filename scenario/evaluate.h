@@ -37,9 +37,12 @@ struct DetectionScore {
 struct PoseError {
     double rotation_deg = 0.0;
     double translation = 0.0;  ///< mesh units, at the origin of the reference frame
+    double scale = 0.0;        ///< |estimated − true| examined scale (a similarity fit)
 };
 
-/// Error of an estimated reference_from_examined against the truth.
-[[nodiscard]] PoseError pose_error(const Rigid& estimated, const Rigid& truth);
+/// Error of an estimated reference_from_examined (after scaling the examined by
+/// `estimated_scale`) against the truth.
+[[nodiscard]] PoseError pose_error(const Rigid& estimated, const Rigid& truth,
+                                   double estimated_scale = 1.0, double true_scale = 1.0);
 
 }  // namespace glint

@@ -99,6 +99,16 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions,
             fail(fmt("centroid error = %.4g, expected at most %.4g", *out.score->centroid_error,
                      *e.max_centroid_error));
     }
+    if (e.warning && std::none_of(out.warnings.begin(), out.warnings.end(), [&](const auto& w) {
+            return w.find(*e.warning) != std::string::npos;
+        }))
+        fail("no warning contains \"" + *e.warning + "\"");
+    if (e.max_scale_error) {
+        if (!out.pose) fail("scale error expected but the scenario has no true pose");
+        else if (out.pose->scale > *e.max_scale_error)
+            fail(fmt("scale error = %.5f, expected at most %.5f", out.pose->scale,
+                     *e.max_scale_error));
+    }
     if (e.max_rotation_error_deg || e.max_translation_error) {
         if (!out.pose) fail("registration error expected but the scenario has no true pose");
         else {
@@ -177,8 +187,10 @@ InspectOptions scenario_inspect_options(const Scenario& sc, const ScenarioRunOpt
                                         const ScenarioMeshes& meshes, RunRecord& record) {
     InspectOptions options{.analysis = sc.analysis};
     AnalysisOptions& analysis = options.analysis;
-    if (analysis.fit.mode == FitMode::Truth)
+    if (analysis.fit.mode == FitMode::Truth) {
         analysis.fit.truth = meshes.true_reference_from_examined;
+        analysis.fit.truth_scale = meshes.true_examined_scale;
+    }
     if (!run.unit.empty()) analysis.units.unit = run.unit;
     analysis.units.allow_scale_mismatch =
         analysis.units.allow_scale_mismatch || run.allow_scale_mismatch;
@@ -262,7 +274,8 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     out.fit_mode = to_string(result.fit.mode);
     if (meshes.has_truth_pose)
         out.pose =
-            pose_error(result.fit.reference_from_examined, meshes.true_reference_from_examined);
+            pose_error(result.fit.reference_from_examined, meshes.true_reference_from_examined,
+                       result.fit.examined_scale, meshes.true_examined_scale);
     out.views = result.sweep.plan.views.size();
     out.output = inspection.output;
     const ZoomDecision& z0 = result.decisions.front();

@@ -92,6 +92,11 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
     }
     read_surface_options(r, s.surface);
     s.cut = detail::read_scan_cut(r);
+    if (required) s.crop_ball = detail::read_crop_ball(r);
+    else if (r.get("crop_ball"))
+        r.fail(r.get("crop_ball"), "crop_ball",
+               "crops the reference ([reference] crop_ball); an examined scan is cut with "
+               "keep_side");
     // A derived examined scan (no mesh of its own) may take its own field of view: surface_roi.
     SurfaceOptions others = s.surface;
     if (!required) others.roi.reset();
@@ -241,6 +246,11 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
     sc.examined.acquisition = detail::read_acquisition(
         r, !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
     read_volume_edit(r, sc);
+    if (sc.reference.crop_ball && (!sc.examined_derived || sc.resample_volume))
+        throw InputError("scenario \"" + sc.file.string() +
+                         "\": [reference] crop_ball crops the reference after the examined "
+                         "surface was derived from the whole mesh; expected an examined surface "
+                         "derived from a reference mesh (no examined mesh, no volume edit)");
     if (sc.examined.cut && !sc.examined_derived)
         r.fail(r.get("keep_side"), "keep_side",
                "cuts an examined surface derived from the reference");
@@ -257,6 +267,12 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
     if (sc.reverse_winding && !sc.examined_derived)
         r.fail(r.get("reverse_winding"), "reverse_winding",
                "turns an examined surface derived from the reference");
+    if (auto v = r.positive("scale")) {
+        if (!sc.examined_derived)
+            r.fail(r.get("scale"), "scale",
+                   "scales an examined surface derived from the reference");
+        sc.examined_scale = *v;
+    }
     if (auto v = r.optional<bool>("as_mesh_files", "true or false")) sc.as_mesh_files = *v;
     if (sc.as_mesh_files && !sc.resample_volume && !sc.reference.acquisition.any())
         r.fail(r.get("as_mesh_files"), "as_mesh_files",
@@ -304,6 +320,9 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
     e("min_recall", x.min_recall);
     e("max_rotation_error_deg", x.max_rotation_error_deg);
     e("max_translation_error", x.max_translation_error);
+    e("max_scale_error", x.max_scale_error);
+    if (auto v = r.optional<std::string>("warning", "a string (text a warning contains)"))
+        x.warning = *v;
     e("max_centroid_error", x.max_centroid_error);
     e("min_coverage", x.min_coverage);
     e("min_region_shape_change", x.min_region_shape_change);
@@ -501,6 +520,16 @@ void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
         out.notes.push_back("examined: every triangle's winding reversed (inside out)");
     }
     transform_mesh(out.examined, sc.pose);
+    // Scaled after the pose: examined = k·pose(x) ⇒ reference x = pose⁻¹((1/k)·examined), the
+    // form of a fitted similarity (the rigid motion after a scale about the origin).
+    if (sc.examined_scale != 1.0) {
+        for (auto& p : out.examined.positions) p *= static_cast<float>(sc.examined_scale);
+        out.true_examined_scale = 1.0 / sc.examined_scale;
+        char note[120];
+        std::snprintf(note, sizeof note, "examined: scaled by %g about the origin after the pose",
+                      sc.examined_scale);
+        out.notes.emplace_back(note);
+    }
     out.true_reference_from_examined = sc.pose.inverse();
     out.has_truth_pose = true;
 }
@@ -588,6 +617,8 @@ ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
                              "volume_noise or erode in [examined] on a volume reference (or give "
                              "the examined its own mesh, or cut it with keep_side)");
         derive_examined(sc, out);
+        if (sc.reference.crop_ball)
+            out.notes.push_back(detail::crop_reference(out, *sc.reference.crop_ball));
         return out;
     }
     out.examined = load(sc.examined, "examined");

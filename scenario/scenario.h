@@ -52,6 +52,10 @@ struct SurfaceSource {
     /// keep_side = [x, y, z, nx, ny, nz]: only that side is kept (a partial scan, a field of
     /// view); an examined cut needs an examined surface derived from the reference.
     std::optional<ScanCut> cut;
+    /// [reference] crop_ball = [x, y, z, r]: the reference keeps only its part inside the ball
+    /// (a reference cropped around one condyle) after the examined surface was derived from the
+    /// whole; the examined covers more than the reference (issue 53).
+    std::optional<Eigen::Vector4d> crop_ball;
     Acquisition acquisition;  ///< a volume pair's scan: its noise and voxel size
 };
 
@@ -65,6 +69,9 @@ struct ScenarioExpect {
     std::optional<double> min_recall;
     std::optional<double> max_rotation_error_deg;
     std::optional<double> max_translation_error;
+    std::optional<double> max_scale_error;  ///< |fitted − true| examined scale
+    /// Some warning of the run contains this text (a fit that should say what it saw).
+    std::optional<std::string> warning;
     std::optional<double> max_centroid_error;
     std::optional<double> min_coverage;
     /// "dent", "bump" or "missing surface" for the largest region
@@ -111,6 +118,9 @@ struct Scenario {
     /// reverse_winding = true: every examined triangle wound the other way (inside out, as
     /// some STL exporters write it), applied before the pose
     bool reverse_winding = false;
+    /// scale = k: the examined surface k times its size (about the origin, after the pose), as
+    /// a scanner calibrated k apart would see it (issue 53)
+    double examined_scale = 1.0;
     /// as_mesh_files = true (a volume pair): both extracted surfaces are handed on as mesh files
     /// exported from a segmentation would be (STL, PLY: vertices and triangles only), without
     /// the grid, field of view and contrast flags a volume's surface carries (issue 50)
@@ -156,6 +166,8 @@ struct ScenarioMeshes {
     Mesh reference;
     Mesh examined;  ///< in its own (posed) coordinates
     Rigid true_reference_from_examined = Rigid::Identity();
+    /// reference = true_reference_from_examined × (true_examined_scale × examined)
+    double true_examined_scale = 1.0;
     bool has_truth_pose = false;
     std::vector<std::uint8_t> truth;  ///< per reference vertex: 1 = damaged (empty if none)
     std::vector<std::int32_t>

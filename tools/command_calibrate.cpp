@@ -41,8 +41,10 @@ void run(const CalibrateArgs& a) {
     guard_outputs({a.output}, {a.scenario, sc.reference.mesh, sc.examined.mesh});
     const ScenarioMeshes meshes = build_scenario_meshes(sc);
     AnalysisOptions analysis = sc.analysis;
-    if (analysis.fit.mode == FitMode::Truth)
+    if (analysis.fit.mode == FitMode::Truth) {
         analysis.fit.truth = meshes.true_reference_from_examined;
+        analysis.fit.truth_scale = meshes.true_examined_scale;
+    }
     const Calibration c =
         calibrate(meshes.reference, meshes.examined, analysis, a.options,
                   sc.name + (sc.description.empty() ? "" : ": " + sc.description));

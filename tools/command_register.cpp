@@ -47,6 +47,11 @@ void print_result(const RegistrationResult& r, const std::string& output, const 
         r.reference_from_examined.translation().y(), r.reference_from_examined.translation().z(),
         unit.empty() ? "units" : unit.c_str(), with_unit(r.rms, unit).c_str(),
         100 * r.inlier_fraction, 100 * r.overlap, output.c_str());
+    if (r.examined_scale != 1.0)
+        std::printf(
+            "  examined scale %.6f ± %.6f (similarity fit: the examined surface × this, "
+            "then the motion)\n",
+            r.examined_scale, r.scale_uncertainty);
     if (!r.converged) std::printf("  %s\n", r.termination_detail.c_str());
 }
 
@@ -73,13 +78,15 @@ void run(RegisterArgs& a) {
     scale_to_analysis_unit(exa.mesh, units);
     // Warnings with --quiet too (tools/command.h print_warnings): no chatter.
     print_warnings(units.warnings);
+    if (fit.registration.fit_scale) fit.registration.initial_scale *= starting_scale(units);
     const FitOutcome outcome = fit_examined(ref.mesh, exa.mesh, fit);
     const RegistrationResult& r = *outcome.registration;
+    if (r.converged) print_warnings(outcome.warnings);  // a scale the rigid fit left
     FileSet files;  // fit.json and the fitted mesh appear together or not at all
     files.add(a.output, outcome.json);
     if (!a.apply.empty()) {
         Mesh moved = exa.mesh;
-        transform_mesh(moved, r.reference_from_examined);
+        apply_fit(moved, outcome);
         files.add(a.apply, [&](const fs::path& temp) { write_mesh(moved, temp); });
     }
     files.commit();

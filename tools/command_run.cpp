@@ -123,7 +123,8 @@ nlohmann::json outcome_json(const ScenarioOutcome& o) {
                                                        : nlohmann::json()}};
     if (o.pose)
         j["pose_error"] = {{"rotation_deg", o.pose->rotation_deg},
-                           {"translation", o.pose->translation}};
+                           {"translation", o.pose->translation},
+                           {"scale", o.pose->scale}};
     auto tally_json = [](const RegionTally& t) {
         return nlohmann::json{{"regions", t.regions},
                               {"false_regions", t.false_regions},

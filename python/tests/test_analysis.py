@@ -43,6 +43,26 @@ def test_register_takes_mesh_objects(dent_pair):
     np.testing.assert_allclose(by_mesh.matrix, by_path.matrix, atol=1e-9)
 
 
+def test_register_fits_the_scale_when_asked(dent_pair):
+    """Issue 53: the examined phantom 1 % larger. A rigid fit measures the scale it leaves and
+    warns; fit_scale=True fits it (its uncertainty given), and the motion still matches."""
+    ref, exa, truth = dent_pair
+    loaded = glint.load(exa)
+    larger = glint.Mesh(np.asarray(loaded.positions) * 1.01, np.asarray(loaded.triangles), unit="mm")
+    rigid = glint.register(ref, larger)
+    assert rigid.scale == 1.0
+    assert rigid.scale_trend == pytest.approx(1 / 1.01 - 1, abs=0.002)
+    assert any("scale-like pattern" in w and "fit_scale=True" in w for w in rigid.warnings)
+    fit = glint.register(ref, larger, fit_scale=True)
+    assert fit.scale == pytest.approx(1 / 1.01, abs=0.001)
+    assert 0 < fit.scale_uncertainty < 0.001
+    assert fit.to_dict()["examined_scale"] == fit.scale
+    assert not any("scale-like pattern" in w for w in fit.warnings)
+    # reference = matrix · (scale · examined): the examined phantom's pose undone at its size.
+    expected = np.linalg.inv(world_from_phantom(truth))
+    assert rotation_error_deg(fit.rotation, expected[:3, :3]) < 0.05
+
+
 @pytest.fixture(scope="module")
 def analysis(dent_pair, tmp_path_factory):
     ref, exa, _ = dent_pair

@@ -5,7 +5,10 @@
 #include <ceres/ceres.h>
 #include <ceres/rotation.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -89,6 +92,46 @@ struct PlaneToPoint {
         ceres::AngleAxisRotatePoint(x, nt, rn);
         r[0] = rn[0] * (T(q.x()) - rp[0] - x[3]) + rn[1] * (T(q.y()) - rp[1] - x[4]) +
                rn[2] * (T(q.z()) - rp[2] - x[5]);
+        return true;
+    }
+};
+
+// A similarity step about the centre c: r = n · (R(e^s (p − c)) + c + t − q), x = (angle-axis,
+// t, s). The scale enters as its logarithm (positive for any step), about the samples' centroid
+// (where a scale moves the surface least and is least confused with a translation).
+struct PointToPlaneScaled {
+    Vec3d p, q, n, c;
+    template <class T>
+    bool operator()(const T* x, T* r) const {
+        using std::exp;
+        const T k = exp(x[6]);
+        const T pt[3] = {k * T(p.x() - c.x()), k * T(p.y() - c.y()), k * T(p.z() - c.z())};
+        T rp[3];
+        ceres::AngleAxisRotatePoint(x, pt, rp);
+        r[0] = T(n.x()) * (rp[0] + T(c.x()) + x[3] - T(q.x())) +
+               T(n.y()) * (rp[1] + T(c.y()) + x[4] - T(q.y())) +
+               T(n.z()) * (rp[2] + T(c.z()) + x[5] - T(q.z()));
+        return true;
+    }
+};
+
+// The symmetric direction of a similarity step: a reference point q against the plane of an
+// examined point p (world, current pose) with normal n, both moving with the step about c:
+// r = (R n) · (q − (R(e^s (p − c)) + c + t)).
+struct PlaneToPointScaled {
+    Vec3d p, q, n, c;
+    template <class T>
+    bool operator()(const T* x, T* r) const {
+        using std::exp;
+        const T k = exp(x[6]);
+        const T pt[3] = {k * T(p.x() - c.x()), k * T(p.y() - c.y()), k * T(p.z() - c.z())};
+        const T nt[3] = {T(n.x()), T(n.y()), T(n.z())};
+        T rp[3], rn[3];
+        ceres::AngleAxisRotatePoint(x, pt, rp);
+        ceres::AngleAxisRotatePoint(x, nt, rn);
+        r[0] = rn[0] * (T(q.x()) - rp[0] - T(c.x()) - x[3]) +
+               rn[1] * (T(q.y()) - rp[1] - T(c.y()) - x[4]) +
+               rn[2] * (T(q.z()) - rp[2] - T(c.z()) - x[5]);
         return true;
     }
 };
@@ -210,8 +253,74 @@ IcpEvidence evaluate(const std::vector<Sample>& samples, const Rigid& t,
 // motion x = (angle-axis, translation) applied on top of `t`.
 struct StepSolution {
     Rigid step = Rigid::Identity();
+    double log_scale = 0.0;  ///< with a scale centre: ln of the step's scale about it
     ceres::Solver::Summary summary;
 };
+
+ceres::Solver::Options solver_options(const RegistrationOptions& o, int threads) {
+    ceres::Solver::Options so;
+    so.linear_solver_type = ceres::DENSE_QR;
+    so.max_num_iterations = o.inner_iterations;
+    so.num_threads =
+        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    so.logging_type = ceres::SILENT;
+    so.minimizer_progress_to_stdout = false;
+    return so;
+}
+
+// The symmetric fit's second set of pairs at a similarity pose: the reference samples taken
+// back into the examined mesh's frame (through the pose and the scale about `run.center`),
+// their closest examined points and normals brought forward again (world).
+struct BackPair {
+    Vec3d p, q, n;
+};
+
+std::vector<BackPair> back_pairs(const std::vector<Sample>& ref_samples,
+                                 const ClosestPointIndex& examined, const IcpRun& run,
+                                 const RegistrationOptions& o, double max_distance) {
+    const Rigid inv = run.t.inverse();
+    std::vector<Vec3d> back(ref_samples.size());
+    for (std::size_t i = 0; i < ref_samples.size(); ++i)
+        back[i] = run.center + (inv * ref_samples[i].point - run.center) / run.scale;
+    const auto cps = examined.closest(back, max_distance / run.scale);
+    std::vector<BackPair> out;
+    for (std::size_t i = 0; i < cps.size(); ++i) {
+        if (!cps[i].found) continue;
+        const Vec3d pw = run.t * (run.center + run.scale * (cps[i].point - run.center));
+        const Vec3d nw = run.t.linear() * cps[i].normal;
+        if (nw.dot(ref_samples[i].normal) < std::cos(o.max_normal_angle_deg * kDeg)) continue;
+        out.push_back({pw, ref_samples[i].point, nw});
+    }
+    return out;
+}
+
+// A similarity step about `center` on the pairs (and, symmetric, the reference samples against
+// the examined planes): the rigid part (rotation about the centre) and the logarithm of the
+// scale.
+StepSolution solve_scaled_step(const std::vector<Pair>& pairs, const Vec3d& center,
+                               const RegistrationOptions& o, double scale, int threads,
+                               const std::vector<BackPair>& back = {}) {
+    double x[7] = {0, 0, 0, 0, 0, 0, 0};
+    const std::unique_ptr<ceres::LossFunction> loss(make_loss(o.loss, scale));
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(problem_options);
+    for (const auto& p : pairs)
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PointToPlaneScaled, 1, 7>(
+                                     new PointToPlaneScaled{p.p, p.q, p.n, center}),
+                                 loss.get(), x);
+    for (const auto& b : back)
+        problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PlaneToPointScaled, 1, 7>(
+                                     new PlaneToPointScaled{b.p, b.q, b.n, center}),
+                                 loss.get(), x);
+    StepSolution out;
+    ceres::Solve(solver_options(o, threads), &problem, &out.summary);
+    // p ↦ R(p − c) + c + t: rotation R, translation c − R c + t.
+    out.step = from_params(x);
+    out.step.translation() += center - out.step.linear() * center;
+    out.log_scale = x[6];
+    return out;
+}
 
 StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample>& ref_samples,
                         const ClosestPointIndex* examined, const Rigid& t,
@@ -243,15 +352,8 @@ StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample
                                      loss.get(), x);
         }
     }
-    ceres::Solver::Options so;
-    so.linear_solver_type = ceres::DENSE_QR;
-    so.max_num_iterations = o.inner_iterations;
-    so.num_threads =
-        threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    so.logging_type = ceres::SILENT;
-    so.minimizer_progress_to_stdout = false;
     StepSolution out;
-    ceres::Solve(so, &problem, &out.summary);
+    ceres::Solve(solver_options(o, threads), &problem, &out.summary);
     out.step = from_params(x);
     return out;
 }
@@ -261,7 +363,8 @@ StepSolution solve_step(const std::vector<Pair>& pairs, const std::vector<Sample
 bool finished(const IcpIteration& log, bool annealed, const std::optional<double>& previous_cost,
               const RegistrationOptions& o, double diagonal, RegistrationResult& res) {
     if (annealed && log.rotation_step_deg < o.rotation_tolerance_deg &&
-        log.translation_step < o.translation_tolerance * diagonal) {
+        log.translation_step < o.translation_tolerance * diagonal &&
+        log.scale_step < o.translation_tolerance) {
         res.converged = true;
         res.termination = "parameter change";
         std::ostringstream why;
@@ -316,6 +419,10 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
                double diagonal, int solver_threads) {
     IcpRun run;
     run.t = start;
+    if (o.fit_scale && !samples.empty()) {
+        for (const auto& s : samples) run.center += s.point;
+        run.center /= static_cast<double>(samples.size());
+    }
     RegistrationResult& res = run.result;
     res.termination = "max iterations";
     res.termination_detail =
@@ -327,7 +434,8 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
     // costs of two iterations compare only under the same anneal factor).
     std::optional<double> previous_cost;
     for (int it = 0; it < max_iterations; ++it) {
-        const std::vector<Pair> pairs = match(samples, run.t, reference, o, max_distance);
+        const std::vector<Pair> pairs =
+            match(o.fit_scale ? scaled(samples, run) : samples, run.t, reference, o, max_distance);
         if (pairs.size() < std::max<std::size_t>(6, samples.size() / 33)) {
             res.termination = "no overlap";
             res.termination_detail = "no overlap: " + std::to_string(pairs.size()) + " of " +
@@ -345,8 +453,15 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         // Far outliers (beyond 20σ, or the initial spread) do not enter the next matching.
         max_distance = std::max(20.0 * sigma, 1e-6 * diagonal);
         const StepSolution solved =
-            solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance, solver_threads);
+            o.fit_scale
+                ? solve_scaled_step(pairs, run.t * run.center, o, scale, solver_threads,
+                                    o.symmetric && examined
+                                        ? back_pairs(ref_samples, *examined, run, o, max_distance)
+                                        : std::vector<BackPair>{})
+                : solve_step(pairs, ref_samples, examined, run.t, o, scale, max_distance,
+                             solver_threads);
         run.t = solved.step * run.t;
+        run.scale *= std::exp(solved.log_scale);
         IcpIteration log;
         log.iteration = it + 1;
         log.cost = solved.summary.final_cost;
@@ -355,6 +470,7 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         log.overlap = static_cast<double>(pairs.size()) / static_cast<double>(samples.size());
         log.rotation_step_deg = rotation_angle_deg(solved.step);
         log.translation_step = solved.step.translation().norm();
+        log.scale_step = std::abs(solved.log_scale);
         res.log.push_back(log);
         res.iterations = it + 1;
         if (solved.summary.termination_type == ceres::FAILURE) {
@@ -366,8 +482,69 @@ IcpRun run_icp(const std::vector<Sample>& samples, const std::vector<Sample>& re
         if (finished(log, annealed, previous_cost, o, diagonal, res)) break;
         if (annealed) previous_cost = log.cost;
     }
-    judge_overlap(samples, reference, o, diagonal, run);
+    judge_overlap(o.fit_scale ? scaled(samples, run) : samples, reference, o, diagonal, run);
     return run;
+}
+
+std::vector<Sample> scaled(const std::vector<Sample>& samples, const IcpRun& run) {
+    std::vector<Sample> out = samples;
+    if (run.scale == 1.0) return out;
+    for (auto& s : out) s.point = run.center + run.scale * (s.point - run.center);
+    return out;
+}
+
+ScaleTrend scale_trend(const std::vector<Sample>& samples, const ClosestPointIndex& reference,
+                       const IcpRun& run, const RegistrationOptions& o, double diagonal) {
+    ScaleTrend out;
+    const std::vector<Sample> placed = scaled(samples, run);
+    // The pairs at the final pose as the fine fit's last matching keeps them: within the
+    // overlap gate, then within 20σ (a sample beyond the reference's border matches a point
+    // of the border whose plane it may lie close to: it is far from it).
+    std::vector<Pair> pairs = match(placed, run.t, reference, o, o.overlap_distance * diagonal);
+    std::vector<double> residuals(pairs.size());
+    for (std::size_t i = 0; i < pairs.size(); ++i) residuals[i] = pairs[i].r;
+    const double sigma = std::max(1.4826 * median_abs(residuals), 1e-9 * diagonal);
+    const double keep = std::max(20.0 * sigma, 1e-6 * diagonal);
+    std::erase_if(pairs, [&](const Pair& p) { return (p.p - p.q).norm() > keep; });
+    if (pairs.size() < 64) return out;
+    const double loss_scale = o.anneal_end * sigma;
+    Vec3d center = Vec3d::Zero();
+    for (const auto& p : pairs) center += p.p;
+    center /= static_cast<double>(pairs.size());
+    out.scale = std::expm1(solve_scaled_step(pairs, center, o, loss_scale, 0).log_scale);
+    // note: neighbouring residuals are correlated (noise in a scan is smooth, a damage is one
+    // patch), so the least-squares standard error, which takes 20000 samples as independent,
+    // is far too small. The jackknife over eight spatial blocks (the octants of the principal
+    // frame about the centre) widens it as the correlation does: delete-one-block estimates
+    // s_k, SE² = (K − 1)/K Σ (s_k − s̄)².
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    for (const auto& p : pairs) cov += (p.p - center) * (p.p - center).transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> frame(cov);
+    std::vector<int> block(pairs.size());
+    std::array<std::size_t, 8> count{};
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const Vec3d d = frame.eigenvectors().transpose() * (pairs[i].p - center);
+        block[i] = (d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) | (d.z() > 0 ? 4 : 0);
+        ++count[static_cast<std::size_t>(block[i])];
+    }
+    std::vector<double> estimates;
+    for (int b = 0; b < 8; ++b) {
+        if (count[static_cast<std::size_t>(b)] == 0) continue;
+        std::vector<Pair> rest;
+        rest.reserve(pairs.size());
+        for (std::size_t i = 0; i < pairs.size(); ++i)
+            if (block[i] != b) rest.push_back(pairs[i]);
+        if (rest.size() < 64) continue;
+        estimates.push_back(
+            std::expm1(solve_scaled_step(rest, center, o, loss_scale, 0).log_scale));
+    }
+    const auto k = static_cast<double>(estimates.size());
+    if (estimates.size() < 2) return out;
+    double mean = 0.0, ss = 0.0;
+    for (double e : estimates) mean += e / k;
+    for (double e : estimates) ss += (e - mean) * (e - mean);
+    out.uncertainty = std::sqrt((k - 1.0) / k * ss);
+    return out;
 }
 
 }  // namespace glint::detail

@@ -49,8 +49,27 @@ struct Pair {
 /// An ICP run: the pose reached and its result (evidence, log, termination).
 struct IcpRun {
     Rigid t = Rigid::Identity();
+    /// With options.fit_scale: the samples stand for center + scale × (p − center) before `t`
+    /// moves them (`center`: the samples' centroid, where a scale is least coupled with the
+    /// translation).
+    double scale = 1.0;
+    Vec3d center = Vec3d::Zero();
     RegistrationResult result;
 };
+
+/// `samples` as the similarity of `run` places them before its rigid motion: center + scale ×
+/// (p − center); normals unchanged.
+[[nodiscard]] std::vector<Sample> scaled(const std::vector<Sample>& samples, const IcpRun& run);
+
+/// The relative scale one similarity step would add at `run`'s pose, and its jackknife standard
+/// error over the eight octants about the samples' centre (see RegistrationResult::scale_trend).
+struct ScaleTrend {
+    double scale = 0.0;
+    double uncertainty = 0.0;
+};
+[[nodiscard]] ScaleTrend scale_trend(const std::vector<Sample>& samples,
+                                     const ClosestPointIndex& reference, const IcpRun& run,
+                                     const RegistrationOptions& o, double diagonal);
 
 /// Point-to-plane ICP from `start` for at most `max_iterations`; `ref_samples` and
 /// `examined` are used only for the symmetric variant. `diagonal` is the larger bounding

@@ -117,13 +117,17 @@ std::vector<View> direction_views(const Mesh& mesh, const Orientation& o) {
     return views;
 }
 
-// "from anterior (az 270°, el +0°)"; the panel from up also says "(top)" when up is stated.
+// "from anterior (az 270°, el +0°)"; the panel from up also says "(top)" when up is stated and
+// the direction's name is an axis ("+z"): "superior" says it already, and the longer caption
+// was cut before the scale bar (issue 51).
 std::string panel_caption(const Orientation& o, const View& v) {
     const Vec3d from = v.camera.world_from_camera.linear().col(2);
-    const bool top = o.up_known && from.dot(o.up) > 0.999;
-    const bool bottom = o.up_known && from.dot(o.up) < -0.999;
+    const std::string name = o.name(from);
+    const bool axis = !name.empty() && (name[0] == '+' || name[0] == '-');
+    const bool top = axis && o.up_known && from.dot(o.up) > 0.999;
+    const bool bottom = axis && o.up_known && from.dot(o.up) < -0.999;
     char label[120];
-    std::snprintf(label, sizeof label, "from %s%s (az %s, el %s)", o.name(from).c_str(),
+    std::snprintf(label, sizeof label, "from %s%s (az %s, el %s)", name.c_str(),
                   top      ? " (top)"
                   : bottom ? " (bottom)"
                            : "",
@@ -136,6 +140,9 @@ std::string panel_caption(const Orientation& o, const View& v) {
 // region around a thin part), its best view's direction.
 Vec3d facing(const Mesh& mesh, const SurfaceFields& fields, const Region& r,
              const SweepPlan& plan) {
+    // The direction that sees the most of it face on and unoccluded, when the analysis chose
+    // one (analysis/region_views.h).
+    if (r.view_direction.norm() > 0.5) return r.view_direction.normalized();
     Vec3d sum = Vec3d::Zero();
     for (std::size_t v = 0; v < fields.region.size() && v < mesh.normals.size(); ++v)
         if (fields.region[v] == r.id) sum += mesh.normals[v].cast<double>();

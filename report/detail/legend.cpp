@@ -68,11 +68,12 @@ void hatched_swatch(Canvas& dst, int x, int y, Rgb plain, Rgb stripe, bool risin
 // The rows of a view's own measurement: nothing behind, examined only, pale within the floor.
 int draw_measured_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     const int s = kLegendLine - 4;
+    const SwatchLabels labels = swatch_labels(c);
     hatched_swatch(dst, x, y, kNothingBehind, kNothingBehindStripe, true);
-    draw_text(dst, x + s + 8, y + s - 2, "no examined surface behind it", kLegendFont);
+    draw_text(dst, x + s + 8, y + s - 2, labels.nothing_behind, kLegendFont);
     y += kSwatchStep;
     draw_box(dst, x, y, x + s, y + s, kExaminedOnly, true);
-    draw_text(dst, x + s + 8, y + s - 2, "examined surface only", kLegendFont);
+    draw_text(dst, x + s + 8, y + s - 2, labels.examined_only, kLegendFont);
     y += kSwatchStep;
     const DivergingTable& colours = DivergingTable::get();
     const Rgb loss = colours(static_cast<float>(-c.limit), c.limit);
@@ -81,43 +82,50 @@ int draw_measured_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     for (int k = 0; k < 3; ++k) pale[k] += kWithinFloorPale * (white[k] - pale[k]);
     draw_box(dst, x, y, x + s / 2, y + s, loss, true);
     draw_box(dst, x + s / 2 + 1, y, x + s, y + s, pale, true);
-    draw_text(dst, x + s + 8, y + s - 2, "paler: within the floor", kLegendFont);
+    draw_text(dst, x + s + 8, y + s - 2, labels.within_floor, kLegendFont);
     return y + kSwatchStep;
 }
 
 void draw_swatches(Canvas& dst, int x, int y, const LegendContent& c) {
     const int s = kLegendLine - 4;
+    const SwatchLabels labels = swatch_labels(c);
     if (c.measured) {
         y = draw_measured_swatches(dst, x, y, c);
     } else {
         // Unseen: the hatching the pictures use.
         hatched_swatch(dst, x, y, kUnseen, kUnseenStripe, true);
-        draw_text(dst, x + s + 8, y + s - 2,
-                  c.roi ? "unseen, or outside the ROI" : "unseen (no view saw it)", kLegendFont);
+        draw_text(dst, x + s + 8, y + s - 2, labels.unseen, kLegendFont);
         y += kSwatchStep;
     }
     // Not compared: hatched the other way.
     hatched_swatch(dst, x, y, kNotCompared, kNotComparedStripe, false);
-    draw_text(dst, x + s + 8, y + s - 2,
-              c.measured ? "not compared (edge, border)" : "not compared (border, unscanned, thin)",
-              kLegendFont);
+    draw_text(dst, x + s + 8, y + s - 2, labels.not_compared, kLegendFont);
     const int y2 = y + kSwatchStep;
     draw_box(dst, x, y2, x + s, y2 + s, {0.97f, 0.97f, 0.97f}, true);
     draw_box(dst, x, y2, x + s, y2 + s, kOutline, false);
     draw_box(dst, x + 1, y2 + 1, x + s - 1, y2 + s - 1, kOutline, false);
     draw_tag(dst, x + s + 14, y2 + s / 2, "1", kLegendFont - 2);
-    draw_text(dst, x + s + 26, y2 + s - 2, "region, id as in regions.csv", kLegendFont);
+    draw_text(dst, x + s + 26, y2 + s - 2, labels.region, kLegendFont);
     // An open surface seen from behind: its normals face away, so the light leaves it dark.
     const int y3 = y2 + kSwatchStep;
     draw_box(dst, x, y3, x + s, y3 + s, back_face_colour(), true);
-    draw_text(dst, x + s + 8, y3 + s - 2, "dark: back of an open surface", kLegendFont);
+    draw_text(dst, x + s + 8, y3 + s - 2, labels.back_face, kLegendFont);
     if (!c.plane_line) return;
     const int y4 = y3 + kSwatchStep;
     draw_box(dst, x, y4 + s / 2 - 1, x + s, y4 + s / 2, kSymmetryPlane, true);
-    draw_text(dst, x + s + 8, y4 + s - 2, "symmetry plane (its residual: report)", kLegendFont);
+    draw_text(dst, x + s + 8, y4 + s - 2, labels.plane, kLegendFont);
 }
 
 }  // namespace
+
+SwatchLabels swatch_labels(const LegendContent& c) {
+    SwatchLabels l;
+    l.unseen = c.roi ? "unseen, or outside the ROI" : "unseen (no view saw it)";
+    // note: "not compared (border, unscanned, thin)" ran past the panel's edge at 13 px
+    // (issue 51: the legend's "thin)" was cut); the kinds are named in the report's text.
+    l.not_compared = c.measured ? "not compared (edge, border)" : "not compared (edge, gap, thin)";
+    return l;
+}
 
 std::string region_kind_name(const Region& r, bool mirror) {
     if (!mirror)

@@ -46,6 +46,24 @@ inline constexpr int kTitleHeight = 30;
 /// Width of the legend panel, pixels.
 inline constexpr int kLegendWidth = 290;
 
+/// The swatch rows' labels as drawn (the legend's font, each from kSwatchLabelX of the panel
+/// on): every one fits the panel (tests/report/labels_test.cpp).
+struct SwatchLabels {
+    std::string unseen;
+    std::string not_compared;
+    std::string nothing_behind = "no examined surface behind it";
+    std::string examined_only = "examined surface only";
+    std::string within_floor = "paler: within the floor";
+    std::string region = "region, id as in regions.csv";
+    std::string back_face = "dark: back of an open surface";
+    std::string plane = "symmetry plane (its residual: report)";
+};
+[[nodiscard]] SwatchLabels swatch_labels(const LegendContent& content);
+/// Where a swatch's label starts and its font size: 12 px margin, a 14 px swatch, 8 px gap (the
+/// region's row 18 px more, for its tag).
+inline constexpr int kSwatchLabelX = 34;
+inline constexpr int kSwatchLabelFont = 13;
+
 /// Smallest height that shows the bar, swatches and lines (regions are cut to what fits).
 [[nodiscard]] int legend_min_height(const LegendContent& content);
 

@@ -43,6 +43,55 @@ std::size_t drop_bow_ties(Mesh& mesh) {
 
 }  // namespace
 
+std::optional<Eigen::Vector4d> read_crop_ball(TableReader& r) {
+    const auto v = r.numbers("crop_ball", 4, 4);
+    if (!v) return std::nullopt;
+    if (!((*v)[3] > 0))
+        r.fail(r.get("crop_ball"), "crop_ball", "the radius (number 4) must be > 0: [x, y, z, r]");
+    return Eigen::Vector4d((*v)[0], (*v)[1], (*v)[2], (*v)[3]);
+}
+
+std::string crop_reference(ScenarioMeshes& out, const Eigen::Vector4d& ball) {
+    Mesh& mesh = out.reference;
+    const Vec3d center = ball.head<3>();
+    const double area = surface_area(mesh);
+    const std::size_t triangles = mesh.triangle_count();
+    std::vector<bool> keep(mesh.vertex_count());
+    for (std::size_t v = 0; v < keep.size(); ++v)
+        keep[v] = (mesh.positions[v].cast<double>() - center).norm() <= ball[3];
+    std::vector<std::uint32_t> id = compact_vertices(mesh, keep);
+    std::vector<bool> used(mesh.vertex_count(), false);
+    for (const Triangle& t : mesh.triangles)
+        for (std::uint32_t v : t) used[v] = true;
+    const std::vector<std::uint32_t> second = compact_vertices(mesh, used);
+    for (auto& n : id)
+        if (n != kInvalidVertex) n = second[n];
+    if (mesh.triangle_count() == 0 || mesh.triangle_count() == triangles) {
+        std::ostringstream what;
+        what << "reference crop_ball: the ball at (" << center.transpose() << ") of radius "
+             << ball[3] << " holds " << (mesh.triangle_count() == 0 ? "no" : "every")
+             << " triangle of the reference; expected a ball around a part of it";
+        throw InputError(what.str());
+    }
+    // The per-vertex truth of the whole follows its kept vertices.
+    auto follow = [&](auto& values) {
+        if (values.size() != id.size()) return;
+        std::remove_reference_t<decltype(values)> kept(mesh.vertex_count());
+        for (std::size_t v = 0; v < id.size(); ++v)
+            if (id[v] != kInvalidVertex) kept[id[v]] = values[v];
+        values = std::move(kept);
+    };
+    follow(out.truth);
+    follow(out.truth_damage);
+    follow(out.true_distance);
+    std::ostringstream note;
+    note.precision(3);
+    note << "reference: cropped to the ball at (" << center.transpose() << ") of radius " << ball[3]
+         << ": " << mesh.triangle_count() << " of " << triangles << " triangles, "
+         << 100.0 * surface_area(mesh) / area << " % of the area; the examined keeps the whole";
+    return note.str();
+}
+
 std::optional<ScanCut> read_scan_cut(TableReader& r) {
     const auto v = r.numbers("keep_side", 6, 6);
     if (!v) return std::nullopt;

@@ -28,6 +28,14 @@ namespace glint::detail {
 /// nothing or everything would be kept (the plane misses the surface).
 [[nodiscard]] std::string cut_scan(Mesh& mesh, const ScanCut& cut, const std::string& role);
 
+/// crop_ball of the table, when given. \throw InputError (through `r`) for a radius ≤ 0.
+[[nodiscard]] std::optional<Eigen::Vector4d> read_crop_ball(TableReader& r);
+
+/// The reference keeps its vertices inside the ball (and the triangles among them); the
+/// per-reference-vertex truth follows. Returns a note. \throw InputError when the ball holds no
+/// triangle or every one.
+[[nodiscard]] std::string crop_reference(ScenarioMeshes& out, const Eigen::Vector4d& ball);
+
 /// A volume pair's cuts: the reference's as given, the examined's (given in the reference's
 /// frame) moved with the examined volume.
 void cut_pair(const Scenario& sc, ScenarioMeshes& out, const Rigid& examined_from_reference);

@@ -60,6 +60,34 @@ TEST(ResolveUnits, AllowsAMismatchWhenToldAndWarns) {
         resolve_units(triangle(10, ""), triangle(0.01f, ""), {.allow_scale_mismatch = true});
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_NE(r.warnings[0].find("allowed"), std::string::npos);
+    // Issue 53: allowed, the examined proceeds at the conversion the ratio states.
+    EXPECT_EQ(r.examined_scale, 1000.0);
+    EXPECT_NEAR(r.examined_size, r.reference_size, 1e-6 * r.reference_size);
+    EXPECT_NE(r.warnings[0].find("nearest the conversion m → mm"), std::string::npos)
+        << r.warnings[0];
+    EXPECT_EQ(starting_scale(r), 1.0);
+    // A ratio near no conversion is left to --fit-scale, which starts from it.
+    const UnitResolution odd =
+        resolve_units(triangle(10, ""), triangle(0.3f, ""), {.allow_scale_mismatch = true});
+    EXPECT_EQ(odd.examined_scale, 1.0);
+    EXPECT_NE(odd.warnings[0].find("near no unit conversion"), std::string::npos)
+        << odd.warnings[0];
+    EXPECT_NEAR(starting_scale(odd), 10.0 / 0.3, 1e-3);
+}
+
+// Issue 53: a reference cropped around a condyle is 6× smaller than the whole examined jaw, a
+// ratio near no unit conversion: a part against a whole, run with a note. 10× (cm → mm) and
+// beyond 20× are still refused.
+TEST(ResolveUnits, TakesAPartAgainstAWholeAtARatioNearNoConversion) {
+    const UnitResolution part = resolve_units(triangle(10, ""), triangle(60, ""), {});
+    EXPECT_EQ(part.examined_scale, 1.0);
+    ASSERT_EQ(part.warnings.size(), 1u);
+    EXPECT_NE(part.warnings[0].find("examined mesh is 6× the size of the reference"),
+              std::string::npos)
+        << part.warnings[0];
+    EXPECT_NE(part.warnings[0].find("a part against a whole"), std::string::npos);
+    EXPECT_THROW((void)resolve_units(triangle(10, ""), triangle(100, ""), {}), InputError);
+    EXPECT_THROW((void)resolve_units(triangle(10, ""), triangle(300, ""), {}), InputError);
 }
 
 // Coordinates scaled by 1e20 spent minutes in closest-point queries under

@@ -1,6 +1,8 @@
 // Region numbers placed without collisions (report/detail/labels.h): off each other, off
 // captions, edge letters and the scale bar, inside the picture, with a leader line when moved.
 #include "report/detail/labels.h"
+#include "report/detail/canvas.h"
+#include "report/detail/legend.h"
 
 #include <gtest/gtest.h>
 
@@ -112,6 +114,34 @@ TEST(Text, NotesTooWideWrapOnAsManyLinesAsTheyNeedAndLoseNoWord) {
     EXPECT_NE(word[0].find("\u2026"), std::string::npos);
     EXPECT_EQ(word[0].rfind("\u00b1", 0), 0u);
     EXPECT_EQ((word[0].size() - std::string("\u2026").size()) % std::string("\u00b1").size(), 0u);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Issue 51: the legend's "not compared (border, unscanned, thin)" ran past the panel and showed
+// as "…thin" cut at the edge. Every swatch label, in every legend, fits the panel.
+TEST(Legend, EverySwatchLabelFitsThePanel) {
+    for (const bool measured : {false, true})
+        for (const bool roi : {false, true}) {
+            detail::LegendContent c;
+            c.measured = measured;
+            c.roi = roi;
+            const detail::SwatchLabels l = detail::swatch_labels(c);
+            for (const std::string& text :
+                 {l.unseen, l.not_compared, l.nothing_behind, l.examined_only, l.within_floor,
+                  l.back_face, l.plane}) {
+                const int right =
+                    detail::kSwatchLabelX + detail::text_width(text, detail::kSwatchLabelFont);
+                EXPECT_LE(right, detail::kLegendWidth - 4) << '"' << text << '"';
+            }
+            const int region =
+                detail::kSwatchLabelX + 18 + detail::text_width(l.region, detail::kSwatchLabelFont);
+            EXPECT_LE(region, detail::kLegendWidth - 4) << l.region;
+        }
 }
 
 }  // namespace
