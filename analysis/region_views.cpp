@@ -69,8 +69,8 @@ double visible_area(const ClosestPointIndex& index, const RegionSamples& s, cons
     for (std::size_t i = 0; i < s.point.size(); ++i) {
         const double c = s.normal[i].dot(to);
         if (c <= 0.0) continue;
-        if (unoccluded(index, s.point[i], s.normal[i], to,
-                       std::numeric_limits<double>::infinity(), lift))
+        if (unoccluded(index, s.point[i], s.normal[i], to, std::numeric_limits<double>::infinity(),
+                       lift))
             sum += s.area[i] * c;
     }
     return sum;
@@ -93,8 +93,7 @@ double visible_area(const ClosestPointIndex& index, const RegionSamples& s, cons
         const Vec3d dir = to.normalized();
         const double c = s.normal[i].dot(dir);
         if (c <= 0.0) continue;
-        if (unoccluded(index, s.point[i], s.normal[i], dir, distance, lift))
-            sum += s.area[i] * c;
+        if (unoccluded(index, s.point[i], s.normal[i], dir, distance, lift)) sum += s.area[i] * c;
     }
     return sum;
 }

@@ -72,8 +72,9 @@ struct RegistrationOptions {
     /// The examined surface's scale to start from (multiplies its positions before anything
     /// else; with fit_scale the fit refines it). 1: none.
     double initial_scale = 1.0;
-    /// Measure scale_trend and the scale's uncertainty at the end (nine small solves; off for
-    /// fits where a scale means nothing, as a surface against its own mirror image).
+    /// Measure scale_trend and the scale's uncertainty at the end (one pass over the pairs and
+    /// nine 7×7 solves, 2 % of a 200k-triangle fit; off for fits where a scale means nothing,
+    /// as a surface against its own mirror image).
     bool measure_scale = true;
     /// Fit only on this region of the reference (a stable region, mesh/roi.h); a vertex
     /// mask must already be read (Roi::needs_mask() false). Empty: the whole surface.

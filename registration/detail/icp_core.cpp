@@ -6,6 +6,7 @@
 #include <ceres/rotation.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <array>
@@ -511,7 +512,23 @@ ScaleTrend scale_trend(const std::vector<Sample>& samples, const ClosestPointInd
     Vec3d center = Vec3d::Zero();
     for (const auto& p : pairs) center += p.p;
     center /= static_cast<double>(pairs.size());
-    out.scale = std::expm1(solve_scaled_step(pairs, center, o, loss_scale, 0).log_scale);
+    // One robustly weighted Gauss-Newton step of the similarity about the centre from the pose
+    // reached (the weights of the loss at its final scale): residual n·(p − q), Jacobian row
+    // [((p − c) × n)ᵀ, nᵀ, n·(p − c)] (rotation, translation, log-scale). Its normal equations
+    // are sums over the pairs, so the estimate without one block is the total less that block's
+    // share: the jackknife below costs nine 7×7 solves.
+    using Matrix7 = Eigen::Matrix<double, 7, 7>;
+    using Vector7 = Eigen::Matrix<double, 7, 1>;
+    const auto weight = [&](double r) {
+        const double u = (r * r) / (loss_scale * loss_scale);
+        switch (o.loss) {
+            case RobustLoss::None: return 1.0;
+            case RobustLoss::Huber: return u <= 1.0 ? 1.0 : 1.0 / std::sqrt(u);
+            case RobustLoss::Cauchy: return 1.0 / (1.0 + u);
+            case RobustLoss::Tukey: return u <= 1.0 ? (1.0 - u) * (1.0 - u) : 0.0;
+        }
+        return 1.0;
+    };
     // note: neighbouring residuals are correlated (noise in a scan is smooth, a damage is one
     // patch), so the least-squares standard error, which takes 20000 samples as independent,
     // is far too small. The jackknife over eight spatial blocks (the octants of the principal
@@ -520,23 +537,50 @@ ScaleTrend scale_trend(const std::vector<Sample>& samples, const ClosestPointInd
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
     for (const auto& p : pairs) cov += (p.p - center) * (p.p - center).transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> frame(cov);
-    std::vector<int> block(pairs.size());
+    std::array<Matrix7, 8> normal;
+    std::array<Vector7, 8> rhs;
     std::array<std::size_t, 8> count{};
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-        const Vec3d d = frame.eigenvectors().transpose() * (pairs[i].p - center);
-        block[i] = (d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) | (d.z() > 0 ? 4 : 0);
-        ++count[static_cast<std::size_t>(block[i])];
-    }
-    std::vector<double> estimates;
     for (int b = 0; b < 8; ++b) {
-        if (count[static_cast<std::size_t>(b)] == 0) continue;
-        std::vector<Pair> rest;
-        rest.reserve(pairs.size());
-        for (std::size_t i = 0; i < pairs.size(); ++i)
-            if (block[i] != b) rest.push_back(pairs[i]);
-        if (rest.size() < 64) continue;
-        estimates.push_back(
-            std::expm1(solve_scaled_step(rest, center, o, loss_scale, 0).log_scale));
+        normal[static_cast<std::size_t>(b)].setZero();
+        rhs[static_cast<std::size_t>(b)].setZero();
+    }
+    for (const auto& p : pairs) {
+        const Vec3d a = p.p - center;
+        const Vec3d d = frame.eigenvectors().transpose() * a;
+        const auto b = static_cast<std::size_t>((d.x() > 0 ? 1 : 0) | (d.y() > 0 ? 2 : 0) |
+                                                (d.z() > 0 ? 4 : 0));
+        Vector7 j;
+        j << a.cross(p.n), p.n, p.n.dot(a);
+        const double w = weight(p.r);
+        normal[b] += w * j * j.transpose();
+        rhs[b] += w * j * p.r;
+        ++count[b];
+    }
+    Matrix7 all_normal = Matrix7::Zero();
+    Vector7 all_rhs = Vector7::Zero();
+    for (std::size_t b = 0; b < 8; ++b) {
+        all_normal += normal[b];
+        all_rhs += rhs[b];
+    }
+    // The log-scale of the step (−J⁻¹ r), as a relative scale; nothing when the system is
+    // singular (a plane or a line of pairs: no scale can be told).
+    const auto scale_of = [](const Matrix7& m, const Vector7& v) -> std::optional<double> {
+        // note: a column-pivoting QR with its rank (an LDLT of the fixed 7×7 tripped GCC 12's
+        // maybe-uninitialized warning inside Eigen).
+        Eigen::ColPivHouseholderQR<Matrix7> solved(m);
+        solved.setThreshold(1e-12);
+        if (solved.rank() < 7) return std::nullopt;
+        const Vector7 x = -solved.solve(v);
+        return std::isfinite(x[6]) ? std::optional<double>(std::expm1(x[6])) : std::nullopt;
+    };
+    const auto whole = scale_of(all_normal, all_rhs);
+    if (!whole) return out;
+    out.scale = *whole;
+    std::vector<double> estimates;
+    for (std::size_t b = 0; b < 8; ++b) {
+        if (count[b] == 0 || pairs.size() - count[b] < 64) continue;
+        if (const auto e = scale_of(all_normal - normal[b], all_rhs - rhs[b]))
+            estimates.push_back(*e);
     }
     const auto k = static_cast<double>(estimates.size());
     if (estimates.size() < 2) return out;

@@ -21,7 +21,9 @@ void add_plate(Mesh& m, double half, double z, int n, bool up) {
             m.positions.emplace_back(static_cast<float>(-half + 2 * half * i / n),
                                      static_cast<float>(-half + 2 * half * j / n),
                                      static_cast<float>(z));
-    const auto at = [&](int i, int j) { return base + static_cast<std::uint32_t>(j * (n + 1) + i); };
+    const auto at = [&](int i, int j) {
+        return base + static_cast<std::uint32_t>(j * (n + 1) + i);
+    };
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             if (up) {
