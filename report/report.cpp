@@ -9,6 +9,7 @@
 #include "mesh/write.h"
 #include "report/atlas_fields.h"
 #include "report/detail/options_json.h"
+#include "report/finding.h"
 #include "report/orientation.h"
 #include "report/pictures.h"
 #include "report/report_html.h"
@@ -38,8 +39,16 @@ json vec_json(const Vec3d& v) { return json::array({v.x(), v.y(), v.z()}); }
 // JSON has no NaN: report non-finite numbers as null.
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
+// The region in words (report/finding.h): where it lies, which way it faces, one sentence.
+struct RegionWords {
+    const Bounds* reference = nullptr;
+    const Orientation* orientation = nullptr;
+    double depth_uncertainty = 0.0;
+    std::string unit;
+};
+
 json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m,
-                 double peak_value) {
+                 double peak_value, const RegionWords& words) {
     const std::string u = "_" + std::string(m.unit);
     const std::string nu = "_" + std::string(m.name) + u;
     json j = {
@@ -79,6 +88,12 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
     if (r.view_direction.norm() > 0.5) {
         j["view_direction"] = vec_json(r.view_direction);
         j["visible_fraction"] = r.visible_fraction;
+    }
+    if (words.reference && words.orientation) {
+        const std::string place = region_place(r, *words.reference, *words.orientation);
+        j["place"] = place;
+        j["depth_uncertainty"] = words.depth_uncertainty;
+        j["finding"] = region_sentence(r, place, words.depth_uncertainty, words.unit);
     }
     return j;
 }
@@ -184,7 +199,8 @@ json comparison_json(const Comparison& c) {
           {"losses", {{"count", c.lost_holes}, {"area", c.lost_hole_area}}}}}};
 }
 
-json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z) {
+json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z,
+               const Orientation& orientation) {
     const auto& plan = result.sweep.plan;
     const auto& sz = result.sweep.zooms[z];
     const auto& d = result.decisions[z];
@@ -192,8 +208,14 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
     const std::string u = "_" + std::string(m.unit);
     json regions = json::array();
     const std::vector<double> peaks = region_peak_values(result, z);
+    const Bounds box = bounds(reference);
+    // ± one robust standard deviation of the distance on the unchanged surface (the shape
+    // floor's spread; none without a shape floor).
+    const RegionWords words{
+        &box, &orientation,
+        d.rule == DecisionRule::Fused && d.shape.mad > 0 ? 1.4826 * d.shape.mad : 0.0, result.unit};
     for (const auto& r : d.regions.regions)
-        regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)]));
+        regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)], words));
     json j = {
         {"zoom", z},
         {"footprint", plan.footprints[z]},
@@ -308,8 +330,9 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
     const auto& s = result.sweep;
     const MetricDescriptor& m = describe(s.options.metric);
     json zooms = json::array();
+    const Orientation orientation = run_orientation(record, options.exports);
     for (std::size_t z = 0; z < s.zooms.size(); ++z)
-        zooms.push_back(zoom_json(reference, result, z));
+        zooms.push_back(zoom_json(reference, result, z, orientation));
     json report = {
         {"glint_version", kVersion},
         {"command_line", record.command_line},
@@ -329,7 +352,7 @@ std::string report_json(const Mesh& reference, const AnalysisResult& result,
           {"unit", std::string(m.unit)},
           {"description", std::string(m.description)}}},
         {"plan", plan_json(s.plan)},
-        {"orientation", orientation_json(run_orientation(record, options.exports))},
+        {"orientation", orientation_json(orientation)},
         {"size", result.size},
         {"unit", result.unit.empty() ? json(nullptr) : json(result.unit)},
         {"units", units_json(result)},

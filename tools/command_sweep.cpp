@@ -57,6 +57,7 @@ std::string floors_line(const ZoomDecision& d, const MetricDescriptor& m, const 
 
 void print_summary(const Inspection& inspection, bool pictures) {
     const AnalysisResult& r = inspection.analysis;
+    const nlohmann::json report = nlohmann::json::parse(inspection.report_json);
     const MetricDescriptor& m = describe(r.sweep.options.metric);
     const std::string sym(m.symbol);
     const std::string& u = r.unit;
@@ -95,15 +96,18 @@ void print_summary(const Inspection& inspection, bool pictures) {
                 "  %zu gone patch(es), %.1f%% of the reference, reach beyond the examined scan's "
                 "field of view (its volume's grid or surface ROI): not reached\n",
                 c.beyond_view, pct(c.beyond_view_area));
-        for (const auto& g : d.regions.regions)
-            std::printf(
-                "  region %d: %s, area %s, peak depth %s%s, strongest vertex mean %.2f%s, mean "
-                "%.2f%s, centroid (%.3f, %.3f, %.3f) %s\n",
-                g.id, to_string(g.kind).c_str(), with_unit(g.area, u, 2).c_str(),
-                with_unit(g.peak_depth, u, 1, "%+.4g").c_str(),
-                g.is_hole_loss() ? " (surface gone in a hole: at least this deep)" : "",
-                g.max_value, sym.c_str(), g.mean_value, sym.c_str(), g.centroid.x(), g.centroid.y(),
-                g.centroid.z(), u.empty() ? "units" : u.c_str());
+        // Each region in words (report.json's "finding", report/finding.h); the method's
+        // figures (angles, floors, evidence) are in report.json.
+        const nlohmann::json& found = report["zooms"][z]["regions"];
+        for (std::size_t k = 0; k < d.regions.regions.size(); ++k) {
+            const Region& g = d.regions.regions[k];
+            const std::string words = k < found.size() && found[k].contains("finding")
+                                          ? found[k]["finding"].get<std::string>()
+                                          : to_string(g.kind);
+            std::printf("  region %d: %s; centroid (%.3f, %.3f, %.3f) %s\n", g.id, words.c_str(),
+                        g.centroid.x(), g.centroid.y(), g.centroid.z(),
+                        u.empty() ? "units" : u.c_str());
+        }
     }
     std::printf("%zu views in %.1f s (%s on %s); atlas, %sreport in %s (open %s in a browser)\n",
                 r.sweep.views.size(), inspection.total_seconds,
