@@ -48,9 +48,13 @@ std::string region_sentence(const Region& r, const std::string& place, double un
         s += pm;
     }
     s += " " + (unit.empty() ? std::string("units") : unit) +
-         (r.is_hole_loss() ? " deep at least" : dent ? " deep" : " high") + " over " + area;
+         (r.is_hole_loss() ? " deep at least"
+          : dent           ? " deep"
+                           : " high") +
+         " over " + area;
     if (std::isfinite(r.volume) && r.volume != 0.0)
-        s += " (" + with_unit(std::abs(r.volume), unit, 3, "%.3g") + (r.volume < 0 ? " lost)" : " gained)");
+        s += " (" + with_unit(std::abs(r.volume), unit, 3, "%.3g") +
+             (r.volume < 0 ? " lost)" : " gained)");
     return s + ", " + place;
 }
 
