@@ -1,6 +1,7 @@
 #include "analysis/analysis.h"
 
 #include "analysis/region_views.h"
+#include "decision/comparison.h"
 #include "mesh/cancel.h"
 #include "mesh/error.h"
 #include "mesh/fault_injection.h"
@@ -123,6 +124,7 @@ void decide_step(const Mesh& reference, const AnalysisOptions& options, Analysis
             .scan_view = result.scan_view ? &*result.scan_view : nullptr,
             .below_resolution = &result.resolution.below,
             .beyond_view = &result.beyond_examined_view,
+            .examined_encloses = result.examined_encloses,
             .sampling = &result.resolution.sampling,
             .voxel = result.voxel,
             .metric = options.sweep.metric,
@@ -287,6 +289,7 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.facing_away = std::move(shape.facing_away);
     result.scan_view = one_view_scan(fitted);
     result.beyond_examined_view = beyond_view(reference, fitted);
+    result.examined_encloses = !result.scan_view && encloses(fitted);
     ResolutionGrids grids = resolution_grids(reference, fitted, options.decision.resolution);
     grids.examined_detected = examined_grid_detected;
     if (!grids.reference && reference_grid) {

@@ -61,6 +61,9 @@ struct AnalysisResult {
     /// grid and surface ROI: mesh/field_of_view.h) does not hold it, or holds it less than a
     /// voxel deep; empty where the field of view is unknown (a mesh file).
     std::vector<std::uint8_t> beyond_examined_view;
+    /// The fitted examined surface encloses its solid (decision/comparison.h
+    /// kMaxEnclosedBorder): surface it lacks, whatever its extent, is material gone.
+    bool examined_encloses = false;
     /// Where the pair cannot compare because another sheet lies closer than the scans' voxels
     /// (analysis/resolution.h): empty for surfaces from mesh files.
     ResolutionEvidence resolution;

@@ -173,8 +173,10 @@ std::string rule_text(const Comparison& c) {
          "rim), inside the examined scan's field of view where it is known (not within a voxel "
          "of its cut) "
          "and under "
-      << 100.0 * kMaxHoleShare
-      << " % of its area is a hole the examined scan covered around: compared (a loss where the "
+      << 100.0 * (c.examined_encloses ? kMaxLossShare : kMaxHoleShare) << " % of its area"
+      << (c.examined_encloses ? " (the examined surface encloses its solid: what it lacks is gone)"
+                              : "")
+      << " is a hole the examined scan covered around: compared (a loss where the "
          "reference stood above the hole's rim or where the examined surface is no one-view "
          "scan and so cannot drop out, at least as deep as the reference stood above the rim; "
          "else missing surface), unless the examined "
@@ -187,6 +189,11 @@ std::string rule_text(const Comparison& c) {
 
 }  // namespace
 
+bool encloses(const Mesh& surface) {
+    const double area = surface_area(surface);
+    return area > 0 && border_length(surface) <= kMaxEnclosedBorder * std::sqrt(area);
+}
+
 Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     const std::size_t n = mesh.vertex_count();
     GLINT_ASSERT(in.seen && in.seen->size() == n && in.missing && in.missing->size() == n,
@@ -194,6 +201,7 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
     Comparison c;
     c.edge = median_edge(mesh);
     c.band = kBandEdges * c.edge;
+    c.examined_encloses = in.examined_encloses;
     c.rule = rule_text(c);
     const detail::Adjacency adj = detail::adjacency(mesh);
     const auto area = vertex_areas(mesh);
@@ -264,8 +272,11 @@ Comparison classify_comparison(const Mesh& mesh, const ComparisonInputs& in) {
         // mostly in the band of the reference's own cut. A wide strip (two fields of view 6 mm
         // apart) has little of its area in that band but a third or more of its rim on the cut.
         const bool cut_by_view = beyond_view(g);
+        // An examined surface that encloses its solid holds surface wherever the object has
+        // some: a larger part without it (a resection) is gone, not unscanned.
+        const double max_share = in.examined_encloses ? kMaxLossShare : kMaxHoleShare;
         const bool hole = !cut_by_view && banded[g] <= 0.25 * group_area[g] && !field_of_view(g) &&
-                          group_area[g] <= kMaxHoleShare * c.reference_area;
+                          group_area[g] <= max_share * c.reference_area;
         if (cut_by_view) {
             ++c.beyond_view;
             c.beyond_view_area += group_area[g];

@@ -12,9 +12,13 @@
 //                quarter of its area within one edge of them, no run of them as long as
 //                half its rim on reached surface unless it is a cap: kMaxOpenRim,
 //                kMinCapCoherence) and covers at most kMaxHoleShare
-//                of the reference's area: the examined scan covered the surface around it, so
-//                the surface is really gone there (a resection, worn-away material, or a
-//                scanner's dropout). It stays compared; its kind follows the shape (below).
+//                of the reference's area (kMaxLossShare where the examined surface encloses
+//                its solid, `encloses`: it holds surface wherever the object has some, so
+//                what it lacks is gone, however large: a segmental resection): the examined
+//                scan covered the surface around it, so the surface is really gone there (a
+//                resection, worn-away material, or a scanner's dropout). It stays compared;
+//                its kind follows the shape (below), surface gone (a dent in a hole) is listed
+//                first among the regions, its volume the solid it bounds with its rim.
 //   beyond view  a gone group holding a vertex that the examined scan's field of view does not
 //                hold (within a voxel of its cut, or beyond it: mesh/field_of_view.h; known for
 //                surfaces extracted from volumes): the scan had no data there, so its surface
@@ -100,6 +104,20 @@ inline constexpr double kMinCapCoherence = 0.5;
 /// cusps of a crown face its occlusal view.
 inline constexpr double kGrazingDeg = 60.0;
 
+/// note: a fifth of the square root of the area — a closed surface has no border; a surface
+/// segmented from CT or fused from all round may keep a few stray openings (the jaw with its
+/// graft: 23 border edges, 13 mm against √area = 137 mm), while a partial scan's outline runs
+/// round the part it covers (a one-sided jaw: several hundred mm).
+inline constexpr double kMaxEnclosedBorder = 0.2;
+/// note: half the reference's area — a segmental resection removes 42 % of a jaw's surface
+/// (one side of its body and its ramus); an examined surface holding less than half of the
+/// reference is a part of it (a crop closed by a cap), not what is left after a loss.
+inline constexpr double kMaxLossShare = 0.5;
+
+/// Whether a surface encloses its solid: its open borders together are shorter than
+/// kMaxEnclosedBorder × √(its area), so it holds surface wherever the object has some.
+[[nodiscard]] bool encloses(const Mesh& surface);
+
 /// What the classification reads, one value per reference vertex (optional ones may be null).
 struct ComparisonInputs {
     const std::vector<std::uint8_t>* seen = nullptr;       ///< required
@@ -116,6 +134,10 @@ struct ComparisonInputs {
     /// 1: outside the examined scan's field of view, or within a voxel of its cut (may be
     /// null or empty: the field of view is unknown).
     const std::vector<std::uint8_t>* beyond_view = nullptr;
+    /// The examined surface encloses its solid (no one-view scan, its open borders together
+    /// shorter than kMaxEnclosedBorder × √area): it holds surface wherever the object still
+    /// has some, so a gone group of any extent up to kMaxLossShare is material gone.
+    bool examined_encloses = false;
 };
 
 struct Comparison {
@@ -146,6 +168,8 @@ struct Comparison {
     /// Gone groups reaching beyond the examined scan's field of view: not reached.
     std::size_t beyond_view = 0;
     double beyond_view_area = 0.0;
+    /// The examined surface enclosed its solid (ComparisonInputs::examined_encloses).
+    bool examined_encloses = false;
     double fraction = 1.0;  ///< compared / reference area
     std::string rule;       ///< one line: the rule applied
     /// Damaged groups dropped because they lay mostly in a not-compared band (drop_border_groups).

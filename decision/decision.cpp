@@ -761,14 +761,16 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
     o.validate();
     GLINT_ASSERT(evidence.atlas && evidence.coverage, "decision without an atlas or coverage");
     ZoomDecision d;
-    d.comparison = classify_comparison(reference, {.seen = &evidence.coverage->seen,
-                                                   .missing = &evidence.atlas->missing,
-                                                   .distance = evidence.distance,
-                                                   .at_border = evidence.at_border,
-                                                   .facing_away = evidence.facing_away,
-                                                   .scan_view = evidence.scan_view,
-                                                   .below_resolution = evidence.below_resolution,
-                                                   .beyond_view = evidence.beyond_view});
+    d.comparison =
+        classify_comparison(reference, {.seen = &evidence.coverage->seen,
+                                        .missing = &evidence.atlas->missing,
+                                        .distance = evidence.distance,
+                                        .at_border = evidence.at_border,
+                                        .facing_away = evidence.facing_away,
+                                        .scan_view = evidence.scan_view,
+                                        .below_resolution = evidence.below_resolution,
+                                        .beyond_view = evidence.beyond_view,
+                                        .examined_encloses = evidence.examined_encloses});
     // Floors and the histogram read the compared vertices; the mask every seen vertex the
     // examined surface reached (a group mostly in a border band is dropped: off_borders).
     Coverage compared = *evidence.coverage;
@@ -809,9 +811,16 @@ ZoomDecision decide(const Mesh& reference, const DecisionEvidence& evidence,
 
 std::vector<float> decided_shape(const std::vector<float>& distance, const ZoomDecision& d) {
     if (d.comparison.in_hole.size() != distance.size()) return distance;
-    return region_shape(
-        distance, d.comparison,
-        gone_depth(d.comparison, d.rule == DecisionRule::Fused ? d.shape.value : 0.0));
+    std::vector<float> shape =
+        region_shape(distance, d.comparison,
+                     gone_depth(d.comparison, d.rule == DecisionRule::Fused ? d.shape.value : 0.0));
+    // Where the examined surface never reached, its closest point is whatever surface lies
+    // elsewhere (−93 mm across a resected jaw): no shape change is known there.
+    const auto& k = d.comparison.vertex_class;
+    for (std::size_t v = 0; v < shape.size() && k.size() == shape.size(); ++v)
+        if (k[v] == static_cast<std::uint8_t>(CompareClass::NotReached))
+            shape[v] = std::numeric_limits<float>::quiet_NaN();
+    return shape;
 }
 
 }  // namespace glint

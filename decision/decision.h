@@ -147,6 +147,8 @@ struct DecisionEvidence {
     const std::vector<std::uint8_t>* below_resolution = nullptr;
     /// 1: beyond the examined scan's field of view (decision/comparison.h; may be null: unknown).
     const std::vector<std::uint8_t>* beyond_view = nullptr;
+    /// The examined surface encloses its solid (decision/comparison.h ComparisonInputs).
+    bool examined_encloses = false;
     /// Per reference vertex, the coarser scan grid's width along its normal (mesh units; may be
     /// null or empty: no grid). Where it is wide (faces across thick slices) the staircase of
     /// each scan's surface is, and the distance between two scans on different grids spreads
@@ -210,6 +212,8 @@ struct ZoomDecision {
 /// signed `distance`, and in a hole of `d.comparison` the depth of the surface gone (the hole's
 /// depth where it is a loss or reaches the shape floor, 0 where no loss is measurable). In a
 /// hole the signed distance only measures to the rim or the far side, so pictures paint this.
+/// NaN where the examined surface never reached (CompareClass::NotReached): the distance
+/// there is to surface elsewhere, no shape change.
 [[nodiscard]] std::vector<float> decided_shape(const std::vector<float>& distance,
                                                const ZoomDecision& d);
 

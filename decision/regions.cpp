@@ -129,6 +129,47 @@ void finish(Accumulated& g, const RegionOptions& options, bool holes) {
     else g.r.kind = g.r.peak_depth < 0 ? RegionKind::Dent : RegionKind::Bump;
 }
 
+// The material gone with each surface-gone region (Region::is_hole_loss): the solid its
+// surface bounds with the surface across its rim, by the divergence theorem as a sum of
+// tetrahedra from the rim's centroid (exact where the rim is planar; a closed region's own
+// centroid when it has no rim); each triangle weighs the share of its corners in the region.
+// Positive for a surface wound outward. Σ area·depth would measure a long piece gone (a bone
+// resected along its length) as its surface times half its length, not its volume.
+std::vector<double> gone_volumes(const Mesh& mesh, const std::vector<Accumulated*>& regions) {
+    const std::size_t n = mesh.vertex_count();
+    std::vector<Vec3d> rim(regions.size(), Vec3d::Zero());
+    std::vector<double> rim_count(regions.size(), 0.0), volume(regions.size(), 0.0);
+    std::vector<std::int32_t> slot(n, -1), stamp(n, -1);
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        for (const auto v : regions[i]->vertices) slot[v] = static_cast<std::int32_t>(i);
+    for (const auto& tri : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::int32_t s = slot[tri[k]];
+            if (s < 0) continue;
+            for (std::size_t j = 1; j < 3; ++j) {
+                const auto w = tri[(k + j) % 3];
+                if (slot[w] == s || stamp[w] == s) continue;
+                stamp[w] = s;
+                rim[static_cast<std::size_t>(s)] += mesh.positions[w].cast<double>();
+                rim_count[static_cast<std::size_t>(s)] += 1.0;
+            }
+        }
+    std::vector<Vec3d> apex(regions.size());
+    for (std::size_t i = 0; i < regions.size(); ++i)
+        apex[i] = rim_count[i] > 0 ? Vec3d(rim[i] / rim_count[i]) : regions[i]->r.centroid;
+    for (const auto& tri : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const std::int32_t s = slot[tri[k]];
+            if (s < 0) continue;
+            const Vec3d& c = apex[static_cast<std::size_t>(s)];
+            const Vec3d a = mesh.positions[tri[0]].cast<double>() - c;
+            const Vec3d b = mesh.positions[tri[1]].cast<double>() - c;
+            const Vec3d d = mesh.positions[tri[2]].cast<double>() - c;
+            volume[static_cast<std::size_t>(s)] += a.dot(b.cross(d)) / 18.0;  // ⅓ of a tetrahedron
+        }
+    return volume;
+}
+
 }  // namespace
 
 RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
@@ -165,7 +206,17 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
         finish(g, options, fields.gone != nullptr);
         kept.push_back(&g);
     }
+    // The volume of each surface gone: the solid, not the surface times its depth.
+    std::vector<Accumulated*> gone;
+    for (auto* g : kept)
+        if (g->r.is_hole_loss()) gone.push_back(g);
+    const std::vector<double> gone_volume = gone_volumes(mesh, gone);
+    for (std::size_t i = 0; i < gone.size(); ++i)
+        if (gone_volume[i] > 0) gone[i]->r.volume = -gone_volume[i];
+    // Surface gone first (a resection, a fracture, worn-away material: the loss a reader
+    // looks for), then by area.
     std::stable_sort(kept.begin(), kept.end(), [](const Accumulated* a, const Accumulated* b) {
+        if (a->r.is_hole_loss() != b->r.is_hole_loss()) return a->r.is_hole_loss();
         return a->r.area > b->r.area;
     });
     result.region_of_vertex.assign(n, 0);

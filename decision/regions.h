@@ -23,7 +23,9 @@ struct Region {
     double mean_value = 0.0;  ///< the metric, area-weighted mean
     double peak_depth = 0.0;  ///< signed shape change of largest magnitude (mesh units; neg = loss)
     double mean_depth = 0.0;  ///< area-weighted mean signed shape change (mesh units)
-    double volume = 0.0;      ///< Σ area·shape change (mesh units³; neg = volume lost)
+    /// Σ area·shape change (mesh units³; neg = volume lost); for surface gone
+    /// (is_hole_loss) the solid it bounds with the surface across its rim.
+    double volume = 0.0;
     double missing_fraction = 0.0;  ///< area share whose observations found no examined surface
     Vec3d centroid{0, 0, 0};        ///< area-weighted, reference coordinates
     /// The sweep view that sees the most of the region face on and unoccluded
@@ -81,7 +83,8 @@ struct RegionOptions {
 };
 
 struct RegionResult {
-    std::vector<Region> regions;  ///< sorted by area, largest first; ids follow
+    /// Surface gone first (is_hole_loss), then by area, largest first; ids follow.
+    std::vector<Region> regions;
     std::vector<std::int32_t> region_of_vertex;
     std::size_t damaged_vertices = 0;  ///< in the mask given (before filling and dropping)
     std::size_t dropped_small = 0;     ///< groups below min_vertices

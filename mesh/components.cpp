@@ -84,4 +84,17 @@ std::vector<std::uint8_t> border_vertices(const Mesh& mesh) {
     return border;
 }
 
+double border_length(const Mesh& mesh) {
+    const VertexTriangles around = vertex_triangles(mesh);
+    double length = 0.0;
+    for (const auto& tri : mesh.triangles)
+        for (std::size_t k = 0; k < 3; ++k) {
+            const auto a = tri[k];
+            const auto b = tri[(k + 1) % 3];
+            if (around.sharing(mesh, a, b) == 1)
+                length += (mesh.positions[a] - mesh.positions[b]).cast<double>().norm();
+        }
+    return length;
+}
+
 }  // namespace glint

@@ -45,4 +45,8 @@ struct VertexTriangles {
 /// 1 for every vertex on a border edge (an edge used by exactly one triangle), else 0.
 [[nodiscard]] std::vector<std::uint8_t> border_vertices(const Mesh& mesh);
 
+/// The total length of the border edges (used by exactly one triangle), mesh units: 0 for a
+/// closed surface.
+[[nodiscard]] double border_length(const Mesh& mesh);
+
 }  // namespace glint

@@ -1,12 +1,25 @@
 #include "report/finding.h"
 
 #include "mesh/units.h"
+#include "report/detail/canvas.h"
 
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
 namespace glint {
+
+namespace {
+
+// A quantity as a reader says it: three significant digits, no exponent below a million
+// (7310 mm², not 7.31e+03 mm²).
+std::string amount(double value, const std::string& unit, int power) {
+    static constexpr const char* kPower[] = {"", "", "²", "³"};
+    return detail::format_number(value) + " " + (unit.empty() ? std::string("units") : unit) +
+           kPower[power];
+}
+
+}  // namespace
 
 std::string region_place(const Region& region, const Bounds& reference, const Orientation& o) {
     std::vector<std::string> sides;
@@ -34,27 +47,41 @@ std::string region_place(const Region& region, const Bounds& reference, const Or
 }
 
 std::string region_sentence(const Region& r, const std::string& place, double uncertainty,
-                            const std::string& unit) {
-    const std::string area = with_unit(r.area, unit, 2, "%.3g");
+                            const std::string& unit, bool mirror) {
+    const std::string area = amount(r.area, unit, 2);
     if (r.kind == RegionKind::MissingSurface)
-        return "missing surface over " + area + " (the examined scan holds none there), " + place;
+        return mirror ? "no mirrored surface over " + area +
+                            " (the other side holds none there), " + place
+                      : "missing surface over " + area + " (the examined scan holds none there), " +
+                            place;
+    if (r.is_hole_loss()) {
+        // Surface gone where the examined surface covered around it (a resection, a fracture,
+        // worn-away material): its volume is the solid it bounds with its rim, its depth how
+        // far it stood above that rim (the loss reaches at least that deep).
+        std::string s = "surface gone over " + area + " (";
+        if (std::isfinite(r.volume) && r.volume < 0)
+            s += "about " + amount(-r.volume, unit, 3) + " lost; ";
+        return s + "it stood up to " + amount(-r.peak_depth, unit, 1) +
+               " above the rim of what remains), " + place;
+    }
     const bool dent = r.kind == RegionKind::Dent;
     char depth[64];
     std::snprintf(depth, sizeof depth, "%.3g", std::abs(r.peak_depth));
-    std::string s = std::string(dent ? "a dent " : "a bump ") + depth;
+    std::string s = mirror ? std::string(depth) : std::string(dent ? "a dent " : "a bump ") + depth;
     if (uncertainty > 0) {
         char pm[64];
         std::snprintf(pm, sizeof pm, " ± %.2g", uncertainty);
         s += pm;
     }
-    s += " " + (unit.empty() ? std::string("units") : unit) +
-         (r.is_hole_loss() ? " deep at least"
-          : dent           ? " deep"
-                           : " high") +
-         " over " + area;
+    s += " " + (unit.empty() ? std::string("units") : unit);
+    if (mirror)
+        s += dent ? " less than the mirrored other side" : " more than the mirrored other side";
+    else s += dent ? " deep" : " high";
+    s += " over " + area;
     if (std::isfinite(r.volume) && r.volume != 0.0)
-        s += " (" + with_unit(std::abs(r.volume), unit, 3, "%.3g") +
-             (r.volume < 0 ? " lost)" : " gained)");
+        s += " (" + amount(std::abs(r.volume), unit, 3) +
+             (mirror ? (r.volume < 0 ? " less)" : " more)")
+                     : (r.volume < 0 ? " lost)" : " gained)"));
     return s + ", " + place;
 }
 

@@ -25,8 +25,11 @@ inline constexpr double kPlaceOffset = 0.2;
 
 /// "a dent 1.73 ± 0.08 mm deep over 26.9 mm² (25.1 mm³ lost), right, posterior, inferior part,
 /// best seen from superior": `depth_uncertainty` is one standard deviation of a distance on this pair
-/// (the shape floor's 1.4826·MAD), `unit` "" for unknown ("units").
+/// (the shape floor's 1.4826·MAD), `unit` "" for unknown ("units"). `mirror`: the region is this
+/// side against the mirrored other side (glint asymmetry): "6.55 ± 0.91 mm more than the
+/// mirrored other side over 243 mm² (668 mm³ more), …".
 [[nodiscard]] std::string region_sentence(const Region& region, const std::string& place,
-                                          double depth_uncertainty, const std::string& unit);
+                                          double depth_uncertainty, const std::string& unit,
+                                          bool mirror = false);
 
 }  // namespace glint

@@ -129,7 +129,8 @@ Inspection inspect(const Mesh& reference, Mesh examined, const InspectOptions& o
         as_side_against_mirror(out.analysis);
         exports.mirror = addition->mirror;
     }
-    out.report_json = report_json(reference, out.analysis, options, record);
+    out.report_json = report_json(reference, out.analysis, options, record,
+                                  addition && addition->mirror.has_value());
     if (addition) add_to_outputs(std::move(*addition), exports, out.report_json);
     if (folder) {
         try {

@@ -552,11 +552,14 @@ ShapeScale shape_scale(const AnalysisResult& result) {
         s.floor = result.decisions[0].shape.value;
     // note: the median, not the largest: one large change (a resection, a misfit part) would
     // leave every other region pale; changes beyond the range are drawn at full colour.
-    std::vector<double> peaks;
+    // Surface gone counts only when every region is (worn cusps): a resection stood tens of
+    // millimetres above its rim and would leave a 3 mm bump white; it is drawn at full colour.
+    std::vector<double> peaks, gone;
     if (!result.decisions.empty())
         for (const auto& r : result.decisions[0].regions.regions)
             if (r.kind != RegionKind::MissingSurface && std::isfinite(r.peak_depth))
-                peaks.push_back(std::abs(r.peak_depth));
+                (r.is_hole_loss() ? gone : peaks).push_back(std::abs(r.peak_depth));
+    if (peaks.empty()) peaks = gone;
     if (!peaks.empty()) {
         std::sort(peaks.begin(), peaks.end());
         const std::size_t m = peaks.size() / 2;

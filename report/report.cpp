@@ -45,6 +45,7 @@ struct RegionWords {
     const Orientation* orientation = nullptr;
     double depth_uncertainty = 0.0;
     std::string unit;
+    bool mirror = false;  ///< this side against the mirrored other side
 };
 
 json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor& m,
@@ -67,6 +68,9 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         {"missing_fraction", r.missing_fraction},
         {"centroid", vec_json(r.centroid)},
         {"evidence", r.evidence},
+        // a loss where the examined surface covered around it (decision/comparison.h): material
+        // gone, not a part never scanned (that is comparison.not_compared.not_reached)
+        {"surface_gone", r.is_hole_loss()},
         {"best_view", r.best_view}};
     if (r.kind == RegionKind::MissingSurface) {
         // The examined scan holds no surface there: a depth or volume would measure to
@@ -93,7 +97,7 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         const std::string place = region_place(r, *words.reference, *words.orientation);
         j["place"] = place;
         j["depth_uncertainty"] = words.depth_uncertainty;
-        j["finding"] = region_sentence(r, place, words.depth_uncertainty, words.unit);
+        j["finding"] = region_sentence(r, place, words.depth_uncertainty, words.unit, words.mirror);
     }
     return j;
 }
@@ -182,6 +186,7 @@ json comparison_json(const Comparison& c) {
         {"rule", c.rule},
         {"band", c.band},
         {"examined_one_view_scan", scan},
+        {"examined_encloses", c.examined_encloses},
         {"dropouts", {{"count", c.dropouts}, {"area", c.dropout_area}}},
         {"beyond_examined_field_of_view", {{"count", c.beyond_view}, {"area", c.beyond_view_area}}},
         {"median_edge", c.edge},
@@ -200,7 +205,7 @@ json comparison_json(const Comparison& c) {
 }
 
 json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t z,
-               const Orientation& orientation) {
+               const Orientation& orientation, bool mirror) {
     const auto& plan = result.sweep.plan;
     const auto& sz = result.sweep.zooms[z];
     const auto& d = result.decisions[z];
@@ -213,7 +218,8 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
     // floor's spread; none without a shape floor).
     const RegionWords words{
         &box, &orientation,
-        d.rule == DecisionRule::Fused && d.shape.mad > 0 ? 1.4826 * d.shape.mad : 0.0, result.unit};
+        d.rule == DecisionRule::Fused && d.shape.mad > 0 ? 1.4826 * d.shape.mad : 0.0, result.unit,
+        mirror};
     for (const auto& r : d.regions.regions)
         regions.push_back(region_json(r, plan, m, peaks[static_cast<std::size_t>(r.id)], words));
     json j = {
@@ -326,13 +332,13 @@ json orientation_json(const Orientation& o) {
 }  // namespace
 
 std::string report_json(const Mesh& reference, const AnalysisResult& result,
-                        const InspectOptions& options, const RunRecord& record) {
+                        const InspectOptions& options, const RunRecord& record, bool mirror) {
     const auto& s = result.sweep;
     const MetricDescriptor& m = describe(s.options.metric);
     json zooms = json::array();
     const Orientation orientation = run_orientation(record, options.exports);
     for (std::size_t z = 0; z < s.zooms.size(); ++z)
-        zooms.push_back(zoom_json(reference, result, z, orientation));
+        zooms.push_back(zoom_json(reference, result, z, orientation, mirror));
     json report = {
         {"glint_version", kVersion},
         {"command_line", record.command_line},

@@ -43,8 +43,11 @@ inline constexpr std::string_view kHoleLossNote =
 
 /// The report as JSON text (what report.json holds): the inputs of `record` with their
 /// SHA-256 (a mesh file's from the bytes its loader read, any other file read once more), the options, the results.
+/// `mirror`: the examined surface is the reference's mirror image (glint asymmetry): the
+/// regions' findings say "more" or "less than the mirrored other side".
 [[nodiscard]] std::string report_json(const Mesh& reference, const AnalysisResult& result,
-                                      const InspectOptions& options, const RunRecord& record);
+                                      const InspectOptions& options, const RunRecord& record,
+                                      bool mirror = false);
 
 /// regions.csv as text.
 [[nodiscard]] std::string regions_csv(const AnalysisResult& result);

@@ -69,6 +69,17 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions,
                  double(*e.max_regions)));
     if (e.kind && out.largest_kind != *e.kind)
         fail("largest region is '" + out.largest_kind + "', expected " + *e.kind);
+    if (e.first_kind && out.first_kind != *e.first_kind)
+        fail("first region is '" + out.first_kind + "', expected " + *e.first_kind);
+    if (e.min_first_area && !(out.first_area >= *e.min_first_area))
+        fail(fmt("first region's area = %.4g, expected at least %.4g", out.first_area,
+                 *e.min_first_area));
+    if (e.max_first_area && !(out.first_area <= *e.max_first_area))
+        fail(fmt("first region's area = %.4g, expected at most %.4g", out.first_area,
+                 *e.max_first_area));
+    if (e.min_first_volume_lost && !(-out.first_volume >= *e.min_first_volume_lost))
+        fail(fmt("first region's volume lost = %.4g, expected at least %.4g", -out.first_volume,
+                 *e.min_first_volume_lost));
     if (e.every_kind)
         for (const auto& r : regions)
             if (to_string(r.kind) != *e.every_kind)
@@ -280,7 +291,18 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     out.output = inspection.output;
     const ZoomDecision& z0 = result.decisions.front();
     out.regions = z0.regions.regions.size();
-    out.largest_kind = z0.regions.regions.empty() ? "" : to_string(z0.regions.regions.front().kind);
+    const auto& regions = z0.regions.regions;
+    if (!regions.empty()) {
+        // Surface gone is listed first (decision/regions.h); the largest is by area.
+        out.largest_kind = to_string(
+            std::max_element(regions.begin(), regions.end(), [](const Region& a, const Region& b) {
+                return a.area < b.area;
+            })->kind);
+        const Region& first = regions.front();
+        out.first_kind = first.is_hole_loss() ? "surface gone" : to_string(first.kind);
+        out.first_area = first.area;
+        out.first_volume = first.volume;
+    }
     out.coverage = result.sweep.zooms.front().coverage.fraction;
     out.compared = z0.comparison.fraction;
     out.threshold_deg = z0.normal.value;

@@ -42,8 +42,13 @@ struct ScenarioOutcome {
     std::filesystem::path output;  ///< atlas folder (when exported)
     std::size_t reference_vertices = 0;
     std::size_t views = 0;
-    std::size_t regions = 0;     ///< zoom 0
-    std::string largest_kind;    ///< "dent"/"bump"/"" (zoom 0)
+    std::size_t regions = 0;   ///< zoom 0
+    std::string largest_kind;  ///< "dent"/"bump"/"" (zoom 0)
+    /// The first listed region's kind, "surface gone" for a loss in a hole (zoom 0; "": none),
+    /// its area (mesh units²) and volume (mesh units³, negative = lost).
+    std::string first_kind;
+    double first_area = 0.0;
+    double first_volume = 0.0;
     double coverage = 0.0;       ///< zoom 0
     double compared = 0.0;       ///< zoom 0: compared / reference area (decision/comparison.h)
     double threshold_deg = 0.0;  ///< zoom 0

@@ -335,6 +335,16 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
                 r.fail(r.get(key), key, "expected dent, bump or missing surface");
             (std::string(key) == "kind" ? x.kind : x.every_kind) = *v;
         }
+    if (auto v = r.optional<std::string>(
+            "first_kind", "a string (surface gone, dent, bump or missing surface)")) {
+        if (*v != "surface gone" && *v != "dent" && *v != "bump" && *v != "missing surface")
+            r.fail(r.get("first_kind"), "first_kind",
+                   "expected surface gone, dent, bump or missing surface");
+        x.first_kind = *v;
+    }
+    e("min_first_area", x.min_first_area);
+    e("max_first_area", x.max_first_area);
+    e("min_first_volume_lost", x.min_first_volume_lost);
     e("min_compared", x.min_compared);
     e("max_compared", x.max_compared);
     read_asymmetry_expect(r, x.asymmetry);

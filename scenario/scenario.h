@@ -78,6 +78,13 @@ struct ScenarioExpect {
     std::optional<std::string> kind;
     /// The kind of every region (zoom 0): worn-away surface is a loss everywhere.
     std::optional<std::string> every_kind;
+    /// The first listed region's kind (zoom 0): "surface gone" (a loss in a hole, listed
+    /// first), "dent", "bump" or "missing surface"; its area between these bounds (mesh
+    /// units²) and at least this volume lost (mesh units³).
+    std::optional<std::string> first_kind;
+    std::optional<double> min_first_area;
+    std::optional<double> max_first_area;
+    std::optional<double> min_first_volume_lost;
     /// At least this share of the reference's area compared (decision/comparison.h).
     std::optional<double> min_compared;
     /// At most this share compared: a partial scan must say that it covers only a part.

@@ -94,21 +94,24 @@ std::string opt(const std::optional<double>& v, const char* f = "%.3f") {
 }
 
 nlohmann::json outcome_json(const ScenarioOutcome& o) {
-    nlohmann::json j = {{"scenario", o.name},
-                        {"file", o.file.string()},
-                        {"skipped", o.skipped},
-                        {"skip_reason", o.skip_reason},
-                        {"passed", o.passed()},
-                        {"failures", o.failures},
-                        {"views", o.views},
-                        {"regions", o.regions},
-                        {"largest_kind", o.largest_kind},
-                        {"coverage", o.coverage},
-                        {"compared", o.compared},
-                        {"threshold_deg", o.threshold_deg},
-                        {"fit", o.fit_mode},
-                        {"seconds", o.seconds},
-                        {"output", absolute_output(o.output)}};
+    nlohmann::json j = {
+        {"scenario", o.name},
+        {"file", o.file.string()},
+        {"skipped", o.skipped},
+        {"skip_reason", o.skip_reason},
+        {"passed", o.passed()},
+        {"failures", o.failures},
+        {"views", o.views},
+        {"regions", o.regions},
+        {"largest_kind", o.largest_kind},
+        {"first_region",
+         {{"kind", o.first_kind}, {"area", o.first_area}, {"volume", o.first_volume}}},
+        {"coverage", o.coverage},
+        {"compared", o.compared},
+        {"threshold_deg", o.threshold_deg},
+        {"fit", o.fit_mode},
+        {"seconds", o.seconds},
+        {"output", absolute_output(o.output)}};
     if (o.score)
         j["score"] = {
             {"precision", o.score->precision},

@@ -157,13 +157,19 @@ Vec3d facing(const Mesh& mesh, const SurfaceFields& fields, const Region& r,
 }
 
 // A region seen face on, framed on its centroid: four times its radius (as a disc of its
-// area) across, at least 6 % of the mesh's radius. The framing sphere encloses the whole mesh
-// so nothing in front of or behind the region is clipped away.
+// area) across, at most the mesh's radius across but never less than the region's own reach
+// (a resected side of a jaw, 7890 mm², would be framed 400 mm across in a 165 mm jaw), at
+// least 6 % of the mesh's radius. The framing sphere encloses the whole mesh so nothing in
+// front of or behind the region is clipped away.
 View close_up_view(const Mesh& mesh, const SurfaceFields& fields, const FramingSphere& whole,
                    const Region& r, const SweepPlan& plan, const Orientation& o) {
     const double radius = whole.radius + (r.centroid - whole.center).norm();
-    const double half =
-        std::max(4.0 * std::sqrt(std::max(r.area, 0.0) / std::numbers::pi), 0.06 * whole.radius);
+    double reach = 0.0;  // the farthest of its vertices from its centroid
+    for (std::size_t v = 0; v < fields.region.size() && v < mesh.positions.size(); ++v)
+        if (fields.region[v] == r.id)
+            reach = std::max(reach, (mesh.positions[v].cast<double>() - r.centroid).norm());
+    const double disc = 4.0 * std::sqrt(std::max(r.area, 0.0) / std::numbers::pi);
+    const double half = std::max({std::min(disc, whole.radius), 1.1 * reach, 0.06 * whole.radius});
     ViewSpec spec = panel_spec(o, facing(mesh, fields, r, plan), kCloseUp);
     spec.zoom = ZoomKind::Footprint;
     spec.zoom_value = 2.0 * half / kCloseUp;
@@ -276,7 +282,9 @@ std::string atlas_overview_png(Renderer& renderer, const OverviewInput& in) {
     renderer.render_views(close, [&](std::size_t k, const Frame& frame) {
         const Region& r = (*in.regions)[k];
         char label[120];
-        if (r.kind == RegionKind::MissingSurface)  // no depth: the examined scan has none there
+        // No depth for missing surface (the examined scan has none there) nor for surface gone
+        // (its height above the rim is no depth of damage; the legend and report give it).
+        if (r.kind == RegionKind::MissingSurface || r.is_hole_loss())
             std::snprintf(label, sizeof label, "close-up %d: %s", r.id,
                           region_kind_name(r, in.mirror != nullptr).c_str());
         else

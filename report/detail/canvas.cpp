@@ -60,7 +60,13 @@ void draw_tag(Canvas& dst, int x, int y, std::string_view text, int size) {
 std::string format_number(double value, bool sign) {
     char buf[48];
     const double shown = std::abs(value) < 5e-13 ? 0.0 : value;
-    std::snprintf(buf, sizeof buf, sign && shown != 0.0 ? "%+.3g" : "%.3g", shown);
+    if (std::abs(shown) >= 1000.0 && std::abs(shown) < 1e6) {
+        // three significant digits without an exponent: 7890, not 7.89e+03
+        const double step = std::pow(10.0, std::floor(std::log10(std::abs(shown))) - 2.0);
+        std::snprintf(buf, sizeof buf, sign ? "%+.0f" : "%.0f", std::round(shown / step) * step);
+    } else {
+        std::snprintf(buf, sizeof buf, sign && shown != 0.0 ? "%+.3g" : "%.3g", shown);
+    }
     return with_minus_sign(buf);
 }
 

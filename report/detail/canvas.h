@@ -102,6 +102,8 @@ void draw_tag(Canvas& dst, int x, int y, std::string_view text, int size);
 
 /// "%.3g"-style number with an explicit sign for non-zero values when `sign` is set; negative
 /// numbers carry a minus sign (U+2212), not a hyphen.
+/// (three significant digits, an exponent only below 1e-3-ish or from a million: 7890, not
+/// 7.89e+03)
 [[nodiscard]] std::string format_number(double value, bool sign = false);
 
 /// A unit as pictures write it: "deg" as "°" (no space before it), others after a space.

@@ -128,8 +128,7 @@ SwatchLabels swatch_labels(const LegendContent& c) {
 }
 
 std::string region_kind_name(const Region& r, bool mirror) {
-    if (!mirror)
-        return r.kind == RegionKind::MissingSurface ? "missing surface" : to_string(r.kind);
+    if (!mirror) return r.is_hole_loss() ? "surface gone" : to_string(r.kind);
     switch (r.kind) {
         case RegionKind::Dent: return "less";
         case RegionKind::Bump: return "more";

@@ -28,15 +28,21 @@
     return out;
   }
 
-  function plural(n, word) { return n + " " + word + (n === 1 ? "" : "s"); }
+  function plural(n, word) {
+    if (word === "surface gone") return n + (n === 1 ? " surface gone" : " surfaces gone");
+    return n + " " + word + (n === 1 ? "" : "s");
+  }
+  // A region's kind as the page says it: surface gone (a loss where the examined surface
+  // covered around it, report.json surface_gone) apart from a dent.
+  function kindOf(r) { return r.surface_gone ? "surface gone" : r.kind; }
 
-  // "2 regions: 1 dent, 1 bump"; no region: why, in the words the rule left.
+  // "2 regions: 1 surface gone, 1 bump"; no region: why, in the words the rule left.
   function verdictOf(zoom) {
     const regions = zoom.regions || [];
     if (regions.length) {
       const kinds = [];
-      regions.forEach((r) => { if (!kinds.includes(r.kind)) kinds.push(r.kind); });
-      const parts = kinds.map((k) => plural(regions.filter((r) => r.kind === k).length, k));
+      regions.forEach((r) => { if (!kinds.includes(kindOf(r))) kinds.push(kindOf(r)); });
+      const parts = kinds.map((k) => plural(regions.filter((r) => kindOf(r) === k).length, k));
       return { text: plural(regions.length, "region") + ": " + parts.join(", "), kind: "damage" };
     }
     const noScale = (zoom.warnings || []).some((w) => /no regions are reported/.test(w));

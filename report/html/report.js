@@ -328,12 +328,13 @@
     if (live && live.shown && r.best_view >= 0) live.jumpToView(r.best_view);
     else state.lastFlight = flyToRegion(r);
   }
-  // Under each region's numbers: why it is a region (decision's evidence sentence) and the view
-  // that saw it best, with a button that goes there.
+  // Under each region's numbers: the finding in one plain sentence (report.json's `finding`),
+  // the view that saw it best with a button that goes there, and folded away the method's
+  // figures: why the decision made it a region and its strongest metric.
   function evidenceRow(r, row, columns) {
     const tr = el("tr", { class: "evidence", "data-evidence": r.id });
     const td = el("td", { colspan: columns });
-    td.appendChild(el("span", { class: "evidence-text" }, r.evidence ? r.evidence : "no evidence recorded"));
+    td.appendChild(el("span", { class: "finding-text" }, r.finding ? r.finding : r.kind + " region"));
     if (r.best_view >= 0) {
       td.appendChild(el("br"));
       td.appendChild(document.createTextNode("best view "));
@@ -344,27 +345,38 @@
       go.addEventListener("click", (e) => { e.stopPropagation(); selectRegion(r, row); });
       td.appendChild(go);
     }
+    const metric = REPORT.metric.name, mu = REPORT.metric.unit === "deg" ? "°" : " " + REPORT.metric.unit;
+    const why = el("details", { class: "region-details" });
+    why.appendChild(el("summary", {}, "details"));
+    why.appendChild(el("span", { class: "evidence-text" }, r.evidence ? r.evidence : "no evidence recorded"));
+    why.appendChild(el("br"));
+    why.appendChild(document.createTextNode("strongest " + metric + " " + fmt(r["max_" + metric + "_" + REPORT.metric.unit]) + mu +
+                                            " · " + r.vertices + " vertices"));
+    td.appendChild(why);
     tr.appendChild(td);
     return tr;
   }
+  // The regions' numbers in the run's unit: depth with one robust standard deviation of the
+  // distance on the unchanged surface (report.json depth_uncertainty), area, volume and where
+  // the region lies (its place: anatomical sides when the orientation is known).
   function buildRegions() {
     const z = state.zoom, head = document.querySelector("#regions thead"), body = document.querySelector("#regions tbody");
-    const metric = REPORT.metric.name, mu = REPORT.metric.unit === "deg" ? "°" : REPORT.metric.unit;
     head.innerHTML = "";
     body.innerHTML = "";
-    const cols = ["id", "kind", "area (" + UNIT + "²)", "peak depth (" + UNIT + ")", "volume (" + UNIT + "³)",
-                  "max " + metric + " (" + mu + ")", "vertices"];
+    const cols = ["id", "kind", "depth (" + UNIT + ")", "± (" + UNIT + ")", "area (" + UNIT + "²)", "volume (" + UNIT + "³)", "place"];
     const tr = el("tr");
     cols.forEach((c) => tr.appendChild(el("th", {}, c)));
     head.appendChild(tr);
     const regions = regionsOf(z);
-    if (!regions.length) { const r = el("tr"); r.appendChild(el("td", { colspan: 7 }, "no region at this zoom")); body.appendChild(r); }
+    if (!regions.length) { const r = el("tr"); r.appendChild(el("td", { colspan: cols.length }, "no region at this zoom")); body.appendChild(r); }
     regions.forEach((r) => {
       const row = el("tr", { "data-region": r.id, class: "region" });
       const kind = r.kind === "missing surface" ? "missing" : r.kind;
-      // (a missing-surface region has no depth or volume: null in report.json, "—" here)
-      [r.id, r.kind, fmt(r.area), fmt(r.peak_depth), fmt(r.volume), fmt(r["max_" + metric + "_" + REPORT.metric.unit]), r.vertices]
-        .forEach((v, i) => row.appendChild(el("td", i === 1 ? { class: kind } : {}, String(v))));
+      // (a missing-surface region has no depth or volume: null in report.json, "—" here; surface
+      // gone has a height above its rim, not a depth measured between two surfaces: no ±)
+      const plusMinus = r.peak_depth === null || r.surface_gone || r.depth_uncertainty === undefined ? "—" : fmt(r.depth_uncertainty);
+      [r.id, r.surface_gone ? "surface gone" : r.kind, fmt(r.peak_depth), plusMinus, fmt(r.area), fmt(r.volume), r.place || "—"]
+        .forEach((v, i) => row.appendChild(el("td", i === 1 ? { class: kind } : i === 6 ? { class: "place" } : {}, String(v))));
       row.addEventListener("click", () => selectRegion(r, row));
       body.appendChild(row);
       body.appendChild(evidenceRow(r, row, cols.length));

@@ -202,6 +202,44 @@ TEST(Comparison, ALargePartWithoutExaminedSurfaceIsNotReachedEvenAwayFromBorders
     EXPECT_EQ(classify_comparison(flat(), in.view()).holes, 1u);
 }
 
+// An examined surface that encloses its solid holds surface wherever the object has some: the
+// same third of the surface without it is gone (a resection), up to half of it; beyond that the
+// examined surface is a part of the reference, and what it lacks not reached.
+TEST(Comparison, WhatAnEnclosingExaminedSurfaceLacksIsGoneUpToHalfTheReference) {
+    Inputs in;
+    in.gone(20, 20, 13.0);  // about 33 %
+    ComparisonInputs enclosing = in.view();
+    enclosing.examined_encloses = true;
+    const Comparison c = classify_comparison(flat(), enclosing);
+    EXPECT_TRUE(c.examined_encloses);
+    EXPECT_EQ(c.holes, 1u);
+    EXPECT_EQ(c.lost_holes, 1u);
+    EXPECT_EQ(class_at(c, 20, 20), CompareClass::Compared);
+    EXPECT_EQ(c.in_hole[vid(20, 20)], 1);
+    EXPECT_EQ(c.hole_loss[vid(20, 20)], 1);
+    in.missing.assign(in.n, 0.0f);
+    in.gone(20, 20, 17.0);  // about 57 %: a part, not a loss
+    enclosing = in.view();
+    enclosing.examined_encloses = true;
+    const Comparison part = classify_comparison(flat(), enclosing);
+    EXPECT_EQ(part.holes, 0u);
+    EXPECT_EQ(class_at(part, 20, 20), CompareClass::NotReached);
+}
+
+// Whether a surface encloses its solid: a closed one does, one with a small opening does, a
+// patch does not.
+TEST(Comparison, ASurfaceEnclosesItsSolidWhenItsBordersAreShort) {
+    EXPECT_FALSE(encloses(flat()));  // 160 units of border against √1600 = 40
+    Mesh box;                        // a closed cube, outward
+    box.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                     {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+    box.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                     {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+    EXPECT_TRUE(encloses(box));
+    box.triangles.pop_back();  // one triangle out: 3.4 units of border against 0.2·√5.5
+    EXPECT_FALSE(encloses(box));
+}
+
 // An open tube (two scans' fields of view end at its rims): 24 vertices round, 41 rings of unit
 // height, about unit edges.
 Mesh tube() {
@@ -351,6 +389,44 @@ TEST(Comparison, DecideCallsWornAwaySurfaceALossAndAnUnscannedPartNothing) {
     EXPECT_TRUE(e.regions.regions.empty());
     EXPECT_LT(e.comparison.fraction, 0.5);
     EXPECT_GT(e.comparison.not_reached_area, 0.0);
+}
+
+// A resection: a whole cone (height 2, radius 8: volume π·8²·2/3 = 134) and the flat round it
+// out to radius 12, 28 % of the surface, are gone from an examined surface that encloses
+// its solid. One loss region, listed first before a small bump elsewhere; its volume is the
+// cone's solid, not its surface times its depth; the shape field holds the cone's heights there
+// and nothing (NaN) where an examined part never reached.
+TEST(Comparison, DecideListsSurfaceGoneFirstWithTheVolumeOfItsSolid) {
+    const auto cone = [](int x, int y) {
+        return std::max(0.0, 2.0 - 0.25 * std::hypot(x - 20, y - 20));
+    };
+    Inputs resected;
+    for (std::size_t v = 0; v < resected.n; ++v) resected.distance[v] = v % 2 ? 0.001f : -0.001f;
+    resected.gone(20, 20, 12.0);
+    for (int y = 4; y <= 10; ++y)
+        for (int x = 4; x <= 10; ++x) resected.distance[vid(x, y)] = 1.5f;  // a 7 × 7 bump
+    Zoom z(resected);
+    for (int y = 4; y <= 10; ++y)
+        for (int x = 4; x <= 10; ++x) z.atlas.value_mean[vid(x, y)] = 40.0f;
+    DecisionEvidence ev = z.evidence(resected);
+    ev.examined_encloses = true;
+    const Mesh mesh = grid(cone);
+    const ZoomDecision d = decide(mesh, ev, DecisionOptions{});
+    ASSERT_GE(d.regions.regions.size(), 2u);
+    const Region& gone = d.regions.regions[0];
+    EXPECT_TRUE(gone.is_hole_loss());
+    EXPECT_EQ(gone.id, 1);
+    EXPECT_NEAR(gone.area, std::numbers::pi * 12.0 * 12.0, 0.1 * std::numbers::pi * 144.0);
+    EXPECT_NEAR(gone.volume, -std::numbers::pi * 64.0 * 2.0 / 3.0, 0.1 * 134.0);
+    EXPECT_NEAR(gone.peak_depth, -2.0, 0.05);
+    EXPECT_EQ(d.regions.regions[1].kind, RegionKind::Bump);
+    EXPECT_LT(d.regions.regions[1].area, gone.area);
+    EXPECT_FLOAT_EQ(decided_shape(resected.distance, d)[vid(20, 20)], -2.0f);
+
+    ev.examined_encloses = false;  // the same third unscanned: nothing known there
+    const ZoomDecision e = decide(mesh, ev, DecisionOptions{});
+    EXPECT_TRUE(std::isnan(decided_shape(resected.distance, e)[vid(20, 20)]));
+    for (const auto& r : e.regions.regions) EXPECT_FALSE(r.is_hole_loss());
 }
 
 // A thin plate or a narrow gap (analysis/resolution.h) is not compared: a shape change there

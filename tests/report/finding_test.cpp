@@ -53,6 +53,20 @@ TEST(RegionSentence, SaysDepthWithItsUncertaintyAreaAndVolume) {
     gone.kind = RegionKind::MissingSurface;
     EXPECT_EQ(region_sentence(gone, "right part", 0.05, "mm"),
               "missing surface over 26.9 mm² (the examined scan holds none there), right part");
+    EXPECT_EQ(region_sentence(bump, "superior part", 0.91, "mm", true),
+              "0.5 ± 0.91 mm more than the mirrored other side over 26.9 mm² (2 mm³ more), "
+              "superior part");
+    EXPECT_EQ(region_sentence(dent, "right part", 0.0, "mm", true),
+              "1.73 mm less than the mirrored other side over 26.9 mm² (18.1 mm³ less), right "
+              "part");
+    Region resected = dent;  // surface gone where the examined surface covered around it
+    resected.hole = true;
+    resected.peak_depth = -93.4;
+    resected.area = 7310.0;
+    resected.volume = -23400.0;
+    EXPECT_EQ(region_sentence(resected, "right part", 0.05, "mm"),
+              "surface gone over 7310 mm² (about 23400 mm³ lost; it stood up to 93.4 mm above "
+              "the rim of what remains), right part");
 }
 
 }  // namespace

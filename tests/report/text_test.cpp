@@ -58,6 +58,9 @@ TEST(Text, NumbersAndAnglesCarryMinusAndDegreeSigns) {
     EXPECT_EQ(detail::format_number(-0.41, true), "\u22120.41");
     EXPECT_EQ(detail::format_number(0.41, true), "+0.41");
     EXPECT_EQ(detail::format_number(1.5e-5), "1.5e\u221205");
+    EXPECT_EQ(detail::format_number(7893.4), "7890");
+    EXPECT_EQ(detail::format_number(-23456.0, true), "\u221223500");
+    EXPECT_EQ(detail::format_number(2.5e6), "2.5e+06");
     EXPECT_EQ(detail::format_degrees(-15.0, true), "\u221215\u00b0");
     EXPECT_EQ(detail::format_degrees(270.0), "270\u00b0");
     EXPECT_EQ(detail::with_minus_sign("one-sided (-3)"), "one-sided (\u22123)");

@@ -171,6 +171,39 @@ TEST(LoadScenario, KeepSideCutsTheScansAndIsRefusedWhereItCannotApply) {
                  InputError);
 }
 
+// The keys of fitting a scaled pair and a part against a whole (issue 53) and of the region
+// listed first (issue 50): read when sane, refused with the key and what was expected.
+TEST(LoadScenario, ScaleCropBallAndFirstRegionKeysAreCheckedAndRead) {
+    std::string good = kValid;
+    good.replace(good.find("[examined]"), 10,
+                 "crop_ball = [10.0, 0.0, 0.0, 6.0]\n[examined]\nscale = 1.01");
+    good.replace(good.find("[expect]"), 8,
+                 "[expect]\nfirst_kind = \"surface gone\"\nmin_first_area = 10.0\n"
+                 "max_first_area = 20.0\nmin_first_volume_lost = 5.0");
+    const Scenario sc = load_scenario(write_scenario("good", good), {});
+    ASSERT_TRUE(sc.reference.crop_ball);
+    EXPECT_DOUBLE_EQ((*sc.reference.crop_ball)[3], 6.0);
+    EXPECT_DOUBLE_EQ(sc.examined_scale, 1.01);
+    EXPECT_EQ(sc.expect.first_kind.value_or(""), "surface gone");
+    EXPECT_DOUBLE_EQ(sc.expect.min_first_area.value_or(0), 10.0);
+    EXPECT_DOUBLE_EQ(sc.expect.max_first_area.value_or(0), 20.0);
+    EXPECT_DOUBLE_EQ(sc.expect.min_first_volume_lost.value_or(0), 5.0);
+
+    std::string kind = kValid;
+    kind.replace(kind.find("[expect]"), 8, "[expect]\nfirst_kind = \"hole\"");
+    expect_error(kind, {"bad.toml", "expect.first_kind", "surface gone, dent, bump or missing"});
+    std::string scale = kValid;
+    scale.replace(scale.find("[examined]"), 10, "[examined]\nscale = -1.0");
+    expect_error(scale, {"examined.scale", "must be > 0"});
+    std::string radius = kValid;
+    radius.replace(radius.find("[examined]"), 10, "crop_ball = [0.0, 0.0, 0.0, 0.0]\n[examined]");
+    expect_error(radius, {"reference.crop_ball", "radius (number 4) must be > 0"});
+    std::string on_examined = kValid;
+    on_examined.replace(on_examined.find("[examined]"), 10,
+                        "[examined]\ncrop_ball = [0.0, 0.0, 0.0, 5.0]");
+    expect_error(on_examined, {"examined.crop_ball", "keep_side"});
+}
+
 // The CT pair generator's keys (volume_noise, volume_noise_seed, voxel_size) need a volume
 // reference and sane values.
 TEST(LoadScenario, AcquisitionKeysNeedAVolumeAndSaneValues) {

@@ -17,8 +17,9 @@ loaded from disk (file://…/report.html#selftest); its self-test writes a JSON 
   - the banner's verdict is not the sentence report.json's zoom 0 makes ("2 regions: 1 dent,
     1 bump"), or its warnings are not report.json's (the run's, then the renderer's), each with a
     severity;
-  - atlas.png is not shown inline at its width, or a region lacks its label, its evidence
-    sentence or its best view's name;
+  - atlas.png is not shown inline at its width, or a region lacks its label, its finding
+    sentence (first under its row), its place and depth +- as report.json has them, its
+    evidence sentence (folded under "details") or its best view's name;
   - the fit table lacks the mode, or (for a fit made here) the rotation in °, the translation
     and its length in the unit, the RMS in the unit, the iterations, as report.json holds them;
   - the self-test found a region without an outline, a label not dimmed from behind, or a pick
@@ -205,16 +206,22 @@ def check_verdict(verdict, atlas_dir):
 
 
 def plural(n, word):
+    if word == "surface gone":
+        return f"{n} surface gone" if n == 1 else f"{n} surfaces gone"
     return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def kind_of(region):
+    return "surface gone" if region.get("surface_gone") else region["kind"]
 
 
 def expected_verdict(zoom):
     """The banner's sentence for report.json's zoom 0, made here from the numbers."""
     regions = zoom["regions"]
     if regions:
-        kinds = list(dict.fromkeys(r["kind"] for r in regions))
+        kinds = list(dict.fromkeys(kind_of(r) for r in regions))
         return plural(len(regions), "region") + ": " + ", ".join(
-            plural(sum(r["kind"] == k for r in regions), k) for k in kinds)
+            plural(sum(kind_of(r) == k for r in regions), k) for k in kinds)
     if any("no regions are reported" in w for w in zoom.get("warnings", [])):
         return "no regions: no quiet scale, see warnings"
     return "no damage found above the floors"
@@ -286,16 +293,29 @@ def check_page_words(words, report, atlas_dir):
         problems.append(f"region labels {words['labels']}, report.json regions {ids}")
     # A region without a depth or volume (missing surface: null in report.json) shows "—".
     for r, cells in zip(z0["regions"], words["cells"]):
-        for value, cell, name in ((r["peak_depth"], cells[3], "peak depth"), (r["volume"], cells[4], "volume")):
+        for value, cell, name in ((r["peak_depth"], cells[2], "peak depth"), (r["volume"], cells[5], "volume")):
             if (value is None) != (cell == "—") or (value is not None and abs(page_number(cell) - value) >
                                                       5e-3 * abs(value) + 1e-9):
                 problems.append(f"region {r['id']}: {name} cell {cell!r}, report.json {value}")
+    # The plain words in the table (issue 51): the place and the depth's +- as report.json has them.
+    for r, cells in zip(z0["regions"], words["cells"]):
+        if cells[6] != r.get("place", "—"):
+            problems.append(f"region {r['id']}: place cell {cells[6]!r}, report.json {r.get('place')!r}")
+        u = r.get("depth_uncertainty")
+        if r.get("surface_gone") or r["peak_depth"] is None or u is None:
+            if cells[3] != "\u2014":
+                problems.append(f"region {r['id']}: +- cell {cells[3]!r} where no depth is measured between surfaces")
+        elif abs(page_number(cells[3]) - u) > 5e-3 * u + 1e-9:
+            problems.append(f"region {r['id']}: +- cell {cells[3]!r}, report.json depth_uncertainty {u}")
+    # The row under it: the finding's sentence first, the best view, then (folded) the evidence.
     evidence = {e["id"]: e["text"] for e in words["evidence"]}
     for r in z0["regions"]:
         view = f"z0_az{r['best_view_azimuth_deg']:05.1f}_el{r['best_view_elevation_deg']:+05.1f}"
         text = evidence.get(str(r["id"]), "")
         if r["evidence"] not in text or f"best view {view}" not in text:
             problems.append(f"region {r['id']}: evidence row {text!r} lacks {r['evidence']!r} or view {view}")
+        if "finding" in r and not text.startswith(r["finding"]):
+            problems.append(f"region {r['id']}: the row under it does not open with its finding {r['finding']!r}: {text!r}")
     return problems
 
 
