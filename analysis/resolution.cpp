@@ -20,6 +20,11 @@ double voxel_extent_along(const Eigen::Matrix3d& axes, const Vec3d& n) {
            std::abs(n.dot(axes.col(2)));
 }
 
+double staircase_step(const Eigen::Matrix3d& axes, const Vec3d& n) {
+    return std::max(
+        {std::abs(n.dot(axes.col(0))), std::abs(n.dot(axes.col(1))), std::abs(n.dot(axes.col(2)))});
+}
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -30,6 +35,14 @@ double voxel_width(const ResolutionGrids& grids, const Vec3d& d) {
     if (grids.reference) w = voxel_extent_along(*grids.reference, d);
     if (grids.examined) w = std::max(w, voxel_extent_along(*grids.examined, d));
     return w;
+}
+
+// The step of the coarser grid's staircase along unit direction d (staircase_step).
+double grid_step(const ResolutionGrids& grids, const Vec3d& d) {
+    double s = 0.0;
+    if (grids.reference) s = staircase_step(*grids.reference, d);
+    if (grids.examined) s = std::max(s, staircase_step(*grids.examined, d));
+    return s;
 }
 
 // Distance along the unit direction d from o to the first surface beyond `skip` (inf: none).
@@ -154,7 +167,7 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               const Vec3d nv = reference.normals[v].cast<double>();
                               if (!(nv.squaredNorm() > 0.5)) continue;
                               const double voxel = voxel_width(grids, nv);
-                              out.sampling[v] = static_cast<float>(voxel);
+                              out.sampling[v] = static_cast<float>(grid_step(grids, nv));
                               const double c = std::min(reference_clearance(ref, p, nv, skip),
                                                         examined_clearance(exa, p, nv, skip));
                               out.clearance[v] = static_cast<float>(c);

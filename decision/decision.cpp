@@ -284,6 +284,15 @@ double median_edge_of(const Mesh& m) {
     return edge.empty() ? 0.0 : median_of(edge);
 }
 
+// The area of one resolution element of the evidence read over radius r: the disc where the
+// fit's Gaussian weights (σ = r/2) stand above half their peak, radius σ·√(2 ln 2) = 0.589·r.
+// One vertex's noise, read at this scale, spreads over that disc; a group smaller than it is
+// no wider than what a single sample makes, so it is not told from noise.
+double resolution_element_area(double r) {
+    const double half = 0.5 * r * std::sqrt(2.0 * std::numbers::ln2);
+    return std::numbers::pi * half * half;
+}
+
 // The smallest damage the rule can tell at a scale: a change deeper than the shape floor
 // beyond the typical tessellation tolerance, at least as wide as the smoothing disc (at the
 // vertices' own scale: the smallest region kept). Never stated below the data's resolution
@@ -297,11 +306,12 @@ void state_detectable(const Mesh& reference, const DecisionEvidence& e, const De
         for (std::size_t v = 0; v < e.tolerance->size(); ++v)
             if (e.coverage->seen[v]) tol.push_back((*e.tolerance)[v]);
     s.min_depth = shape.value + (tol.empty() ? 0.0 : median_of(tol));
+    s.floor_depth = s.min_depth;
     s.resolution_depth = 0.5 * median_edge_of(reference);
     s.min_depth = std::max(s.min_depth, s.resolution_depth);
     const double vertex_area = surface_area(reference) / static_cast<double>(std::max<std::size_t>(
                                                              1, reference.vertex_count()));
-    s.min_area = s.radius > 0 ? std::numbers::pi * s.radius * s.radius
+    s.min_area = s.radius > 0 ? resolution_element_area(s.radius)
                               : static_cast<double>(o.min_region_vertices) * vertex_area;
     s.text = (s.radius > 0 ? "evidence read over a radius of " + with_unit(s.radius, e.unit)
                            : std::string("each vertex's own evidence")) +
@@ -332,17 +342,23 @@ void read_at_scale(const Mesh& reference, const DecisionEvidence& e, double r, E
     s.evidence.metric = Metric::AngleDeg;
 }
 
-// Faces across thick slices (DecisionEvidence::sampling): a scan's surface is a staircase as
-// wide as the grid along its normal, and two scans on different grids (a motion, another voxel
-// size) differ there by more than where faces lie along the grid: on CThead's 1 x 1 x 2 mm
-// grid the distance's spread doubles from faces along the slices to faces across them. One
-// floor over all would either call the terraces of a skull's vault damage or be blind
-// elsewhere. So the null is measured per band of that width, on the pair itself: the compared
-// vertices with an examined surface fall into up to kSamplingBands bands of equal count (a
-// band of fewer than kMinBandVertices joins its neighbour); in each,
-// the distance's median and robust spread (1.4826·MAD); the distance (and its tolerance) is
-// then read in units of the quietest band's spread, centred on its band's median. A change
-// stands out when it stands out from the surface that was sampled as it was.
+// Faces along thick slices (DecisionEvidence::sampling): a scan's surface is a staircase whose
+// step is the grid's along the normal (the slice thickness where a face lies nearly along the
+// slices), and two scans on different grids, or one grid under a motion, differ there by more
+// than where a face crosses the grid diagonally: on CThead's 1 x 1 x 2 mm grid under a 3°
+// motion the distance's spread grows 3.4 times from the smallest step to the largest. One floor
+// over all would either call the terraces of a skull's vault damage or be blind elsewhere. So
+// the null is measured per band of that step, on the pair itself: the compared vertices with an
+// examined surface fall into up to kSamplingBands bands of equal count (a band of fewer than
+// kMinBandVertices joins its neighbour); in each, the distance's median and robust spread
+// (1.4826·MAD); the distance (and its tolerance) is then read in units of the quietest band's
+// spread, centred on its band's median. A change stands out when it stands out from the surface
+// that was sampled as it was.
+// note: the step, not the voxel's width along the normal (Σ|n·a_i|, largest on the diagonal):
+// with the width, the CThead erosion (normal (-0.56, -0.68, -0.46): width 2.16 mm, step 0.92 mm)
+// shared the loudest band with the vault's terraces (normal within 8° of the slices' axis) and
+// two 1 mm terraces were the only regions; with the step the erosion stands 12 spreads deep at
+// 2.2 mm and no terrace reaches 5.
 constexpr std::size_t kSamplingBands = 8;
 // Fewer vertices per band than this measure no spread worth trusting: the band joins the next.
 constexpr std::size_t kMinBandVertices = 400;
@@ -426,6 +442,146 @@ void read_in_bands(const SamplingBands& b, const std::vector<float>& width,
     }
 }
 
+// The smallest detectable damage over wider discs (EvidenceScale::limit_curve): at each rung
+// of the ladder from the one read, the evidence is read as for the decision (banded, floors on
+// the compared vertices) at every few vertices, enough for the floor's median and MAD: the
+// curve costs a fraction of one full reading (CThead's 300k-vertex skull: a strided reading of
+// ~20 000 vertices per rung).
+constexpr std::size_t kLimitSamples = 20000;
+
+EvidenceScale::LimitPoint limit_point(const Mesh& reference, const DecisionEvidence& e,
+                                      const Coverage& compared, const DecisionOptions& o,
+                                      double r) {
+    const std::size_t stride = std::max<std::size_t>(1, reference.vertex_count() / kLimitSamples);
+    detail::ScaledEvidence scaled = detail::scaled_evidence(reference, e, r, stride);
+    DecisionEvidence at = e;
+    at.distance = &scaled.distance;
+    at.tolerance = &scaled.tolerance;
+    // The compared vertices that were fitted: the others hold NaN.
+    Coverage fitted = compared;
+    for (std::size_t v = 0; v < fitted.seen.size(); ++v)
+        fitted.seen[v] = fitted.seen[v] && std::isfinite(scaled.distance[v]);
+    const SamplingBands bands = sampling_bands(at, fitted, scaled.distance);
+    if (e.sampling) read_in_bands(bands, *e.sampling, scaled.distance, scaled.tolerance);
+    DecisionEvidence over = at;
+    over.coverage = &fitted;
+    const Floor shape = shape_floor(over, shape_excess(at), o);
+    std::vector<float> tol;
+    for (std::size_t v = 0; v < scaled.tolerance.size(); ++v)
+        if (fitted.seen[v]) tol.push_back(scaled.tolerance[v]);
+    EvidenceScale::LimitPoint p;
+    p.radius = r;
+    p.area = resolution_element_area(r);
+    p.depth = shape.value + (tol.empty() ? 0.0 : median_of(tol));
+    p.depth_across = bands.used ? p.depth * bands.loudest / bands.quietest : p.depth;
+    return p;
+}
+
+// The limit at the scale read, then at each wider rung (never below the data's resolution; a
+// rung whose floors say nothing, a reading too sparse for bands, is left out).
+void state_limit_curve(const Mesh& reference, const DecisionEvidence& e, const Coverage& compared,
+                       const DecisionOptions& o, const std::vector<double>& ladder,
+                       EvidenceScale& s) {
+    s.limit_curve.push_back({s.radius, s.min_area, s.min_depth,
+                             s.min_depth_across > 0 ? s.min_depth_across : s.min_depth});
+    for (const double r : ladder) {
+        if (r <= s.radius) continue;
+        EvidenceScale::LimitPoint p = limit_point(reference, e, compared, o, r);
+        if (!(p.depth > 0) || !std::isfinite(p.depth)) continue;
+        p.depth = std::max(p.depth, s.resolution_depth);
+        p.depth_across = std::max(p.depth_across, p.depth);
+        s.limit_curve.push_back(p);
+    }
+    if (s.limit_curve.size() < 2) return;
+    std::string wider;
+    for (std::size_t k = 1; k < s.limit_curve.size(); ++k)
+        if (s.limit_curve[k].depth < s.limit_curve[k - 1].depth)
+            wider += (wider.empty() ? "" : ", ") + with_unit(s.limit_curve[k].depth, e.unit) +
+                     " over " + with_unit(s.limit_curve[k].area, e.unit, 2, "%.3g");
+    s.text += wider.empty() ? "; no shallower over wider areas (up to " +
+                                  with_unit(s.limit_curve.back().area, e.unit, 2, "%.3g") + ")"
+                            : "; wider: " + wider;
+}
+
+// The smallest depth the run can tell at each vertex (RegionOptions::min_depth): the floor's
+// depth (EvidenceScale::floor_depth, the quietest band's) as deep in the vertex's band as that
+// band's spread is wider, never less than the data's resolution (half the median edge, not
+// scaled: it is no spread) nor half the grid's staircase step along the normal: a change
+// shallower than half a step is where two samplings of one surface put it.
+// note: on CThead's two-acquisition pair (1 x 1 x 2 mm against 0.8 mm, own noise in each) the
+// only regions beside the erosion (1.73 mm) were a 0.48 mm dent of 8.9 mm² and a 0.52 mm
+// surface gone of 6.9 mm², both shallower than the stated 0.52 mm there or half a step.
+std::vector<float> depth_limit(const Mesh& reference, const DecisionEvidence& e,
+                               const SamplingBands& bands, const EvidenceScale& s) {
+    const std::size_t n = reference.vertex_count();
+    const bool stepped = e.sampling && e.sampling->size() == n;
+    std::vector<float> limit(n, static_cast<float>(std::max(s.floor_depth, s.resolution_depth)));
+    for (std::size_t v = 0; v < n && stepped; ++v) {
+        const float step = (*e.sampling)[v];
+        const double band = bands.used ? bands.sigma[bands.band(step)] / bands.quietest : 1.0;
+        limit[v] = static_cast<float>(
+            std::max({s.floor_depth * band, s.resolution_depth, 0.5 * static_cast<double>(step)}));
+    }
+    return limit;
+}
+
+// The vertices of the damaged groups off_borders dropped: `candidates` less `kept`.
+std::vector<std::uint8_t> border_groups(const std::vector<std::uint8_t>& candidates,
+                                        const std::vector<std::uint8_t>& kept) {
+    std::vector<std::uint8_t> dropped(candidates.size(), 0);
+    for (std::size_t v = 0; v < candidates.size(); ++v) dropped[v] = candidates[v] && !kept[v];
+    return dropped;
+}
+
+// How strongly each region stands out (Region::z, Region::p_value). The undamaged surface's
+// spread is the shape floor's (1.4826·MAD of the distance on the compared vertices at the scale
+// read), its location the median excess. A region's z is its strongest |excess| in that unit.
+// Two family-wise bounds over the `resels` resolution elements searched, the larger reported:
+//   Gaussian  resels · P(|N(0,1)| ≥ z): what a noise field with the measured spread would give
+//             somewhere (Bonferroni over independent elements; conservative for a smooth field);
+//   measured  the compared area outside every region whose |excess| reaches the region's own
+//             strongest and whose normal evidence reaches the normal floor's lower level (the
+//             conjunction a region needs), outside the groups dropped along borders (those
+//             are scan edges, not surface), in resolution elements: how often the pair's own
+//             undamaged surface stands that high (heavy tails — terraces, streaks — that a
+//             Gaussian misses).
+// Surface gone and missing surface are no distances: they keep NaN.
+void state_significance(const Mesh& reference, const Coverage& compared, const DecisionEvidence& at,
+                        const std::vector<float>& excess, const std::vector<std::uint8_t>& border,
+                        double element_area, ZoomDecision& d) {
+    const std::size_t n = reference.vertex_count();
+    if (excess.size() != n || d.regions.region_of_vertex.size() != n || !(element_area > 0)) return;
+    const double sigma = 1.4826 * d.shape.mad;
+    if (!(sigma > 0)) return;
+    const auto area = vertex_areas(reference);
+    std::vector<float> peak(d.regions.regions.size() + 1, 0.0f);
+    std::vector<float> null;
+    std::vector<double> null_area;
+    double compared_area = 0.0;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!compared.seen[v] || !std::isfinite(excess[v])) continue;
+        compared_area += area[v];
+        const auto id = static_cast<std::size_t>(d.regions.region_of_vertex[v]);
+        if (id > 0 && id < peak.size()) peak[id] = std::max(peak[id], std::abs(excess[v]));
+        else if (id == 0 && !border[v] &&
+                 (!d.normal.corroborates || at.atlas->value_mean[v] >= d.normal.low)) {
+            null.push_back(std::abs(excess[v]));
+            null_area.push_back(area[v]);
+        }
+    }
+    d.scale.resels = compared_area / element_area;
+    for (auto& r : d.regions.regions) {
+        if (r.kind == RegionKind::MissingSurface || r.is_hole_loss()) continue;
+        const float top = peak[static_cast<std::size_t>(r.id)];
+        r.z = (top - d.shape.median) / sigma;
+        double as_high = 0.0;
+        for (std::size_t k = 0; k < null.size(); ++k)
+            if (null[k] >= top) as_high += null_area[k];
+        const double gaussian = d.scale.resels * std::erfc(r.z / std::numbers::sqrt2);
+        r.p_value = std::min(1.0, std::max(gaussian, as_high / element_area));
+    }
+}
+
 // Where the evidence reaches the stated limit but no region holds it (issue 50, item 5): the
 // compared vertices outside every region whose shape excess at the chosen scale reaches the
 // shape floor, grouped by sign through mesh edges; a group at least as large as the smallest
@@ -482,7 +638,7 @@ std::optional<std::string> unreported_change(const Mesh& reference, const Covera
                   "°) stays below the normal floor's lower level " + fixed(d.normal.low, 1) +
                   "°, so the normal field does not corroborate it"
             : "the growth rule or a border's band left less than the smallest detectable area "
-              "of it compared";
+              "of it compared, or its peak is shallower than the run can tell there";
     return std::to_string(groups) + " place(s) where the shape change reaches the smallest " +
            "detectable damage hold no region; the largest, " +
            with_unit(best.area, unit, 2, "%.3g") + " around " + where + " " +
@@ -558,16 +714,17 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
         s.sampling_bands = bands.sigma;
         s.text += " (up to " + with_unit(s.min_depth_across, e.unit) +
                   " deep where faces lie across the grid's thickest slices)";
-        d.rule_text += "; the distance is read per band of the grid's width along the normal (" +
-                       std::to_string(bands.sigma.size()) +
-                       " bands of equal count, each centred on its median and scaled by its "
-                       "spread: from " +
-                       with_unit(bands.quietest, e.unit) + " to " +
-                       with_unit(bands.loudest, e.unit) +
-                       "), so that a face across thick slices, whose staircase is wider, is "
-                       "judged against surface sampled as it was; floors in units of the "
-                       "quietest band";
+        d.rule_text +=
+            "; the distance is read per band of the grid's staircase step along the normal (" +
+            std::to_string(bands.sigma.size()) +
+            " bands of equal count, each centred on its median and scaled by its "
+            "spread: from " +
+            with_unit(bands.quietest, e.unit) + " to " + with_unit(bands.loudest, e.unit) +
+            "), so that a face across thick slices, whose staircase is wider, is "
+            "judged against surface sampled as it was; floors in units of the "
+            "quietest band";
     }
+    state_limit_curve(reference, e, compared, o, ladder, s);
     const std::string read =
         own + "; the evidence was read over a radius of " + with_unit(s.radius, e.unit) +
         ", where the undamaged majority is quiet (normal floor " + fixed(d.normal.value, 2) +
@@ -584,18 +741,22 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
     // counts: surface below resolution or in a border's band is no evidence.
     RegionOptions at_scale = region_options;
     at_scale.min_area = s.min_area;
+    at_scale.min_hole_area = std::numbers::pi * s.radius * s.radius;
     std::vector<std::uint8_t> counted;
     if (!d.comparison.vertex_class.empty()) {
         counted.resize(reference.vertex_count());
         for (std::size_t v = 0; v < counted.size(); ++v) counted[v] = d.comparison.compared(v);
         at_scale.min_area_counted = &counted;
     }
-    d.regions = find_regions(
-        reference,
-        off_borders(reference,
-                    detail::fused_mask(reference, at.evidence, f.excess, d.normal, d.shape, o), d),
-        e.coverage->seen, fields.fields, at_scale);
+    const std::vector<float> limit = depth_limit(reference, e, bands, s);
+    at_scale.min_depth = &limit;
+    const auto candidates =
+        detail::fused_mask(reference, at.evidence, f.excess, d.normal, d.shape, o);
+    const auto kept = off_borders(reference, candidates, d);
+    d.regions = find_regions(reference, kept, e.coverage->seen, fields.fields, at_scale);
     detail::describe_evidence(d.regions, at.evidence, f.excess, d.normal, d.shape);
+    state_significance(reference, compared, at.evidence, f.excess, border_groups(candidates, kept),
+                       s.min_area, d);
     if (auto w =
             unreported_change(reference, compared, at.evidence, f.excess, *e.distance, d, e.unit))
         d.warnings.push_back(*w);
@@ -630,11 +791,13 @@ void decide_fused(const Mesh& reference, const DecisionEvidence& e, const Covera
     d.rule_text = fused_rule_text(d, describe(e.metric));
     RegionFieldStore fields;
     build_fields(e, d.comparison, d.shape.value, fields);
-    d.regions = find_regions(
-        reference,
-        off_borders(reference, detail::fused_mask(reference, e, f.excess, d.normal, d.shape, o), d),
-        e.coverage->seen, fields.fields, region_options);
+    const auto candidates = detail::fused_mask(reference, e, f.excess, d.normal, d.shape, o);
+    const auto kept = off_borders(reference, candidates, d);
+    d.regions = find_regions(reference, kept, e.coverage->seen, fields.fields, region_options);
     detail::describe_evidence(d.regions, e, f.excess, d.normal, d.shape);
+    d.scale.limit_curve.push_back({0.0, d.scale.min_area, d.scale.min_depth, d.scale.min_depth});
+    state_significance(reference, compared, e, f.excess, border_groups(candidates, kept),
+                       d.scale.min_area, d);
 }
 
 // The paper's rule: a seen vertex whose mean normal evidence reaches the floor.

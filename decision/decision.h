@@ -149,10 +149,11 @@ struct DecisionEvidence {
     const std::vector<std::uint8_t>* beyond_view = nullptr;
     /// The examined surface encloses its solid (decision/comparison.h ComparisonInputs).
     bool examined_encloses = false;
-    /// Per reference vertex, the coarser scan grid's width along its normal (mesh units; may be
-    /// null or empty: no grid). Where it is wide (faces across thick slices) the staircase of
-    /// each scan's surface is, and the distance between two scans on different grids spreads
-    /// more: the fused rule measures the spread per band of this width (decision.cpp).
+    /// Per reference vertex, the coarser scan grid's staircase step along its normal
+    /// (analysis/resolution.h staircase_step; mesh units; may be null or empty: no grid). Where
+    /// it is large (faces nearly along thick slices) each scan's surface steps by it, and the
+    /// distance between two scans on different grids spreads more: the fused rule measures the
+    /// spread per band of this step (decision.cpp).
     const std::vector<float>* sampling = nullptr;
     /// The coarser scan's voxel, its longest edge (mesh units; 0: unknown, meshes from files
     /// without --resolution). The fused rule reads the evidence no finer than it: within a
@@ -176,14 +177,32 @@ struct EvidenceScale {
     bool quiet = true;       ///< false: no scale tried made the majority quiet (no regions)
     double min_depth = 0.0;  ///< smallest detectable depth there (mesh units)
     double min_area = 0.0;   ///< smallest detectable area there (mesh units²)
-    /// Where the distance was read per band of the grid's width along the normal (decision.cpp
-    /// SamplingBands): the smallest detectable depth where faces lie across the thickest
-    /// slices (min_depth holds it for the quietest band), and each band's spread (mesh units).
+    /// The shape floor plus the median tessellation tolerance there (mesh units): min_depth
+    /// before the data's resolution bounds it.
+    double floor_depth = 0.0;
+    /// Where the distance was read per band of the grid's staircase step along the normal
+    /// (decision.cpp SamplingBands): the smallest detectable depth where faces lie along the
+    /// thickest slices (min_depth holds it for the quietest band), and each band's spread (mesh units).
     double min_depth_across = 0.0;
     /// The data's resolution, below which no depth is stated detectable: half the reference's
     /// median edge (mesh units).
     double resolution_depth = 0.0;
     std::vector<double> sampling_bands;
+    /// The smallest detectable damage at each scale from the one read up to the largest of the
+    /// ladder (decision.cpp detection_limit): a wider change is told at a shallower depth, as
+    /// the undamaged surface's spread averages down over wider discs. Each point's area is one
+    /// resolution element of its scale, its depth the shape floor plus the typical tessellation
+    /// tolerance there, never below resolution_depth (mesh units, mesh units²).
+    struct LimitPoint {
+        double radius = 0.0;
+        double area = 0.0;
+        double depth = 0.0;
+        double depth_across = 0.0;  ///< where faces lie across the thickest slices (bands used)
+    };
+    std::vector<LimitPoint> limit_curve;
+    /// The resolution elements searched (compared area over one element's area, at the scale
+    /// read): the number of places a false alarm could arise, for the regions' p values.
+    double resels = 0.0;
     std::vector<double> tried;  ///< radii tried, in order
     Floor own_normal;           ///< the floors at the vertices' own scale (when searched)
     Floor own_shape;

@@ -170,6 +170,21 @@ std::vector<double> gone_volumes(const Mesh& mesh, const std::vector<Accumulated
     return volume;
 }
 
+// RegionOptions::min_depth at the vertex of the group's peak shape change.
+bool shallower_than_limit(const Accumulated& g, const RegionFields& f, const RegionOptions& o) {
+    if (!o.min_depth || !f.shape || g.r.kind == RegionKind::MissingSurface) return false;
+    float peak = 0.0f;
+    std::uint32_t at = g.vertices.front();
+    for (const auto v : g.vertices) {
+        const float d = std::abs((*f.shape)[v]);
+        if (std::isfinite(d) && d > peak) {
+            peak = d;
+            at = v;
+        }
+    }
+    return peak < (*o.min_depth)[at];
+}
+
 }  // namespace
 
 RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
@@ -204,6 +219,14 @@ RegionResult find_regions(const Mesh& mesh, std::vector<std::uint8_t> damaged,
             continue;
         }
         finish(g, options, fields.gone != nullptr);
+        if (g.r.is_hole_loss() && g.counted_area < options.min_hole_area) {
+            ++result.dropped_small;
+            continue;
+        }
+        if (shallower_than_limit(g, fields, options)) {
+            ++result.dropped_shallow;
+            continue;
+        }
         kept.push_back(&g);
     }
     // The volume of each surface gone: the solid, not the surface times its depth.

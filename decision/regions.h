@@ -4,6 +4,7 @@
 #include "mesh/mesh.h"
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,14 @@ struct Region {
     /// bound of the loss.
     bool hole = false;
     std::string evidence;  ///< why the decision admitted it (filled by decision/decision.cpp)
+    /// How strongly it stands out from the undamaged surface (decision/decision.h Significance;
+    /// filled by the fused rule, NaN otherwise): its strongest shape excess in robust standard
+    /// deviations of the distance on the compared surface, at the scale the evidence was read.
+    double z = std::numeric_limits<double>::quiet_NaN();
+    /// The family-wise chance of a change this strong anywhere on the undamaged surface: the
+    /// larger of the Gaussian bound over every resolution element searched and the share of
+    /// the compared surface outside all regions that stands as high, per resolution element.
+    double p_value = std::numeric_limits<double>::quiet_NaN();
 
     /// Surface gone in a hole: a loss whose depth is a lower bound (`hole` above).
     [[nodiscard]] bool is_hole_loss() const { return kind == RegionKind::Dent && hole; }
@@ -67,12 +76,24 @@ struct RegionFields {
 struct RegionOptions {
     std::size_t min_vertices = 3;  ///< smaller groups are dropped (counted in dropped_small)
     /// Groups of a smaller area are dropped too (counted in dropped_small): at a smoothing
-    /// scale of radius r the evidence cannot resolve damage narrower than its disc (π·r²).
+    /// scale of radius r the evidence cannot resolve damage narrower than one resolution
+    /// element of it (decision.cpp resolution_element_area).
     double min_area = 0.0;
     /// When set (per vertex, 1: counted), min_area is met by the area of these vertices only:
     /// the compared ones. Surface below the scans' resolution or in a border's band is no
     /// evidence, and a group is not told apart by area it could not compare.
     const std::vector<std::uint8_t>* min_area_counted = nullptr;
+    /// Surface gone (Region::is_hole_loss) smaller than this is dropped too (counted in
+    /// dropped_small): a hole of the examined surface narrower than the whole disc the evidence
+    /// is read over (π·r², wider than min_area's resolution element) is where one segmentation
+    /// dropped out (noise opening thin bone), no loss the run can tell; its depth is only the
+    /// height above the rim, no smoothed evidence.
+    double min_hole_area = 0.0;
+    /// Per vertex, the smallest depth the run can tell there (mesh units; may be null): a group
+    /// whose peak shape change is shallower than the limit at its peak's vertex is dropped
+    /// (counted in dropped_shallow): the run states it cannot tell such a change. Missing
+    /// surface has no depth and is never dropped by it.
+    const std::vector<float>* min_depth = nullptr;
     /// Fill holes: a group of undamaged seen vertices enclosed by one region and smaller than
     /// it joins that region. The floor of a dent keeps its normal (its tilt is zero at the
     /// deepest point), so normal evidence marks a ring; the ring's inside is damaged too.
@@ -88,6 +109,7 @@ struct RegionResult {
     std::vector<std::int32_t> region_of_vertex;
     std::size_t damaged_vertices = 0;  ///< in the mask given (before filling and dropping)
     std::size_t dropped_small = 0;     ///< groups below min_vertices
+    std::size_t dropped_shallow = 0;   ///< groups shallower than RegionOptions::min_depth
     std::size_t filled_vertices = 0;   ///< vertices added by hole filling
 };
 

@@ -85,4 +85,12 @@ std::string region_sentence(const Region& r, const std::string& place, double un
     return s + ", " + place;
 }
 
+std::string significance_text(double p) {
+    if (!std::isfinite(p)) return "p unknown";
+    if (p < 1e-6) return "family-wise p < 1e-6";
+    char text[48];
+    std::snprintf(text, sizeof text, "family-wise p = %.1g", p);
+    return text;
+}
+
 }  // namespace glint

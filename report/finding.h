@@ -32,4 +32,8 @@ inline constexpr double kPlaceOffset = 0.2;
                                           double depth_uncertainty, const std::string& unit,
                                           bool mirror = false);
 
+/// A region's family-wise significance in words (Region::p_value): "p < 1e-6" below a
+/// millionth, "p = 0.003" otherwise, "p unknown" for NaN.
+[[nodiscard]] std::string significance_text(double p_value);
+
 }  // namespace glint

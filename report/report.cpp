@@ -71,6 +71,10 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         // a loss where the examined surface covered around it (decision/comparison.h): material
         // gone, not a part never scanned (that is comparison.not_compared.not_reached)
         {"surface_gone", r.is_hole_loss()},
+        // how strongly it stands out from the undamaged surface (decision.cpp
+        // state_significance): null where it is no distance (surface gone, missing surface)
+        {"z", number(r.z)},
+        {"p_value", number(r.p_value)},
         {"best_view", r.best_view}};
     if (r.kind == RegionKind::MissingSurface) {
         // The examined scan holds no surface there: a depth or volume would measure to
@@ -157,8 +161,17 @@ json scale_json(const EvidenceScale& s) {
               {"min_detectable_area", s.min_area},
               {"radii_tried", s.tried},
               {"resolution_depth", s.resolution_depth},
+              {"resolution_elements", s.resels},
               {"text", s.text}};
-    // The distance read per band of the grid's width along the normal (decision.cpp): each
+    // The smallest detectable damage at each scale from the one read (EvidenceScale::limit_curve).
+    json curve = json::array();
+    for (const auto& p : s.limit_curve)
+        curve.push_back({{"radius", p.radius},
+                         {"area", number(p.area)},
+                         {"depth", number(p.depth)},
+                         {"depth_across_slices", number(p.depth_across)}});
+    j["detection_limit"] = curve;
+    // The distance read per band of the grid's staircase step along the normal (decision.cpp): each
     // band's spread, and the smallest detectable depth where faces lie across thick slices.
     if (!s.sampling_bands.empty()) {
         j["sampling_band_spreads"] = s.sampling_bands;
@@ -238,6 +251,7 @@ json zoom_json(const Mesh& reference, const AnalysisResult& result, std::size_t 
         {"damaged_vertices", d.regions.damaged_vertices},
         {"filled_vertices", d.regions.filled_vertices},
         {"dropped_small_groups", d.regions.dropped_small},
+        {"dropped_shallow_groups", d.regions.dropped_shallow},
         {"regions", regions},
         {"histogram",
          {{"of", "per-vertex mean " + std::string(m.name) + " of seen vertices"},

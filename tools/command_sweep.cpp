@@ -7,6 +7,7 @@
 #include "mesh/output_guard.h"
 #include "mesh/units.h"
 #include "report/calibration_file.h"
+#include "report/finding.h"
 #include "report/inspect.h"
 #include "report/run_inputs.h"
 #include "tools/command.h"
@@ -18,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -104,8 +106,13 @@ void print_summary(const Inspection& inspection, bool pictures) {
             const std::string words = k < found.size() && found[k].contains("finding")
                                           ? found[k]["finding"].get<std::string>()
                                           : to_string(g.kind);
-            std::printf("  region %d: %s; centroid (%.3f, %.3f, %.3f) %s\n", g.id, words.c_str(),
-                        g.centroid.x(), g.centroid.y(), g.centroid.z(),
+            // How strongly it stands out (decision.cpp state_significance).
+            char stands[96] = "";
+            if (std::isfinite(g.z))
+                std::snprintf(stands, sizeof stands, "; %.*f spreads of the undamaged surface, %s",
+                              g.z < 100 ? 1 : 0, g.z, significance_text(g.p_value).c_str());
+            std::printf("  region %d: %s%s; centroid (%.3f, %.3f, %.3f) %s\n", g.id, words.c_str(),
+                        stands, g.centroid.x(), g.centroid.y(), g.centroid.z(),
                         u.empty() ? "units" : u.c_str());
         }
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <thread>
 
@@ -47,7 +48,7 @@ class BallFit {
         const Eigen::Vector3d t2 = n.cross(t1);
         Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
         Eigen::Vector3d b = Eigen::Vector3d::Zero();
-        double tol = 0.0, weight = 0.0;
+        double tol = 0.0, weight = 0.0, weight2 = 0.0;
         int used = 0;
         queue_.assign(1, static_cast<std::uint32_t>(v));
         stamp_[v] = static_cast<std::int64_t>(v);
@@ -61,6 +62,7 @@ class BallFit {
                 b += w * x * static_cast<double>((*e_.distance)[u]);
                 if (e_.tolerance) tol += w * static_cast<double>((*e_.tolerance)[u]);
                 weight += w;
+                weight2 += w * w;
                 ++used;
             }
             for (std::uint32_t k = adj_.offset[u]; k < adj_.offset[u + 1]; ++k) {
@@ -81,7 +83,12 @@ class BallFit {
         out.distance[v] = static_cast<float>(c[0]);
         out.tilt_deg[v] =
             static_cast<float>(std::atan(std::hypot(c[1], c[2])) * 180.0 / std::numbers::pi);
-        if (has_tolerance && weight > 0) out.tolerance[v] = static_cast<float>(tol / weight);
+        // The tolerance of the fit's value: each facet's chord lies off the surface by its own
+        // amount and sign, so over the disc they average like noise over the fit's effective
+        // number of vertices (Σw)²/Σw²; the floors, measured on the pair at this scale, hold
+        // what is left of them on the undamaged majority.
+        if (has_tolerance && weight > 0)
+            out.tolerance[v] = static_cast<float>(tol / weight * std::sqrt(weight2) / weight);
     }
 
   private:
@@ -97,15 +104,18 @@ class BallFit {
 
 }  // namespace
 
-ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e, double radius) {
+ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e, double radius,
+                               std::size_t stride) {
     GLINT_ASSERT(e.distance && e.distance->size() == reference.vertex_count(),
                  "scaled evidence without a distance per vertex");
     GLINT_ASSERT(reference.has_normals(), "scaled evidence needs the reference's normals");
     const std::size_t n = reference.vertex_count();
+    stride = std::max<std::size_t>(stride, 1);
+    const float unset = stride > 1 ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
     ScaledEvidence out{.radius = radius,
-                       .distance = std::vector<float>(n, 0.0f),
-                       .tolerance = std::vector<float>(n, 0.0f),
-                       .tilt_deg = std::vector<float>(n, 0.0f)};
+                       .distance = std::vector<float>(n, unset),
+                       .tolerance = std::vector<float>(n, unset),
+                       .tilt_deg = std::vector<float>(n, unset)};
     const Adjacency adj = adjacency(reference);
     const std::vector<std::uint8_t> use = usable(e);
     const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
@@ -113,7 +123,7 @@ ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e,
     for (std::size_t t = 0; t < threads; ++t)
         pool.emplace_back([&, t] {
             BallFit fit(reference, adj, e, use, radius);
-            for (std::size_t v = t; v < n; v += threads) fit.fit(v, out);
+            for (std::size_t v = t * stride; v < n; v += threads * stride) fit.fit(v, out);
         });
     for (auto& th : pool) th.join();
     return out;

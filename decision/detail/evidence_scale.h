@@ -26,8 +26,11 @@ struct ScaledEvidence {
 };
 
 /// \pre evidence.distance holds one value per reference vertex; reference has normals.
+/// `stride` > 1 fits every stride-th vertex only and leaves the others NaN (robust statistics
+/// of the evidence at a wide radius at a fraction of the cost: decision.cpp detection_limit).
 [[nodiscard]] ScaledEvidence scaled_evidence(const Mesh& reference,
-                                             const DecisionEvidence& evidence, double radius);
+                                             const DecisionEvidence& evidence, double radius,
+                                             std::size_t stride = 1);
 
 /// The radii tried, smallest first: 2, 4, 8, 16 and 32 median edge lengths of the reference,
 /// at most 8 % of the size.

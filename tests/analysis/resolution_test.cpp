@@ -70,6 +70,25 @@ TEST(Resolution, VoxelExtentIsTheVoxelsWidthAlongTheDirection) {
     EXPECT_NEAR(voxel_extent_along(r * a, r * Vec3d(0, 0, 1)), 2.0, 1e-12);
 }
 
+// The staircase steps by the axis the normal leans on most: the slice thickness where a face
+// lies along the slices, less where it crosses the grid diagonally (where the voxel's width
+// along the normal is largest instead): CThead's erosion and a vault terrace.
+TEST(Resolution, StaircaseStepIsTheAxisTheNormalLeansOnMost) {
+    const Eigen::Matrix3d a = grid(1, 1, 2);
+    EXPECT_DOUBLE_EQ(staircase_step(a, {0, 0, 1}), 2.0);
+    EXPECT_DOUBLE_EQ(staircase_step(a, {1, 0, 0}), 1.0);
+    const Vec3d erosion = Vec3d(-0.56, -0.68, -0.46).normalized();
+    const Vec3d terrace = Vec3d(0.1, 0.1, 0.99).normalized();
+    EXPECT_NEAR(staircase_step(a, erosion), 2 * 0.46 / Vec3d(-0.56, -0.68, -0.46).norm(), 1e-12);
+    EXPECT_GT(staircase_step(a, terrace), 1.9);
+    EXPECT_LT(staircase_step(a, erosion), 1.0);
+    // The voxel's width cannot tell the two apart: both about 2.1 mm.
+    EXPECT_NEAR(voxel_extent_along(a, erosion), voxel_extent_along(a, terrace), 0.1);
+    const Eigen::Matrix3d r =
+        Eigen::AngleAxisd(0.7, Vec3d(1, 2, 3).normalized()).toRotationMatrix();
+    EXPECT_NEAR(staircase_step(r * a, r * terrace), staircase_step(a, terrace), 1e-12);
+}
+
 TEST(Resolution, ExtractedSurfacesCarryTheirGridAndMotionsTurnIt) {
     Mesh m = ellipsoid_surface({0, 0, 0}, {5, 5, 5}, 0.5);
     ASSERT_TRUE(m.voxel_axes.has_value());

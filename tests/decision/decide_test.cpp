@@ -304,7 +304,10 @@ TEST(Decide, ImplausibleFloorsMoveToTheScaleWhereTheMajorityIsQuiet) {
     EXPECT_FALSE(quiet.shape.implausible);
     EXPECT_FALSE(quiet.normal.implausible);
     EXPECT_GT(quiet.scale.min_depth, 0.0);
-    EXPECT_NEAR(quiet.scale.min_area, 3.14159 * quiet.scale.radius * quiet.scale.radius, 1e-3);
+    // One resolution element: the disc where the fit's Gaussian weights (σ = r/2) stand above
+    // half their peak, radius 0.589·r.
+    const double half = 0.5 * quiet.scale.radius * std::sqrt(2.0 * std::log(2.0));
+    EXPECT_NEAR(quiet.scale.min_area, 3.14159265 * half * half, 1e-3);
     EXPECT_TRUE(quiet.regions.regions.empty());
     ASSERT_FALSE(quiet.warnings.empty());
     EXPECT_NE(quiet.warnings[0].find("read over a radius of"), std::string::npos);
@@ -379,8 +382,8 @@ TEST(Decide, AChangeBeyondTheStatedLimitWithoutARegionIsWarnedAboutWithItsPlace)
 }
 
 // Faces across thick slices stand on wider terraces (DecisionEvidence::sampling): the spread
-// of the distance is measured per band of the grid's width along the normal, and a change is
-// judged against surface sampled as it was. Two equal bumps (4 high), one where the grid is 1
+// of the distance is measured per band of the grid's staircase step along the normal, and a
+// change is judged against surface sampled as it was. Two equal bumps (4 high), one where the grid is 1
 // unit wide along the normal and the surface's terraces differ by ±0.05, one where it is 2
 // units wide and they differ by ±0.5: only the first stands out from its own band.
 TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
@@ -443,6 +446,27 @@ TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
     ASSERT_EQ(d.regions.regions.size(), 1u);
     EXPECT_NEAR(d.regions.regions[0].centroid.x(), 20.0, 2.0);
     EXPECT_NEAR(d.regions.regions[0].centroid.y(), 54.0, 2.0);
+    // It stands far out from the undamaged surface (its 4-unit peak against a quiet band of
+    // ±0.05 terraces): beyond the floor's k spreads, and no place of the undamaged surface
+    // stands as high, so the family-wise p is the Gaussian bound over the elements searched.
+    const Region& bump = d.regions.regions[0];
+    EXPECT_GE(bump.z, DecisionOptions{}.shape_k);
+    EXPECT_GT(d.scale.resels, 10.0);
+    EXPECT_LT(bump.p_value, 1e-6);
+    // The detection limit as a curve: the scale read first, then each wider rung of the
+    // ladder up to its largest, areas growing, no depth below the data's resolution.
+    ASSERT_GE(d.scale.limit_curve.size(), 2u);
+    EXPECT_DOUBLE_EQ(d.scale.limit_curve[0].radius, d.scale.radius);
+    EXPECT_DOUBLE_EQ(d.scale.limit_curve[0].depth, d.scale.min_depth);
+    EXPECT_DOUBLE_EQ(d.scale.limit_curve[0].area, d.scale.min_area);
+    for (std::size_t k = 1; k < d.scale.limit_curve.size(); ++k) {
+        EXPECT_GT(d.scale.limit_curve[k].area, d.scale.limit_curve[k - 1].area);
+        EXPECT_GE(d.scale.limit_curve[k].depth, d.scale.resolution_depth);
+        EXPECT_GE(d.scale.limit_curve[k].depth_across, d.scale.limit_curve[k].depth);
+    }
+    // The terminal's line names the wider scales: shallower depths there, or none shallower
+    // (here the data's resolution, half the median edge, bounds every rung).
+    EXPECT_NE(d.scale.text.find("wider"), std::string::npos) << d.scale.text;
     // Without the widths, one floor over both halves: the bump on the loud half's raised terrace
     // stands out from it as well.
     view.sampling = nullptr;

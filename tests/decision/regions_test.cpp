@@ -102,6 +102,41 @@ TEST(FindRegions, OnlyComparedAreaMeetsTheSmallestDetectableArea) {
     EXPECT_EQ(find_regions(m, at_least(angle, 5.f), seen, {.value = &angle}, o).regions.size(), 2u);
 }
 
+// A group shallower than the run can tell at its peak is no region (RegionOptions::min_depth):
+// two equal 3×3 groups, one 0.4 deep, one 1.0 deep, against a limit of 0.5 everywhere but at
+// the deep group's peak, where the grid's staircase makes it 1.2 (half a step of 2.4): only
+// the shallow one is dropped where the limit is 0.5, and both where the step is coarse.
+TEST(FindRegions, AGroupShallowerThanTheLimitAtItsPeakIsDropped) {
+    const int n = 20;
+    const Mesh m = grid(n);
+    const std::size_t nv = m.vertex_count();
+    std::vector<float> angle(nv, 0.5f), shape(nv, 0.0f), limit(nv, 0.5f);
+    const std::vector<std::uint8_t> seen(nv, 1);
+    auto id = [n](int x, int y) { return static_cast<std::size_t>(y * (n + 1) + x); };
+    for (int y = 3; y <= 5; ++y)
+        for (int x = 3; x <= 5; ++x) {
+            angle[id(x, y)] = angle[id(x + 10, y + 10)] = 10.f;
+            shape[id(x, y)] = -0.3f;
+            shape[id(x + 10, y + 10)] = -0.8f;
+        }
+    shape[id(4, 4)] = -0.4f;
+    shape[id(14, 14)] = -1.0f;
+    RegionOptions o{.min_vertices = 3};
+    o.min_depth = &limit;
+    const RegionFields f{.value = &angle, .shape = &shape};
+    RegionResult r = find_regions(m, at_least(angle, 5.f), seen, f, o);
+    ASSERT_EQ(r.regions.size(), 1u);
+    EXPECT_EQ(r.dropped_shallow, 1u);
+    EXPECT_NEAR(r.regions[0].peak_depth, -1.0, 1e-6);
+    limit[id(14, 14)] = 1.2f;
+    r = find_regions(m, at_least(angle, 5.f), seen, f, o);
+    EXPECT_TRUE(r.regions.empty());
+    EXPECT_EQ(r.dropped_shallow, 2u);
+    // Without a limit both are regions.
+    o.min_depth = nullptr;
+    EXPECT_EQ(find_regions(m, at_least(angle, 5.f), seen, f, o).regions.size(), 2u);
+}
+
 TEST(FindRegions, FillsTheFloorOfARingShapedDent) {
     // The angle marks a dent's flanks, not its floor: a ring. Its inside belongs to it.
     const int n = 20;
