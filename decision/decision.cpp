@@ -446,8 +446,8 @@ void read_in_bands(const SamplingBands& b, const std::vector<float>& width,
 // of the ladder from the one read, the evidence is read as for the decision (banded, floors on
 // the compared vertices) at every few vertices, enough for the floor's median and MAD: the
 // curve costs a fraction of one full reading (CThead's 300k-vertex skull: a strided reading of
-// ~20 000 vertices per rung).
-constexpr std::size_t kLimitSamples = 20000;
+// ~10 000 vertices per rung, enough for eight bands of 400 and their medians and MADs).
+constexpr std::size_t kLimitSamples = 10000;
 
 EvidenceScale::LimitPoint limit_point(const Mesh& reference, const DecisionEvidence& e,
                                       const Coverage& compared, const DecisionOptions& o,
