@@ -570,13 +570,23 @@ void state_significance(const Mesh& reference, const Coverage& compared, const D
         }
     }
     d.scale.resels = compared_area / element_area;
+    // The null sorted by excess, with the area at or above each: one search per region.
+    std::vector<std::size_t> order(null.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return null[a] < null[b]; });
+    std::vector<float> sorted(order.size());
+    std::vector<double> above(order.size() + 1, 0.0);
+    for (std::size_t k = order.size(); k-- > 0;) {
+        sorted[k] = null[order[k]];
+        above[k] = above[k + 1] + null_area[order[k]];
+    }
     for (auto& r : d.regions.regions) {
         if (r.kind == RegionKind::MissingSurface || r.is_hole_loss()) continue;
         const float top = peak[static_cast<std::size_t>(r.id)];
         r.z = (top - d.shape.median) / sigma;
-        double as_high = 0.0;
-        for (std::size_t k = 0; k < null.size(); ++k)
-            if (null[k] >= top) as_high += null_area[k];
+        const auto first = std::lower_bound(sorted.begin(), sorted.end(), top) - sorted.begin();
+        const double as_high = above[static_cast<std::size_t>(first)];
         const double gaussian = d.scale.resels * std::erfc(r.z / std::numbers::sqrt2);
         r.p_value = std::min(1.0, std::max(gaussian, as_high / element_area));
     }
