@@ -57,16 +57,21 @@ double reference_clearance(const ClosestPointIndex& index, const Vec3d& p, const
     return std::min(first_hit(index, p, n, skip), first_hit(index, p, -n, skip));
 }
 
-// The examined surface's clearance on the line through p along n: from the examined sheet
-// nearest p to the next examined sheet on either side of it.
-double examined_clearance(const ClosestPointIndex& index, const Vec3d& p, const Vec3d& n,
-                          double skip) {
+// The examined surface on the line through p along n: its clearance, from the examined sheet
+// nearest p to the next examined sheet on either side of it, and how far that sheet lies from p.
+struct ExaminedLine {
+    double clearance = kInf;
+    double offset = kInf;
+};
+ExaminedLine examined_clearance(const ClosestPointIndex& index, const Vec3d& p, const Vec3d& n,
+                                double skip) {
     const double out = first_hit(index, p, n, 0.0);
     const double in = first_hit(index, p, -n, 0.0);
-    if (!std::isfinite(out) && !std::isfinite(in)) return kInf;
+    if (!std::isfinite(out) && !std::isfinite(in)) return {};
     const Vec3d d = out <= in ? n : Vec3d(-n);
     const Vec3d sheet = p + std::min(out, in) * d;
-    return std::min(first_hit(index, sheet, d, skip), first_hit(index, sheet, -d, skip));
+    return {std::min(first_hit(index, sheet, d, skip), first_hit(index, sheet, -d, skip)),
+            std::min(out, in)};
 }
 
 // The solid's thinnest across a cone of kConeRays rays tilted kConeTiltDeg from `inward` at
@@ -90,9 +95,9 @@ double cone_voxels(const ClosestPointIndex& index, const Vec3d& o, const Vec3d& 
 // Whether either scan's surface is faint at reference vertex v (Mesh::faint): its own flag, or
 // a corner of the closest examined triangle that the closest point depends on.
 bool faint_here(const Mesh& reference, const Mesh& fitted, const ClosestPointIndex& exa,
-                std::size_t v, const Vec3d& p) {
+                std::size_t v, const Vec3d& p, bool examined_too) {
     if (reference.faint.size() == reference.vertex_count() && reference.faint[v]) return true;
-    if (fitted.faint.size() != fitted.vertex_count()) return false;
+    if (!examined_too || fitted.faint.size() != fitted.vertex_count()) return false;
     const ClosestPoint c = exa.closest(p);
     const auto& t = fitted.triangles[c.triangle];
     for (std::size_t k = 0; k < 3; ++k)
@@ -168,14 +173,21 @@ ResolutionEvidence below_resolution(const Mesh& reference, const Mesh& fitted,
                               if (!(nv.squaredNorm() > 0.5)) continue;
                               const double voxel = voxel_width(grids, nv);
                               out.sampling[v] = static_cast<float>(grid_step(grids, nv));
-                              const double c = std::min(reference_clearance(ref, p, nv, skip),
-                                                        examined_clearance(exa, p, nv, skip));
-                              out.clearance[v] = static_cast<float>(c);
-                              double ratio = c / voxel;
-                              if (ratio >= kResolutionVoxels)
-                                  ratio = std::min(ratio, cone_voxels(ref, p, -nv, skip, grids));
-                              out.below[v] = ratio < kResolutionVoxels ? 1 : 0;
-                              if (faint_here(reference, fitted, exa, v, p)) faint[v] = 1;
+                              const double own = reference_clearance(ref, p, nv, skip);
+                              const ExaminedLine e = examined_clearance(exa, p, nv, skip);
+                              out.clearance[v] = static_cast<float>(std::min(own, e.clearance));
+                              const double k = kResolutionVoxels;
+                              const bool resolved =  // the reference, along n and across
+                                  own >= k * voxel && cone_voxels(ref, p, -nv, skip, grids) >= k;
+                              const bool examined_thin = e.clearance < k * voxel;
+                              // Where the reference resolves and the examined surface lies
+                              // farther than a voxel from it, material was lost or gained (an
+                              // erosion that thinned the bone below a voxel, its faint floor):
+                              // a change larger than partial volume can make, whatever the
+                              // examined scan's own thinness or contrast there.
+                              const bool lost = resolved && e.offset > k * voxel;
+                              out.below[v] = (!resolved || examined_thin) && !lost ? 1 : 0;
+                              if (faint_here(reference, fitted, exa, v, p, !lost)) faint[v] = 1;
                           }
                       });
     const auto area = vertex_areas(reference);

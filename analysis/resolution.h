@@ -26,7 +26,13 @@
 //                               one scan, 5–10 mm of bone behind its tip along the normal).
 // The vertex is *below resolution* where the smaller clearance is under kResolutionVoxels times
 // the larger of the two scans' extents along n, or the cone's thinnest is under
-// kResolutionVoxels voxels along its ray. A surface from a mesh file carries no grid:
+// kResolutionVoxels voxels along its ray. One exception: where the reference resolves (its
+// clearance and its cone at least that far) but the examined surface lies more than that many
+// voxels from the vertex along n, material was lost or gained — an erosion that thinned the
+// bone below a voxel and left its floor faint (the CThead condyle eroded by a 5 mm ball: 42 % of
+// the vertices within 6.5 mm were not compared, and the loss was missed) — and the vertex stays
+// compared whatever the examined scan's thinness or contrast there: partial volume moves a
+// surface by less than a voxel. The reference's own faint flag still holds. A surface from a mesh file carries no grid:
 // where neither surface has one, and no --resolution was given, the rule is off.
 #pragma once
 

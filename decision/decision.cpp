@@ -539,12 +539,14 @@ std::vector<std::uint8_t> border_groups(const std::vector<std::uint8_t>& candida
 // Two family-wise bounds over the `resels` resolution elements searched, the larger reported:
 //   Gaussian  resels · P(|N(0,1)| ≥ z): what a noise field with the measured spread would give
 //             somewhere (Bonferroni over independent elements; conservative for a smooth field);
-//   measured  the compared area outside every region whose |excess| reaches the region's own
-//             strongest and whose normal evidence reaches the normal floor's lower level (the
-//             conjunction a region needs), outside the groups dropped along borders (those
-//             are scan edges, not surface), in resolution elements: how often the pair's own
-//             undamaged surface stands that high (heavy tails — terraces, streaks — that a
-//             Gaussian misses).
+//   measured  the number of places on the compared surface outside every region — connected
+//             groups of vertices whose |excess| reaches the region's own strongest and whose
+//             normal evidence reaches the normal floor's lower level (the conjunction a region
+//             needs), outside the groups dropped along borders (scan edges, not surface) — at
+//             least one resolution element wide: how often the pair's own undamaged surface
+//             makes a place a region could be, that high (heavy tails — terraces, streaks —
+//             that a Gaussian misses). Isolated vertices as high are no such place: counting
+//             their area put p at 1 for a 16σ erosion.
 // Surface gone and missing surface are no distances: they keep NaN.
 void state_significance(const Mesh& reference, const Coverage& compared, const DecisionEvidence& at,
                         const std::vector<float>& excess, const std::vector<std::uint8_t>& border,
@@ -555,8 +557,7 @@ void state_significance(const Mesh& reference, const Coverage& compared, const D
     if (!(sigma > 0)) return;
     const auto area = vertex_areas(reference);
     std::vector<float> peak(d.regions.regions.size() + 1, 0.0f);
-    std::vector<float> null;
-    std::vector<double> null_area;
+    std::vector<std::uint8_t> in_null(n, 0);
     double compared_area = 0.0;
     for (std::size_t v = 0; v < n; ++v) {
         if (!compared.seen[v] || !std::isfinite(excess[v])) continue;
@@ -564,31 +565,28 @@ void state_significance(const Mesh& reference, const Coverage& compared, const D
         const auto id = static_cast<std::size_t>(d.regions.region_of_vertex[v]);
         if (id > 0 && id < peak.size()) peak[id] = std::max(peak[id], std::abs(excess[v]));
         else if (id == 0 && !border[v] &&
-                 (!d.normal.corroborates || at.atlas->value_mean[v] >= d.normal.low)) {
-            null.push_back(std::abs(excess[v]));
-            null_area.push_back(area[v]);
-        }
+                 (!d.normal.corroborates || at.atlas->value_mean[v] >= d.normal.low))
+            in_null[v] = 1;
     }
     d.scale.resels = compared_area / element_area;
-    // The null sorted by excess, with the area at or above each: one search per region.
-    std::vector<std::size_t> order(null.size());
-    for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return null[a] < null[b]; });
-    std::vector<float> sorted(order.size());
-    std::vector<double> above(order.size() + 1, 0.0);
-    for (std::size_t k = order.size(); k-- > 0;) {
-        sorted[k] = null[order[k]];
-        above[k] = above[k + 1] + null_area[order[k]];
-    }
+    // The null's places: connected groups of null vertices at least as high as a region's peak,
+    // counted where they are as wide as a region must be (one resolution element). A place
+    // narrower than that the rule could never report, whatever its height.
+    std::vector<std::uint8_t> mask(n, 0);
+    std::vector<std::int32_t> component;
     for (auto& r : d.regions.regions) {
         if (r.kind == RegionKind::MissingSurface || r.is_hole_loss()) continue;
         const float top = peak[static_cast<std::size_t>(r.id)];
         r.z = (top - d.shape.median) / sigma;
-        const auto first = std::lower_bound(sorted.begin(), sorted.end(), top) - sorted.begin();
-        const double as_high = above[static_cast<std::size_t>(first)];
+        for (std::size_t v = 0; v < n; ++v) mask[v] = in_null[v] && std::abs(excess[v]) >= top;
+        const std::size_t count = masked_components(reference, mask, component);
+        std::vector<double> group_area(count, 0.0);
+        for (std::size_t v = 0; v < n; ++v)
+            if (component[v] >= 0) group_area[static_cast<std::size_t>(component[v])] += area[v];
+        const auto as_high = static_cast<double>(std::count_if(
+            group_area.begin(), group_area.end(), [&](double a) { return a >= element_area; }));
         const double gaussian = d.scale.resels * std::erfc(r.z / std::numbers::sqrt2);
-        r.p_value = std::min(1.0, std::max(gaussian, as_high / element_area));
+        r.p_value = std::min(1.0, std::max(gaussian, as_high));
     }
 }
 

@@ -80,6 +80,11 @@ void check_expect(const ScenarioExpect& e, const std::vector<Region>& regions,
     if (e.min_first_volume_lost && !(-out.first_volume >= *e.min_first_volume_lost))
         fail(fmt("first region's volume lost = %.4g, expected at least %.4g", -out.first_volume,
                  *e.min_first_volume_lost));
+    if (e.max_p_value)
+        for (const auto& r : regions)
+            if (std::isfinite(r.p_value) && !(r.p_value <= *e.max_p_value))
+                fail("region " + std::to_string(r.id) + "'s family-wise p = " +
+                     fmt("%.3g, expected at most %.3g", r.p_value, *e.max_p_value));
     if (e.every_kind)
         for (const auto& r : regions)
             if (to_string(r.kind) != *e.every_kind)

@@ -91,6 +91,26 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
         s.mesh = resolve_mesh(r, "mesh", *mesh, scenario_dir, data_root, s.needs_data_root);
     }
     read_surface_options(r, s.surface);
+    if (required) {
+        if (auto v = r.optional<bool>("scan_as_ct", "true or false")) s.scan_as_ct = *v;
+        if (s.scan_as_ct && mesh && is_volume_path(s.mesh))
+            r.fail(r.get("scan_as_ct"), "scan_as_ct",
+                   "scans a mesh or phantom as CT; \"" + *mesh + "\" is a volume already");
+        if (auto v = r.numbers("ct_values", 2, 2)) {
+            if (!s.scan_as_ct) r.fail(r.get("ct_values"), "ct_values", "needs scan_as_ct = true");
+            if (!std::isfinite((*v)[0]) || !std::isfinite((*v)[1]) || (*v)[0] == (*v)[1])
+                r.fail(r.get("ct_values"), "ct_values",
+                       "expected [outside, inside]: two different finite values");
+            s.ct_background = static_cast<float>((*v)[0]);
+            s.ct_object = static_cast<float>((*v)[1]);
+        }
+        // The surface is cut from the scan at the middle of the two values unless iso is given.
+        if (s.scan_as_ct && !s.surface.iso) s.surface.iso = 0.5 * (s.ct_background + s.ct_object);
+    } else if (r.get("scan_as_ct") || r.get("ct_values")) {
+        r.fail(r.get(r.get("scan_as_ct") ? "scan_as_ct" : "ct_values"),
+               r.get("scan_as_ct") ? "scan_as_ct" : "ct_values",
+               "belongs in [reference]: both scans image the reference's solid");
+    }
     s.cut = detail::read_scan_cut(r);
     if (required) s.crop_ball = detail::read_crop_ball(r);
     else if (r.get("crop_ball"))
@@ -100,7 +120,7 @@ SurfaceSource read_surface(TableReader& r, const fs::path& scenario_dir, const f
     // A derived examined scan (no mesh of its own) may take its own field of view: surface_roi.
     SurfaceOptions others = s.surface;
     if (!required) others.roi.reset();
-    if ((others.iso || others.any()) && !mesh)
+    if ((others.iso || others.any()) && !mesh && !s.scan_as_ct)
         r.fail(r.get(s.surface.iso ? "iso" : "largest"), s.surface.iso ? "iso" : "largest",
                "surface keys need a volume file: mesh = \"scan.nii.gz\"");
     const auto scheme = r.optional<std::string>("scheme", "a string (uv or ico)");
@@ -182,10 +202,11 @@ void read_volume_edit(TableReader& r, Scenario& sc) {
     if (erode_to && !erode) r.fail(r.get("erode_to"), "erode_to", "needs erode = [x, y, z, r]");
     sc.resample_volume =
         erode || r.has("pivot") || sc.examined.acquisition.any() || sc.reference.acquisition.any();
-    const bool volume_reference = !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh);
+    const bool volume_reference = sc.reference.scan_as_ct ||
+                                  (!sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
     if ((erode || r.has("pivot")) && !volume_reference)
         r.fail(r.get(erode ? "erode" : "pivot"), erode ? "erode" : "pivot",
-               "needs a volume reference (mesh = \"scan.nii.gz\")");
+               "needs a volume reference (mesh = \"scan.nii.gz\") or scan_as_ct = true");
 }
 
 // [examined] truth_pose_conf / truth_pose_entry: a scan's ground-truth pose from a Stanford
@@ -244,7 +265,10 @@ void read_examined(TableReader& r, const fs::path& dir, const fs::path& data_roo
     }
     read_conf_truth(r, dir, data_root, sc);
     sc.examined.acquisition = detail::read_acquisition(
-        r, !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
+        r,
+        sc.reference.scan_as_ct ||
+            (!sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh)),
+        sc.reference.scan_as_ct ? &sc.reference.acquisition : nullptr);
     read_volume_edit(r, sc);
     if (sc.reference.crop_ball && (!sc.examined_derived || sc.resample_volume))
         throw InputError("scenario \"" + sc.file.string() +
@@ -345,6 +369,9 @@ void read_expect(TableReader& r, ScenarioExpect& x) {
     e("min_first_area", x.min_first_area);
     e("max_first_area", x.max_first_area);
     e("min_first_volume_lost", x.min_first_volume_lost);
+    e("max_p_value", x.max_p_value);
+    if (x.max_p_value && !(*x.max_p_value > 0 && *x.max_p_value <= 1))
+        r.fail(r.get("max_p_value"), "max_p_value", "expected a probability in (0, 1]");
     e("min_compared", x.min_compared);
     e("max_compared", x.max_compared);
     read_asymmetry_expect(r, x.asymmetry);
@@ -446,13 +473,24 @@ Scenario load_scenario(const fs::path& file, const fs::path& data_root) {
         TableReader r(*table("reference", true), name, "reference");
         sc.reference = read_surface(r, dir, data_root, true);
         sc.reference.acquisition = detail::read_acquisition(
-            r, !sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh));
+            r, sc.reference.scan_as_ct ||
+                   (!sc.reference.mesh.empty() && is_volume_path(sc.reference.mesh)));
+        if (sc.reference.scan_as_ct && !sc.reference.acquisition.voxel_size)
+            r.fail(r.get("scan_as_ct"), "scan_as_ct",
+                   "needs voxel_size = [x, y, z] (mm), the scan's voxels");
         r.finish();
     }
     if (const auto* t = table("examined", false)) {
         TableReader r(*t, name, "examined");
         read_examined(r, dir, data_root, sc);
+    } else if (sc.reference.scan_as_ct) {
+        sc.examined.acquisition = detail::inherited(sc.reference.acquisition);
+        sc.resample_volume = true;
     }
+    if (sc.reference.scan_as_ct && !sc.examined_derived)
+        throw InputError("scenario \"" + sc.file.string() +
+                         "\": [reference] scan_as_ct makes both scans from the reference's solid; "
+                         "expected no examined mesh of its own");
     read_damages(top, name, sc);
     read_analysis_sections(top, dir, sc.analysis);
     detail::read_export_section(top, dir, sc.exports);
@@ -548,24 +586,32 @@ void derive_examined(const Scenario& sc, ScenarioMeshes& out) {
 // resampled under the known motion with the erosions; truth = reference vertices inside a ball.
 ScenarioMeshes build_volume_pair(const Scenario& sc) {
     ScenarioMeshes out;
-    const Volume volume = read_volume(sc.reference.mesh);
     if (!sc.reference.surface.iso)
         throw InputError("scenario \"" + sc.file.string() + "\": reference volume \"" +
                          sc.reference.mesh_as_written + "\" needs iso = VALUE in [reference]");
-    // Each scan from the noiseless volume, with its own noise and voxel size.
-    out.reference =
-        extract_surface(detail::acquire(volume, {}, sc.reference.acquisition), sc.reference.surface)
-            .mesh;
     VolumeEdit edit;
     edit.moved_from_original = motion_about(sc.pose, sc.pivot);
     edit.erosions = sc.erosions;
+    // Each scan from the noiseless object (a volume, or a solid scanned as CT), with its own
+    // noise, blur and voxel size.
+    Volume reference_scan, examined_scan;
+    if (sc.reference.scan_as_ct) {
+        const Mesh object = sc.reference.phantom ? make_phantom(*sc.reference.phantom)
+                                                 : load_surface(sc.reference.mesh, {}).mesh;
+        const float outside = sc.reference.ct_background, inside = sc.reference.ct_object;
+        reference_scan = detail::acquire(object, {}, sc.reference.acquisition, outside, inside);
+        examined_scan = detail::acquire(object, edit, sc.examined.acquisition, outside, inside);
+    } else {
+        const Volume volume = read_volume(sc.reference.mesh);
+        reference_scan = detail::acquire(volume, {}, sc.reference.acquisition);
+        examined_scan = detail::acquire(volume, edit, sc.examined.acquisition);
+    }
+    out.reference = extract_surface(reference_scan, sc.reference.surface).mesh;
     // The examined scan is cut as the reference was, or to its own field of view (its
     // surface_roi, in its own frame: where that scanner saw).
     SurfaceOptions examined_surface = sc.reference.surface;
     if (sc.examined.surface.roi) examined_surface.roi = sc.examined.surface.roi;
-    out.examined =
-        extract_surface(detail::acquire(volume, edit, sc.examined.acquisition), examined_surface)
-            .mesh;
+    out.examined = extract_surface(examined_scan, examined_surface).mesh;
     detail::cut_pair(sc, out, edit.moved_from_original);
     if (sc.as_mesh_files) {
         // What an STL/PLY export of each segmentation keeps: positions (as float) and triangles.
@@ -584,7 +630,11 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
                 out.truth[v] = 1;
     out.true_reference_from_examined = edit.moved_from_original.inverse();
     out.has_truth_pose = true;
-    out.notes.push_back("examined: the reference volume resampled under the known motion with " +
+    out.notes.push_back(std::string(sc.reference.scan_as_ct
+                                        ? "both scans: CT of the reference's solid, the examined "
+                                          "one under the known motion with "
+                                        : "examined: the reference volume resampled under the "
+                                          "known motion with ") +
                         std::to_string(sc.erosions.size()) + " erosion(s); reference scan " +
                         detail::describe(sc.reference.acquisition) + ", examined scan " +
                         detail::describe(sc.examined.acquisition));
@@ -595,7 +645,8 @@ ScenarioMeshes build_volume_pair(const Scenario& sc) {
 
 ScenarioMeshes build_scenario_meshes(const Scenario& sc) {
     if (sc.examined_derived && (sc.resample_volume || sc.reference.acquisition.any())) {
-        if (!reachable_input(sc.reference.mesh,
+        if (!sc.reference.phantom &&
+            !reachable_input(sc.reference.mesh,
                              "scenario \"" + sc.file.string() + "\": reference volume"))
             throw IoError("scenario \"" + sc.file.string() + "\": reference volume \"" +
                           sc.reference.mesh_as_written + "\" not found (looked at \"" +

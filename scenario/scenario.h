@@ -36,7 +36,9 @@ struct Acquisition {
     std::optional<Vec3d> voxel_size;  ///< mm; unset: the volume's own grid
     double noise = 0.0;               ///< σ of Gaussian noise per voxel (the volume's values)
     std::uint32_t noise_seed = 1;
-    [[nodiscard]] bool any() const { return voxel_size.has_value() || noise > 0; }
+    double noise_correlation = 0.0;  ///< mm (volume/acquisition.h); 0: white
+    double psf_fwhm = 0.0;           ///< mm, the scanner's blur; 0: none
+    [[nodiscard]] bool any() const { return voxel_size.has_value() || noise > 0 || psf_fwhm > 0; }
 };
 
 /// Where a surface comes from: a phantom or a mesh file.
@@ -57,6 +59,11 @@ struct SurfaceSource {
     /// whole; the examined covers more than the reference (issue 53).
     std::optional<Eigen::Vector4d> crop_ball;
     Acquisition acquisition;  ///< a volume pair's scan: its noise and voxel size
+    /// [reference] scan_as_ct = true: the mesh or phantom is a solid that both scans image as CT
+    /// (scenario/ct_of_mesh.h), each with its acquisition; ct_values = [outside, inside].
+    bool scan_as_ct = false;
+    float ct_background = 1040.0f;
+    float ct_object = 1800.0f;
 };
 
 struct ScenarioExpect {
@@ -85,6 +92,9 @@ struct ScenarioExpect {
     std::optional<double> min_first_area;
     std::optional<double> max_first_area;
     std::optional<double> min_first_volume_lost;
+    /// Every region (zoom 0) whose significance was stated (Region::p_value, read at a scale)
+    /// stands out at least this strongly: its family-wise p at most this.
+    std::optional<double> max_p_value;
     /// At least this share of the reference's area compared (decision/comparison.h).
     std::optional<double> min_compared;
     /// At most this share compared: a partial scan must say that it covers only a part.

@@ -1,5 +1,6 @@
 // glint volume-edit IN -o OUT.mha [--erode x,y,z,r]… [--erode-to V] [--pose rx,ry,rz,tx,ty,tz]
-//                   [--voxel-size x,y,z] [--noise σ --noise-seed N]
+//                   [--voxel-size x,y,z] [--psf-fwhm mm] [--noise σ --noise-seed N
+//                   --noise-correlation mm]
 // [--pivot x,y,z]: a longitudinal "after" scan with a known change (volume/edit.h), and
 // OUT.json beside it with the ground truth.
 #include "mesh/atomic_file.h"
@@ -33,6 +34,8 @@ struct EditArgs {
     std::string voxel_size;
     double noise = 0.0;
     std::uint32_t noise_seed = 1;
+    double noise_correlation = 0.0;
+    double psf_fwhm = 0.0;
 };
 
 std::vector<double> numbers(const std::string& text, const char* flag, std::size_t count) {
@@ -76,6 +79,13 @@ void run(const EditArgs& a) {
         throw InputError("--noise " + std::to_string(a.noise) + ": expected a σ ≥ 0");
     edit.noise_sigma = a.noise;
     edit.noise_seed = a.noise_seed;
+    for (const auto& [x, flag] : {std::pair{a.noise_correlation, "--noise-correlation"},
+                                  std::pair{a.psf_fwhm, "--psf-fwhm"}})
+        if (!(x >= 0) || !std::isfinite(x))
+            throw InputError(std::string(flag) + " " + std::to_string(x) +
+                             ": expected a length ≥ 0 mm");
+    edit.noise_correlation = a.noise_correlation;
+    edit.psf_fwhm = a.psf_fwhm;
     const Volume out = edit_volume(input, edit);
     write_volume(out, a.output);
     const std::string truth = a.output + ".json";
@@ -114,6 +124,15 @@ void setup(CLI::App& app) {
                     "Gaussian noise σ added to every voxel, in the volume's values (an "
                     "acquisition's own noise)");
     cmd->add_option("--noise-seed", a.noise_seed, "Seed of the noise realisation")
+        ->capture_default_str();
+    cmd->add_option("--noise-correlation", a.noise_correlation,
+                    "mm: the noise correlated over neighbouring voxels as a cone-beam "
+                    "reconstruction makes it (white noise smoothed by a Gaussian of this σ, "
+                    "scaled back to --noise per voxel); 0: white")
+        ->capture_default_str();
+    cmd->add_option("--psf-fwhm", a.psf_fwhm,
+                    "mm: the scanner's point-spread blur, a Gaussian of this full width at half "
+                    "maximum applied before the noise; 0: none")
         ->capture_default_str();
     cmd->callback([] { run(a); });
 }

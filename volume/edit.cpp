@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <sstream>
 
 namespace glint {
@@ -124,9 +123,12 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
             throw InputError(where + "the value eroded material takes is " +
                              std::to_string(e.value) + "; expected a finite value");
     }
-    if (!(edit.noise_sigma >= 0 && std::isfinite(edit.noise_sigma)))
-        throw InputError("volume edit: noise σ is " + std::to_string(edit.noise_sigma) +
-                         "; expected a finite value ≥ 0");
+    for (const auto& [x, what] :
+         {std::pair{edit.noise_sigma, "noise σ"}, std::pair{edit.psf_fwhm, "the point-spread FWHM"},
+          std::pair{edit.noise_correlation, "the noise's correlation"}})
+        if (!(x >= 0 && std::isfinite(x)))
+            throw InputError(std::string("volume edit: ") + what + " is " + std::to_string(x) +
+                             "; expected a finite value ≥ 0");
     if (!edit.moved_from_original.matrix().allFinite())
         throw InputError("volume edit: the motion holds a number that is not finite");
     Volume out;
@@ -147,16 +149,9 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
     const double ramp = in.geometry.spacing.mean();  // the erosion's partial-volume ramp
     auto eroded = [&](const Vec3d& x) {
         const Vec3d p = original_from_moved * x;
-        float value = sample_trilinear(in, in.geometry.index_from_physical(p), background);
-        for (const Erosion& e : edit.erosions) {
-            const double d = (p - e.center).norm() - e.radius;
-            const double w = std::clamp(0.5 - d / ramp, 0.0, 1.0);
-            value += static_cast<float>(w) * (std::min(value, e.value) - value);
-        }
-        return value;
+        return eroded_value(sample_trilinear(in, in.geometry.index_from_physical(p), background), p,
+                            edit.erosions, ramp);
     };
-    std::mt19937 random(edit.noise_seed);
-    std::normal_distribution<double> noise(0.0, edit.noise_sigma > 0 ? edit.noise_sigma : 1.0);
     for (std::size_t k = 0; k < g.size[2]; ++k) {
         throw_if_cancelled();
         for (std::size_t j = 0; j < g.size[1]; ++j)
@@ -165,12 +160,20 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
                                   static_cast<double>(k)};
                 double value = 0.0;
                 for (const Vec3d& o : offsets) value += eroded(g.physical_from_index(index + o));
-                value /= double(offsets.size());
-                if (edit.noise_sigma > 0) value += noise(random);
-                out.voxels[g.offset(i, j, k)] = static_cast<float>(value);
+                out.voxels[g.offset(i, j, k)] = static_cast<float>(value / double(offsets.size()));
             }
     }
+    apply_scanner(out, {edit.psf_fwhm, edit.noise_sigma, edit.noise_correlation, edit.noise_seed});
     return out;
+}
+
+float eroded_value(float value, const Vec3d& p, std::span<const Erosion> erosions, double ramp) {
+    for (const Erosion& e : erosions) {
+        const double d = (p - e.center).norm() - e.radius;
+        const double w = std::clamp(0.5 - d / ramp, 0.0, 1.0);
+        value += static_cast<float>(w) * (std::min(value, e.value) - value);
+    }
+    return value;
 }
 
 std::string edit_json(const VolumeEdit& edit) {
@@ -192,7 +195,8 @@ std::string edit_json(const VolumeEdit& edit) {
     }
     s << "],\n  \"voxel_size\": " << (edit.spacing ? vec(*edit.spacing) : "null")
       << ",\n  \"noise_sigma\": " << edit.noise_sigma << ",\n  \"noise_seed\": " << edit.noise_seed
-      << "\n}\n";
+      << ",\n  \"noise_correlation\": " << edit.noise_correlation
+      << ",\n  \"psf_fwhm\": " << edit.psf_fwhm << "\n}\n";
     return s.str();
 }
 

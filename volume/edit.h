@@ -4,10 +4,12 @@
 #pragma once
 
 #include "mesh/geometry.h"
+#include "volume/acquisition.h"
 #include "volume/volume.h"
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,7 +36,17 @@ struct VolumeEdit {
     /// from `noise_seed`: an acquisition's own noise realisation.
     double noise_sigma = 0.0;
     std::uint32_t noise_seed = 1;
+    /// The acquisition's point-spread blur (FWHM, mm) and the noise's correlation length (mm),
+    /// volume/acquisition.h; 0: none, white noise.
+    double psf_fwhm = 0.0;
+    double noise_correlation = 0.0;
 };
+
+/// `value` at the object's point `p` (original frame) after `erosions`: each ball lowers it
+/// towards its value with a weight that falls linearly from 1 to 0 over `ramp` mm across the
+/// ball's surface (partial volume), value ← value + w · (min(value, target) − value).
+[[nodiscard]] float eroded_value(float value, const Vec3d& p, std::span<const Erosion> erosions,
+                                 double ramp);
 
 /// The motion "rx,ry,rz,tx,ty,tz" (degrees, mm; mesh/damage.h parse_pose_spec) about a pivot:
 /// p' = R (p - pivot) + pivot + t.
@@ -49,7 +61,8 @@ struct VolumeEdit {
 /// \throw InputError a voxel size that is no size or over the budget; a motion that leaves
 /// nothing of the input in view.
 /// Erosion is partial-volume correct: the weight of a ball falls linearly from 1 to 0 over
-/// one voxel (the mean spacing) across its surface, value ← value + w · (min(value, target) − value).
+/// one voxel (the mean spacing) across its surface (eroded_value). The scanner's blur and noise
+/// (psf_fwhm, noise_sigma, noise_correlation) come last (apply_scanner).
 [[nodiscard]] Volume edit_volume(const Volume& input, const VolumeEdit& edit);
 
 /// The edit as JSON (motion as a 4×4 matrix, erosion centres before and after the motion,

@@ -177,6 +177,43 @@ TEST(Resolution, AGapOnlyTheExaminedScanHasIsFlaggedOnItsSideOnly) {
     EXPECT_TRUE(none.rule.empty());
 }
 
+// A hollow ball: outer radius `outer`, a cavity of radius `inner`, on a 0.25 mm grid.
+Mesh shell_surface(double outer, double inner) {
+    EllipsoidVolumeOptions o;
+    o.radii = Vec3d::Constant(outer);
+    o.grid.spacing = Vec3d::Constant(0.25);
+    const double half = outer + 3.0;
+    for (auto& size : o.grid.size) size = static_cast<std::size_t>(2 * half / 0.25) + 1;
+    o.grid.origin = Vec3d::Constant(-half);
+    Volume v = make_ellipsoid_volume(o);
+    o.radii = Vec3d::Constant(inner);
+    const Volume cavity = make_ellipsoid_volume(o);
+    for (std::size_t i = 0; i < v.voxels.size(); ++i) v.voxels[i] -= cavity.voxels[i];
+    return extract_surface(v, {.iso = 500.0}).mesh;
+}
+
+TEST(Resolution, BoneThinnedByALossFartherThanAVoxelStaysCompared) {
+    // The reference a solid ball of radius 6 on a 1 mm grid. Examined: a shell 0.6 mm thick,
+    // under the voxel. Where the shell's outer face is the reference's own (radius 6), its
+    // thinness decides where each scan puts the surface: flagged. Where it lies 1.9 mm inside
+    // (radius 4.1, the bone eroded down to a thin layer), farther than the voxel is wide along
+    // any normal (√3 mm on the diagonal), the loss is larger than partial volume can move a
+    // surface: compared.
+    Mesh reference = ellipsoid_surface({0, 0, 0}, {6, 6, 6}, 0.25);
+    reference.voxel_axes = grid(1, 1, 1);
+    const auto outer = [](const Vec3d& p, const Vec3d& n) { return n.dot(p.normalized()) > 0.9; };
+    Mesh thin_in_place = shell_surface(6.0, 5.4);
+    thin_in_place.voxel_axes = grid(1, 1, 1);
+    EXPECT_GT(flagged_share(reference, flag(reference, thin_in_place), outer), 0.95);
+    Mesh eroded = shell_surface(4.1, 3.5);
+    eroded.voxel_axes = grid(1, 1, 1);
+    EXPECT_EQ(flagged_share(reference, flag(reference, eroded), outer), 0.0);
+    // Gone 0.8 mm deep (under a voxel) to a thin layer: partial volume could place it.
+    Mesh shallow = shell_surface(5.2, 4.6);
+    shallow.voxel_axes = grid(1, 1, 1);
+    EXPECT_GT(flagged_share(reference, flag(reference, shallow), outer), 0.95);
+}
+
 TEST(Resolution, AMeshFileTakesTheGivenResolutionAndAVolumesGridWins) {
     // The plate as a mesh file would hold it (no grid): off, unless --resolution says 2 mm.
     Mesh plate = ellipsoid_surface({0, 0, 0}, {12, 12, 0.7}, 0.25);

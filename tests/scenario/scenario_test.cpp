@@ -188,6 +188,13 @@ TEST(LoadScenario, ScaleCropBallAndFirstRegionKeysAreCheckedAndRead) {
     EXPECT_DOUBLE_EQ(sc.expect.min_first_area.value_or(0), 10.0);
     EXPECT_DOUBLE_EQ(sc.expect.max_first_area.value_or(0), 20.0);
     EXPECT_DOUBLE_EQ(sc.expect.min_first_volume_lost.value_or(0), 5.0);
+    std::string p_value = kValid;
+    p_value.replace(p_value.find("[expect]"), 8, "[expect]\nmax_p_value = 0.001");
+    EXPECT_DOUBLE_EQ(load_scenario(write_scenario("p", p_value), {}).expect.max_p_value.value_or(0),
+                     0.001);
+    std::string bad_p = kValid;
+    bad_p.replace(bad_p.find("[expect]"), 8, "[expect]\nmax_p_value = 0.0");
+    expect_error(bad_p, {"max_p_value", "a probability in (0, 1]"});
 
     std::string kind = kValid;
     kind.replace(kind.find("[expect]"), 8, "[expect]\nfirst_kind = \"hole\"");
@@ -241,6 +248,108 @@ voxel_size = [0.8, 0.0, 0.8]
     std::string volume_files = good;
     volume_files.replace(volume_files.find("[examined]"), 10, "[examined]\nas_mesh_files = true");
     EXPECT_TRUE(load_scenario(write_scenario("files", volume_files), {}).as_mesh_files);
+}
+
+// A mesh or phantom scanned as CT (issue 50, item 6): both scans image the reference's solid,
+// the examined one under the motion with its erosions; the examined scan takes what it does not
+// say from the reference, with its own noise realisation.
+constexpr const char* kCtOfPhantom = R"(
+name = "ct-of-condyle"
+[reference]
+phantom = "condyle"
+scan_as_ct = true
+voxel_size = [0.3, 0.3, 0.3]
+psf_fwhm = 0.5
+volume_noise = 40.0
+noise_correlation = 0.3
+volume_noise_seed = 5
+[examined]
+pose = [1.0, -1.0, 2.0, 0.5, 0.0, -0.5]
+erode = [0.0, 0.0, 10.0, 3.0]
+erode_to = 1040.0
+voxel_size = [0.4, 0.4, 0.4]
+)";
+
+TEST(LoadScenario, AMeshScannedAsCtTakesAcquisitionKeysAndTheExaminedInheritsThem) {
+    const Scenario sc = load_scenario(write_scenario("ct", kCtOfPhantom), {});
+    EXPECT_TRUE(sc.reference.scan_as_ct);
+    ASSERT_TRUE(sc.reference.surface.iso.has_value());
+    EXPECT_EQ(*sc.reference.surface.iso, 1420.0);  // the middle of [1040, 1800]
+    EXPECT_EQ(sc.examined.acquisition.noise, 40.0);
+    EXPECT_EQ(sc.examined.acquisition.psf_fwhm, 0.5);
+    EXPECT_EQ(sc.examined.acquisition.noise_correlation, 0.3);
+    EXPECT_EQ(sc.examined.acquisition.noise_seed, 6u);  // its own realisation
+    EXPECT_EQ(*sc.examined.acquisition.voxel_size, Vec3d(0.4, 0.4, 0.4));
+    EXPECT_TRUE(sc.resample_volume);
+    ASSERT_EQ(sc.erosions.size(), 1u);
+    // Without [examined]: the same acquisition, the next seed.
+    std::string bare = kCtOfPhantom;
+    bare.erase(bare.find("[examined]"));
+    const Scenario b = load_scenario(write_scenario("bare", bare), {});
+    EXPECT_EQ(*b.examined.acquisition.voxel_size, Vec3d(0.3, 0.3, 0.3));
+    EXPECT_EQ(b.examined.acquisition.noise_seed, 6u);
+    EXPECT_TRUE(b.resample_volume);
+    std::string values = kCtOfPhantom;
+    values.replace(values.find("scan_as_ct = true"), 17,
+                   "scan_as_ct = true\nct_values = [0.0, 1000.0]\niso = 400.0");
+    const Scenario v = load_scenario(write_scenario("values", values), {});
+    EXPECT_EQ(v.reference.ct_background, 0.0f);
+    EXPECT_EQ(v.reference.ct_object, 1000.0f);
+    EXPECT_EQ(*v.reference.surface.iso, 400.0);
+}
+
+TEST(LoadScenario, ScanAsCtIsRefusedWhereItCannotApply) {
+    std::string no_voxels = kCtOfPhantom;
+    no_voxels.replace(no_voxels.find("voxel_size = [0.3, 0.3, 0.3]"), 28, "");
+    expect_error(no_voxels, {"scan_as_ct", "needs voxel_size"});
+    std::string volume = kCtOfPhantom;
+    volume.replace(volume.find("phantom = \"condyle\""), 19, "mesh = \"head.mha\"");
+    expect_error(volume, {"scan_as_ct", "is a volume already"});
+    std::string values = kCtOfPhantom;
+    values.replace(values.find("scan_as_ct = true"), 17,
+                   "scan_as_ct = true\nct_values = [5.0, 5.0]");
+    expect_error(values, {"ct_values", "two different finite values"});
+    std::string loose = kValid;
+    loose.replace(loose.find("[reference]"), 11, "[reference]\nct_values = [0.0, 1.0]");
+    expect_error(loose, {"ct_values", "needs scan_as_ct"});
+    std::string examined = kValid;
+    examined.replace(examined.find("[examined]"), 10, "[examined]\nscan_as_ct = true");
+    expect_error(examined, {"scan_as_ct", "belongs in [reference]"});
+    std::string psf = kCtOfPhantom;
+    psf.replace(psf.find("psf_fwhm = 0.5"), 14, "psf_fwhm = -0.5");
+    expect_error(psf, {"psf_fwhm", "must be ≥ 0 mm"});
+    std::string blur_on_mesh = kValid;
+    blur_on_mesh.replace(blur_on_mesh.find("[examined]"), 10, "[examined]\npsf_fwhm = 0.5");
+    expect_error(blur_on_mesh, {"psf_fwhm", "scan_as_ct"});
+}
+
+TEST(BuildScenario, ACtOfAPhantomIsAPairOfScansWithTheErosionAsTruth) {
+    std::string small = kCtOfPhantom;  // coarser voxels keep the test quick
+    small.replace(small.find("[0.3, 0.3, 0.3]"), 15, "[0.5, 0.5, 0.5]");
+    small.replace(small.find("[0.4, 0.4, 0.4]"), 15, "[0.6, 0.6, 0.6]");
+    const Scenario sc = load_scenario(write_scenario("ct", small), {});
+    const ScenarioMeshes m = build_scenario_meshes(sc);
+    ASSERT_GT(m.reference.vertex_count(), 1000u);
+    ASSERT_GT(m.examined.vertex_count(), 1000u);
+    EXPECT_TRUE(m.reference.voxel_axes.has_value());  // surfaces of scans carry their grid
+    EXPECT_TRUE(m.has_truth_pose);
+    std::size_t truth = 0;
+    for (auto t : m.truth) truth += t;
+    EXPECT_GT(truth, 10u);
+    // The examined scan holds the moved condyle: placed back, its surface lies on the
+    // reference's away from the erosion (within a voxel and the noise).
+    Mesh placed = m.examined;
+    transform_mesh(placed, m.true_reference_from_examined);
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    for (const auto& p : m.reference.positions) a += p.cast<double>();
+    for (const auto& p : placed.positions) b += p.cast<double>();
+    a /= double(m.reference.vertex_count());
+    b /= double(placed.vertex_count());
+    EXPECT_LT((a - b).norm(), 0.1);
+    bool noted = false;
+    for (const auto& n : m.notes)
+        noted |= n.find("CT of the reference's solid") != std::string::npos;
+    EXPECT_TRUE(noted);
 }
 
 TEST(LoadScenario, AResampledExaminedScanTakesItsOwnFieldOfViewButNoOtherSurfaceKey) {

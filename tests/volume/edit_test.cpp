@@ -175,6 +175,27 @@ TEST(EditVolume, TheTruthFileRecordsTheAcquisition) {
     EXPECT_NE(json.find("\"voxel_size\": [0.8, 0.8, 0.8]"), std::string::npos) << json;
     EXPECT_NE(json.find("\"noise_sigma\": 20"), std::string::npos) << json;
     EXPECT_NE(json.find("\"noise_seed\": 7"), std::string::npos) << json;
+    edit.psf_fwhm = 0.6;
+    edit.noise_correlation = 0.3;
+    const std::string blurred = edit_json(edit);
+    EXPECT_NE(blurred.find("\"psf_fwhm\": 0.6"), std::string::npos) << blurred;
+    EXPECT_NE(blurred.find("\"noise_correlation\": 0.3"), std::string::npos) << blurred;
+}
+
+TEST(EditVolume, TheScannersBlurKeepsTheSurfaceInPlaceAndABadWidthIsRefusedFirst) {
+    const Volume in = sphere_volume();
+    VolumeEdit edit;
+    edit.spacing = Vec3d(0.8, 0.8, 0.8);
+    edit.psf_fwhm = 1.2;
+    const Volume out = edit_volume(in, edit);
+    // A symmetric blur moves a flat edge's middle value nowhere; the sphere's curvature pulls
+    // it in by about σ² / r = 0.26² / 10 mm.
+    EXPECT_LT(rms_off_sphere(extract_surface(out, {.iso = 500.0}).mesh, 10.0), 0.2);
+    edit.psf_fwhm = -0.5;
+    EXPECT_THROW((void)edit_volume(in, edit), InputError);
+    edit.psf_fwhm = 0.0;
+    edit.noise_correlation = NAN;
+    EXPECT_THROW((void)edit_volume(in, edit), InputError);
 }
 
 }  // namespace
