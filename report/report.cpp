@@ -408,7 +408,8 @@ std::string regions_csv(const AnalysisResult& result) {
     csv << "zoom,footprint" << l << "_per_px,region,kind,vertices,area" << a2 << ",max_" << nu
         << ",max_mean_" << nu << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l
         << ",volume" << v3 << ",missing_fraction,centroid_x" << l << ",centroid_y" << l
-        << ",centroid_z" << l << ",best_view,best_view_azimuth_deg,best_view_elevation_deg\n";
+        << ",centroid_z" << l
+        << ",best_view,best_view_azimuth_deg,best_view_elevation_deg,z,p_value\n";
     const auto& plan = result.sweep.plan;
     for (std::size_t z = 0; z < result.decisions.size(); ++z) {
         const std::vector<double> peaks = region_peak_values(result, z);
@@ -424,14 +425,20 @@ std::string regions_csv(const AnalysisResult& result) {
             if (r.kind != RegionKind::MissingSurface)
                 std::snprintf(depths, sizeof depths, "%.6g,%.6g,%.6g", r.peak_depth, r.mean_depth,
                               r.volume);
-            char row[700];
+            // How strongly it stands out (decision.cpp state_significance): empty where the run
+            // stated none (a surface gone, a missing surface, a region at the vertices' scale).
+            char significance[64] = ",";
+            if (std::isfinite(r.z) && std::isfinite(r.p_value))
+                std::snprintf(significance, sizeof significance, "%.4g,%.3g", r.z, r.p_value);
+            const std::string kind = r.is_hole_loss() ? "surface gone" : to_string(r.kind);
+            char row[760];
             std::snprintf(
                 row, sizeof row,
-                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%s,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g\n", z,
-                plan.footprints[z], r.id, to_string(r.kind).c_str(), r.vertex_count, r.area,
+                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%s,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%s\n",
+                z, plan.footprints[z], r.id, kind.c_str(), r.vertex_count, r.area,
                 peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, depths,
                 r.missing_fraction, r.centroid.x(), r.centroid.y(), r.centroid.z(), r.best_view, az,
-                el);
+                el, significance);
             csv << row;
         }
     }

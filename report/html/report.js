@@ -335,6 +335,10 @@
     const tr = el("tr", { class: "evidence", "data-evidence": r.id });
     const td = el("td", { colspan: columns });
     td.appendChild(el("span", { class: "finding-text" }, r.finding ? r.finding : r.kind + " region"));
+    // How strongly it stands out of the undamaged surface (null where none was stated).
+    if (typeof r.z === "number" && typeof r.p_value === "number")
+      td.appendChild(el("span", { class: "significance" }, "; " + fmt(r.z) + " spreads of the undamaged surface, family-wise p " +
+                                                             (r.p_value < 1e-6 ? "< 1e-6" : r.p_value.toPrecision(2))));
     if (r.best_view >= 0) {
       td.appendChild(el("br"));
       td.appendChild(document.createTextNode("best view "));
