@@ -18,6 +18,7 @@
 #include "mesh/cancel.h"
 #include "tools/command.h"
 
+#include <pthread.h>
 #include <semaphore.h>
 #include <unistd.h>
 #include <atomic>
@@ -145,7 +146,19 @@ void write_line(const char* text, std::size_t size) noexcept {
 
 void install_interrupt_handlers() {
     install_early(environ);  // again: a no-op after .preinit_array, needed where it did not run
-    std::thread(watchdog).detach();
+    // note: its own small stack, not the default (RLIMIT_STACK, 8 MB or more): under ulimit -v
+    // a thread of the default size could not be mapped and std::thread's exception, thrown
+    // before any command's guard, aborted the run (the fault suite's 600 MB case, once in CI).
+    // Without a watchdog a first signal still stops the run at its next poll; only the 3 s
+    // grace and the second signal's immediate end are lost.
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0) return;
+    pthread_attr_setstacksize(&attr, 256 * 1024);
+    pthread_attr_setdetachstate(&attr, PTHREAD_CREATE_DETACHED);
+    pthread_t thread;
+    (void)pthread_create(
+        &thread, &attr, [](void*) -> void* { watchdog(); }, nullptr);
+    pthread_attr_destroy(&attr);
 }
 
 void note_interrupt_reported() noexcept { g_main_reported.store(true); }

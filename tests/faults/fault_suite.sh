@@ -234,6 +234,16 @@ case_address_space() {
         no_leftovers "$work/prev" "$what"
         echo "ok: $what: exit $code $(grep '^glint: ' "$work/err.txt" | head -c 200)"
     done
+    # A default thread stack larger than the address space left (ulimit -s 1 GB under
+    # ulimit -v 600 MB): glint's own start-up thread has a stack of its own size. It aborted
+    # here before (std::thread's exception, thrown before any command's guard).
+    set +e
+    (ulimit -v $((600 * 1024)) && ulimit -s 1000000 && exec "$glint" info "$work/in/ref.ply") \
+        >/dev/null 2>"$work/err.txt"
+    code=$?
+    set -e
+    [ "$code" -eq 0 ] || fail "ulimit -s 1 GB: glint info exit $code: $(tail -3 "$work/err.txt")"
+    echo "ok: a default thread stack beyond the address space: glint info exit 0"
 }
 
 case "$case_name" in
