@@ -25,13 +25,7 @@ void check(const Mesh& object, const MeshScan& scan) {
         throw InputError("CT of a mesh: values " + std::to_string(scan.background) + " outside, " +
                          std::to_string(scan.object) +
                          " inside; expected two different finite values");
-    for (std::size_t i = 0; i < scan.erosions.size(); ++i) {
-        const Erosion& e = scan.erosions[i];
-        if (!e.center.allFinite() || !(e.radius > 0 && std::isfinite(e.radius)) ||
-            !std::isfinite(e.value))
-            throw InputError("CT of a mesh: erosion " + std::to_string(i + 1) +
-                             ": expected a finite centre and value and a radius > 0 mm");
-    }
+    check_erosions(scan.erosions, "CT of a mesh");
     if (!scan.moved_from_original.matrix().allFinite())
         throw InputError("CT of a mesh: the motion holds a number that is not finite");
     if (!std::isfinite(scan.margin))

@@ -114,15 +114,7 @@ VolumeGeometry crop_to_field_of_view(const VolumeGeometry& out, const VolumeGeom
 Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
     // Every number of the edit is checked before any voxel: a NaN value became a bare `nan` in
     // the truth JSON and a volume of NaN (issue 52).
-    for (std::size_t i = 0; i < edit.erosions.size(); ++i) {
-        const Erosion& e = edit.erosions[i];
-        const std::string where = "volume edit: erosion " + std::to_string(i + 1) + ": ";
-        if (!e.center.allFinite() || !(e.radius > 0 && std::isfinite(e.radius)))
-            throw InputError(where + "centre and radius must be finite and the radius > 0 mm");
-        if (!std::isfinite(e.value))
-            throw InputError(where + "the value eroded material takes is " +
-                             std::to_string(e.value) + "; expected a finite value");
-    }
+    check_erosions(edit.erosions, "volume edit");
     for (const auto& [x, what] :
          {std::pair{edit.noise_sigma, "noise σ"}, std::pair{edit.psf_fwhm, "the point-spread FWHM"},
           std::pair{edit.noise_correlation, "the noise's correlation"}})
@@ -165,6 +157,18 @@ Volume edit_volume(const Volume& in, const VolumeEdit& edit) {
     }
     apply_scanner(out, {edit.psf_fwhm, edit.noise_sigma, edit.noise_correlation, edit.noise_seed});
     return out;
+}
+
+void check_erosions(std::span<const Erosion> erosions, const std::string& who) {
+    for (std::size_t i = 0; i < erosions.size(); ++i) {
+        const Erosion& e = erosions[i];
+        const std::string where = who + ": erosion " + std::to_string(i + 1) + ": ";
+        if (!e.center.allFinite() || !(e.radius > 0 && std::isfinite(e.radius)))
+            throw InputError(where + "centre and radius must be finite and the radius > 0 mm");
+        if (!std::isfinite(e.value))
+            throw InputError(where + "the value eroded material takes is " +
+                             std::to_string(e.value) + "; expected a finite value");
+    }
 }
 
 float eroded_value(float value, const Vec3d& p, std::span<const Erosion> erosions, double ramp) {

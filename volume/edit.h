@@ -42,6 +42,10 @@ struct VolumeEdit {
     double noise_correlation = 0.0;
 };
 
+/// \throw InputError naming `who` and the erosion (1-based) whose centre, radius or value is
+/// not finite, or whose radius is not > 0.
+void check_erosions(std::span<const Erosion> erosions, const std::string& who);
+
 /// `value` at the object's point `p` (original frame) after `erosions`: each ball lowers it
 /// towards its value with a weight that falls linearly from 1 to 0 over `ramp` mm across the
 /// ball's surface (partial volume), value ← value + w · (min(value, target) − value).
