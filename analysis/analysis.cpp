@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <future>
 #include <optional>
+#include <system_error>
 
 namespace glint {
 
@@ -223,16 +224,20 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     // A mesh file exported from a CT segmentation without smoothing tells the grid it was
     // extracted on (mesh/voxel_grid.h): it is then read as the volume's surface would be, thin
     // plates and gaps below that grid not compared (issue 50). --resolution overrides.
+    // A smoothed export keeps its grid's period (lattice_of_vertices).
     std::optional<Eigen::Matrix3d> reference_grid;
-    bool examined_grid_detected = false;
+    bool examined_grid_detected = false, reference_smoothed = false, examined_smoothed = false;
     if (!options.decision.resolution) {
         if (!reference.voxel_axes)
-            if (const auto g = detect_voxel_grid(reference))
+            if (const auto g = detect_voxel_grid(reference)) {
                 reference_grid = Eigen::Matrix3d(g->spacing.asDiagonal());
+                reference_smoothed = g->smoothed;
+            }
         if (!examined.voxel_axes)
             if (const auto g = detect_voxel_grid(examined)) {
                 examined.voxel_axes = Eigen::Matrix3d(g->spacing.asDiagonal());
                 examined_grid_detected = true;
+                examined_smoothed = g->smoothed;
                 // Where the volume's edge cut it: beyond, the scan saw nothing (not a loss).
                 if (examined.field_of_view.empty())
                     examined.field_of_view = field_of_view_of_cut(examined, *g);
@@ -252,12 +257,18 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     // (lavapipe brings LLVM), 0.05-0.1 s on a CPU machine and more where a GPU starts. The
     // sweep takes the same shared context (render/context.h); a failure here is left for the
     // sweep to report.
-    auto device = std::async(std::launch::async, [render = options.sweep.render.context_options()] {
+    const auto open_device = [render = options.sweep.render.context_options()] {
         try {
             (void)shared_render_context(render);
         } catch (const std::exception&) {
         }
-    });
+    };
+    std::future<void> device;
+    try {
+        device = std::async(std::launch::async, open_device);
+    } catch (const std::system_error&) {
+        // No thread to be had: the sweep opens the device itself when it starts.
+    }
     // One BVH per surface for the run (mesh/surface_index.h), shared by the fit, the distance,
     // the sweep's CPU renderer and (small enough) the pictures: the reference's is built for a
     // registration, or below for an Embree sweep; the fitted examined mesh's for the distance.
@@ -292,9 +303,11 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.examined_encloses = !result.scan_view && encloses(fitted);
     ResolutionGrids grids = resolution_grids(reference, fitted, options.decision.resolution);
     grids.examined_detected = examined_grid_detected;
+    grids.examined_smoothed = examined_smoothed;
     if (!grids.reference && reference_grid) {
         grids.reference = reference_grid;
         grids.reference_detected = true;
+        grids.reference_smoothed = reference_smoothed;
     }
     if (grids.reference || grids.examined) {
         for (const auto& grid : {grids.reference, grids.examined})
@@ -306,7 +319,7 @@ AnalysisResult analyse(const Mesh& reference_in, Mesh examined, const AnalysisOp
     result.distance_seconds = seconds_since(t);
 
     announce(observer, "sweep");
-    device.wait();
+    if (device.valid()) device.wait();
     SweepSurfaces surfaces;
     if (sweeps_on_cpu(options.sweep.render)) {
         if (!reference_index) reference_index = index_surface(reference);

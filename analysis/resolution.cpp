@@ -106,12 +106,14 @@ bool faint_here(const Mesh& reference, const Mesh& fitted, const ClosestPointInd
 }
 
 std::string rule_text(const ResolutionGrids& grids) {
-    const auto grid = [&](const std::optional<Eigen::Matrix3d>& a, bool detected) {
+    const auto grid = [&](const std::optional<Eigen::Matrix3d>& a, bool detected, bool smoothed) {
         if (!a) return std::string("no grid (a mesh file)");
         std::ostringstream s;
         s.precision(3);
         s << a->col(0).norm() << " × " << a->col(1).norm() << " × " << a->col(2).norm();
-        if (detected) s << ", the marching-cubes grid its vertices lie on";
+        if (detected)
+            s << (smoothed ? ", the marching-cubes grid its smoothed vertices still crowd near"
+                           : ", the marching-cubes grid its vertices lie on");
         return s.str();
     };
     std::ostringstream s;
@@ -119,8 +121,9 @@ std::string rule_text(const ResolutionGrids& grids) {
          "than "
       << kResolutionVoxels << " voxel(s) of the coarser grid seen along that normal, or the "
       << "reference's own far side closer along one of " << kConeRays << " rays tilted "
-      << kConeTiltDeg << "° inward (reference " << grid(grids.reference, grids.reference_detected)
-      << ", examined " << grid(grids.examined, grids.examined_detected)
+      << kConeTiltDeg << "° inward (reference "
+      << grid(grids.reference, grids.reference_detected, grids.reference_smoothed) << ", examined "
+      << grid(grids.examined, grids.examined_detected, grids.examined_smoothed)
       << (grids.given ? "; --resolution for a mesh file" : "")
       << "): a thin plate, a thin process's tip or a narrow gap, where partial volume decides "
          "each scan's surface; or either scan's surface faint there (its volume within "

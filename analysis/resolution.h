@@ -90,6 +90,9 @@ struct ResolutionGrids {
     /// A grid read from a mesh file's own vertices (mesh/voxel_grid.h: marching-cubes output).
     bool reference_detected = false;
     bool examined_detected = false;
+    /// Of those, a grid read from a smoothed export's periodicity (lattice_of_vertices).
+    bool reference_smoothed = false;
+    bool examined_smoothed = false;
 };
 [[nodiscard]] ResolutionGrids resolution_grids(const Mesh& reference, const Mesh& examined,
                                                std::optional<double> given);

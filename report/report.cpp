@@ -24,6 +24,7 @@
 #include <future>
 #include <limits>
 #include <sstream>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -508,8 +509,15 @@ std::optional<Mesh> write_outputs(const OutputFolder& folder, const Mesh& refere
     // stage lets the caller hand back what the jobs freed (tools/memory.h): the page's thread
     // frees its decimation buffers into a heap of its own, which stays resident otherwise (2M:
     // 614 instead of 453 MB resident under the pictures).
-    auto page_data = std::async(std::launch::async,
-                                [&] { return report_page_data(reference, result, examined); });
+    // Deferred (run where it is read) when no thread can be started: the page is then built
+    // after the files, as a run without threads would.
+    const auto page_job = [&] { return report_page_data(reference, result, examined); };
+    std::future<decltype(page_job())> page_data;
+    try {
+        page_data = std::async(std::launch::async, page_job);
+    } catch (const std::system_error&) {
+        page_data = std::async(std::launch::deferred, page_job);
+    }
     stage("atlas files");
     const AtlasFiles& kinds = exports.atlas_files;
     const std::size_t files = std::size_t{kinds.ply} + kinds.vtk + kinds.vtp + 2;

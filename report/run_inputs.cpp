@@ -3,6 +3,7 @@
 #include "report/orientation.h"
 
 #include <exception>
+#include <system_error>
 #include <thread>
 
 namespace glint {
@@ -40,13 +41,23 @@ std::pair<RunInput, RunInput> load_run_pair(const fs::path& reference, const fs:
     }
     RunInput exa;
     std::exception_ptr exa_error;
-    std::thread other([&] {
-        try {
-            exa = load_run_input("examined", examined, surface);
-        } catch (...) {
-            exa_error = std::current_exception();
-        }
-    });
+    std::thread other;
+    try {
+        other = std::thread([&] {
+            try {
+                exa = load_run_input("examined", examined, surface);
+            } catch (...) {
+                exa_error = std::current_exception();
+            }
+        });
+    } catch (const std::system_error&) {
+        // No thread to be had (address space, a process limit): one file after the other.
+        RunInput ref = load_run_input("reference", reference, surface);
+        tell("reference");
+        exa = load_run_input("examined", examined, surface);
+        tell("examined");
+        return {std::move(ref), std::move(exa)};
+    }
     RunInput ref;
     try {
         ref = load_run_input("reference", reference, surface);

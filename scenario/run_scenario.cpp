@@ -278,10 +278,15 @@ ScenarioOutcome run_scenario(const Scenario& sc, const ScenarioRunOptions& run) 
     }
     if (!run.output_root.empty()) {
         const SurfaceSource& e = sc.examined;
-        record.inputs.push_back(
-            {"examined", sc.examined_derived ? fs::path() : e.mesh,
-             sc.examined_derived ? "derived from the reference" : detail::describe_source(e),
-             meshes.examined.vertex_count(), meshes.examined.triangle_count()});
+        // A pair generator's scan of the reference's object is a second acquisition of it,
+        // not the reference's surface edited.
+        const bool scanned = sc.resample_volume || sc.reference.acquisition.any();
+        const char* derived = !scanned                  ? "derived from the reference"
+                              : sc.reference.scan_as_ct ? "a CT scan of the reference's solid"
+                                                        : "a scan of the reference's volume";
+        record.inputs.push_back({"examined", sc.examined_derived ? fs::path() : e.mesh,
+                                 sc.examined_derived ? derived : detail::describe_source(e),
+                                 meshes.examined.vertex_count(), meshes.examined.triangle_count()});
         add_truth_scalars(meshes, options.exports);
     }
     const Inspection inspection =

@@ -4,6 +4,7 @@
 #include "mesh/json_text.h"
 #include "mesh/units.h"
 #include "mesh/validate.h"
+#include "mesh/voxel_grid.h"
 #include "tools/command.h"
 #include "tools/surface_flags.h"
 #include "volume/surface.h"
@@ -17,6 +18,16 @@
 
 namespace glint::cli::info_command {
 namespace {
+
+// The CT grid a segmentation export was extracted on, read back from its vertices
+// (mesh/voxel_grid.h): what sweep reads thin plates and gaps against; null when none is read.
+nlohmann::json grid_json(const Mesh& mesh) {
+    const auto g = detect_voxel_grid(mesh);
+    if (!g) return nullptr;
+    return {{"spacing", {g->spacing.x(), g->spacing.y(), g->spacing.z()}},
+            {"read_from", g->smoothed ? "period" : "edges"},
+            {"periodicity", g->smoothed ? nlohmann::json(g->periodicity) : nlohmann::json()}};
+}
 
 nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
     const auto& r = loaded.report;
@@ -52,6 +63,7 @@ nlohmann::json to_json(const LoadedMesh& loaded, const ValidationReport& v) {
           {"split_polygons", r.split_polygons}}},
         {"findings", v.findings},
         {"warnings", r.warnings},
+        {"grid", grid_json(loaded.mesh)},
     };
 }
 
@@ -85,6 +97,17 @@ void print_text(const nlohmann::json& j) {
               << " duplicate triangles and " << num(r["unused_vertices"])
               << " unused vertices, split " << num(r["split_polygons"]) << " polygons\n";
     if (!j["scalars"].empty()) std::cout << "  scalars     " << json_text(j["scalars"]) << '\n';
+    if (const auto& g = j["grid"]; !g.is_null()) {
+        const auto& s = g["spacing"];
+        std::snprintf(line, sizeof line, "  grid        %.4g x %.4g x %s, ", s[0].get<double>(),
+                      s[1].get<double>(), with_unit(s[2].get<double>(), unit).c_str());
+        std::cout << line
+                  << (g["read_from"] == "edges"
+                          ? "marching-cubes output (its vertices lie on the grid's edges)"
+                          : "a smoothed marching-cubes export (its vertices crowd near the "
+                            "grid's planes)")
+                  << ": sweep compares no thin plate or gap below it\n";
+    }
     for (const auto& f : j["findings"])
         std::cout << "  finding     " << terminal_safe(f.get<std::string>()) << '\n';
     for (const auto& w : j["warnings"])

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -118,14 +120,14 @@ ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e,
                        .tilt_deg = std::vector<float>(n, unset)};
     const Adjacency adj = adjacency(reference);
     const std::vector<std::uint8_t> use = usable(e);
-    const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < threads; ++t)
-        pool.emplace_back([&, t] {
-            BallFit fit(reference, adj, e, use, radius);
-            for (std::size_t v = t * stride; v < n; v += threads * stride) fit.fit(v, out);
-        });
-    for (auto& th : pool) th.join();
+    // One fit state per interleaved share of the vertices, on oneTBB's workers: a worker that
+    // cannot be started leaves its share to the others (a std::thread that could not start
+    // ended the run in std::terminate from the pool's destructor).
+    const std::size_t shares = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    tbb::parallel_for(std::size_t{0}, shares, [&](std::size_t t) {
+        BallFit fit(reference, adj, e, use, radius);
+        for (std::size_t v = t * stride; v < n; v += shares * stride) fit.fit(v, out);
+    });
     return out;
 }
 

@@ -330,7 +330,9 @@ TEST(Decide, AKnownVoxelReadsTheEvidenceNoFinerThanAVoxel) {
     // 9; the scans' voxel is 3 units. The grid's median edge is √2 (half its triangles' first
     // edges are diagonals) and, stated 200 units large, the ladder is 2, 4 and 8 edges: 4√2 is
     // the first rung no finer than a voxel. Reading there is how scans are read, not a warning.
+    // Two scans differ everywhere by their sampling: here ±0.1 (3 % of the voxel).
     Evidence e;
+    for (std::size_t v = 0; v < e.distance.size(); ++v) e.distance[v] = v % 2 ? 0.1f : -0.1f;
     e.change(20, 20, 9.0, -3.0f, 30.0f);
     DecisionEvidence view = e.view();
     view.size = 200.0;
@@ -352,6 +354,19 @@ TEST(Decide, AKnownVoxelReadsTheEvidenceNoFinerThanAVoxel) {
     EXPECT_FALSE(own.scale.searched);
     EXPECT_EQ(own.scale.radius, 0.0);
     ASSERT_EQ(own.regions.regions.size(), 1u);
+    // A surface derived from the reference (a mesh edit of it: it coincides with the reference
+    // on the undamaged majority) was not sampled apart from it; nothing below a voxel to read
+    // past, so its own scale stands, voxel or not.
+    Evidence derived;
+    std::fill(derived.distance.begin(), derived.distance.end(), 0.0f);
+    derived.change(20, 20, 9.0, -3.0f, 30.0f);
+    DecisionEvidence derived_view = derived.view();
+    derived_view.size = 200.0;
+    derived_view.voxel = 3.0;
+    const ZoomDecision same = decide(derived.mesh, derived_view, DecisionOptions{});
+    EXPECT_FALSE(same.scale.searched);
+    ASSERT_EQ(same.regions.regions.size(), 1u);
+    EXPECT_EQ(same.regions.regions[0].kind, RegionKind::Dent);
 }
 
 // A change the statement says the run can tell, left without a region, is warned about with
@@ -362,7 +377,8 @@ TEST(Decide, AChangeBeyondTheStatedLimitWithoutARegionIsWarnedAboutWithItsPlace)
     e.change(20, 20, 9.0, -0.2f, 1.0f);
     DecisionEvidence view = e.view();
     view.size = 200.0;
-    view.voxel = 3.0;
+    // the scans' sampling (±0.001) 1.5 % of the voxel: read no finer than it
+    view.voxel = 0.1;
     view.unit = "mm";
     const ZoomDecision d = decide(e.mesh, view, DecisionOptions{});
     EXPECT_TRUE(d.regions.regions.empty());
@@ -453,6 +469,8 @@ TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
     EXPECT_GE(bump.z, DecisionOptions{}.shape_k);
     EXPECT_GT(d.scale.resels, 10.0);
     EXPECT_LT(bump.p_value, 1e-6);
+    // A z this far out underflows erfc; a p is never stated as 0.
+    EXPECT_GT(bump.p_value, 0.0) << "z " << bump.z;
     // The detection limit as a curve: the scale read first, then each wider rung of the
     // ladder up to its largest, areas growing, no depth below the data's resolution.
     ASSERT_GE(d.scale.limit_curve.size(), 2u);

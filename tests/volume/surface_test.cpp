@@ -4,11 +4,14 @@
 #include "volume/surface.h"
 
 #include "mesh/error.h"
+#include "mesh/geometry.h"
+#include "mesh/voxel_grid.h"
 #include "volume/phantom.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace glint {
 namespace {
@@ -154,6 +157,56 @@ TEST(ExtractSurface, SmoothingDoesNotShrinkAndDecimationStaysWithinTolerance) {
     for (const auto& p : coarse.mesh.positions)
         EXPECT_LT(std::abs(ellipsoid_signed_distance(p.cast<double>(), o.center, o.radii)),
                   0.1 + 0.1);
+}
+
+// What a segmentation exported as a mesh file keeps of its grid (mesh/voxel_grid.h): raw
+// marching cubes lies on the grid's edges, a smoothed export still crowds near its planes.
+TEST(ExtractSurface, ASmoothedExportStillTellsItsGridByItsVerticesPeriod) {
+    EllipsoidVolumeOptions o;
+    o.center = {0.3, -0.2, 0.1};
+    o.radii = {30, 24, 18};
+    o.grid.spacing = {0.5, 0.7, 1.1};
+    for (int d = 0; d < 3; ++d)
+        o.grid.size[static_cast<std::size_t>(d)] =
+            static_cast<std::size_t>(2 * (o.radii[d] + 4) / o.grid.spacing[d]);
+    o.grid.origin = o.center - (o.radii + Vec3d::Constant(4.0));
+    const Volume v = make_ellipsoid_volume(o);
+    const auto expect_grid = [&](const Mesh& m, bool smoothed, const char* what) {
+        const auto g = detect_voxel_grid(m);
+        ASSERT_TRUE(g.has_value()) << what;
+        if (smoothed) {
+            EXPECT_TRUE(g->smoothed) << what;
+        }
+        for (int k = 0; k < 3; ++k)
+            EXPECT_NEAR(g->spacing[k], o.grid.spacing[k], 0.01 * o.grid.spacing[k])
+                << what << ", axis " << k;
+    };
+    const Mesh raw = extract_surface(v, {.iso = 500.0}).mesh;
+    expect_grid(raw, false, "raw marching cubes");
+    const Mesh light = extract_surface(v, {.iso = 500.0, .smooth_iterations = 15}).mesh;
+    expect_grid(light, true, "15 windowed-sinc iterations");
+    const Mesh strong =
+        extract_surface(v, {.iso = 500.0, .smooth_iterations = 30, .passband = 0.05}).mesh;
+    expect_grid(strong, true, "30 iterations at pass band 0.05");
+    // The search starts from the triangles' size: √(median area) / 0.58 is the voxel's
+    // geometric mean (0.73 mm here) within 15 %, raw or smoothed.
+    const double mean_voxel = std::cbrt(0.5 * 0.7 * 1.1);
+    for (const Mesh* m : {&raw, &light, &strong}) {
+        const auto s = sampling_of_triangles(*m);
+        ASSERT_TRUE(s.has_value());
+        EXPECT_NEAR(*s, mean_voxel, 0.15 * mean_voxel);
+    }
+    // Turned after extraction, the period runs along no axis: no grid.
+    Mesh turned = light;
+    transform_mesh(turned, Rigid(Eigen::AngleAxisd(0.3, Vec3d(1, 2, 3).normalized())));
+    EXPECT_FALSE(detect_voxel_grid(turned).has_value());
+    // Vertices moved off the grid by half a voxel at random carry no period.
+    Mesh scattered = light;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> half(-0.5f, 0.5f);
+    for (auto& p : scattered.positions)
+        for (int k = 0; k < 3; ++k) p[k] += half(rng) * static_cast<float>(o.grid.spacing[k]);
+    EXPECT_FALSE(lattice_of_vertices(scattered).has_value());
 }
 
 TEST(ExtractSurface, IsoOutsideTheDataRangeSaysTheRange) {
