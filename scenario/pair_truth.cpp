@@ -5,6 +5,7 @@
 #include "registration/closest_point.h"
 
 #include <cmath>
+#include <limits>
 #include <set>
 
 namespace glint {
@@ -18,6 +19,39 @@ std::vector<float> vertex_distances(const Mesh& reference, const Mesh& surface) 
     std::vector<float> out(hits.size());
     for (std::size_t v = 0; v < hits.size(); ++v) out[v] = static_cast<float>(hits[v].distance);
     return out;
+}
+
+PairTruth erosion_truth(const Mesh& reference, const Mesh& noiseless_reference,
+                        const Mesh& noiseless_examined, std::span<const Erosion> erosions,
+                        double reach, double depth) {
+    const std::size_t n = reference.vertex_count();
+    PairTruth truth;
+    truth.damaged.assign(n, 0);
+    truth.damage_id.assign(n, 0);
+    if (erosions.empty() || n == 0) return truth;
+    const std::vector<float> before = noiseless_reference.triangle_count() > 0
+                                          ? vertex_distances(reference, noiseless_reference)
+                                          : std::vector<float>(n, 0.0f);
+    const std::vector<float> after =
+        noiseless_examined.triangle_count() > 0
+            ? vertex_distances(reference, noiseless_examined)
+            : std::vector<float>(n, std::numeric_limits<float>::infinity());
+    for (std::size_t v = 0; v < n; ++v) {
+        const Vec3d p = reference.positions[v].cast<double>();
+        std::int32_t id = 0;
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t e = 0; e < erosions.size(); ++e) {
+            const double outside = (p - erosions[e].center).norm() - erosions[e].radius;
+            if (outside <= reach && outside < nearest) {
+                nearest = outside;
+                id = static_cast<std::int32_t>(e + 1);
+            }
+        }
+        if (id == 0 || !(static_cast<double>(after[v]) - before[v] >= depth)) continue;
+        truth.damaged[v] = 1;
+        truth.damage_id[v] = id;
+    }
+    return truth;
 }
 
 PairTruth distance_truth(const Mesh& reference, const Mesh& damaged_examined,

@@ -10,9 +10,11 @@
 #include "decision/regions.h"
 #include "mesh/damage.h"
 #include "mesh/mesh.h"
+#include "volume/edit.h"
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace glint {
@@ -28,6 +30,24 @@ struct PairTruth {
 [[nodiscard]] PairTruth distance_truth(const Mesh& reference, const Mesh& damaged_examined,
                                        const std::vector<std::int32_t>& footprint,
                                        const std::vector<DamageSpec>& damages);
+
+/// note: a quarter of the coarser scan's largest voxel edge. Two noiseless scans of one
+/// surface on different grids place it apart by partial volume, a tenth of a voxel or two; a
+/// quarter is beyond that and well under any erosion a scan can show (CBCT 0.4 mm: 0.1 mm of a
+/// 0.5 mm cap; CThead's 2 mm slices: 0.5 mm of a 3 mm ball).
+inline constexpr double kErosionLabelVoxels = 0.25;
+
+/// Truth of a CT pair made in the volume (issue 50, item 6), from its noiseless scans: a
+/// reference vertex is damaged where it lies within `reach` of an erosion's ball (the scene's
+/// balls, reference frame) and the noiseless examined surface (placed back in the reference's
+/// frame) lies at least `depth` farther from it than the noiseless reference surface does.
+/// Partial volume, blur, a ball that cuts through thin bone (the surface gone: far from any
+/// examined surface) and an erosion value above the iso value (nothing removed) are what the
+/// scans show, not what the balls say. damage_id: the nearest ball's, 1-based.
+[[nodiscard]] PairTruth erosion_truth(const Mesh& reference, const Mesh& noiseless_reference,
+                                      const Mesh& noiseless_examined,
+                                      std::span<const Erosion> erosions, double reach,
+                                      double depth);
 
 /// Unsigned distance of every reference vertex to a surface in the reference's frame.
 [[nodiscard]] std::vector<float> vertex_distances(const Mesh& reference, const Mesh& surface);

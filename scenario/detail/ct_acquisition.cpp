@@ -39,12 +39,13 @@ Acquisition read_acquisition(TableReader& r, bool volume, const Acquisition* inh
     return a;
 }
 
-Volume acquire(const Volume& volume, VolumeEdit edit, const Acquisition& acquisition) {
+Volume acquire(const Volume& volume, VolumeEdit edit, const Acquisition& acquisition,
+               bool noiseless) {
     if (!acquisition.any() && edit.erosions.empty() &&
         edit.moved_from_original.matrix() == Rigid::Identity().matrix())
         return volume;
     edit.spacing = acquisition.voxel_size;
-    edit.noise_sigma = acquisition.noise;
+    edit.noise_sigma = noiseless ? 0.0 : acquisition.noise;
     edit.noise_seed = acquisition.noise_seed;
     edit.noise_correlation = acquisition.noise_correlation;
     edit.psf_fwhm = acquisition.psf_fwhm;
@@ -52,15 +53,15 @@ Volume acquire(const Volume& volume, VolumeEdit edit, const Acquisition& acquisi
 }
 
 Volume acquire(const Mesh& object, const VolumeEdit& edit, const Acquisition& acquisition,
-               float background, float inside) {
+               float background, float inside, bool noiseless) {
     MeshScan scan;
     scan.voxel_size = acquisition.voxel_size.value_or(Vec3d::Constant(0.4));
     scan.background = background;
     scan.object = inside;
     scan.moved_from_original = edit.moved_from_original;
     scan.erosions = edit.erosions;
-    scan.scanner = {acquisition.psf_fwhm, acquisition.noise, acquisition.noise_correlation,
-                    acquisition.noise_seed};
+    scan.scanner = {acquisition.psf_fwhm, noiseless ? 0.0 : acquisition.noise,
+                    acquisition.noise_correlation, acquisition.noise_seed};
     return scan_mesh(object, scan);
 }
 

@@ -32,13 +32,16 @@ namespace glint::detail {
 [[nodiscard]] Acquisition inherited(const Acquisition& reference);
 
 /// The scan `acquisition` makes of `volume` moved by `edit` (its motion and erosions), or the
-/// volume itself when nothing is asked.
-[[nodiscard]] Volume acquire(const Volume& volume, VolumeEdit edit, const Acquisition& acquisition);
+/// volume itself when nothing is asked. `noiseless`: the same scan before its noise (which
+/// apply_scanner adds last), for the pair's truth.
+[[nodiscard]] Volume acquire(const Volume& volume, VolumeEdit edit, const Acquisition& acquisition,
+                             bool noiseless = false);
 
 /// The scan `acquisition` makes of the solid `object` bounds (scenario/ct_of_mesh.h), moved by
 /// `edit`'s motion with its erosions; its values `background` outside, `inside` within.
 [[nodiscard]] Volume acquire(const Mesh& object, const VolumeEdit& edit,
-                             const Acquisition& acquisition, float background, float inside);
+                             const Acquisition& acquisition, float background, float inside,
+                             bool noiseless = false);
 
 /// One line for a scenario's notes: "noise σ 20 (seed 3), voxels 0.8 × 0.8 × 0.8 mm" or
 /// "as stored".

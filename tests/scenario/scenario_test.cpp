@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 
@@ -336,6 +338,24 @@ TEST(BuildScenario, ACtOfAPhantomIsAPairOfScansWithTheErosionAsTruth) {
     std::size_t truth = 0;
     for (auto t : m.truth) truth += t;
     EXPECT_GT(truth, 10u);
+    // The truth is what the noiseless scans show of the erosion (erosion_truth): every vertex
+    // deep in the ball, none beyond it and the partial-volume ramp of its edge (half a voxel).
+    std::size_t deep = 0, deep_labelled = 0, beyond = 0;
+    for (std::size_t v = 0; v < m.truth.size(); ++v) {
+        const double r = (m.reference.positions[v].cast<double>() - Vec3d(0, 0, 10)).norm();
+        deep += r <= 2.0 ? 1 : 0;
+        deep_labelled += r <= 2.0 && m.truth[v] ? 1 : 0;
+        beyond += m.truth[v] && r > 3.0 + 0.6 ? 1 : 0;
+    }
+    EXPECT_GT(deep, 10u);
+    EXPECT_EQ(deep_labelled, deep);
+    EXPECT_EQ(beyond, 0u);
+    // An erosion to a value above the iso value (1420) removes nothing the scans can show.
+    std::string kept = small;
+    kept.replace(kept.find("erode_to = 1040.0"), 17, "erode_to = 1700.0");
+    const ScenarioMeshes none =
+        build_scenario_meshes(load_scenario(write_scenario("kept", kept), {}));
+    EXPECT_EQ(std::count(none.truth.begin(), none.truth.end(), std::uint8_t{1}), 0);
     // The examined scan holds the moved condyle: placed back, its surface lies on the
     // reference's away from the erosion (within a voxel and the noise).
     Mesh placed = m.examined;
