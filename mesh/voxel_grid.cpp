@@ -90,7 +90,10 @@ constexpr double kMinPeriodVoxels = 0.4, kMaxPeriodVoxels = 4.0;
 // note: a grid more than this many triangle-size voxels across is not searched (the
 // histogram's bins and frequencies grow with its square; CBCT at 0.3 mm is 300–800 across).
 constexpr double kMaxVoxelsAcross = 2048.0;
-constexpr std::size_t kMaxSampled = 50000;  // vertices read (an even stride over the mesh)
+// note: 20 000 vertices read (an even stride over the mesh): chance components 0.02, a third
+// of kMinPeriodicity; 50 000 cost CThead's smoothed export 0.65 s against 0.8 s for the rest of
+// reading it.
+constexpr std::size_t kMaxSampled = 20000;
 
 std::complex<double> phasor_mean(std::span<const double> x, double period) {
     std::complex<double> sum = 0.0;
@@ -137,8 +140,8 @@ AxisLattice axis_lattice(std::span<const double> x, std::span<const Eigen::Vecto
     if (!(best_j > 0.0)) return {};
     // Refined on the vertices themselves, within half a step either side.
     AxisLattice out;
-    for (int i = -20; i <= 20; ++i) {
-        const double period = extent / (best_j + 0.5 * i / 20.0);
+    for (int i = -10; i <= 10; ++i) {
+        const double period = extent / (best_j + 0.5 * i / 10.0);
         const double strength = std::abs(phasor_mean(x, period));
         if (strength > out.strength) out = {period, strength};
     }
