@@ -167,8 +167,10 @@ struct DecisionEvidence {
 /// The scale the fused rule read its evidence at. Where the floors at the vertices' own scale
 /// are implausible (a cap was hit: rough surfaces, CT staircase and partial-volume noise), the
 /// shape evidence is read over growing radii (decision/detail/evidence_scale.h) until the
-/// undamaged majority is quiet (neither floor implausible); the first such radius is chosen.
-/// Where none is, no region is reported: dozens of noise regions would say nothing.
+/// undamaged majority is quiet (neither floor implausible); the first such radius is chosen,
+/// and regions are also sought over the two rungs beyond it (`wider`: a wider, shallower
+/// change stands out only there). Where none is quiet, no region is reported: dozens of noise
+/// regions would say nothing.
 struct EvidenceScale {
     double radius = 0.0;  ///< 0: each vertex's own evidence
     /// The floors at the vertices' own scale were implausible, or the scans' voxel is known
@@ -204,7 +206,11 @@ struct EvidenceScale {
     /// read): the number of places a false alarm could arise, for the regions' p values.
     double resels = 0.0;
     std::vector<double> tried;  ///< radii tried, in order
-    Floor own_normal;           ///< the floors at the vertices' own scale (when searched)
+    /// The wider rungs searched for regions beyond the chosen radius (decision.cpp
+    /// search_wider): a change wider than the chosen scale stands out only where its disc's
+    /// spread has averaged down. Regions' p values count every scale searched.
+    std::vector<double> wider;
+    Floor own_normal;  ///< the floors at the vertices' own scale (when searched)
     Floor own_shape;
     std::string text;  ///< one line: the scale and what it can detect
 };

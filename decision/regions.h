@@ -50,6 +50,13 @@ struct Region {
     /// larger of the Gaussian bound over every resolution element searched and the share of
     /// the compared surface outside all regions that stands as high, per resolution element.
     double p_value = std::numeric_limits<double>::quiet_NaN();
+    /// The radius the evidence that found it was read over (decision/decision.h EvidenceScale;
+    /// 0: each vertex's own). A change wider than the scale the undamaged majority is quiet at
+    /// may stand out only over a wider disc, where the spread averages down.
+    double scale_radius = 0.0;
+    /// One robust standard deviation of the distance on the undamaged surface at that scale
+    /// (mesh units; NaN: not measured): the ± of its depth.
+    double depth_sd = std::numeric_limits<double>::quiet_NaN();
 
     /// Surface gone in a hole: a loss whose depth is a lower bound (`hole` above).
     [[nodiscard]] bool is_hole_loss() const { return kind == RegionKind::Dent && hole; }

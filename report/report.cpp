@@ -76,6 +76,8 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
         // state_significance): null where it is no distance (surface gone, missing surface)
         {"z", number(r.z)},
         {"p_value", number(r.p_value)},
+        // the radius its evidence was read over (0: each vertex's own; decision.h EvidenceScale)
+        {"scale_radius", r.scale_radius},
         {"best_view", r.best_view}};
     if (r.kind == RegionKind::MissingSurface) {
         // The examined scan holds no surface there: a depth or volume would measure to
@@ -101,8 +103,11 @@ json region_json(const Region& r, const SweepPlan& plan, const MetricDescriptor&
     if (words.reference && words.orientation) {
         const std::string place = region_place(r, *words.reference, *words.orientation);
         j["place"] = place;
-        j["depth_uncertainty"] = words.depth_uncertainty;
-        j["finding"] = region_sentence(r, place, words.depth_uncertainty, words.unit, words.mirror);
+        // Its own scale's spread where the decision measured one (a region found over a wider
+        // disc reads a smaller one), else the zoom's.
+        const double sd = std::isfinite(r.depth_sd) ? r.depth_sd : words.depth_uncertainty;
+        j["depth_uncertainty"] = sd;
+        j["finding"] = region_sentence(r, place, sd, words.unit, words.mirror);
     }
     return j;
 }
@@ -161,6 +166,7 @@ json scale_json(const EvidenceScale& s) {
               {"min_detectable_depth", s.min_depth},
               {"min_detectable_area", s.min_area},
               {"radii_tried", s.tried},
+              {"wider_radii_searched", s.wider},
               {"resolution_depth", s.resolution_depth},
               {"resolution_elements", s.resels},
               {"text", s.text}};
@@ -410,7 +416,8 @@ std::string regions_csv(const AnalysisResult& result) {
         << ",max_mean_" << nu << ",mean_" << nu << ",peak_depth" << l << ",mean_depth" << l
         << ",volume" << v3 << ",missing_fraction,centroid_x" << l << ",centroid_y" << l
         << ",centroid_z" << l
-        << ",best_view,best_view_azimuth_deg,best_view_elevation_deg,z,p_value\n";
+        << ",best_view,best_view_azimuth_deg,best_view_elevation_deg,z,p_value,scale_radius" << l
+        << "\n";
     const auto& plan = result.sweep.plan;
     for (std::size_t z = 0; z < result.decisions.size(); ++z) {
         const std::vector<double> peaks = region_peak_values(result, z);
@@ -435,11 +442,11 @@ std::string regions_csv(const AnalysisResult& result) {
             char row[760];
             std::snprintf(
                 row, sizeof row,
-                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%s,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%s\n",
+                "%zu,%.6g,%d,%s,%zu,%.6g,%.4f,%.4f,%.4f,%s,%.4f,%.6g,%.6g,%.6g,%d,%.6g,%.6g,%s,%.6g\n",
                 z, plan.footprints[z], r.id, kind.c_str(), r.vertex_count, r.area,
                 peaks[static_cast<std::size_t>(r.id)], r.max_value, r.mean_value, depths,
                 r.missing_fraction, r.centroid.x(), r.centroid.y(), r.centroid.z(), r.best_view, az,
-                el, significance);
+                el, significance, r.scale_radius);
             csv << row;
         }
     }

@@ -111,9 +111,15 @@ void print_summary(const Inspection& inspection, bool pictures) {
             if (std::isfinite(g.z))
                 std::snprintf(stands, sizeof stands, "; %.*f spreads of the undamaged surface, %s",
                               g.z < 100 ? 1 : 0, g.z, significance_text(g.p_value).c_str());
-            std::printf("  region %d: %s%s; centroid (%.3f, %.3f, %.3f) %s\n", g.id, words.c_str(),
-                        stands, g.centroid.x(), g.centroid.y(), g.centroid.z(),
-                        u.empty() ? "units" : u.c_str());
+            // Found over a wider disc than the scale chosen (decision.cpp search_wider).
+            char wider[96] = "";
+            if (g.scale_radius > d.scale.radius && d.scale.radius > 0)
+                std::snprintf(wider, sizeof wider,
+                              "; found over a radius of %.3g %s (a wider rung)", g.scale_radius,
+                              u.empty() ? "units" : u.c_str());
+            std::printf("  region %d: %s%s%s; centroid (%.3f, %.3f, %.3f) %s\n", g.id,
+                        words.c_str(), stands, wider, g.centroid.x(), g.centroid.y(),
+                        g.centroid.z(), u.empty() ? "units" : u.c_str());
         }
     }
     std::printf("%zu views in %.1f s (%s on %s); atlas, %sreport in %s (open %s in a browser)\n",

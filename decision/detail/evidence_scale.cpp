@@ -12,6 +12,7 @@
 #include <limits>
 #include <numbers>
 #include <thread>
+#include <unordered_map>
 
 namespace glint::detail {
 
@@ -43,7 +44,10 @@ class BallFit {
           inv_two_sigma2_(2.0 / (radius * radius)),
           stamp_(mesh.vertex_count(), -1) {}
 
-    void fit(std::size_t v, ScaledEvidence& out) {
+    /// The fitted plane at v: its value there and its gradient (mesh units per unit, in the
+    /// tangent plane); the gradient is zero where the fit fell back to v's own distance.
+    void fit(std::size_t v, ScaledEvidence& out, Eigen::Vector3d* gradient = nullptr) {
+        if (gradient) gradient->setZero();
         const Eigen::Vector3d p = mesh_.positions[v].cast<double>();
         const Eigen::Vector3d n = mesh_.normals[v].cast<double>().normalized();
         const Eigen::Vector3d t1 = n.unitOrthogonal();
@@ -83,6 +87,7 @@ class BallFit {
         const Eigen::Vector3d c = a.ldlt().solve(b);
         if (!c.allFinite()) return;
         out.distance[v] = static_cast<float>(c[0]);
+        if (gradient) *gradient = c[1] * t1 + c[2] * t2;
         out.tilt_deg[v] =
             static_cast<float>(std::atan(std::hypot(c[1], c[2])) * 180.0 / std::numbers::pi);
         // The tolerance of the fit's value: each facet's chord lies off the surface by its own
@@ -128,6 +133,79 @@ ScaledEvidence scaled_evidence(const Mesh& reference, const DecisionEvidence& e,
         BallFit fit(reference, adj, e, use, radius);
         for (std::size_t v = t * stride; v < n; v += shares * stride) fit.fit(v, out);
     });
+    return out;
+}
+
+ScaledEvidence sparse_scaled_evidence(const Mesh& reference, const DecisionEvidence& e,
+                                      double radius) {
+    GLINT_ASSERT(e.distance && e.distance->size() == reference.vertex_count(),
+                 "scaled evidence without a distance per vertex");
+    GLINT_ASSERT(reference.has_normals(), "scaled evidence needs the reference's normals");
+    GLINT_ASSERT(radius > 0, "sparse scaled evidence needs a radius");
+    const std::size_t n = reference.vertex_count();
+    constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+    ScaledEvidence out{.radius = radius,
+                       .distance = std::vector<float>(n, kNaN),
+                       .tolerance = std::vector<float>(n, kNaN),
+                       .tilt_deg = std::vector<float>(n, kNaN)};
+    if (n == 0) return out;
+    const std::vector<std::uint8_t> use = usable(e);
+    // One usable vertex per cell and facing: 20 bits per axis (a million cells across), 3 for
+    // the facing.
+    Eigen::Vector3f lo = reference.positions[0];
+    for (const auto& p : reference.positions) lo = lo.cwiseMin(p);
+    const double cell = 0.25 * radius;
+    std::unordered_map<std::uint64_t, std::uint32_t> first;
+    std::vector<std::uint32_t> chosen;
+    for (std::size_t v = 0; v < n; ++v) {
+        if (!use[v]) continue;
+        const Eigen::Vector3f& nv = reference.normals[v];
+        Eigen::Index axis = 0;
+        nv.cwiseAbs().maxCoeff(&axis);
+        std::uint64_t key = static_cast<std::uint64_t>(2 * axis + (nv[axis] < 0 ? 1 : 0));
+        for (int k = 0; k < 3; ++k) {
+            const auto c = static_cast<std::uint64_t>(
+                std::clamp((static_cast<double>(reference.positions[v][k]) - lo[k]) / cell, 0.0,
+                           double((1 << 20) - 1)));
+            key = (key << 20) | c;
+        }
+        if (first.emplace(key, static_cast<std::uint32_t>(v)).second)
+            chosen.push_back(static_cast<std::uint32_t>(v));
+    }
+    const Adjacency adj = adjacency(reference);
+    std::vector<Eigen::Vector3d> gradient(chosen.size());
+    const std::size_t shares = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, 16);
+    tbb::parallel_for(std::size_t{0}, shares, [&](std::size_t t) {
+        BallFit fit(reference, adj, e, use, radius);
+        for (std::size_t k = t; k < chosen.size(); k += shares)
+            fit.fit(chosen[k], out, &gradient[k]);
+    });
+    // Every other vertex: the plane of the nearest fitted vertex through mesh edges (breadth
+    // first from all of them at once), evaluated at its own position; a vertex no fitted one
+    // reaches keeps NaN.
+    std::vector<std::uint32_t> source(n, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint32_t> queue;
+    queue.reserve(n);
+    for (std::size_t k = 0; k < chosen.size(); ++k) {
+        source[chosen[k]] = static_cast<std::uint32_t>(k);
+        queue.push_back(chosen[k]);
+    }
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::uint32_t u = queue[head];
+        const std::uint32_t k = source[u];
+        const std::uint32_t c = chosen[k];
+        for (std::uint32_t a = adj.offset[u]; a < adj.offset[u + 1]; ++a) {
+            const std::uint32_t w = adj.index[a];
+            if (source[w] != std::numeric_limits<std::uint32_t>::max()) continue;
+            source[w] = k;
+            const Eigen::Vector3d step =
+                (reference.positions[w] - reference.positions[c]).cast<double>();
+            out.distance[w] = static_cast<float>(out.distance[c] + gradient[k].dot(step));
+            out.tolerance[w] = out.tolerance[c];
+            out.tilt_deg[w] = out.tilt_deg[c];
+            queue.push_back(w);
+        }
+    }
     return out;
 }
 

@@ -32,6 +32,18 @@ struct ScaledEvidence {
                                              const DecisionEvidence& evidence, double radius,
                                              std::size_t stride = 1);
 
+/// The same evidence over a wide radius at a fraction of the cost: one vertex is fitted per
+/// cell of a quarter of the radius (σ/2) and per facing (the normal's dominant axis and sign,
+/// so both sides of a thin plate are read), and every other vertex takes the plane fitted at
+/// the nearest fitted one through mesh edges, evaluated where it stands (its tilt and tolerance
+/// as they are). Over a disc of radius r the fit changes little within σ/2, so the field it
+/// gives is the full reading's at that scale; the cost is about
+/// 16π fits' worth of neighbours per vertex whatever the radius (decision.cpp search_wider).
+/// \pre as scaled_evidence.
+[[nodiscard]] ScaledEvidence sparse_scaled_evidence(const Mesh& reference,
+                                                    const DecisionEvidence& evidence,
+                                                    double radius);
+
 /// The radii tried, smallest first: 2, 4, 8, 16 and 32 median edge lengths of the reference,
 /// at most 8 % of the size.
 [[nodiscard]] std::vector<double> scale_ladder(const Mesh& reference, double size);

@@ -6,6 +6,7 @@
 
 #include "scanner/atlas.h"
 #include "scanner/coverage.h"
+#include "tests/decision/flat_grid.h"
 
 #include <gtest/gtest.h>
 
@@ -21,18 +22,7 @@ namespace {
 
 constexpr int kN = 40;  // grid of kN × kN unit squares, (kN + 1)² vertices
 
-Mesh grid() {
-    Mesh m;
-    for (int y = 0; y <= kN; ++y)
-        for (int x = 0; x <= kN; ++x) m.positions.emplace_back(float(x), float(y), 0.f);
-    auto id = [](int x, int y) { return static_cast<std::uint32_t>(y * (kN + 1) + x); };
-    for (int y = 0; y < kN; ++y)
-        for (int x = 0; x < kN; ++x) {
-            m.triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
-            m.triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
-        }
-    return m;
-}
+Mesh grid() { return test::flat_grid(kN); }
 
 std::size_t vid(int x, int y) { return static_cast<std::size_t>(y * (kN + 1) + x); }
 
@@ -403,15 +393,8 @@ TEST(Decide, AChangeBeyondTheStatedLimitWithoutARegionIsWarnedAboutWithItsPlace)
 // units wide and they differ by ±0.5: only the first stands out from its own band.
 TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
     constexpr int n = 80;
-    Mesh m;
-    for (int y = 0; y <= n; ++y)
-        for (int x = 0; x <= n; ++x) m.positions.emplace_back(float(x), float(y), 0.f);
-    auto id = [](int x, int y) { return static_cast<std::uint32_t>(y * (n + 1) + x); };
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            m.triangles.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
-            m.triangles.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
-        }
+    const Mesh m = test::flat_grid(n);
+    auto id = [](int x, int y) { return test::grid_vertex(n, x, y); };
     const std::size_t count = m.vertex_count();
     ZoomAtlas atlas;
     atlas.value_mean.assign(count, 1.0f);

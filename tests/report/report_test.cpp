@@ -187,16 +187,19 @@ TEST(SweepReport, WritesEveryPromisedFileAndAReportThatRepeatsTheRun) {
     ASSERT_GE(missing_row.size(), 12u);
     EXPECT_EQ(missing_row[3], "missing surface");
     for (std::size_t c : {9u, 10u, 11u}) EXPECT_TRUE(missing_row[c].empty()) << c;
-    // Its significance closes the row: empty where none was stated, z and p where it was.
-    EXPECT_NE(header.rfind(",z,p_value"), std::string::npos) << header;
+    // Its significance, then the radius its evidence was read over, close the row: empty
+    // where no significance was stated, z and p where it was; 0 for each vertex's own scale.
+    EXPECT_NE(header.rfind(",z,p_value,scale_radius" + unit_suffix(unit)), std::string::npos)
+        << header;
     AnalysisResult stated = result.analysis;
     Region& first = stated.decisions[0].regions.regions[0];
     first.z = 9.25;
     first.p_value = 3e-16;
+    first.scale_radius = 2.5;
     const std::string stated_csv = regions_csv(stated);
-    EXPECT_NE(stated_csv.find(",9.25,3e-16\n"), std::string::npos) << stated_csv;
+    EXPECT_NE(stated_csv.find(",9.25,3e-16,2.5\n"), std::string::npos) << stated_csv;
     const std::string plain_csv = regions_csv(missing);
-    EXPECT_EQ(plain_csv.substr(plain_csv.size() - 3), ",,\n") << plain_csv;
+    EXPECT_EQ(plain_csv.substr(plain_csv.size() - 5), ",,,0\n") << plain_csv;
     // A loss in a hole is named as report.json names it, not "dent".
     AnalysisResult gone = result.analysis;
     gone.decisions[0].regions.regions[0].kind = RegionKind::Dent;
