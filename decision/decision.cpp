@@ -767,8 +767,8 @@ void join_wider(const Mesh& reference, const RegionResult& wider, RegionResult& 
 // about that wide; a wider, shallower change stands out only over a wider disc, where the
 // majority's spread averages down (the detection limit's curve states how far: on the CBCT jaw
 // pair 0.29 mm over 1.6 mm² at the chosen 1.2 mm, 0.16 mm over 6.6 mm² at 2.5 mm). Up to
-// kWiderRungs rungs beyond the chosen one are read in full, each against its own floors, banded,
-// bounded and grown as the chosen one; a region they find that no finer region overlaps or touches
+// kWiderRungs rungs beyond the chosen one are read, each against its own floors, banded, bounded
+// and grown as the chosen one; a region they find that no finer region overlaps or touches
 // joins the finding (the finer one places a change best: it is where it stood out first). Every
 // region's p then counts the scales searched (Bonferroni over scales: conservative, since the
 // readings of one pair at neighbouring scales are correlated).
@@ -798,7 +798,7 @@ void search_wider(const Mesh& reference, const DecisionEvidence& e, const Covera
         EvidenceAtScale at;
         read_at_scale(reference, over, r, at, true);
         const SamplingBands bands = sampling_bands(at.evidence, compared, at.scaled.distance);
-        read_in_bands(bands, *e.sampling, at.scaled.distance, at.scaled.tolerance);
+        if (e.sampling) read_in_bands(bands, *e.sampling, at.scaled.distance, at.scaled.tolerance);
         const FusedAtScale f = fused_floors(at.evidence, compared, o, true);
         if (f.normal.implausible || f.shape.implausible) continue;
         ZoomDecision w;
@@ -858,7 +858,7 @@ void decide_at_quiet_scale(const Mesh& reference, const DecisionEvidence& e,
         s.tried.push_back(r);
         read_at_scale(reference, e, r, at);
         bands = sampling_bands(at.evidence, compared, at.scaled.distance);
-        read_in_bands(bands, *e.sampling, at.scaled.distance, at.scaled.tolerance);
+        if (e.sampling) read_in_bands(bands, *e.sampling, at.scaled.distance, at.scaled.tolerance);
         f = fused_floors(at.evidence, compared, o, true);
         if (f.normal.implausible || f.shape.implausible) continue;
         s.quiet = true;
