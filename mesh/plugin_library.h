@@ -20,6 +20,11 @@ struct PluginSpec {
     const char* entry;     ///< "glint_image_io_table_v1"
     const char* serves;    ///< "pictures and image files", "volume support"
     const char* packages;  ///< "libopenimageio2.4"
+    /// The address space its libraries take to start (bytes; 0: not known): their mappings,
+    /// and the stacks and malloc arenas of the threads their initialisers start. Under a
+    /// finite address space (ulimit -v) a plugin is loaded only where that much can still be
+    /// mapped (plugin_library.cpp).
+    std::size_t start_bytes = 0;
 };
 
 /// The plugin's file, or empty with `error` set to one line naming where it was looked for
