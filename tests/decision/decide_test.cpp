@@ -393,20 +393,11 @@ TEST(Decide, AChangeBeyondTheStatedLimitWithoutARegionIsWarnedAboutWithItsPlace)
 // units wide and they differ by ±0.5: only the first stands out from its own band.
 TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
     constexpr int n = 80;
-    const Mesh m = test::flat_grid(n);
+    test::FlatEvidence g(n);
+    const Mesh& m = g.mesh;
     auto id = [](int x, int y) { return test::grid_vertex(n, x, y); };
-    const std::size_t count = m.vertex_count();
-    ZoomAtlas atlas;
-    atlas.value_mean.assign(count, 1.0f);
-    atlas.value_max.assign(count, 1.0f);
-    atlas.missing.assign(count, 0.0f);
-    atlas.depth_mean.assign(count, 0.0f);
-    atlas.max_view.assign(count, 0);
-    Coverage coverage;
-    coverage.seen.assign(count, 1);
-    coverage.fraction = 1.0;
-    std::vector<float> distance(count), tolerance(count, 0.0f), sampling(count);
-    std::vector<std::uint8_t> at_border(count, 0);
+    std::vector<float>& distance = g.distance;
+    std::vector<float> sampling(m.vertex_count());
     std::uint32_t state = 777;
     auto uniform = [&state] {  // in [-0.5, 0.5)
         state = state * 1664525u + 1013904223u;
@@ -427,16 +418,8 @@ TEST(Decide, TheDistanceIsJudgedPerBandOfTheGridsWidthAlongTheNormal) {
                 const double r = std::hypot(x - cx, y - 54);
                 if (r < 10) distance[id(x, y)] += static_cast<float>(4.0 * (1 - r / 10));
             }
-    DecisionEvidence view{.atlas = &atlas,
-                          .coverage = &coverage,
-                          .distance = &distance,
-                          .tolerance = &tolerance,
-                          .at_border = &at_border,
-                          .sampling = &sampling,
-                          .voxel = 3.0,
-                          .metric = Metric::AngleDeg,
-                          .size = 400.0,
-                          .unit = "mm"};
+    DecisionEvidence view = g.view(3.0, 400.0);
+    view.sampling = &sampling;
     const ZoomDecision d = decide(m, view, DecisionOptions{});
     ASSERT_EQ(d.scale.sampling_bands.size(), 2u) << "two widths: two bands";
     EXPECT_GT(d.scale.min_depth_across, 3.0 * d.scale.min_depth);

@@ -18,31 +18,13 @@ namespace {
 
 constexpr int kN = 120;  // kN × kN unit squares
 
-struct NoisyGrid {
-    Mesh mesh;
-    ZoomAtlas atlas;
-    Coverage coverage;
-    std::vector<float> distance;
-    std::vector<float> tolerance;
-    std::vector<std::uint8_t> at_border;
-
+struct NoisyGrid : test::FlatEvidence {
     static std::uint32_t id(int x, int y) { return test::grid_vertex(kN, x, y); }
 
     /// Noise blobs of amplitude up to ±amplitude/2 every 2 units; a Gaussian dent of `depth`
     /// and σ `width` at the centre.
-    NoisyGrid(float amplitude, float depth, float width) : mesh(test::flat_grid(kN)) {
+    NoisyGrid(float amplitude, float depth, float width) : FlatEvidence(kN) {
         compute_vertex_normals(mesh);
-        const std::size_t n = mesh.vertex_count();
-        atlas.value_mean.assign(n, 1.0f);
-        atlas.value_max.assign(n, 1.0f);
-        atlas.missing.assign(n, 0.0f);
-        atlas.depth_mean.assign(n, 0.0f);
-        atlas.max_view.assign(n, 0);
-        coverage.seen.assign(n, 1);
-        coverage.fraction = 1.0;
-        distance.assign(n, 0.0f);
-        tolerance.assign(n, 0.0f);
-        at_border.assign(n, 0);
         std::uint32_t state = 777;
         auto uniform = [&state] {  // in [-0.5, 0.5): a fixed linear congruential sequence
             state = state * 1664525u + 1013904223u;
@@ -65,17 +47,7 @@ struct NoisyGrid {
     }
 
     /// The scans' voxel is 3 units: the ladder starts at 4√2 (the median edge is √2).
-    [[nodiscard]] DecisionEvidence view() const {
-        return {.atlas = &atlas,
-                .coverage = &coverage,
-                .distance = &distance,
-                .tolerance = &tolerance,
-                .at_border = &at_border,
-                .voxel = 3.0,
-                .metric = Metric::AngleDeg,
-                .size = 400.0,
-                .unit = "mm"};
-    }
+    [[nodiscard]] DecisionEvidence view() const { return FlatEvidence::view(3.0, 400.0); }
 };
 
 // A dent 1.4 deep and wide (σ 12) under smooth noise: at the finest quiet rung its smoothed peak
